@@ -1,0 +1,19 @@
+#pragma once
+//! \file mesh.hpp
+//! OpenMesh types used across kiri, in double precision (REFERENCE 5).
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+namespace kiri::geometry {
+
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+    using Point = OpenMesh::Vec3d;
+    using Normal = OpenMesh::Vec3d;
+    using TexCoord2D = OpenMesh::Vec2d;
+};
+
+using TriMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
+using PolyMesh = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+
+}  // namespace kiri::geometry

@@ -1,0 +1,59 @@
+#pragma once
+//! \file scene.hpp
+//! The scene file (JSON): what a user authors. Later stages extend this schema; every key
+//! is documented in docs/scene.md. Unknown keys are errors.
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace kiri::geometry {
+
+struct TerrainSpec {
+    std::filesystem::path path;       //!< resolved against the scene file's folder
+    double exaggeration = 1.0;        //!< vertical exaggeration, > 0
+    double cell_size = 0.0;           //!< metres per cell, for rasters without georeferencing
+    double vertical_scale = 1.0;      //!< metres per raster unit (PNG heightmaps)
+    double vertical_offset = 0.0;
+};
+
+struct CameraSpec {
+    std::string name = "default";
+    glm::dvec3 position{0.0, -5000.0, 3000.0};  //!< local metres
+    glm::dvec3 target{0.0, 0.0, 500.0};
+    double fov_y_deg = 45.0;                    //!< vertical field of view, (0, 180)
+};
+
+struct SunSpec {
+    glm::dvec3 direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised on load), z > -1
+    glm::dvec3 color{1.0, 0.96, 0.9};
+    double intensity = 3.0;
+    glm::dvec3 ambient{0.25, 0.3, 0.38};   //!< sky ambient radiance
+};
+
+struct ImageSpec {
+    int width = 1280, height = 720;
+};
+
+struct Scene {
+    std::filesystem::path file;   //!< where it was loaded from (for messages); may be empty
+    TerrainSpec terrain;
+    std::vector<CameraSpec> cameras;  //!< at least one after loading
+    SunSpec sun;
+    ImageSpec image;
+
+    //! The camera called name; the first when name is empty. \throw InputError if absent.
+    const CameraSpec& camera(std::string_view name = {}) const;
+};
+
+//! \throw InputError "FILE: /json/pointer: reason" on any problem.
+Scene load_scene(const std::filesystem::path& path);
+//! Parses JSON text; file_label names it in messages, base_dir resolves relative paths.
+Scene parse_scene(std::string_view json_text, const std::string& file_label,
+                  const std::filesystem::path& base_dir);
+//! Writes the scene back as JSON that parse_scene reads to an equal Scene.
+std::string scene_to_json(const Scene& scene);
+
+}  // namespace kiri::geometry

@@ -1,0 +1,3 @@
+# Sources of geometry/src/fog (paths relative to geometry/)
+list(APPEND KIRI_GEOMETRY_SOURCES
+)

@@ -1,0 +1,4 @@
+# Sources of geometry/src/scene (paths relative to geometry/)
+list(APPEND KIRI_GEOMETRY_SOURCES
+  src/scene/error.cpp
+)

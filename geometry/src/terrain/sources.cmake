@@ -1,0 +1,3 @@
+# Sources of geometry/src/terrain (paths relative to geometry/)
+list(APPEND KIRI_GEOMETRY_SOURCES
+)

@@ -1,0 +1,21 @@
+#pragma once
+//! \file image.hpp
+//! 8-bit RGBA images, rows top to bottom, and atomic PNG writing.
+#include <cstdint>
+#include <filesystem>
+#include <vector>
+
+namespace kiri::render {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<std::uint8_t> rgba;  //!< width * height * 4, row 0 at the top
+};
+
+//! Writes to a temporary file beside path, then renames it: no partial PNG is ever left.
+//! \throw kiri::IoError naming the path when it cannot be written.
+void write_png_atomic(const std::filesystem::path& path, const Image& image);
+//! \throw kiri::InputError when the file is not a readable PNG.
+Image read_png(const std::filesystem::path& path);
+
+}  // namespace kiri::render

@@ -1,0 +1,61 @@
+#pragma once
+//! \file renderer.hpp
+//! The frame renderer: owns the GPU resources of a scene and draws it into an offscreen
+//! framebuffer. Resources are uploaded once and rebuilt only when their inputs change.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/render/camera.hpp"
+#include "kiri/render/image.hpp"
+
+namespace kiri::geometry {
+class Terrain;
+}
+
+namespace kiri::render {
+
+struct SunLight {
+    glm::dvec3 direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised by the renderer)
+    glm::dvec3 color{1.0, 0.96, 0.9};
+    double intensity = 3.0;
+    glm::dvec3 ambient{0.25, 0.3, 0.38};
+};
+
+struct PassTime {
+    std::string pass;
+    double gpu_ms = 0.0;  //!< GL timer query
+    double cpu_ms = 0.0;
+};
+
+struct FrameStats {
+    std::vector<PassTime> passes;
+    double frame_ms = 0.0;
+    int uploads = 0;  //!< GPU resources (re)built during this frame
+};
+
+class Renderer {
+public:
+    //! A GL context must be current.
+    Renderer();
+    ~Renderer();
+    Renderer(const Renderer&) = delete;
+    Renderer& operator=(const Renderer&) = delete;
+
+    //! The terrain to draw (kept by reference: it must outlive the renderer's use of it).
+    //! Re-uploads only when the terrain or the exaggeration changed.
+    void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0);
+    void set_sun(const SunLight& sun);
+
+    //! Renders the frame offscreen and reads it back.
+    Image render(const Camera& camera, int width, int height);
+    const FrameStats& last_stats() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace kiri::render
