@@ -1,3 +1,4 @@
 # Sources of geometry/src/terrain (paths relative to geometry/)
 list(APPEND KIRI_GEOMETRY_SOURCES
+  src/terrain/terrain.cpp
 )

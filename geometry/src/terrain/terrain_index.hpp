@@ -1,0 +1,22 @@
+#pragma once
+// Internal: the terrain's triangle mesh and its CGAL AABB tree, behind a plain interface so
+// that CGAL stays inside terrain_index.cpp (REFERENCE 5: CGAL headers cost ~30 s per file).
+#include <memory>
+#include <optional>
+
+#include "kiri/geometry/terrain.hpp"
+
+namespace kiri::geometry {
+
+struct Terrain::Index {
+    explicit Index(const Heightfield& hf);
+    ~Index();
+    const TriMesh& mesh() const;
+    std::optional<RayHit> intersect_ray(const glm::dvec3& origin, const glm::dvec3& dir) const;
+    glm::dvec3 closest_point(const glm::dvec3& p) const;
+
+    struct Impl;
+    std::unique_ptr<Impl> impl;
+};
+
+}  // namespace kiri::geometry
