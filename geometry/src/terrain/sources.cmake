@@ -1,4 +1,5 @@
 # Sources of geometry/src/terrain (paths relative to geometry/)
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/terrain/terrain.cpp
+  src/terrain/terrain_index.cpp
 )
