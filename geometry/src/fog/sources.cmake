@@ -1,3 +1,6 @@
 # Sources of geometry/src/fog (paths relative to geometry/)
 list(APPEND KIRI_GEOMETRY_SOURCES
+  src/fog/footprint.cpp
+  src/fog/fog_target.cpp
+  src/fog/base_surface.cpp
 )

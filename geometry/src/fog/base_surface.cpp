@@ -1,0 +1,365 @@
+#include "kiri/geometry/base_surface.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fog_target.hpp"
+#include "surface/face_stencil.hpp"
+
+namespace kiri::geometry {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string num(double v)
+{
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+void require_finite(double v, const char* field)
+{
+    if (!std::isfinite(v))
+        throw InputError("", field, "must be a finite number");
+}
+
+// Per-face normal equations of the fit: L h_S = r over the face's support S.
+struct FaceSystem {
+    std::vector<double> L, r;
+};
+
+void add_row(FaceSystem& s, const std::vector<double>& w, double weight, double rhs)
+{
+    const std::size_t n = w.size();
+    for (std::size_t a = 0; a < n; ++a) {
+        const double wa = weight * w[a];
+        s.r[a] += wa * rhs;
+        for (std::size_t b = 0; b < n; ++b)
+            s.L[a * n + b] += wa * w[b];
+    }
+}
+
+}  // namespace
+
+const char* to_string(BaseSurfaceKind kind)
+{
+    return kind == BaseSurfaceKind::gregory ? "gregory" : "catmull-clark";
+}
+const char* to_string(FitMode mode) { return mode == FitMode::blanket ? "blanket" : "lake"; }
+
+BaseSurface::BaseSurface(ControlMesh control, BaseSurfaceKind kind) : control_(std::move(control)), kind_(kind)
+{
+    stencils_ = kind == BaseSurfaceKind::gregory ? make_gregory_stencils(control_.mesh)
+                                                 : make_catmull_clark_stencils(control_.mesh);
+}
+BaseSurface::~BaseSurface() = default;
+BaseSurface::BaseSurface(BaseSurface&&) noexcept = default;
+BaseSurface& BaseSurface::operator=(BaseSurface&&) noexcept = default;
+
+std::vector<double> BaseSurface::heights() const
+{
+    std::vector<double> z;
+    z.reserve(control_.mesh.n_vertices());
+    for (auto v : control_.mesh.vertices())
+        z.push_back(control_.mesh.point(v)[2]);
+    return z;
+}
+
+void BaseSurface::set_heights(const std::vector<double>& z)
+{
+    if (z.size() != control_.mesh.n_vertices())
+        throw InputError("", "heights", "expected one height per control vertex");
+    for (auto v : control_.mesh.vertices()) {
+        auto p = control_.mesh.point(v);
+        p[2] = z[v.idx()];
+        control_.mesh.set_point(v, p);
+    }
+}
+
+glm::dvec3 BaseSurface::evaluate(int face, double u, double v, glm::dvec3* du, glm::dvec3* dv) const
+{
+    thread_local FaceWeights fw;
+    stencils_->weights(face, u, v, fw);
+    const auto& s = stencils_->support(face);
+    const glm::dvec3 o(control_.origin, 0.0);
+    glm::dvec3 p(0.0), pu(0.0), pv(0.0);
+    for (std::size_t k = 0; k < s.size(); ++k) {
+        const auto q = control_.mesh.point(PolyMesh::VertexHandle(s[k]));
+        const glm::dvec3 d = glm::dvec3(q[0], q[1], q[2]) - o;
+        p += fw.w[k] * d;
+        pu += fw.wu[k] * d;
+        pv += fw.wv[k] * d;
+    }
+    if (du)
+        *du = pu;
+    if (dv)
+        *dv = pv;
+    return p + o;
+}
+
+FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
+{
+    for (auto [v, name] : {std::pair{o.offset, "offset"}, {o.smoothing_length, "smoothing"},
+                           {o.altitude, "altitude"}, {o.clearance, "clearance"},
+                           {o.thickness, "thickness"}, {o.smoothness, "smoothness"}})
+        require_finite(v, name);
+    if (o.smoothness < 0.0)
+        throw InputError("", "smoothness", "must be >= 0");
+    if (o.mode == FitMode::blanket) {
+        if (o.clearance < 0.0)
+            throw InputError("", "clearance", "must be >= 0");
+        if (!(o.thickness > 0.0))
+            throw InputError("", "thickness", "must be > 0");
+        if (o.clearance > o.thickness)
+            throw InputError("", "clearance",
+                             "clearance " + num(o.clearance) + " m is larger than the fog thickness " +
+                                 num(o.thickness) + " m: the fog would never touch the ground");
+    }
+    FitReport rep;
+    const Heightfield& hf = terrain.heightfield();
+    auto t0 = std::chrono::steady_clock::now();
+    const Heightfield smooth = o.mode == FitMode::blanket ? smooth_heightfield(hf, o.smoothing_length) : Heightfield{};
+    auto target_at = [&](double x, double y) {
+        return o.mode == FitMode::blanket ? sample_bilinear(smooth, x, y) + o.offset : o.altitude;
+    };
+    rep.seconds_target = seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+
+    const double h = control_.patch_size;
+    const int K = o.samples_per_patch > 0
+                      ? o.samples_per_patch
+                      : std::clamp(int(std::ceil(h / std::min(hf.dx, hf.dy))), 4, 512);
+    rep.samples_per_patch = K;
+    const int nf = num_patches(), nv = control_.num_vertices();
+    const glm::dvec2 origin = control_.origin;
+    std::vector<glm::dvec2> rel(nv);
+    for (int v = 0; v < nv; ++v) {
+        const auto p = control_.mesh.point(PolyMesh::VertexHandle(v));
+        rel[v] = glm::dvec2(p[0], p[1]) - origin;
+    }
+    std::vector<double> hts = heights();
+
+    // Data term and thin-plate energy, face by face (FitOptions::smoothness).
+    const double alpha = 1.0 / (double(K) * K);
+    const double gq[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
+    const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+    std::vector<FaceSystem> sys(nf);
+    FaceWeights fw;
+    std::vector<double> hxx, hxy, hyy;
+    long long valid_samples = 0;
+    // Samples: terrain height and target cached per sample; xy come from the fixed control xy.
+    const std::size_t per_face = std::size_t(K) * K;
+    std::vector<double> sample_terrain(per_face * nf), sample_target(per_face * nf);
+    std::vector<std::uint8_t> sample_state(per_face * nf, 0);  // bit 0: has data, bit 1: active
+    for (int f = 0; f < nf; ++f) {
+        const auto& S = stencils_->support(f);
+        const std::size_t n = S.size();
+        sys[f].L.assign(n * n, 0.0);
+        sys[f].r.assign(n, 0.0);
+        for (int b = 0; b < K; ++b)
+            for (int a = 0; a < K; ++a) {
+                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw);
+                glm::dvec2 xy(0.0);
+                for (std::size_t k = 0; k < n; ++k)
+                    xy += fw.w[k] * rel[S[k]];
+                xy += origin;
+                const std::size_t id = f * per_face + std::size_t(b) * K + a;
+                sample_terrain[id] = terrain.height(xy.x, xy.y);
+                sample_target[id] = target_at(xy.x, xy.y);
+                if (!has_data(hf, xy.x, xy.y)) {
+                    ++rep.nodata_samples;
+                    continue;
+                }
+                sample_state[id] = 1;
+                ++valid_samples;
+                add_row(sys[f], fw.w, alpha, sample_target[id]);
+            }
+        if (o.smoothness <= 0.0)
+            continue;
+        for (int qb = 0; qb < 3; ++qb)
+            for (int qa = 0; qa < 3; ++qa) {
+                stencils_->weights(f, gq[qa], gq[qb], fw, true);
+                glm::dvec2 au(0.0), av(0.0), auu(0.0), auv(0.0), avv(0.0);
+                for (std::size_t k = 0; k < n; ++k) {
+                    au += fw.wu[k] * rel[S[k]];
+                    av += fw.wv[k] * rel[S[k]];
+                    auu += fw.wuu[k] * rel[S[k]];
+                    auv += fw.wuv[k] * rel[S[k]];
+                    avv += fw.wvv[k] * rel[S[k]];
+                }
+                const double det = au.x * av.y - av.x * au.y;
+                if (!(std::abs(det) > 1e-12 * h * h))
+                    continue;
+                // z_x, z_y from z_u, z_v; then the xy Hessian H = J^-T A J^-1 with
+                // A = [z_uu - grad z . x_uu, ...] (chain rule; x(u, v) is fixed, so H is linear in z).
+                const double M[2][2] = {{av.y / det, -av.x / det}, {-au.y / det, au.x / det}};
+                hxx.assign(n, 0.0);
+                hxy.assign(n, 0.0);
+                hyy.assign(n, 0.0);
+                for (std::size_t k = 0; k < n; ++k) {
+                    const double gx = (av.y * fw.wu[k] - au.y * fw.wv[k]) / det;
+                    const double gy = (-av.x * fw.wu[k] + au.x * fw.wv[k]) / det;
+                    const double A[2][2] = {{fw.wuu[k] - gx * auu.x - gy * auu.y, fw.wuv[k] - gx * auv.x - gy * auv.y},
+                                            {fw.wuv[k] - gx * auv.x - gy * auv.y, fw.wvv[k] - gx * avv.x - gy * avv.y}};
+                    auto H = [&](int i, int j) {
+                        double s = 0.0;
+                        for (int c = 0; c < 2; ++c)
+                            for (int d = 0; d < 2; ++d)
+                                s += M[c][i] * A[c][d] * M[d][j];
+                        return s;
+                    };
+                    hxx[k] = H(0, 0);
+                    hxy[k] = H(0, 1);
+                    hyy[k] = H(1, 1);
+                }
+                const double beta = o.smoothness * h * h * h * h * gw[qa] * gw[qb] * std::abs(det) / (h * h);
+                add_row(sys[f], hxx, beta, 0.0);
+                add_row(sys[f], hxy, 2.0 * beta, 0.0);
+                add_row(sys[f], hyy, beta, 0.0);
+            }
+    }
+    rep.samples = valid_samples + rep.nodata_samples;
+    if (valid_samples == 0)
+        throw InputError("", "footprint", "no terrain data under the footprint (all samples are nodata)");
+    if (o.mode == FitMode::lake) {
+        long long below = 0;
+        for (std::size_t id = 0; id < sample_state.size(); ++id)
+            below += (sample_state[id] & 1) && sample_terrain[id] < o.altitude;
+        if (below == 0)
+            throw InputError("", "altitude",
+                             "the lake altitude " + num(o.altitude) +
+                                 " m is below the terrain everywhere in the footprint: no fog");
+    }
+
+    // A faint pull of each control height towards the target under it keeps the system
+    // positive definite where a vertex has no data (nodata, smoothness 0); it is exact for
+    // planes (affine precision of both surfaces).
+    std::vector<double> reg_target(nv);
+    for (int v = 0; v < nv; ++v)
+        reg_target[v] = target_at(rel[v].x + origin.x, rel[v].y + origin.y);
+    const double eps = 1e-9;
+    rep.seconds_assemble = seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+    bool analysed = false;
+    auto solve = [&]() {
+        std::vector<Eigen::Triplet<double>> trip;
+        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nv);
+        for (int v = 0; v < nv; ++v) {
+            trip.emplace_back(v, v, eps);
+            rhs[v] += eps * reg_target[v];
+        }
+        for (int f = 0; f < nf; ++f) {
+            const auto& S = stencils_->support(f);
+            const std::size_t n = S.size();
+            for (std::size_t a = 0; a < n; ++a) {
+                rhs[S[a]] += sys[f].r[a];
+                for (std::size_t b = 0; b < n; ++b)
+                    if (sys[f].L[a * n + b] != 0.0)
+                        trip.emplace_back(S[a], S[b], sys[f].L[a * n + b]);
+            }
+        }
+        Eigen::SparseMatrix<double> N(nv, nv);
+        N.setFromTriplets(trip.begin(), trip.end());
+        if (!analysed) {
+            solver.analyzePattern(N);
+            analysed = true;
+        }
+        solver.factorize(N);
+        if (solver.info() != Eigen::Success)
+            throw InputError("", "fit", "the least-squares system is singular");
+        const Eigen::VectorXd x = solver.solve(rhs);
+        for (int v = 0; v < nv; ++v)
+            hts[v] = x[v];
+        ++rep.iterations;
+    };
+    auto surface_z = [&](int f, const std::vector<double>& w) {
+        const auto& S = stencils_->support(f);
+        double z = 0.0;
+        for (std::size_t k = 0; k < S.size(); ++k)
+            z += w[k] * hts[S[k]];
+        return z;
+    };
+
+    solve();
+    // Blanket: active set on the violated samples, each held at terrain + clearance by a
+    // stiff penalty; samples once active stay active (monotone, so the loop ends).
+    const double rho = 1e4;
+    if (o.mode == FitMode::blanket) {
+        for (int it = 0; it < o.max_active_set_iterations; ++it) {
+            long long added = 0;
+            for (int f = 0; f < nf; ++f)
+                for (int b = 0; b < K; ++b)
+                    for (int a = 0; a < K; ++a) {
+                        const std::size_t id = f * per_face + std::size_t(b) * K + a;
+                        if (sample_state[id] != 1)
+                            continue;
+                        stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw);
+                        const double need = sample_terrain[id] + o.clearance;
+                        if (surface_z(f, fw.w) < need) {
+                            sample_state[id] |= 2;
+                            add_row(sys[f], fw.w, rho * alpha, need);
+                            ++added;
+                        }
+                    }
+            if (added == 0)
+                break;
+            rep.active_constraints += added;
+            solve();
+        }
+    }
+
+    // Final guarantee (blanket): lift the whole surface by the worst remaining violation;
+    // both surfaces reproduce constants, so every sample rises by exactly that much.
+    std::vector<double> z_all(per_face * nf);
+    double worst = 0.0;
+    for (int f = 0; f < nf; ++f)
+        for (int b = 0; b < K; ++b)
+            for (int a = 0; a < K; ++a) {
+                const std::size_t id = f * per_face + std::size_t(b) * K + a;
+                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw);
+                z_all[id] = surface_z(f, fw.w);
+                if (sample_state[id] & 1)
+                    worst = std::max(worst, sample_terrain[id] + o.clearance - z_all[id]);
+            }
+    if (o.mode == FitMode::blanket && worst > 0.0) {
+        rep.lift = worst * (1.0 + 1e-12) + 1e-12;
+        for (double& z : hts)
+            z += rep.lift;
+    }
+    double sum2 = 0.0;
+    long long wet = 0;
+    rep.min_clearance = std::numeric_limits<double>::infinity();
+    for (std::size_t id = 0; id < z_all.size(); ++id) {
+        if (!(sample_state[id] & 1))
+            continue;
+        const double z = z_all[id] + rep.lift;
+        const double dev = z - sample_target[id];
+        rep.max_deviation = std::max(rep.max_deviation, std::abs(dev));
+        sum2 += dev * dev;
+        rep.min_clearance = std::min(rep.min_clearance, z - sample_terrain[id]);
+        wet += sample_terrain[id] < z;
+    }
+    rep.rms_deviation = std::sqrt(sum2 / double(valid_samples));
+    rep.fog_fraction = double(wet) / double(valid_samples);
+    for (double z : hts)
+        if (!std::isfinite(z))
+            throw InputError("", "fit", "the fit produced a non-finite height");
+    set_heights(hts);
+    rep.seconds_solve = seconds_since(t0);
+    return rep;
+}
+
+}  // namespace kiri::geometry

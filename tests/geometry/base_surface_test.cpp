@@ -1,0 +1,224 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "fog_test_terrains.hpp"
+#include "kiri/geometry/base_surface.hpp"
+#include "kiri/geometry/error.hpp"
+
+using namespace kiri::geometry;
+using kiri::test::make_heightfield;
+
+namespace {
+const BaseSurfaceKind kKinds[] = {BaseSurfaceKind::catmull_clark};
+
+double plane(double x, double y) { return 500.0 + 0.3 * x - 0.2 * y; }
+
+Terrain terrain_of(double (*f)(double, double), double off = 0.0)
+{
+    return Terrain(make_heightfield(101, 101, 20.0, -1000.0 + off, -1000.0 + off,
+                                    [&](double x, double y) { return f(x - off, y - off); }));
+}
+
+BaseSurface surface_over(const Terrain& t, const Footprint& fp, double patch, BaseSurfaceKind kind)
+{
+    return BaseSurface(build_control_mesh(fp, t, {patch}), kind);
+}
+
+// Min of surface - terrain at the fit's own samples, recomputed through evaluate().
+double min_clearance_at_samples(const BaseSurface& s, const Terrain& t, int K)
+{
+    double m = 1e300;
+    for (int f = 0; f < s.num_patches(); ++f)
+        for (int b = 0; b < K; ++b)
+            for (int a = 0; a < K; ++a) {
+                const glm::dvec3 p = s.evaluate(f, (a + 0.5) / K, (b + 0.5) / K);
+                m = std::min(m, p.z - t.height(p.x, p.y));
+            }
+    return m;
+}
+}  // namespace
+
+TEST(BaseSurfaceFit, PlaneIsFittedExactly)
+{
+    const Terrain t = terrain_of(plane);
+    const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {700, 800}, {-600, 650}};
+    for (auto kind : kKinds)
+        for (double smooth : {0.0, 0.5}) {
+            BaseSurface s = surface_over(t, {poly}, 250.0, kind);
+            FitOptions o;
+            o.smoothing_length = 0.0;
+            o.offset = 20.0;
+            o.clearance = 5.0;
+            o.smoothness = smooth;
+            const FitReport r = s.fit(t, o);
+            EXPECT_LT(r.max_deviation, 1e-6) << to_string(kind) << " smoothness " << smooth;
+            EXPECT_NEAR(r.min_clearance, 20.0, 1e-6);
+            EXPECT_EQ(r.lift, 0.0);
+            EXPECT_EQ(r.active_constraints, 0);
+            for (double u : {0.0, 0.3, 1.0}) {
+                const glm::dvec3 p = s.evaluate(s.num_patches() / 2, u, 1.0 - u);
+                EXPECT_NEAR(p.z, plane(p.x, p.y) + 20.0, 1e-6);
+            }
+        }
+}
+
+TEST(BaseSurfaceFit, BlanketNeverBelowTerrainPlusClearance)
+{
+    const Terrain t = terrain_of(kiri::test::hills);
+    for (auto kind : kKinds) {
+        BaseSurface s = surface_over(t, rectangle_footprint({-950, -950}, {950, 950}), 200.0, kind);
+        FitOptions o;
+        o.offset = 10.0;
+        o.clearance = 15.0;
+        o.smoothing_length = 150.0;
+        const FitReport r = s.fit(t, o);
+        EXPECT_GE(r.min_clearance, 15.0) << to_string(kind);
+        EXPECT_LT(r.min_clearance, 15.5);  // the sharp ridge holds it down: it touches
+        EXPECT_GT(r.active_constraints, 0);
+        EXPECT_GE(min_clearance_at_samples(s, t, r.samples_per_patch), 15.0 - 1e-9);
+        EXPECT_LT(r.rms_deviation, 80.0);  // the 150 m ridge is far above its smoothed target
+        EXPECT_GE(r.max_deviation, r.rms_deviation);
+        EXPECT_EQ(r.samples, (long long)s.num_patches() * r.samples_per_patch * r.samples_per_patch);
+    }
+}
+
+TEST(BaseSurfaceFit, LakeIsFlatAtItsAltitude)
+{
+    const Terrain t = terrain_of(kiri::test::hills);
+    for (auto kind : kKinds) {
+        BaseSurface s = surface_over(t, rectangle_footprint({-950, -950}, {950, 950}), 200.0, kind);
+        FitOptions o;
+        o.mode = FitMode::lake;
+        o.altitude = 420.0;
+        const FitReport r = s.fit(t, o);
+        EXPECT_LT(r.max_deviation, 1e-9);
+        for (double z : s.heights())
+            EXPECT_NEAR(z, 420.0, 1e-9);
+        EXPECT_NEAR(s.evaluate(3, 0.2, 0.7).z, 420.0, 1e-9);
+        EXPECT_GT(r.fog_fraction, 0.2);
+        EXPECT_LT(r.fog_fraction, 0.8);
+        EXPECT_LT(r.min_clearance, 0.0);  // the ridge rises through the lake
+    }
+}
+
+TEST(BaseSurfaceFit, RefitChangesOnlyHeights)
+{
+    const Terrain t = terrain_of(plane);
+    BaseSurface s = surface_over(t, rectangle_footprint({-900, -900}, {900, 900}), 300.0, BaseSurfaceKind::catmull_clark);
+    FitOptions o;
+    o.smoothing_length = 0.0;
+    o.offset = 20.0;
+    s.fit(t, o);
+    const auto h1 = s.heights();
+    const auto p1 = s.control().mesh.point(PolyMesh::VertexHandle(5));
+    o.offset = 45.0;
+    s.fit(t, o);
+    const auto h2 = s.heights();
+    const auto p2 = s.control().mesh.point(PolyMesh::VertexHandle(5));
+    EXPECT_EQ(p1[0], p2[0]);
+    EXPECT_EQ(p1[1], p2[1]);
+    for (std::size_t k = 0; k < h1.size(); ++k)
+        EXPECT_NEAR(h2[k] - h1[k], 25.0, 1e-6);
+}
+
+TEST(BaseSurfaceFit, ClearErrors)
+{
+    const Terrain t = terrain_of(kiri::test::hills);
+    BaseSurface s = surface_over(t, rectangle_footprint({-500, -500}, {500, 500}), 250.0, BaseSurfaceKind::catmull_clark);
+    FitOptions o;
+    o.clearance = 300.0;
+    o.thickness = 200.0;
+    try {
+        s.fit(t, o);
+        FAIL() << "no error";
+    } catch (const kiri::InputError& e) {
+        EXPECT_EQ(e.field(), "clearance");
+        EXPECT_NE(std::string(e.what()).find("thickness 200"), std::string::npos) << e.what();
+    }
+    FitOptions lake;
+    lake.mode = FitMode::lake;
+    lake.altitude = 100.0;
+    EXPECT_THROW(s.fit(t, lake), kiri::InputError);
+    FitOptions bad;
+    bad.smoothness = NAN;
+    EXPECT_THROW(s.fit(t, bad), kiri::InputError);
+}
+
+TEST(BaseSurfaceFit, HugeCoordinatesGiveTheSameFit)
+{
+    const double off = 1e7;
+    const Terrain a = terrain_of(kiri::test::hills), b = terrain_of(kiri::test::hills, off);
+    const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {700, 800}, {-600, 650}};
+    std::vector<glm::dvec2> shifted = poly;
+    for (auto& v : shifted)
+        v += glm::dvec2(off);
+    BaseSurface sa = surface_over(a, {poly}, 250.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface sb = surface_over(b, {shifted}, 250.0, BaseSurfaceKind::catmull_clark);
+    const FitReport ra = sa.fit(a, {}), rb = sb.fit(b, {});
+    EXPECT_NEAR(ra.max_deviation, rb.max_deviation, 1e-6);
+    EXPECT_NEAR(ra.min_clearance, rb.min_clearance, 1e-6);
+    const auto ha = sa.heights(), hb = sb.heights();
+    for (std::size_t k = 0; k < ha.size(); ++k)
+        EXPECT_NEAR(ha[k], hb[k], 1e-6);
+    const glm::dvec3 pa = sa.evaluate(2, 0.4, 0.6), pb = sb.evaluate(2, 0.4, 0.6);
+    EXPECT_NEAR(pb.x - off, pa.x, 1e-6);
+    EXPECT_NEAR(pb.z, pa.z, 1e-6);
+}
+
+TEST(BaseSurfaceFit, FootprintSmallerThanAPatch)
+{
+    const Terrain t = terrain_of(kiri::test::hills);
+    BaseSurface s = surface_over(t, rectangle_footprint({100, 100}, {160, 140}), 500.0, BaseSurfaceKind::catmull_clark);
+    ASSERT_EQ(s.num_patches(), 1);
+    FitOptions o;
+    o.clearance = 5.0;
+    const FitReport r = s.fit(t, o);
+    EXPECT_GE(r.min_clearance, 5.0);
+    const glm::dvec3 c = s.evaluate(0, 0.5, 0.5);
+    EXPECT_NEAR(c.x, 130.0, 1e-9);
+    EXPECT_NEAR(c.y, 120.0, 1e-9);
+}
+
+TEST(BaseSurfaceFit, NodataCellsAreLeftOut)
+{
+    Heightfield hf = make_heightfield(101, 101, 20.0, -1000.0, -1000.0, kiri::test::hills);
+    for (int j = 40; j < 60; ++j)
+        for (int i = 30; i < 70; ++i) {
+            hf.valid[std::size_t(j) * hf.nx + i] = 0;
+            hf.z[std::size_t(j) * hf.nx + i] = 5000.0;  // a wild fill value must not matter
+        }
+    const Terrain t(std::move(hf));
+    BaseSurface s = surface_over(t, rectangle_footprint({-950, -950}, {950, 950}), 200.0, BaseSurfaceKind::catmull_clark);
+    FitOptions o;
+    o.smoothing_length = 150.0;
+    const FitReport r = s.fit(t, o);
+    EXPECT_GT(r.nodata_samples, 0);
+    EXPECT_GE(r.min_clearance, o.clearance);
+    for (double z : s.heights()) {
+        EXPECT_TRUE(std::isfinite(z));
+        EXPECT_LT(z, 1200.0);
+    }
+}
+
+TEST(BaseSurfaceFit, NearlyFlatAndCliff)
+{
+    const Terrain flat(make_heightfield(101, 101, 20.0, -1000.0, -1000.0,
+                                        [](double x, double) { return 250.0 + 1e-9 * x; }));
+    BaseSurface s = surface_over(flat, rectangle_footprint({-900, -900}, {900, 900}), 300.0, BaseSurfaceKind::catmull_clark);
+    const FitReport r = s.fit(flat, {});
+    EXPECT_LT(r.max_deviation, 1e-6);
+    const Terrain cliff(make_heightfield(101, 101, 20.0, -1000.0, -1000.0,
+                                         [](double x, double) { return x < 10.0 ? 300.0 : 700.0; }));
+    BaseSurface c = surface_over(cliff, rectangle_footprint({-900, -900}, {900, 900}), 300.0, BaseSurfaceKind::catmull_clark);
+    FitOptions o;
+    o.clearance = 8.0;
+    const FitReport rc = c.fit(cliff, o);
+    EXPECT_GE(rc.min_clearance, 8.0);
+    EXPECT_GE(min_clearance_at_samples(c, cliff, rc.samples_per_patch), 8.0 - 1e-9);
+    for (double z : c.heights())
+        EXPECT_TRUE(std::isfinite(z));
+}
