@@ -1,0 +1,41 @@
+#pragma once
+//! \file fog_spec.hpp
+//! The scene's "fog" section (docs/scene.md): footprint, surface kind, fit and tessellation,
+//! and the one call that turns it into a base surface (what `kiri author` writes).
+#include <optional>
+#include <string>
+
+#include "kiri/geometry/base_surface.hpp"
+#include "kiri/geometry/footprint.hpp"
+#include "kiri/geometry/tessellate.hpp"
+
+namespace kiri::geometry {
+
+struct FogSpec {
+    //! Footprint in local metres; empty polygon = the terrain's extent shrunk by `margin`.
+    Footprint footprint;
+    double margin = 0.0;  //!< metres, for the whole-terrain footprint
+    BaseSurfaceKind surface = BaseSurfaceKind::catmull_clark;
+    double patch_size = 1000.0;
+    FitOptions fit;
+    TessellationOptions tessellation;
+};
+
+//! Everything `kiri author` computes, with the time of each stage.
+struct AuthoredSurface {
+    BaseSurface surface;
+    FitReport fit;
+    Tessellation tessellation;
+    double seconds_control_mesh = 0.0, seconds_fit = 0.0, seconds_tessellate = 0.0;
+};
+
+//! Footprint -> control mesh -> fit -> tessellation. label names the scene in messages.
+//! \throw InputError as the stages do, with label as the file.
+AuthoredSurface author_base_surface(const Terrain& terrain, const FogSpec& spec, const std::string& label = {});
+
+}  // namespace kiri::geometry
+
+namespace kiri::geometry {
+//! report.json of `kiri author`: the spec, the fit figures (FitReport), counts and timings.
+std::string author_report_json(const FogSpec& spec, const AuthoredSurface& authored);
+}  // namespace kiri::geometry

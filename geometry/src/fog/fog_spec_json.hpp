@@ -1,0 +1,16 @@
+#pragma once
+// Internal: the scene's "fog" section <-> JSON (nlohmann stays out of public headers).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "kiri/geometry/fog_spec.hpp"
+
+namespace kiri::geometry {
+
+//! Reads j (the value at `pointer`, e.g. "/fog"). Unknown keys are errors.
+//! \throw InputError(file, "/fog/...", reason).
+FogSpec parse_fog_spec(const nlohmann::json& j, const std::string& file, const std::string& pointer = "/fog");
+nlohmann::json fog_spec_to_json(const FogSpec& spec);
+
+}  // namespace kiri::geometry
