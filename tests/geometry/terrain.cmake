@@ -1,2 +1,4 @@
 # Tests of geometry/src/terrain
+find_package(GDAL REQUIRED)
 kiri_test(terrain_test SOURCES terrain_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(dem_test SOURCES dem_test.cpp LIBS kiri_geometry GDAL::GDAL LABELS unit)

@@ -2,4 +2,6 @@
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/terrain/terrain.cpp
   src/terrain/terrain_index.cpp
+  src/terrain/dem.cpp
+  src/terrain/nodata_fill.cpp
 )
