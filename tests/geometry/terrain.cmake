@@ -2,3 +2,4 @@
 find_package(GDAL REQUIRED)
 kiri_test(terrain_test SOURCES terrain_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(dem_test SOURCES dem_test.cpp LIBS kiri_geometry GDAL::GDAL LABELS unit)
+kiri_test(scattered_points_test SOURCES scattered_points_test.cpp LIBS kiri_geometry LABELS unit)

@@ -4,4 +4,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/terrain/terrain_index.cpp
   src/terrain/dem.cpp
   src/terrain/nodata_fill.cpp
+  src/terrain/scattered_points.cpp
 )
