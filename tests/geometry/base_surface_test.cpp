@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "fog_test_terrains.hpp"
@@ -13,7 +14,7 @@ using namespace kiri::geometry;
 using kiri::test::make_heightfield;
 
 namespace {
-const BaseSurfaceKind kKinds[] = {BaseSurfaceKind::catmull_clark};
+const BaseSurfaceKind kKinds[] = {BaseSurfaceKind::catmull_clark, BaseSurfaceKind::gregory};
 
 double plane(double x, double y) { return 500.0 + 0.3 * x - 0.2 * y; }
 
@@ -221,4 +222,58 @@ TEST(BaseSurfaceFit, NearlyFlatAndCliff)
     EXPECT_GE(min_clearance_at_samples(c, cliff, rc.samples_per_patch), 8.0 - 1e-9);
     for (double z : c.heights())
         EXPECT_TRUE(std::isfinite(z));
+}
+
+TEST(BaseSurfaceKinds, GregoryEqualsCatmullClarkOnARegularGrid)
+{
+    // Regular interior and boundary: LSNC and the phantom boundary rules give the bicubic
+    // B-spline patches that the Catmull-Clark limit is made of (REFERENCE 5 check).
+    const Terrain t = terrain_of(kiri::test::hills);
+    const Footprint fp = rectangle_footprint({-900, -900}, {900, 900});
+    BaseSurface g = surface_over(t, fp, 300.0, BaseSurfaceKind::gregory);
+    BaseSurface c = surface_over(t, fp, 300.0, BaseSurfaceKind::catmull_clark);
+    double worst = 0.0;
+    for (int f = 0; f < g.num_patches(); ++f)
+        for (double u : {0.0, 0.1, 0.5, 0.77, 1.0})
+            for (double v : {0.0, 0.3, 0.5, 1.0}) {
+                glm::dvec3 gu, gv, cu, cv;
+                const glm::dvec3 pg = g.evaluate(f, u, v, &gu, &gv), pc = c.evaluate(f, u, v, &cu, &cv);
+                worst = std::max({worst, glm::length(pg - pc), glm::length(gu - cu), glm::length(gv - cv)});
+            }
+    EXPECT_LT(worst, 1e-8);
+}
+
+TEST(BaseSurfaceKinds, GregoryPatchesMeetAlongEdges)
+{
+    const Terrain t = terrain_of(kiri::test::hills);
+    const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {100, 0}, {700, 800}, {-600, 650}};
+    BaseSurface g = surface_over(t, {poly}, 200.0, BaseSurfaceKind::gregory);
+    const PolyMesh& m = g.control().mesh;
+    auto corner_index = [&](PolyMesh::FaceHandle f, PolyMesh::VertexHandle v) {
+        int k = 0;
+        for (auto fv : m.fv_range(f)) {
+            if (fv == v)
+                return k;
+            ++k;
+        }
+        return -1;
+    };
+    const glm::dvec2 corner_uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    int edges = 0;
+    double worst = 0.0;
+    for (auto e : m.edges()) {
+        if (m.is_boundary(e))
+            continue;
+        const auto h = m.halfedge_handle(e, 0), o = m.halfedge_handle(e, 1);
+        const auto a = m.from_vertex_handle(h), b = m.to_vertex_handle(h);
+        const auto F = m.face_handle(h), G = m.face_handle(o);
+        for (double s : {0.0, 0.25, 0.5, 0.9, 1.0}) {
+            const glm::dvec2 uf = glm::mix(corner_uv[corner_index(F, a)], corner_uv[corner_index(F, b)], s);
+            const glm::dvec2 ug = glm::mix(corner_uv[corner_index(G, a)], corner_uv[corner_index(G, b)], s);
+            worst = std::max(worst, glm::length(g.evaluate(F.idx(), uf.x, uf.y) - g.evaluate(G.idx(), ug.x, ug.y)));
+        }
+        ++edges;
+    }
+    EXPECT_GT(edges, 50);
+    EXPECT_LT(worst, 1e-9);
 }

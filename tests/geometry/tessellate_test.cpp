@@ -100,7 +100,7 @@ std::size_t border_segments(const BaseSurface& s, const Tessellation& t)
 
 TEST(Tessellate, UniformErrorFallsWithLevel)
 {
-    for (auto kind : {BaseSurfaceKind::catmull_clark}) {
+    for (auto kind : {BaseSurfaceKind::catmull_clark, BaseSurfaceKind::gregory}) {
         const BaseSurface s = fitted_hills(kind);
         double previous = 1e300, first = 0.0;
         for (int level : {1, 2, 4, 8, 16}) {
@@ -120,7 +120,7 @@ TEST(Tessellate, UniformErrorFallsWithLevel)
 
 TEST(Tessellate, AdaptiveMeetsItsTolerance)
 {
-    for (auto kind : {BaseSurfaceKind::catmull_clark})
+    for (auto kind : {BaseSurfaceKind::catmull_clark, BaseSurfaceKind::gregory})
         for (double tol : {2.0, 0.5, 0.25}) {
             const BaseSurface s = fitted_hills(kind);
             const Tessellation t = tessellate(s, {8, tol});

@@ -169,7 +169,7 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
         sys[f].r.assign(n, 0.0);
         for (int b = 0; b < K; ++b)
             for (int a = 0; a < K; ++a) {
-                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw);
+                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
                 glm::dvec2 xy(0.0);
                 for (std::size_t k = 0; k < n; ++k)
                     xy += fw.w[k] * rel[S[k]];
@@ -183,13 +183,18 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
                 }
                 sample_state[id] = 1;
                 ++valid_samples;
-                add_row(sys[f], fw.w, alpha, sample_target[id]);
+                // Blanket: fit the upper envelope of the target and terrain + clearance, so the
+                // constraint iterations below start close to feasible.
+                const double fit_to = o.mode == FitMode::blanket
+                                          ? std::max(sample_target[id], sample_terrain[id] + o.clearance)
+                                          : sample_target[id];
+                add_row(sys[f], fw.w, alpha, fit_to);
             }
         if (o.smoothness <= 0.0)
             continue;
         for (int qb = 0; qb < 3; ++qb)
             for (int qa = 0; qa < 3; ++qa) {
-                stencils_->weights(f, gq[qa], gq[qb], fw, true);
+                stencils_->weights(f, gq[qa], gq[qb], fw, 2);
                 glm::dvec2 au(0.0), av(0.0), auu(0.0), auv(0.0), avv(0.0);
                 for (std::size_t k = 0; k < n; ++k) {
                     au += fw.wu[k] * rel[S[k]];
@@ -252,30 +257,52 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     rep.seconds_assemble = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
 
+    // The normal matrix's sparsity is fixed by the topology: build it and the slot of every
+    // face-local entry once; each solve only scatters values and refactorises.
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-    bool analysed = false;
-    auto solve = [&]() {
+    Eigen::SparseMatrix<double> N(nv, nv);
+    std::vector<std::vector<int>> slot(nf);
+    std::vector<int> diag_slot(nv);
+    {
         std::vector<Eigen::Triplet<double>> trip;
+        for (int v = 0; v < nv; ++v)
+            trip.emplace_back(v, v, 0.0);
+        for (int f = 0; f < nf; ++f)
+            for (int r : stencils_->support(f))
+                for (int c : stencils_->support(f))
+                    trip.emplace_back(r, c, 0.0);
+        N.setFromTriplets(trip.begin(), trip.end());
+        auto find = [&](int r, int c) {
+            const int* begin = N.innerIndexPtr() + N.outerIndexPtr()[c];
+            const int* end = N.innerIndexPtr() + N.outerIndexPtr()[c + 1];
+            return int(std::lower_bound(begin, end, r) - N.innerIndexPtr());
+        };
+        for (int v = 0; v < nv; ++v)
+            diag_slot[v] = find(v, v);
+        for (int f = 0; f < nf; ++f) {
+            const auto& S = stencils_->support(f);
+            slot[f].resize(S.size() * S.size());
+            for (std::size_t r = 0; r < S.size(); ++r)
+                for (std::size_t c = 0; c < S.size(); ++c)
+                    slot[f][r * S.size() + c] = find(S[r], S[c]);
+        }
+        solver.analyzePattern(N);
+    }
+    auto solve = [&]() {
+        double* val = N.valuePtr();
+        std::fill(val, val + N.nonZeros(), 0.0);
         Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nv);
         for (int v = 0; v < nv; ++v) {
-            trip.emplace_back(v, v, eps);
+            val[diag_slot[v]] += eps;
             rhs[v] += eps * reg_target[v];
         }
         for (int f = 0; f < nf; ++f) {
             const auto& S = stencils_->support(f);
             const std::size_t n = S.size();
-            for (std::size_t a = 0; a < n; ++a) {
+            for (std::size_t a = 0; a < n; ++a)
                 rhs[S[a]] += sys[f].r[a];
-                for (std::size_t b = 0; b < n; ++b)
-                    if (sys[f].L[a * n + b] != 0.0)
-                        trip.emplace_back(S[a], S[b], sys[f].L[a * n + b]);
-            }
-        }
-        Eigen::SparseMatrix<double> N(nv, nv);
-        N.setFromTriplets(trip.begin(), trip.end());
-        if (!analysed) {
-            solver.analyzePattern(N);
-            analysed = true;
+            for (std::size_t k = 0; k < n * n; ++k)
+                val[slot[f][k]] += sys[f].L[k];
         }
         solver.factorize(N);
         if (solver.info() != Eigen::Success)
@@ -294,32 +321,101 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     };
 
     solve();
-    // Blanket: active set on the violated samples, each held at terrain + clearance by a
-    // stiff penalty; samples once active stay active (monotone, so the loop ends).
-    const double rho = 1e4;
+    // Blanket: z >= terrain + clearance at every sample, by augmented-Lagrangian (Uzawa)
+    // iterations on the violated samples. Each sample carries t >= 0 (its multiplier over the
+    // penalty, in metres); a sample is held, with a penalty rho (100 x a sample's data weight:
+    // stiffer penalties oscillate on Jacksboro) towards terrain + clearance + t, while
+    // t + (need - z) > 0, and after each solve t grows by what the sample still lacks. Raising the held targets rather than holding them at equality is what resolves
+    // conflicts between held samples (a peak narrower than a patch): the converged t are the
+    // constraint forces of the exact inequality-constrained least-squares problem.
+    const double rho = 100.0, tol = 1e-3;
     if (o.mode == FitMode::blanket) {
+        const std::vector<FaceSystem> base = sys;
+        std::vector<float> raise(per_face * nf, 0.0f);
+        // Samples far above their bound are skipped until the heights have moved enough to
+        // reach them: a face's samples move by at most kStencilBound x the largest height
+        // change of its support (the weights' absolute sum; 1 for B-spline patches).
+        constexpr double kStencilBound = 2.0;
+        const double inf = std::numeric_limits<double>::infinity();
+        std::vector<double> moved(nf, inf), min_slack(nf, -inf);
         for (int it = 0; it < o.max_active_set_iterations; ++it) {
-            long long added = 0;
-            for (int f = 0; f < nf; ++f)
+            long long held = 0;
+            double worst = 0.0;
+            for (int f = 0; f < nf; ++f) {
+                sys[f] = base[f];
+                const bool full = !(moved[f] < min_slack[f]);
+                if (full) {
+                    moved[f] = 0.0;
+                    min_slack[f] = inf;
+                }
                 for (int b = 0; b < K; ++b)
                     for (int a = 0; a < K; ++a) {
                         const std::size_t id = f * per_face + std::size_t(b) * K + a;
-                        if (sample_state[id] != 1)
+                        if (!(sample_state[id] & 1))
                             continue;
-                        stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw);
-                        const double need = sample_terrain[id] + o.clearance;
-                        if (surface_z(f, fw.w) < need) {
-                            sample_state[id] |= 2;
-                            add_row(sys[f], fw.w, rho * alpha, need);
-                            ++added;
+                        const bool was = sample_state[id] & 2;
+                        if (!was && !full)
+                            continue;
+                        stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
+                        const double need = sample_terrain[id] + o.clearance, lack = need - surface_z(f, fw.w);
+                        worst = std::max(worst, lack);
+                        if (was)
+                            raise[id] = float(std::max(0.0, double(raise[id]) + lack));
+                        const bool hold = double(raise[id]) + lack > 0.0;
+                        sample_state[id] = std::uint8_t(1 | (hold ? 2 : 0));
+                        if (hold) {
+                            add_row(sys[f], fw.w, rho * alpha, need + double(raise[id]));
+                            ++held;
+                        } else if (full) {
+                            min_slack[f] = std::min(min_slack[f], -lack - double(raise[id]));
                         }
                     }
-            if (added == 0)
+            }
+            rep.active_constraints = held;
+            if (worst <= tol)
                 break;
-            rep.active_constraints += added;
+            const std::vector<double> before = hts;
             solve();
+            for (int f = 0; f < nf; ++f) {
+                double d = 0.0;
+                for (int v : stencils_->support(f))
+                    d = std::max(d, std::abs(hts[v] - before[v]));
+                moved[f] += kStencilBound * d;
+            }
         }
     }
+
+    // Local guarantee (blanket): raise the control vertices under each sample still short of
+    // terrain + clearance by its shortfall (the positive weights of a sample sum to >= 1, so
+    // the sample rises at least that much); a few passes settle the interplay of neighbours.
+    if (o.mode == FitMode::blanket)
+        for (int pass = 0; pass < 4; ++pass) {
+            std::vector<double> up(nv, 0.0);
+            double worst = 0.0;
+            for (int f = 0; f < nf; ++f) {
+                const auto& S = stencils_->support(f);
+                for (int b = 0; b < K; ++b)
+                    for (int a = 0; a < K; ++a) {
+                        const std::size_t id = f * per_face + std::size_t(b) * K + a;
+                        if (!(sample_state[id] & 1))
+                            continue;
+                        stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
+                        const double lack = sample_terrain[id] + o.clearance - surface_z(f, fw.w);
+                        if (lack <= 0.0)
+                            continue;
+                        worst = std::max(worst, lack);
+                        for (std::size_t k = 0; k < S.size(); ++k)
+                            if (fw.w[k] > 1e-12)
+                                up[S[k]] = std::max(up[S[k]], lack * (1.0 + 1e-9));
+                    }
+            }
+            if (worst == 0.0)
+                break;
+            for (int v = 0; v < nv; ++v) {
+                hts[v] += up[v];
+                rep.local_lift = std::max(rep.local_lift, up[v]);
+            }
+        }
 
     // Final guarantee (blanket): lift the whole surface by the worst remaining violation;
     // both surfaces reproduce constants, so every sample rises by exactly that much.
@@ -329,7 +425,7 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
         for (int b = 0; b < K; ++b)
             for (int a = 0; a < K; ++a) {
                 const std::size_t id = f * per_face + std::size_t(b) * K + a;
-                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw);
+                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
                 z_all[id] = surface_z(f, fw.w);
                 if (sample_state[id] & 1)
                     worst = std::max(worst, sample_terrain[id] + o.clearance - z_all[id]);

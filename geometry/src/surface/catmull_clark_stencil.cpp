@@ -47,7 +47,7 @@ public:
         }
     }
 
-    void weights(int face, double u, double v, FaceWeights& out, bool second) const override
+    void weights(int face, double u, double v, FaceWeights& out, int order) const override
     {
         const auto& s = surfaces_[face];
         const std::size_t n = support_[face].size();
@@ -55,7 +55,9 @@ public:
         out.wu.resize(n);
         out.wv.resize(n);
         const double uv[2] = {u, v};
-        if (second) {
+        if (order == 0) {
+            s.EvaluateStencil(uv, out.w.data());
+        } else if (order >= 2) {
             out.wuu.resize(n);
             out.wuv.resize(n);
             out.wvv.resize(n);

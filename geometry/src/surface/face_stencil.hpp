@@ -21,8 +21,8 @@ public:
     virtual ~FaceStencils() = default;
     int num_faces() const { return static_cast<int>(support_.size()); }
     const std::vector<int>& support(int face) const { return support_[face]; }
-    //! Fills out (sized to the support). second: also the second derivatives.
-    virtual void weights(int face, double u, double v, FaceWeights& out, bool second = false) const = 0;
+    //! Fills out (sized to the support) up to derivatives of the given order (0, 1 or 2).
+    virtual void weights(int face, double u, double v, FaceWeights& out, int order = 1) const = 0;
 
 protected:
     std::vector<std::vector<int>> support_;

@@ -39,7 +39,7 @@ struct FitOptions {
     double smoothness = 0.05;
     //! Samples per patch side (cell-centred in (u, v)); 0 = one per terrain cell (at least 4).
     int samples_per_patch = 0;
-    int max_active_set_iterations = 12;
+    int max_active_set_iterations = 30;
 };
 
 //! Fit figures over the samples that have terrain data (issue 4 "report").
@@ -47,6 +47,7 @@ struct FitReport {
     double max_deviation = 0.0;   //!< max |surface - target| (m)
     double rms_deviation = 0.0;   //!< (m)
     double min_clearance = 0.0;   //!< min (surface - terrain) (m); >= clearance in blanket mode
+    double local_lift = 0.0;      //!< largest control-vertex raise of the local guarantee step (m)
     double lift = 0.0;            //!< uniform lift of the final guarantee step (m)
     double fog_fraction = 0.0;    //!< share of samples with the terrain below the surface
     long long samples = 0;
