@@ -443,3 +443,35 @@ TEST_F(Dem, RotatedGeotransformIsRefused)
     const auto path = write("rotated.tif", "GTiff", 4, 4, GDT_Byte, std::vector<double>(16, 1.0), gt, 32616);
     expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "geotransform", "rotated");
 }
+
+TEST_F(Dem, TruncatedCompressedJacksboro)
+{
+    // The real, deflate-compressed file cut at 60 %: the directory survives, the strips do not.
+    std::ifstream in(fs::path(KIRI_DATA_DIR) / "terrains" / "jacksboro_fault_dem.tif", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto cut = write_text("jacksboro_cut.tif", bytes.substr(0, bytes.size() * 6 / 10));
+    expect_refused<kiri::InputError>([&] { load_dem(cut); }, cut, "data", "GDAL:");
+}
+
+TEST_F(Dem, CorruptCompressedStrips)
+{
+    // Deflate strips overwritten with garbage in the middle of the file.
+    const int w = 64, h = 64;
+    const double gt[6] = {0.0, 1.0, 0.0, 64.0, 0.0, -1.0};
+    const auto path = write("deflate.tif", "GTiff", w, h, GDT_Float32,
+                            grid_values(w, h, [](int c, int r) { return std::sin(c * 0.3) * r; }), gt, 32616,
+                            nullptr, {"COMPRESS=DEFLATE", "BLOCKYSIZE=8"});
+    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(fs::file_size(path) / 2));
+    const std::string junk(2000, '\x5a');
+    f.write(junk.data(), std::streamsize(junk.size()));
+    f.close();
+    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "data", "corrupt");
+}
+
+TEST_F(Dem, ZeroSizeGridHeader)
+{
+    // An ASCII grid whose header declares no columns.
+    const auto path = write_text("zero.asc", "ncols 0\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n");
+    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "format", "not a raster");
+}

@@ -25,7 +25,9 @@ struct Bounds3 {
 //! from sample (i, j) to (i + 1, j + 1); height() and normal() interpolate exactly on those
 //! triangles, so they agree with mesh(), ray and closest-point queries.
 //! The mesh and the AABB tree (CGAL, inside the .cpp) are built on first use: a scene that
-//! only renders never pays for them.
+//! only renders never pays for them. Threads: the first call that creates the index must not
+//! race with another one (run one query, or mesh(), before sharing a Terrain between
+//! threads); after that the const queries are safe to call concurrently.
 class Terrain {
 public:
     explicit Terrain(Heightfield heightfield);
