@@ -11,6 +11,7 @@
 
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/fog_target.hpp"
+#include "fog/fit_samples.hpp"
 #include "surface/face_stencil.hpp"
 
 namespace kiri::geometry {
@@ -137,11 +138,12 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     t0 = std::chrono::steady_clock::now();
 
     const double h = control_.patch_size;
-    const int K = o.samples_per_patch > 0
-                      ? o.samples_per_patch
-                      : std::clamp(int(std::ceil(h / std::min(hf.dx, hf.dy))), 4, 512);
+    const int K = o.samples_per_patch > 0 ? o.samples_per_patch : 4;
     rep.samples_per_patch = K;
     const int nf = num_patches(), nv = control_.num_vertices();
+    const FitSamples smp = make_fit_samples(control_, *stencils_, hf, K, true);
+    rep.grid_vertex_samples = smp.grid_vertex_samples;
+    const std::size_t ns = smp.uv.size();
     const glm::dvec2 origin = control_.origin;
     std::vector<glm::dvec2> rel(nv);
     for (int v = 0; v < nv; ++v) {
@@ -150,31 +152,31 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     }
     std::vector<double> hts = heights();
 
-    // Data term and thin-plate energy, face by face (FitOptions::smoothness).
-    const double alpha = 1.0 / (double(K) * K);
+    // Data term and thin-plate energy, face by face (FitOptions::smoothness). Each face's
+    // samples share a data weight of 1 (alpha per sample).
+    std::vector<double> alpha(nf);
+    for (int f = 0; f < nf; ++f)
+        alpha[f] = 1.0 / double(std::max<std::size_t>(1, smp.face_begin[f + 1] - smp.face_begin[f]));
     const double gq[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
     const double gw[3] = {5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
     std::vector<FaceSystem> sys(nf);
     FaceWeights fw;
     std::vector<double> hxx, hxy, hyy;
     long long valid_samples = 0;
-    // Samples: terrain height and target cached per sample; xy come from the fixed control xy.
-    const std::size_t per_face = std::size_t(K) * K;
-    std::vector<double> sample_terrain(per_face * nf), sample_target(per_face * nf);
-    std::vector<std::uint8_t> sample_state(per_face * nf, 0);  // bit 0: has data, bit 1: active
+    // Terrain height and target cached per sample; xy come from the fixed control xy.
+    std::vector<double> sample_terrain(ns), sample_target(ns);
+    std::vector<std::uint8_t> sample_state(ns, 0);  // bit 0: has data, bit 1: held
     for (int f = 0; f < nf; ++f) {
         const auto& S = stencils_->support(f);
         const std::size_t n = S.size();
         sys[f].L.assign(n * n, 0.0);
         sys[f].r.assign(n, 0.0);
-        for (int b = 0; b < K; ++b)
-            for (int a = 0; a < K; ++a) {
-                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
+        for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
+                stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
                 glm::dvec2 xy(0.0);
                 for (std::size_t k = 0; k < n; ++k)
                     xy += fw.w[k] * rel[S[k]];
                 xy += origin;
-                const std::size_t id = f * per_face + std::size_t(b) * K + a;
                 sample_terrain[id] = terrain.height(xy.x, xy.y);
                 sample_target[id] = target_at(xy.x, xy.y);
                 if (!has_data(hf, xy.x, xy.y)) {
@@ -188,7 +190,7 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
                 const double fit_to = o.mode == FitMode::blanket
                                           ? std::max(sample_target[id], sample_terrain[id] + o.clearance)
                                           : sample_target[id];
-                add_row(sys[f], fw.w, alpha, fit_to);
+                add_row(sys[f], fw.w, alpha[f], fit_to);
             }
         if (o.smoothness <= 0.0)
             continue;
@@ -331,7 +333,7 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     const double rho = 100.0, tol = 1e-3;
     if (o.mode == FitMode::blanket) {
         const std::vector<FaceSystem> base = sys;
-        std::vector<float> raise(per_face * nf, 0.0f);
+        std::vector<float> raise(ns, 0.0f);
         // Samples far above their bound are skipped until the heights have moved enough to
         // reach them: a face's samples move by at most kStencilBound x the largest height
         // change of its support (the weights' absolute sum; 1 for B-spline patches).
@@ -348,15 +350,13 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
                     moved[f] = 0.0;
                     min_slack[f] = inf;
                 }
-                for (int b = 0; b < K; ++b)
-                    for (int a = 0; a < K; ++a) {
-                        const std::size_t id = f * per_face + std::size_t(b) * K + a;
-                        if (!(sample_state[id] & 1))
+                for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
+                                if (!(sample_state[id] & 1))
                             continue;
                         const bool was = sample_state[id] & 2;
                         if (!was && !full)
                             continue;
-                        stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
+                        stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
                         const double need = sample_terrain[id] + o.clearance, lack = need - surface_z(f, fw.w);
                         worst = std::max(worst, lack);
                         if (was)
@@ -364,7 +364,7 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
                         const bool hold = double(raise[id]) + lack > 0.0;
                         sample_state[id] = std::uint8_t(1 | (hold ? 2 : 0));
                         if (hold) {
-                            add_row(sys[f], fw.w, rho * alpha, need + double(raise[id]));
+                            add_row(sys[f], fw.w, rho * alpha[f], need + double(raise[id]));
                             ++held;
                         } else if (full) {
                             min_slack[f] = std::min(min_slack[f], -lack - double(raise[id]));
@@ -394,12 +394,10 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
             double worst = 0.0;
             for (int f = 0; f < nf; ++f) {
                 const auto& S = stencils_->support(f);
-                for (int b = 0; b < K; ++b)
-                    for (int a = 0; a < K; ++a) {
-                        const std::size_t id = f * per_face + std::size_t(b) * K + a;
-                        if (!(sample_state[id] & 1))
+                for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
+                                if (!(sample_state[id] & 1))
                             continue;
-                        stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
+                        stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
                         const double lack = sample_terrain[id] + o.clearance - surface_z(f, fw.w);
                         if (lack <= 0.0)
                             continue;
@@ -419,13 +417,11 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
 
     // Final guarantee (blanket): lift the whole surface by the worst remaining violation;
     // both surfaces reproduce constants, so every sample rises by exactly that much.
-    std::vector<double> z_all(per_face * nf);
+    std::vector<double> z_all(ns);
     double worst = 0.0;
     for (int f = 0; f < nf; ++f)
-        for (int b = 0; b < K; ++b)
-            for (int a = 0; a < K; ++a) {
-                const std::size_t id = f * per_face + std::size_t(b) * K + a;
-                stencils_->weights(f, (a + 0.5) / K, (b + 0.5) / K, fw, 0);
+        for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
+                stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
                 z_all[id] = surface_z(f, fw.w);
                 if (sample_state[id] & 1)
                     worst = std::max(worst, sample_terrain[id] + o.clearance - z_all[id]);

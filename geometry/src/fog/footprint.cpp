@@ -204,6 +204,7 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
     ControlMesh out;
     out.patch_size = h;
     out.origin = centre;
+    out.grid_origin = start;
     std::vector<int> vid(std::size_t(nx + 1) * (ny + 1), -1);
     auto vertex = [&](int i, int j) {
         int& v = vid[std::size_t(j) * (nx + 1) + i];

@@ -3,6 +3,7 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/fog/footprint.cpp
   src/fog/fog_target.cpp
   src/fog/base_surface.cpp
+  src/fog/fit_samples.cpp
   src/fog/author.cpp
   src/fog/fog_spec_json.cpp
 )

@@ -47,6 +47,8 @@ public:
         }
     }
 
+    bool regular(int face) const override { return surfaces_[face].IsRegular(); }
+
     void weights(int face, double u, double v, FaceWeights& out, int order) const override
     {
         const auto& s = surfaces_[face];

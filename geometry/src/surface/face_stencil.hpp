@@ -21,6 +21,9 @@ public:
     virtual ~FaceStencils() = default;
     int num_faces() const { return static_cast<int>(support_.size()); }
     const std::vector<int>& support(int face) const { return support_[face]; }
+    //! True when the face reproduces affine functions of (u, v) from control points on a
+    //! square grid (regular Catmull-Clark patch; Gregory face without irregular interior corner).
+    virtual bool regular(int face) const = 0;
     //! Fills out (sized to the support) up to derivatives of the given order (0, 1 or 2).
     virtual void weights(int face, double u, double v, FaceWeights& out, int order = 1) const = 0;
 

@@ -219,6 +219,11 @@ public:
         const int nf = int(m.n_faces());
         support_.resize(nf);
         matrix_.resize(nf);
+        regular_.assign(nf, 1);
+        for (auto f : m.faces())
+            for (auto v : m.fv_range(f))
+                if (!m.is_boundary(v) && m.valence(v) != 4)
+                    regular_[f.idx()] = 0;
         std::vector<Lin> corner(m.n_vertices());
         std::vector<std::uint8_t> has_corner(m.n_vertices(), 0);
         for (auto f : m.faces()) {
@@ -283,6 +288,8 @@ public:
         }
     }
 
+    bool regular(int face) const override { return regular_[face]; }
+
     void weights(int face, double u, double v, FaceWeights& out, int order) const override
     {
         double g[20], gu[20], gv[20];
@@ -330,6 +337,7 @@ private:
     }
 
     std::vector<std::vector<double>> matrix_;  // per face: 20 x support
+    std::vector<std::uint8_t> regular_;
 };
 
 }  // namespace

@@ -37,7 +37,8 @@ struct FitOptions {
     //! patch size, so it is dimensionless and independent of the patch and sample counts.
     //! 0 = plain least squares. Planes are fitted exactly at any value.
     double smoothness = 0.05;
-    //! Samples per patch side (cell-centred in (u, v)); 0 = one per terrain cell (at least 4).
+    //! Samples: every terrain grid vertex under the control mesh, plus this many cell-centred
+    //! (u, v) samples per patch side (so each patch has data on coarse terrains); 0 = 4.
     int samples_per_patch = 0;
     int max_active_set_iterations = 30;
 };
@@ -51,6 +52,7 @@ struct FitReport {
     double lift = 0.0;            //!< uniform lift of the final guarantee step (m)
     double fog_fraction = 0.0;    //!< share of samples with the terrain below the surface
     long long samples = 0;
+    long long grid_vertex_samples = 0;  //!< of which terrain grid vertices
     long long nodata_samples = 0; //!< samples over nodata cells (left out of data and constraint)
     long long active_constraints = 0;  //!< samples held at terrain + clearance (blanket)
     int iterations = 0;           //!< active-set solves

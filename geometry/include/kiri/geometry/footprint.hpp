@@ -37,6 +37,7 @@ struct ControlMesh {
     std::vector<glm::ivec2> grid;     //!< grid index (i, j) of each vertex (topology only)
     double patch_size = 0.0;          //!< metres
     glm::dvec2 origin{0.0};           //!< local frame of the fit: footprint bounding-box centre
+    glm::dvec2 grid_origin{0.0};      //!< position of grid index (0, 0) before snapping
     int boundary_vertices = 0;
     int snapped_vertices = 0;         //!< boundary vertices lying on the polygon after snapping
 
