@@ -9,6 +9,7 @@
 #include "fog_test_terrains.hpp"
 #include "kiri/geometry/base_surface.hpp"
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fog_target.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;
@@ -281,4 +282,26 @@ TEST(BaseSurfaceKinds, GregoryPatchesMeetAlongEdges)
     }
     EXPECT_GT(edges, 50);
     EXPECT_LT(worst, 1e-9);
+}
+
+TEST(FogTarget, SmoothingKeepsPlanesAwayFromTheBorderAndIgnoresNodata)
+{
+    // A box filter reproduces a linear function wherever its window is whole; normalised
+    // convolution keeps constants exact everywhere, and nodata values do not leak in.
+    Heightfield hf = make_heightfield(60, 50, 10.0, 0.0, 0.0, [](double x, double y) { return 3.0 + 0.5 * x - 0.25 * y; });
+    const Heightfield s = smooth_heightfield(hf, 20.0);
+    for (int j = 15; j < 35; ++j)
+        for (int i = 15; i < 45; ++i)
+            EXPECT_NEAR(s.at(i, j), hf.at(i, j), 1e-9);
+    Heightfield c = make_heightfield(60, 50, 10.0, 0.0, 0.0, [](double, double) { return 7.0; });
+    for (int i = 0; i < 60; ++i) {
+        c.valid[20 * 60 + i] = 0;
+        c.z[20 * 60 + i] = 1e6;
+    }
+    const Heightfield cs = smooth_heightfield(c, 35.0);
+    for (std::size_t k = 0; k < cs.z.size(); ++k) {
+        if (c.valid[k])
+            EXPECT_NEAR(cs.z[k], 7.0, 1e-9);
+    }
+    EXPECT_NEAR(sample_bilinear(hf, 123.0, 77.0), 3.0 + 0.5 * 123.0 - 0.25 * 77.0, 1e-9);
 }

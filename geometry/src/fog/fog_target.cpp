@@ -6,28 +6,49 @@
 namespace kiri::geometry {
 namespace {
 
-// One box pass of half-width r along lines of n samples at the given stride, in place.
-void box_pass(std::vector<double>& a, std::vector<double>& tmp, int count, int n, std::size_t stride,
-              std::size_t line_stride, int r)
+// One box pass of half-width r along x (rows), in place.
+void box_rows(std::vector<double>& a, std::vector<double>& tmp, int nx, int ny, int r)
 {
     if (r <= 0)
         return;
-    tmp.resize(n);
-    for (int line = 0; line < count; ++line) {
-        double* p = a.data() + line * line_stride;
+    tmp.resize(nx);
+    for (int j = 0; j < ny; ++j) {
+        double* p = a.data() + std::size_t(j) * nx;
         double sum = 0.0;
-        for (int k = 0; k <= std::min(r, n - 1); ++k)
-            sum += p[k * stride];
-        for (int k = 0; k < n; ++k) {
+        for (int k = 0; k <= std::min(r, nx - 1); ++k)
+            sum += p[k];
+        for (int k = 0; k < nx; ++k) {
             tmp[k] = sum;
-            if (k + r + 1 < n)
-                sum += p[(k + r + 1) * stride];
+            if (k + r + 1 < nx)
+                sum += p[k + r + 1];
             if (k - r >= 0)
-                sum -= p[(k - r) * stride];
+                sum -= p[k - r];
         }
-        for (int k = 0; k < n; ++k)
-            p[k * stride] = tmp[k];
+        std::copy(tmp.begin(), tmp.end(), p);
     }
+}
+
+// The same along y, a whole row of running sums at a time (contiguous memory access).
+void box_columns(std::vector<double>& a, std::vector<double>& out, int nx, int ny, int r)
+{
+    if (r <= 0)
+        return;
+    out.assign(a.size(), 0.0);
+    std::vector<double> sum(nx, 0.0);
+    auto row = [&](int j) { return a.data() + std::size_t(j) * nx; };
+    for (int k = 0; k <= std::min(r, ny - 1); ++k)
+        for (int i = 0; i < nx; ++i)
+            sum[i] += row(k)[i];
+    for (int j = 0; j < ny; ++j) {
+        std::copy(sum.begin(), sum.end(), out.begin() + std::size_t(j) * nx);
+        if (j + r + 1 < ny)
+            for (int i = 0; i < nx; ++i)
+                sum[i] += row(j + r + 1)[i];
+        if (j - r >= 0)
+            for (int i = 0; i < nx; ++i)
+                sum[i] -= row(j - r)[i];
+    }
+    a.swap(out);
 }
 
 int box_radius(double sigma_cells)
@@ -53,8 +74,8 @@ Heightfield smooth_heightfield(const Heightfield& hf, double sigma)
     const int rx = box_radius(sigma / hf.dx), ry = box_radius(sigma / hf.dy);
     for (auto* a : {&value, &weight})
         for (int pass = 0; pass < 3; ++pass) {
-            box_pass(*a, tmp, hf.ny, hf.nx, 1, std::size_t(hf.nx), rx);
-            box_pass(*a, tmp, hf.nx, hf.ny, std::size_t(hf.nx), 1, ry);
+            box_rows(*a, tmp, hf.nx, hf.ny, rx);
+            box_columns(*a, tmp, hf.nx, hf.ny, ry);
         }
     for (std::size_t k = 0; k < n; ++k)
         out.z[k] = weight[k] > 1e-12 ? value[k] / weight[k] : hf.z[k];
