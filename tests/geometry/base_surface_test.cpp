@@ -300,8 +300,9 @@ TEST(FogTarget, SmoothingKeepsPlanesAwayFromTheBorderAndIgnoresNodata)
     }
     const Heightfield cs = smooth_heightfield(c, 35.0);
     for (std::size_t k = 0; k < cs.z.size(); ++k) {
-        if (c.valid[k])
+        if (c.valid[k]) {
             EXPECT_NEAR(cs.z[k], 7.0, 1e-9);
+        }
     }
     EXPECT_NEAR(sample_bilinear(hf, 123.0, 77.0), 3.0 + 0.5 * 123.0 - 0.25 * 77.0, 1e-9);
 }
