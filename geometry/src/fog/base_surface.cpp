@@ -325,12 +325,14 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     solve();
     // Blanket: z >= terrain + clearance at every sample, by augmented-Lagrangian (Uzawa)
     // iterations on the violated samples. Each sample carries t >= 0 (its multiplier over the
-    // penalty, in metres); a sample is held, with a penalty rho (100 x a sample's data weight:
+    // penalty, in metres); a sample is held, with a penalty rho (300 x a sample's data weight;
     // stiffer penalties oscillate on Jacksboro) towards terrain + clearance + t, while
-    // t + (need - z) > 0, and after each solve t grows by what the sample still lacks. Raising the held targets rather than holding them at equality is what resolves
+    // t + (need - z) > 0, and after each solve t grows by what the sample still lacks.
+    // Raising the held targets rather than holding them at equality is what resolves
     // conflicts between held samples (a peak narrower than a patch): the converged t are the
-    // constraint forces of the exact inequality-constrained least-squares problem.
-    const double rho = 100.0, tol = 1e-3;
+    // constraint forces of the exact inequality-constrained least-squares problem. What is
+    // left after max_active_set_iterations goes to the guarantee steps below.
+    const double rho = 300.0, tol = 1e-3;
     if (o.mode == FitMode::blanket) {
         const std::vector<FaceSystem> base = sys;
         std::vector<float> raise(ns, 0.0f);

@@ -47,7 +47,11 @@ struct FitOptions {
 struct FitReport {
     double max_deviation = 0.0;   //!< max |surface - target| (m)
     double rms_deviation = 0.0;   //!< (m)
-    double min_clearance = 0.0;   //!< min (surface - terrain) (m); >= clearance in blanket mode
+    //! min (surface - terrain) over the samples (m); >= clearance in blanket mode. The samples
+    //! include every terrain grid vertex, where the piecewise-linear terrain peaks; between
+    //! them the surface can only come closer where it is convex (a few % of the clearance on
+    //! the tests' terrains).
+    double min_clearance = 0.0;
     double local_lift = 0.0;      //!< largest control-vertex raise of the local guarantee step (m)
     double lift = 0.0;            //!< uniform lift of the final guarantee step (m)
     double fog_fraction = 0.0;    //!< share of samples with the terrain below the surface
