@@ -2,3 +2,5 @@
 kiri_test(footprint_test SOURCES footprint_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(base_surface_test SOURCES base_surface_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(tessellate_test SOURCES tessellate_test.cpp LIBS kiri_geometry LABELS unit)
+find_package(nlohmann_json REQUIRED)
+kiri_test(fog_spec_test SOURCES fog_spec_test.cpp LIBS kiri_geometry nlohmann_json::nlohmann_json LABELS unit)

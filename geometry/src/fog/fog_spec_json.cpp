@@ -96,7 +96,11 @@ FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string
                 r.fail(fp + "/points", "expected an array of [x, y] points");
             for (std::size_t k = 0; k < f["points"].size(); ++k)
                 s.footprint.polygon.push_back(r.point(f["points"][k], fp + "/points/" + std::to_string(k)));
-            validate_footprint(s.footprint, file);
+            try {
+                validate_footprint(s.footprint);
+            } catch (const InputError& e) {
+                r.fail(fp + "/points", e.reason());
+            }
         } else {
             r.fail(fp + "/type", "expected \"terrain\", \"rectangle\" or \"polygon\", got \"" + type + "\"");
         }
