@@ -10,6 +10,7 @@
 #include "kiri/geometry/base_surface.hpp"
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/fog_target.hpp"
+#include "kiri/geometry/surface.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;
@@ -306,4 +307,27 @@ TEST(FogTarget, SmoothingKeepsPlanesAwayFromTheBorderAndIgnoresNodata)
         }
     }
     EXPECT_NEAR(sample_bilinear(hf, 123.0, 77.0), 3.0 + 0.5 * 123.0 - 0.25 * 77.0, 1e-9);
+}
+
+TEST(BaseSurfaceKinds, AgreesWithTheSurfaceModule)
+{
+    // The fit's stencils and the surface module (issue 3) evaluate the same surfaces.
+    const Terrain t = terrain_of(kiri::test::hills);
+    const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {100, 0}, {700, 800}, {-600, 650}};
+    for (auto [kind, skind] : {std::pair{BaseSurfaceKind::catmull_clark, SurfaceKind::catmull_clark},
+                               std::pair{BaseSurfaceKind::gregory, SurfaceKind::gregory}}) {
+        BaseSurface b = surface_over(t, {poly}, 200.0, kind);
+        b.fit(t, {});
+        const auto s = make_surface(b.control().mesh, skind);
+        double worst = 0.0;
+        for (int f = 0; f < b.num_patches(); ++f)
+            for (double u : {0.0, 0.2, 0.5, 1.0})
+                for (double v : {0.0, 0.7, 1.0}) {
+                    glm::dvec3 du, dv;
+                    const glm::dvec3 p = b.evaluate(f, u, v, &du, &dv);
+                    const PatchPoint q = s->evaluate(f, u, v);
+                    worst = std::max({worst, glm::length(p - q.position), glm::length(du - q.du), glm::length(dv - q.dv)});
+                }
+        EXPECT_LT(worst, 1e-6) << to_string(kind);
+    }
 }
