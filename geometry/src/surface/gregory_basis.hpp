@@ -21,6 +21,14 @@
 // approach); at s = 0 they are those of the diagonal direction.
 #include <cstddef>
 
+// The batch path instantiates these for vectors of lanes; they must inline into it (a call
+// would pass the vectors through memory and lose the vectorisation).
+#if defined(__GNUC__)
+#define KIRI_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define KIRI_ALWAYS_INLINE inline
+#endif
+
 namespace kiri::geometry::detail {
 
 //! Index of P_ijk in the 20-point array (see kiri/geometry/gregory_patch.hpp).
@@ -29,15 +37,18 @@ constexpr int gregory_index(int i, int j, int k)
     return k == 0 ? j * 4 + i : 16 + (j - 1) * 2 + (i - 1);
 }
 
+//! B^3_i(t) = C(3,i) t^i (1-t)^(3-i) and its first two derivatives (REFERENCE 1.1, corrected).
+//! T is double or a GCC vector of doubles (the batch path's lanes).
+template <class T>
 struct Bernstein3 {
-    double b[4], d[4], dd[4];
+    T b[4], d[4], dd[4];
 };
 
-//! B^3_i(t) = C(3,i) t^i (1-t)^(3-i) and its first two derivatives (REFERENCE 1.1, corrected).
-inline Bernstein3 bernstein3(double t)
+template <class T>
+KIRI_ALWAYS_INLINE Bernstein3<T> bernstein3(T t)
 {
-    const double s = 1.0 - t;
-    Bernstein3 r;
+    const T s = 1.0 - t;
+    Bernstein3<T> r;
     r.b[0] = s * s * s;
     r.b[1] = 3.0 * t * s * s;
     r.b[2] = 3.0 * t * t * s;
@@ -53,69 +64,92 @@ inline Bernstein3 bernstein3(double t)
     return r;
 }
 
-//! The 20 Gregory weights at (u, v) and their derivatives up to `Order` (0, 1 or 2). Weight
-//! of point k goes to w[k * stride] (so a batch can store lanes side by side). Pointers of
-//! orders above `Order` are not touched. Branch-free (selects only): vectorisable.
+//! The 20 Gregory weights at (u, v) and their derivatives up to `Order` (0, 1 or 2), handed
+//! to emit(k, d) point by point (k in storage order, d[0] = weight, d[1..2] = d/du, d/dv,
+//! d[3..5] = d2/du2, d2/dudv, d2/dv2). Branch-free (selects only), so with T a vector of
+//! lanes it evaluates several points at once.
+template <int Order, class T, class Emit>
+KIRI_ALWAYS_INLINE void gregory_visit(T u, T v, Emit&& emit)
+{
+    constexpr int N = Order == 0 ? 1 : Order == 1 ? 3 : 6;
+    const Bernstein3<T> U = bernstein3(u), V = bernstein3(v);
+    const T zero{}, half = zero + 0.5;
+    for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 4; ++i) {
+            T d[N];
+            d[0] = U.b[i] * V.b[j];
+            if constexpr (Order >= 1) {
+                d[1] = U.d[i] * V.b[j];
+                d[2] = U.b[i] * V.d[j];
+            }
+            if constexpr (Order >= 2) {
+                d[3] = U.dd[i] * V.b[j];
+                d[4] = U.d[i] * V.d[j];
+                d[5] = U.b[i] * V.dd[j];
+            }
+            const bool interior = (i == 1 || i == 2) && (j == 1 || j == 2);
+            if (!interior) {
+                emit(j * 4 + i, d);
+                continue;
+            }
+            // Split the tensor weight into r (P_ij0) and q (P_ij1), plus the bounded terms
+            // of the derivatives of r (see the top of this file). sx = dx/du, sy = dy/dv.
+            const bool fu = i == 2, fv = j == 2;
+            const double sx = fu ? -1.0 : 1.0, sy = fv ? -1.0 : 1.0;
+            const T x = fu ? 1.0 - u : u, y = fv ? 1.0 - v : v;
+            const T cx = fu ? u : 1.0 - u, cy = fv ? v : 1.0 - v;  // 1 - x, 1 - y
+            const T s = x + y;
+            const T r = s > zero ? x / s : half, q = s > zero ? y / s : half;
+            T d0[N], d1[N];
+            d0[0] = d[0] * r;
+            d1[0] = d[0] * q;
+            if constexpr (Order >= 1) {
+                const T cc = 9.0 * cx * cx * cy * cy;
+                const T g = cc * r * q;
+                const T au = sx * g * y, av = -sy * g * x;
+                d0[1] = d[1] * r + au;
+                d1[1] = d[1] * q - au;
+                d0[2] = d[2] * r + av;
+                d1[2] = d[2] * q - av;
+                if constexpr (Order >= 2) {
+                    const T dBi = U.d[i], dBj = V.d[j];
+                    const T ay = 3.0 * cy * cy, ax = 3.0 * cx * cx;
+                    const T buu = 2.0 * sx * dBi * ay * q * q - 2.0 * cc * r * q * q;
+                    const T bvv = -2.0 * sy * dBj * ax * r * r + 2.0 * cc * r * r * q;
+                    const T buv = -sy * dBi * ay * r * q + sx * dBj * ax * r * q + sx * sy * cc * r * q * (r - q);
+                    d0[3] = d[3] * r + buu;
+                    d1[3] = d[3] * q - buu;
+                    d0[4] = d[4] * r + buv;
+                    d1[4] = d[4] * q - buv;
+                    d0[5] = d[5] * r + bvv;
+                    d1[5] = d[5] * q - bvv;
+                }
+            }
+            emit(j * 4 + i, d0);
+            emit(gregory_index(i, j, 1), d1);
+        }
+}
+
+//! Array form of gregory_visit: weight of point k goes to w[k * stride] (and wu, wv, ...).
+//! Pointers of orders above `Order` are not touched.
 template <int Order>
 inline void gregory_basis(double u, double v, std::size_t stride, double* w, double* wu = nullptr,
                           double* wv = nullptr, double* wuu = nullptr, double* wuv = nullptr,
                           double* wvv = nullptr)
 {
-    const Bernstein3 U = bernstein3(u), V = bernstein3(v);
-    // The 12 boundary points and, for now, the full tensor weight at the 4 interior ones.
-    for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 4; ++i) {
-            const std::size_t k = std::size_t(j * 4 + i) * stride;
-            w[k] = U.b[i] * V.b[j];
-            if constexpr (Order >= 1) {
-                wu[k] = U.d[i] * V.b[j];
-                wv[k] = U.b[i] * V.d[j];
-            }
-            if constexpr (Order >= 2) {
-                wuu[k] = U.dd[i] * V.b[j];
-                wuv[k] = U.d[i] * V.d[j];
-                wvv[k] = U.b[i] * V.dd[j];
-            }
-        }
-    // Interior: split T = B_i B_j into T r (P_ij0) and T q (P_ij1), plus the terms of the
-    // derivatives of r (bounded forms above). sx = dx/du, sy = dy/dv.
-    for (int c = 0; c < 4; ++c) {
-        const int i = 1 + (c & 1), j = 1 + (c >> 1);
-        const double sx = (c & 1) ? -1.0 : 1.0, sy = (c >> 1) ? -1.0 : 1.0;
-        const double x = (c & 1) ? 1.0 - u : u, y = (c >> 1) ? 1.0 - v : v;
-        const double cx = (c & 1) ? u : 1.0 - u, cy = (c >> 1) ? v : 1.0 - v;  // 1 - x, 1 - y
-        const double s = x + y;
-        const bool singular = !(s > 0.0);
-        const double r = singular ? 0.5 : x / s, q = singular ? 0.5 : y / s;
-        const std::size_t k0 = std::size_t(j * 4 + i) * stride, k1 = std::size_t(gregory_index(i, j, 1)) * stride;
-        const double T = w[k0];
-        w[k0] = T * r;
-        w[k1] = T * q;
+    gregory_visit<Order>(u, v, [&](int k, const double* d) {
+        const std::size_t o = std::size_t(k) * stride;
+        w[o] = d[0];
         if constexpr (Order >= 1) {
-            const double cc = 9.0 * cx * cx * cy * cy;
-            const double g = cc * r * q;
-            const double Tu = wu[k0], Tv = wv[k0];
-            const double au = sx * g * y, av = -sy * g * x;
-            wu[k0] = Tu * r + au;
-            wu[k1] = Tu * q - au;
-            wv[k0] = Tv * r + av;
-            wv[k1] = Tv * q - av;
-            if constexpr (Order >= 2) {
-                const double dBi = U.d[i], dBj = V.d[j];
-                const double Tuu = wuu[k0], Tuv = wuv[k0], Tvv = wvv[k0];
-                const double ay = 3.0 * cy * cy, ax = 3.0 * cx * cx;
-                const double buu = 2.0 * sx * dBi * ay * q * q - 2.0 * cc * r * q * q;
-                const double bvv = -2.0 * sy * dBj * ax * r * r + 2.0 * cc * r * r * q;
-                const double buv = -sy * dBi * ay * r * q + sx * dBj * ax * r * q + sx * sy * cc * r * q * (r - q);
-                wuu[k0] = Tuu * r + buu;
-                wuu[k1] = Tuu * q - buu;
-                wvv[k0] = Tvv * r + bvv;
-                wvv[k1] = Tvv * q - bvv;
-                wuv[k0] = Tuv * r + buv;
-                wuv[k1] = Tuv * q - buv;
-            }
+            wu[o] = d[1];
+            wv[o] = d[2];
         }
-    }
+        if constexpr (Order >= 2) {
+            wuu[o] = d[3];
+            wuv[o] = d[4];
+            wvv[o] = d[5];
+        }
+    });
 }
 
 }  // namespace kiri::geometry::detail

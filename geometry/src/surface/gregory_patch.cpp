@@ -8,6 +8,11 @@
 #include "kiri/geometry/error.hpp"
 #include "surface/gregory_basis.hpp"
 
+// Lanes are passed only between always-inlined functions; the ABI note does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 namespace kiri::geometry {
 namespace {
 
@@ -18,37 +23,84 @@ inline double clamp01(double t)
     return c == c ? c : 0.5;
 }
 
-constexpr int kLanes = 8;
+// Lanes of the batch path: GCC/Clang vectors of doubles, 4 (one AVX2 register) where the CPU
+// has AVX2 and FMA, else 2 (SSE2). gregory_visit is written for such types too, so the batch
+// path evaluates the one basis several points at a time, entirely in registers.
+constexpr int kMaxLanes = 4;
+template <int L>
+struct LanesOf {
+    typedef double type __attribute__((vector_size(L * sizeof(double))));
+};
 
-// One block of kLanes points: weights lane by lane, then the sums as loops over lanes.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
-__attribute__((target_clones("arch=haswell", "default")))
-#endif
-void evaluate_block(const double* __restrict X, const double* __restrict Y, const double* __restrict Z,
-                    const double* __restrict u, const double* __restrict v, double* __restrict res)
+template <class V>
+KIRI_ALWAYS_INLINE V clamp_lanes(V t)
 {
-    alignas(64) double w[20 * kLanes], wu[20 * kLanes], wv[20 * kLanes];
-    for (int l = 0; l < kLanes; ++l)
-        detail::gregory_basis<1>(clamp01(u[l]), clamp01(v[l]), kLanes, w + l, wu + l, wv + l);
-    alignas(64) double acc[9 * kLanes] = {};
-    for (int k = 0; k < 20; ++k) {
-        const double x = X[k], y = Y[k], z = Z[k];
-        for (int l = 0; l < kLanes; ++l) {
-            const double a = w[k * kLanes + l], b = wu[k * kLanes + l], c = wv[k * kLanes + l];
-            acc[0 * kLanes + l] += a * x;
-            acc[1 * kLanes + l] += a * y;
-            acc[2 * kLanes + l] += a * z;
-            acc[3 * kLanes + l] += b * x;
-            acc[4 * kLanes + l] += b * y;
-            acc[5 * kLanes + l] += b * z;
-            acc[6 * kLanes + l] += c * x;
-            acc[7 * kLanes + l] += c * y;
-            acc[8 * kLanes + l] += c * z;
+    const V zero{}, one = zero + 1.0, half = zero + 0.5;
+    const V c = t < zero ? zero : (t > one ? one : t);
+    return c == c ? c : half;
+}
+
+template <int L>
+KIRI_ALWAYS_INLINE void blocks_impl(const double* __restrict X, const double* __restrict Y,
+                                    const double* __restrict Z, const double* __restrict u,
+                                    const double* __restrict v, std::size_t n, double* const* __restrict dst,
+                                    const double* add)
+{
+    using V = typename LanesOf<L>::type;
+    for (std::size_t b = 0; b + L <= n; b += L) {
+        V U, W;
+        __builtin_memcpy(&U, u + b, sizeof U);
+        __builtin_memcpy(&W, v + b, sizeof W);
+        V acc[9] = {};
+        detail::gregory_visit<1>(clamp_lanes(U), clamp_lanes(W), [&](int k, const V* d) __attribute__((always_inline)) {
+            const double x = X[k], y = Y[k], z = Z[k];
+            acc[0] += d[0] * x;
+            acc[1] += d[0] * y;
+            acc[2] += d[0] * z;
+            acc[3] += d[1] * x;
+            acc[4] += d[1] * y;
+            acc[5] += d[1] * z;
+            acc[6] += d[2] * x;
+            acc[7] += d[2] * y;
+            acc[8] += d[2] * z;
+        });
+        for (int c = 0; c < 9; ++c) {
+            const V r = acc[c] + add[c];
+            __builtin_memcpy(dst[c] + b, &r, sizeof r);
         }
     }
-    for (int i = 0; i < 9 * kLanes; ++i)
-        res[i] = acc[i];
 }
+
+using BlocksFn = void (*)(const double*, const double*, const double*, const double*, const double*, std::size_t,
+                          double* const*, const double*);
+
+// n must be a multiple of kMaxLanes.
+void blocks_sse2(const double* X, const double* Y, const double* Z, const double* u, const double* v, std::size_t n,
+                 double* const* dst, const double* add)
+{
+    blocks_impl<2>(X, Y, Z, u, v, n, dst, add);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+__attribute__((target("avx2,fma"))) void blocks_avx2(const double* X, const double* Y, const double* Z,
+                                                     const double* u, const double* v, std::size_t n,
+                                                     double* const* dst, const double* add)
+{
+    blocks_impl<4>(X, Y, Z, u, v, n, dst, add);
+}
+#endif
+
+BlocksFn pick_blocks()
+{
+#if defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+        return blocks_avx2;
+#endif
+    return blocks_sse2;
+}
+
+const BlocksFn evaluate_blocks = pick_blocks();
 
 glm::dvec3 raw_derivatives(const GregoryPatch& patch, double u, double v, glm::dvec3& du, glm::dvec3& dv)
 {
@@ -151,22 +203,22 @@ void evaluate_into(const GregoryPatch& patch, std::span<const double> u, std::sp
     double* dst[9] = {out.px.data(),  out.py.data(),  out.pz.data(),  out.dux.data(), out.duy.data(),
                       out.duz.data(), out.dvx.data(), out.dvy.data(), out.dvz.data()};
     const double add[9] = {o.x, o.y, o.z, 0, 0, 0, 0, 0, 0};
-    alignas(64) double res[9 * kLanes];
-    for (std::size_t b = 0; b < n; b += kLanes) {
-        const std::size_t m = std::min<std::size_t>(kLanes, n - b);
-        if (m == kLanes) {
-            evaluate_block(X, Y, Z, u.data() + b, v.data() + b, res);
-        } else {
-            double ut[kLanes], vt[kLanes];
-            for (std::size_t l = 0; l < kLanes; ++l) {
-                ut[l] = l < m ? u[b + l] : 0.5;
-                vt[l] = l < m ? v[b + l] : 0.5;
-            }
-            evaluate_block(X, Y, Z, ut, vt, res);
+    const std::size_t full = n / kMaxLanes * kMaxLanes;
+    evaluate_blocks(X, Y, Z, u.data(), v.data(), full, dst, add);
+    if (const std::size_t m = n - full; m > 0) {
+        // The tail: padded to one block, written back lane by lane.
+        double ut[kMaxLanes], vt[kMaxLanes], res[9][kMaxLanes];
+        double* rd[9];
+        for (int c = 0; c < 9; ++c)
+            rd[c] = res[c];
+        for (std::size_t l = 0; l < std::size_t(kMaxLanes); ++l) {
+            ut[l] = l < m ? u[full + l] : 0.5;
+            vt[l] = l < m ? v[full + l] : 0.5;
         }
+        evaluate_blocks(X, Y, Z, ut, vt, kMaxLanes, rd, add);
         for (int c = 0; c < 9; ++c)
             for (std::size_t l = 0; l < m; ++l)
-                dst[c][b + l] = res[c * kLanes + l] + add[c];
+                dst[c][full + l] = res[c][l];
     }
     if (!normals)
         return;
