@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
@@ -93,6 +95,7 @@ TEST(SurfaceNetwork, RegularGridIsTheBicubicBSplineOfOpenSubdiv)
                 worst = std::max(worst, glm::length(a.position - b.position));
                 worst_d = std::max({worst_d, glm::length(a.du - b.du), glm::length(a.dv - b.dv)});
             }
+    std::printf("regular grid: max |p_gregory - p_opensubdiv| %.3g m, derivatives %.3g m\n", worst, worst_d);
     EXPECT_LT(worst, 1e-10);
     EXPECT_LT(worst_d, 1e-9);
 }
@@ -127,6 +130,8 @@ TEST(SurfaceNetwork, SharedEdgesAreC0AndG1)
         EXPECT_GT(st.edges, 10) << c.name;
         EXPECT_LE(st.gap, 1e-12) << c.name;
         EXPECT_LE(st.angle, 1e-9) << c.name;
+        RecordProperty(std::string(c.name) + " max gap, max angle", std::to_string(st.gap) + ", " + std::to_string(st.angle));
+        std::printf("%-18s edges %3d samples %5d  max gap %.3g m  max normal angle %.3g rad\n", c.name, st.edges, st.samples, st.gap, st.angle);
         // The limit surface of the same mesh is C0 and smooth too (a sanity check of the
         // harness, with OpenSubdiv's own accuracy).
         const SeamStats so = seams(*make_surface(c.mesh, SurfaceKind::catmull_clark), c.mesh);
@@ -263,4 +268,31 @@ TEST(SurfaceNetwork, RefusesNonQuads)
     auto a = m.add_vertex({0, 0, 0}), b = m.add_vertex({1, 0, 0}), c = m.add_vertex({0, 1, 0});
     m.add_face(a, b, c);
     EXPECT_THROW(make_surface(m, SurfaceKind::gregory), kiri::InputError);
+}
+
+TEST(SurfaceNetworkStress, CollapsedEdgeAndZeroAreaFacesStayFinite)
+{
+    // Two neighbouring vertices on top of each other (a collapsed edge), and a face whose four
+    // corners coincide (zero area): both surfaces stay finite with unit normals everywhere.
+    PolyMesh m = grid_mesh(4, 4, 10.0, [](double x, double y) { return 0.01 * x * y; });
+    m.set_point(PolyMesh::VertexHandle(7), m.point(PolyMesh::VertexHandle(6)));
+    for (int v : {18, 19, 23})
+        m.set_point(PolyMesh::VertexHandle(v), m.point(PolyMesh::VertexHandle(24)));
+    for (auto kind : {SurfaceKind::gregory, SurfaceKind::catmull_clark}) {
+        const auto s = make_surface(m, kind);
+        std::vector<double> us, vs;
+        for (double u : kUV)
+            for (double v : kUV) {
+                us.push_back(u);
+                vs.push_back(v);
+            }
+        for (int f = 0; f < s->num_faces(); ++f) {
+            const PatchSamples p = s->evaluate(f, us, vs);
+            for (std::size_t i = 0; i < us.size(); ++i) {
+                for (const glm::dvec3& q : {p.position(i), p.du(i), p.dv(i), p.normal(i)})
+                    ASSERT_TRUE(std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z)) << to_string(kind);
+                EXPECT_NEAR(glm::length(p.normal(i)), 1.0, 1e-12) << to_string(kind) << " face " << f;
+            }
+        }
+    }
 }
