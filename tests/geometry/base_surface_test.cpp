@@ -11,12 +11,13 @@
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/fog_target.hpp"
 #include "kiri/geometry/surface.hpp"
+#include "surface/face_stencil.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;
 
 namespace {
-const BaseSurfaceKind kKinds[] = {BaseSurfaceKind::catmull_clark, BaseSurfaceKind::gregory};
+const SurfaceKind kKinds[] = {SurfaceKind::catmull_clark, SurfaceKind::gregory};
 
 double plane(double x, double y) { return 500.0 + 0.3 * x - 0.2 * y; }
 
@@ -26,7 +27,7 @@ Terrain terrain_of(double (*f)(double, double), double off = 0.0)
                                     [&](double x, double y) { return f(x - off, y - off); }));
 }
 
-BaseSurface surface_over(const Terrain& t, const Footprint& fp, double patch, BaseSurfaceKind kind)
+BaseSurface surface_over(const Terrain& t, const Footprint& fp, double patch, SurfaceKind kind)
 {
     return BaseSurface(build_control_mesh(fp, t, {patch}), kind);
 }
@@ -117,7 +118,7 @@ TEST(BaseSurfaceFit, LakeIsFlatAtItsAltitude)
 TEST(BaseSurfaceFit, RefitChangesOnlyHeights)
 {
     const Terrain t = terrain_of(plane);
-    BaseSurface s = surface_over(t, rectangle_footprint({-900, -900}, {900, 900}), 300.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface s = surface_over(t, rectangle_footprint({-900, -900}, {900, 900}), 300.0, SurfaceKind::catmull_clark);
     FitOptions o;
     o.smoothing_length = 0.0;
     o.offset = 20.0;
@@ -137,7 +138,7 @@ TEST(BaseSurfaceFit, RefitChangesOnlyHeights)
 TEST(BaseSurfaceFit, ClearErrors)
 {
     const Terrain t = terrain_of(kiri::test::hills);
-    BaseSurface s = surface_over(t, rectangle_footprint({-500, -500}, {500, 500}), 250.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface s = surface_over(t, rectangle_footprint({-500, -500}, {500, 500}), 250.0, SurfaceKind::catmull_clark);
     FitOptions o;
     o.clearance = 300.0;
     o.thickness = 200.0;
@@ -165,8 +166,8 @@ TEST(BaseSurfaceFit, HugeCoordinatesGiveTheSameFit)
     std::vector<glm::dvec2> shifted = poly;
     for (auto& v : shifted)
         v += glm::dvec2(off);
-    BaseSurface sa = surface_over(a, {poly}, 250.0, BaseSurfaceKind::catmull_clark);
-    BaseSurface sb = surface_over(b, {shifted}, 250.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface sa = surface_over(a, {poly}, 250.0, SurfaceKind::catmull_clark);
+    BaseSurface sb = surface_over(b, {shifted}, 250.0, SurfaceKind::catmull_clark);
     const FitReport ra = sa.fit(a, {}), rb = sb.fit(b, {});
     EXPECT_NEAR(ra.max_deviation, rb.max_deviation, 1e-6);
     EXPECT_NEAR(ra.min_clearance, rb.min_clearance, 1e-6);
@@ -181,7 +182,7 @@ TEST(BaseSurfaceFit, HugeCoordinatesGiveTheSameFit)
 TEST(BaseSurfaceFit, FootprintSmallerThanAPatch)
 {
     const Terrain t = terrain_of(kiri::test::hills);
-    BaseSurface s = surface_over(t, rectangle_footprint({100, 100}, {160, 140}), 500.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface s = surface_over(t, rectangle_footprint({100, 100}, {160, 140}), 500.0, SurfaceKind::catmull_clark);
     ASSERT_EQ(s.num_patches(), 1);
     FitOptions o;
     o.clearance = 5.0;
@@ -201,7 +202,7 @@ TEST(BaseSurfaceFit, NodataCellsAreLeftOut)
             hf.z[std::size_t(j) * hf.nx + i] = 5000.0;  // a wild fill value must not matter
         }
     const Terrain t(std::move(hf));
-    BaseSurface s = surface_over(t, rectangle_footprint({-950, -950}, {950, 950}), 200.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface s = surface_over(t, rectangle_footprint({-950, -950}, {950, 950}), 200.0, SurfaceKind::catmull_clark);
     FitOptions o;
     o.smoothing_length = 150.0;
     const FitReport r = s.fit(t, o);
@@ -217,12 +218,12 @@ TEST(BaseSurfaceFit, NearlyFlatAndCliff)
 {
     const Terrain flat(make_heightfield(101, 101, 20.0, -1000.0, -1000.0,
                                         [](double x, double) { return 250.0 + 1e-9 * x; }));
-    BaseSurface s = surface_over(flat, rectangle_footprint({-900, -900}, {900, 900}), 300.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface s = surface_over(flat, rectangle_footprint({-900, -900}, {900, 900}), 300.0, SurfaceKind::catmull_clark);
     const FitReport r = s.fit(flat, {});
     EXPECT_LT(r.max_deviation, 1e-6);
     const Terrain cliff(make_heightfield(101, 101, 20.0, -1000.0, -1000.0,
                                          [](double x, double) { return x < 10.0 ? 300.0 : 700.0; }));
-    BaseSurface c = surface_over(cliff, rectangle_footprint({-900, -900}, {900, 900}), 300.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface c = surface_over(cliff, rectangle_footprint({-900, -900}, {900, 900}), 300.0, SurfaceKind::catmull_clark);
     FitOptions o;
     o.clearance = 8.0;
     const FitReport rc = c.fit(cliff, o);
@@ -232,14 +233,14 @@ TEST(BaseSurfaceFit, NearlyFlatAndCliff)
         EXPECT_TRUE(std::isfinite(z));
 }
 
-TEST(BaseSurfaceKinds, GregoryEqualsCatmullClarkOnARegularGrid)
+TEST(SurfaceKinds, GregoryEqualsCatmullClarkOnARegularGrid)
 {
     // Regular interior and boundary: LSNC and the phantom boundary rules give the bicubic
     // B-spline patches that the Catmull-Clark limit is made of (REFERENCE 5 check).
     const Terrain t = terrain_of(kiri::test::hills);
     const Footprint fp = rectangle_footprint({-900, -900}, {900, 900});
-    BaseSurface g = surface_over(t, fp, 300.0, BaseSurfaceKind::gregory);
-    BaseSurface c = surface_over(t, fp, 300.0, BaseSurfaceKind::catmull_clark);
+    BaseSurface g = surface_over(t, fp, 300.0, SurfaceKind::gregory);
+    BaseSurface c = surface_over(t, fp, 300.0, SurfaceKind::catmull_clark);
     double worst = 0.0;
     for (int f = 0; f < g.num_patches(); ++f)
         for (double u : {0.0, 0.1, 0.5, 0.77, 1.0})
@@ -251,11 +252,11 @@ TEST(BaseSurfaceKinds, GregoryEqualsCatmullClarkOnARegularGrid)
     EXPECT_LT(worst, 1e-8);
 }
 
-TEST(BaseSurfaceKinds, GregoryPatchesMeetAlongEdges)
+TEST(SurfaceKinds, GregoryPatchesMeetAlongEdges)
 {
     const Terrain t = terrain_of(kiri::test::hills);
     const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {100, 0}, {700, 800}, {-600, 650}};
-    BaseSurface g = surface_over(t, {poly}, 200.0, BaseSurfaceKind::gregory);
+    BaseSurface g = surface_over(t, {poly}, 200.0, SurfaceKind::gregory);
     const PolyMesh& m = g.control().mesh;
     auto corner_index = [&](PolyMesh::FaceHandle f, PolyMesh::VertexHandle v) {
         int k = 0;
@@ -309,13 +310,14 @@ TEST(FogTarget, SmoothingKeepsPlanesAwayFromTheBorderAndIgnoresNodata)
     EXPECT_NEAR(sample_bilinear(hf, 123.0, 77.0), 3.0 + 0.5 * 123.0 - 0.25 * 77.0, 1e-9);
 }
 
-TEST(BaseSurfaceKinds, AgreesWithTheSurfaceModule)
+TEST(SurfaceKinds, AgreesWithTheSurfaceModule)
 {
-    // The fit's stencils and the surface module (issue 3) evaluate the same surfaces.
+    // The fit's stencils (the linear map it solves with) and the surface module (issue 3,
+    // which evaluate() and the tessellation use) give the same surfaces.
     const Terrain t = terrain_of(kiri::test::hills);
     const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {100, 0}, {700, 800}, {-600, 650}};
-    for (auto [kind, skind] : {std::pair{BaseSurfaceKind::catmull_clark, SurfaceKind::catmull_clark},
-                               std::pair{BaseSurfaceKind::gregory, SurfaceKind::gregory}}) {
+    for (auto [kind, skind] : {std::pair{SurfaceKind::catmull_clark, SurfaceKind::catmull_clark},
+                               std::pair{SurfaceKind::gregory, SurfaceKind::gregory}}) {
         BaseSurface b = surface_over(t, {poly}, 200.0, kind);
         b.fit(t, {});
         const auto s = make_surface(b.control().mesh, skind);
@@ -323,9 +325,18 @@ TEST(BaseSurfaceKinds, AgreesWithTheSurfaceModule)
         for (int f = 0; f < b.num_patches(); ++f)
             for (double u : {0.0, 0.2, 0.5, 1.0})
                 for (double v : {0.0, 0.7, 1.0}) {
-                    glm::dvec3 du, dv;
-                    const glm::dvec3 p = b.evaluate(f, u, v, &du, &dv);
+                    FaceWeights fw;
+                    b.stencils().weights(f, u, v, fw, 1);
+                    glm::dvec3 p(0.0), du(0.0), dv(0.0);
+                    const auto& S = b.stencils().support(f);
+                    for (std::size_t k = 0; k < S.size(); ++k) {
+                        const auto c = b.control().mesh.point(PolyMesh::VertexHandle(S[k]));
+                        p += fw.w[k] * glm::dvec3(c[0], c[1], c[2]);
+                        du += fw.wu[k] * glm::dvec3(c[0], c[1], c[2]);
+                        dv += fw.wv[k] * glm::dvec3(c[0], c[1], c[2]);
+                    }
                     const PatchPoint q = s->evaluate(f, u, v);
+                    worst = std::max(worst, glm::length(b.evaluate(f, u, v) - q.position));
                     worst = std::max({worst, glm::length(p - q.position), glm::length(du - q.du), glm::length(dv - q.dv)});
                 }
         EXPECT_LT(worst, 1e-6) << to_string(kind);

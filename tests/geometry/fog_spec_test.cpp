@@ -28,7 +28,7 @@ TEST(FogSpecJson, ReadsEveryKey)
                                      "s.json");
     ASSERT_EQ(s.footprint.polygon.size(), 3u);
     EXPECT_EQ(s.footprint.polygon[2], glm::dvec2(50, 80));
-    EXPECT_EQ(s.surface, BaseSurfaceKind::gregory);
+    EXPECT_EQ(s.surface, SurfaceKind::gregory);
     EXPECT_EQ(s.patch_size, 250.0);
     EXPECT_EQ(s.fit.mode, FitMode::lake);
     EXPECT_EQ(s.fit.altitude, 420.0);

@@ -14,7 +14,7 @@
 using namespace kiri::geometry;
 
 namespace {
-BaseSurface fitted_hills(BaseSurfaceKind kind, double patch = 250.0)
+BaseSurface fitted_hills(SurfaceKind kind, double patch = 250.0)
 {
     static const Terrain t(kiri::test::make_heightfield(101, 101, 20.0, -1000.0, -1000.0, kiri::test::hills));
     const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {700, 800}, {-600, 650}};
@@ -100,7 +100,7 @@ std::size_t border_segments(const BaseSurface& s, const Tessellation& t)
 
 TEST(Tessellate, UniformErrorFallsWithLevel)
 {
-    for (auto kind : {BaseSurfaceKind::catmull_clark, BaseSurfaceKind::gregory}) {
+    for (auto kind : {SurfaceKind::catmull_clark, SurfaceKind::gregory}) {
         const BaseSurface s = fitted_hills(kind);
         double previous = 1e300, first = 0.0;
         for (int level : {1, 2, 4, 8, 16}) {
@@ -120,7 +120,7 @@ TEST(Tessellate, UniformErrorFallsWithLevel)
 
 TEST(Tessellate, AdaptiveMeetsItsTolerance)
 {
-    for (auto kind : {BaseSurfaceKind::catmull_clark, BaseSurfaceKind::gregory})
+    for (auto kind : {SurfaceKind::catmull_clark, SurfaceKind::gregory})
         for (double tol : {2.0, 0.5, 0.25}) {
             const BaseSurface s = fitted_hills(kind);
             const Tessellation t = tessellate(s, {8, tol});
@@ -134,7 +134,7 @@ TEST(Tessellate, AdaptiveMeetsItsTolerance)
 
 TEST(Tessellate, UniformIsCrackFreeAndCarriesAttributes)
 {
-    const BaseSurface s = fitted_hills(BaseSurfaceKind::catmull_clark);
+    const BaseSurface s = fitted_hills(SurfaceKind::catmull_clark);
     const Tessellation t = tessellate(s, {5});
     EXPECT_EQ(open_edges_after_exact_weld(t.mesh), border_segments(s, t));
     OpenMesh::VPropHandleT<int> pid;

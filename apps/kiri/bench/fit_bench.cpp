@@ -34,7 +34,7 @@ KIRI_BENCH_STAGE({"fit", "Jacksboro blanket fit: patch size vs RMS deviation",
                   [](kiri::bench::Context& c) {
                       const Terrain terrain(jacksboro(c));
                       const Footprint fp = inner_footprint(terrain.heightfield(), 500.0);
-                      for (auto kind : {BaseSurfaceKind::catmull_clark, BaseSurfaceKind::gregory}) {
+                      for (auto kind : {SurfaceKind::catmull_clark, SurfaceKind::gregory}) {
                           for (double patch : {250.0, 500.0, 1000.0, 2000.0}) {
                               if (c.quick() && patch < 500.0)
                                   continue;
@@ -67,7 +67,7 @@ KIRI_BENCH_STAGE({"fit_growth", "Fit cost growth with DEM size (Jacksboro resamp
                           const Footprint fp = inner_footprint(terrain.heightfield(), 500.0);
                           FitReport rep;
                           const auto m = c.measure([&] {
-                              BaseSurface s(build_control_mesh(fp, terrain, {1000.0}), BaseSurfaceKind::catmull_clark);
+                              BaseSurface s(build_control_mesh(fp, terrain, {1000.0}), SurfaceKind::catmull_clark);
                               rep = s.fit(terrain, {});
                           });
                           c.add({"catmull-clark", "dem=" + std::to_string(n) + "^2 " + figures(rep), double(n) * n,

@@ -16,7 +16,7 @@ KIRI_BENCH_STAGE({"tessellation", "Base surface tessellation: triangles vs max d
                       const Terrain terrain(load_dem(c.data_dir() / "terrains" / "jacksboro_fault_dem.tif"));
                       const Heightfield& hf = terrain.heightfield();
                       const Footprint fp = rectangle_footprint({hf.x0 + 500, hf.y0 + 500}, {hf.x_max() - 500, hf.y_max() - 500});
-                      BaseSurface s(build_control_mesh(fp, terrain, {1000.0}), BaseSurfaceKind::catmull_clark);
+                      BaseSurface s(build_control_mesh(fp, terrain, {1000.0}), SurfaceKind::catmull_clark);
                       s.fit(terrain, {});
                       for (int level : {1, 2, 4, 8, 16, 32}) {
                           if (c.quick() && level > 16)

@@ -53,16 +53,13 @@ void add_row(FaceSystem& s, const std::vector<double>& w, double weight, double 
 
 }  // namespace
 
-const char* to_string(BaseSurfaceKind kind)
-{
-    return kind == BaseSurfaceKind::gregory ? "gregory" : "catmull-clark";
-}
 const char* to_string(FitMode mode) { return mode == FitMode::blanket ? "blanket" : "lake"; }
 
-BaseSurface::BaseSurface(ControlMesh control, BaseSurfaceKind kind) : control_(std::move(control)), kind_(kind)
+BaseSurface::BaseSurface(ControlMesh control, SurfaceKind kind) : control_(std::move(control)), kind_(kind)
 {
-    stencils_ = kind == BaseSurfaceKind::gregory ? make_gregory_stencils(control_.mesh)
-                                                 : make_catmull_clark_stencils(control_.mesh);
+    stencils_ = kind == SurfaceKind::gregory ? make_gregory_stencils(control_.mesh)
+                                             : make_catmull_clark_stencils(control_.mesh);
+    surface_ = make_surface(control_.mesh, kind);
 }
 BaseSurface::~BaseSurface() = default;
 BaseSurface::BaseSurface(BaseSurface&&) noexcept = default;
@@ -86,27 +83,22 @@ void BaseSurface::set_heights(const std::vector<double>& z)
         p[2] = z[v.idx()];
         control_.mesh.set_point(v, p);
     }
+    std::vector<glm::dvec3> points(z.size());
+    for (auto v : control_.mesh.vertices()) {
+        const auto p = control_.mesh.point(v);
+        points[v.idx()] = {p[0], p[1], p[2]};
+    }
+    surface_->set_control_points(points);
 }
 
 glm::dvec3 BaseSurface::evaluate(int face, double u, double v, glm::dvec3* du, glm::dvec3* dv) const
 {
-    thread_local FaceWeights fw;
-    stencils_->weights(face, u, v, fw);
-    const auto& s = stencils_->support(face);
-    const glm::dvec3 o(control_.origin, 0.0);
-    glm::dvec3 p(0.0), pu(0.0), pv(0.0);
-    for (std::size_t k = 0; k < s.size(); ++k) {
-        const auto q = control_.mesh.point(PolyMesh::VertexHandle(s[k]));
-        const glm::dvec3 d = glm::dvec3(q[0], q[1], q[2]) - o;
-        p += fw.w[k] * d;
-        pu += fw.wu[k] * d;
-        pv += fw.wv[k] * d;
-    }
+    const PatchPoint q = surface_->evaluate(face, u, v);
     if (du)
-        *du = pu;
+        *du = q.du;
     if (dv)
-        *dv = pv;
-    return p + o;
+        *dv = q.dv;
+    return q.position;
 }
 
 FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)

@@ -108,9 +108,9 @@ FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string
     if (j.contains("surface")) {
         const json& v = j["surface"];
         if (v == "gregory")
-            s.surface = BaseSurfaceKind::gregory;
+            s.surface = SurfaceKind::gregory;
         else if (v == "catmull-clark")
-            s.surface = BaseSurfaceKind::catmull_clark;
+            s.surface = SurfaceKind::catmull_clark;
         else
             r.fail(p + "/surface", "expected \"gregory\" or \"catmull-clark\"");
     }

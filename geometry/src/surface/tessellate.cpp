@@ -28,12 +28,8 @@ glm::dvec2 side_param(int s, double t, double d)
 
 Sample eval(const BaseSurface& surface, int f, glm::dvec2 uv)
 {
-    glm::dvec3 du, dv;
-    const glm::dvec3 p = surface.evaluate(f, uv.x, uv.y, &du, &dv);
-    glm::dvec3 n = glm::cross(du, dv);
-    const double len = glm::length(n);
-    n = len > 0.0 && std::isfinite(len) ? n / len : glm::dvec3(0.0, 0.0, 1.0);
-    return {p, n};
+    const PatchPoint q = surface.surface().evaluate(f, uv.x, uv.y);
+    return {q.position, q.normal};
 }
 
 // Topology of one patch: its corner vertices and, per side, the edge and its direction.

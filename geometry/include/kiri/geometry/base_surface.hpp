@@ -9,16 +9,12 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/footprint.hpp"
+#include "kiri/geometry/surface.hpp"
 #include "kiri/geometry/terrain.hpp"
 
 namespace kiri::geometry {
 
 class FaceStencils;
-
-enum class BaseSurfaceKind {
-    gregory,        //!< G1 network of bicubic Gregory patches (REFERENCE 1.1, 5: LSNC 2009)
-    catmull_clark,  //!< Catmull-Clark limit surface (OpenSubdiv Bfr)
-};
 
 enum class FitMode {
     blanket,  //!< smoothed terrain + offset, never below terrain + clearance
@@ -68,12 +64,12 @@ struct FitReport {
 //! constructor; fit() and set_heights() change only the control heights (STYLE 5).
 class BaseSurface {
 public:
-    BaseSurface(ControlMesh control, BaseSurfaceKind kind);
+    BaseSurface(ControlMesh control, SurfaceKind kind);
     ~BaseSurface();
     BaseSurface(BaseSurface&&) noexcept;
     BaseSurface& operator=(BaseSurface&&) noexcept;
 
-    BaseSurfaceKind kind() const { return kind_; }
+    SurfaceKind kind() const { return kind_; }
     const ControlMesh& control() const { return control_; }
     int num_patches() const { return control_.num_faces(); }
 
@@ -88,17 +84,19 @@ public:
     //! Point and first derivatives of patch `face` at (u, v) in [0,1]^2; corner k of the face's
     //! vertex list (OpenMesh fv order) sits at (0,0), (1,0), (1,1), (0,1).
     glm::dvec3 evaluate(int face, double u, double v, glm::dvec3* du = nullptr, glm::dvec3* dv = nullptr) const;
+    //! The surface itself (surface.hpp), kept in step with the control heights.
+    const Surface& surface() const { return *surface_; }
 
     //! The linear map behind evaluate() (internal type, see geometry/src/surface).
     const FaceStencils& stencils() const { return *stencils_; }
 
 private:
     ControlMesh control_;
-    BaseSurfaceKind kind_;
-    std::unique_ptr<FaceStencils> stencils_;
+    SurfaceKind kind_;
+    std::unique_ptr<FaceStencils> stencils_;  // the fit's linear map
+    std::unique_ptr<Surface> surface_;        // evaluation (surface module)
 };
 
-const char* to_string(BaseSurfaceKind kind);
 const char* to_string(FitMode mode);
 
 }  // namespace kiri::geometry

@@ -15,7 +15,7 @@ struct FogSpec {
     //! Footprint in local metres; empty polygon = the terrain's extent shrunk by `margin`.
     Footprint footprint;
     double margin = 0.0;  //!< metres, for the whole-terrain footprint
-    BaseSurfaceKind surface = BaseSurfaceKind::catmull_clark;
+    SurfaceKind surface = SurfaceKind::catmull_clark;
     double patch_size = 1000.0;
     FitOptions fit;
     TessellationOptions tessellation;
