@@ -3,6 +3,7 @@
 //! The frame renderer: owns the GPU resources of a scene and draws it into an offscreen
 //! framebuffer. Resources are uploaded once and rebuilt only when their inputs change.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,10 @@ public:
     //! Renders the frame offscreen and reads it back.
     Image render(const Camera& camera, int width, int height);
     const FrameStats& last_stats() const;
+
+    //! World position of the surface seen at pixel (x, y) of the last rendered frame (origin at
+    //! the top-left, as in Image), read from its depth buffer; empty where only sky was drawn.
+    std::optional<glm::dvec3> pick(int x, int y) const;
 
 private:
     struct Impl;

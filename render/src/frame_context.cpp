@@ -1,0 +1,47 @@
+#include "frame_context.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace kiri::render::detail {
+
+FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int width, int height,
+                                const glm::dvec3& scene_min, const glm::dvec3& scene_max)
+{
+    FrameContext f;
+    f.width = width;
+    f.height = height;
+    Camera fitted = camera;
+    if (scene_max.x >= scene_min.x) {
+        double far_distance = 0.0;
+        for (int corner = 0; corner < 8; ++corner) {
+            const glm::dvec3 p((corner & 1) ? scene_max.x : scene_min.x, (corner & 2) ? scene_max.y : scene_min.y,
+                               (corner & 4) ? scene_max.z : scene_min.z);
+            far_distance = std::max(far_distance, glm::length(p - camera.position));
+        }
+        const glm::dvec3 nearest = glm::clamp(camera.position, scene_min, scene_max);
+        const double near_distance = glm::length(nearest - camera.position);
+        fitted.far_m = std::max(far_distance * 1.05, 10.0);
+        // A 32-bit float depth buffer keeps a far/near ratio of 1e5 comfortably.
+        fitted.near_m = std::clamp(near_distance * 0.9, std::max(fitted.far_m * 1e-5, 0.05), fitted.far_m * 0.5);
+    }
+    f.view = fitted.view();
+    f.projection = fitted.projection(double(width) / double(height));
+    const glm::dmat4 vp = f.projection * f.view;
+    f.view_projection = glm::mat4(vp);
+    f.inverse_view_projection = glm::mat4(glm::inverse(vp));
+    f.eye = glm::vec3(camera.position);
+    const double len = glm::length(sun.direction);
+    f.sun_direction = glm::vec3(len > 0.0 ? sun.direction / len : glm::dvec3(0.0, 0.0, 1.0));
+    f.sun_radiance = glm::vec3(sun.color * sun.intensity);
+    f.ambient = glm::vec3(sun.ambient);
+    f.sky_zenith = glm::vec3(sun.ambient * 1.6);
+    f.sky_horizon = glm::vec3(glm::mix(sun.ambient * 2.6, glm::dvec3(0.9, 0.92, 0.95), 0.35));
+    return f;
+}
+
+}  // namespace kiri::render::detail

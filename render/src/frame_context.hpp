@@ -1,0 +1,30 @@
+#pragma once
+// What every pass of one frame reads: camera matrices and lighting, computed once per frame.
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "kiri/render/camera.hpp"
+#include "kiri/render/renderer.hpp"
+
+namespace kiri::render::detail {
+
+struct FrameContext {
+    int width = 0, height = 0;
+    glm::dmat4 view{1.0}, projection{1.0};
+    glm::mat4 view_projection{1.0f};
+    glm::mat4 inverse_view_projection{1.0f};
+    glm::vec3 eye{0.0f};
+    glm::vec3 sun_direction{0.0f, 0.0f, 1.0f};  // towards the sun, unit
+    glm::vec3 sun_radiance{1.0f};
+    glm::vec3 ambient{0.3f};
+    glm::vec3 sky_zenith{0.3f}, sky_horizon{0.8f};
+    float exposure = 1.0f;
+    float haze_density = 1.0f / 60000.0f;  // 1/m: the far side of a 30 km DEM is ~40% hazed
+};
+
+//! Builds the frame's context; near and far planes are fitted to the scene's bounds so that
+//! depth precision is spent where the scene is (the camera's own planes are the fallback).
+FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int width, int height,
+                                const glm::dvec3& scene_min, const glm::dvec3& scene_max);
+
+}  // namespace kiri::render::detail

@@ -1,0 +1,83 @@
+#include "render_targets.hpp"
+
+#include <cstring>
+#include <string>
+
+#include "kiri/geometry/error.hpp"
+
+namespace kiri::render::detail {
+namespace {
+void check_complete(GLuint framebuffer, const char* which)
+{
+    const GLenum status = glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE)
+        throw Error(std::string("OpenGL: the ") + which + " framebuffer is incomplete (status " +
+                    std::to_string(status) + ")");
+}
+}  // namespace
+
+void RenderTargets::ensure(int width, int height)
+{
+    if (width == width_ && height == height_)
+        return;
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &max_size);
+    if (width <= 0 || height <= 0 || width > max_size || height > max_size)
+        throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) +
+                    " is outside what this OpenGL supports (1.." + std::to_string(max_size) + ")");
+    msaa_color_ = make_renderbuffer();
+    msaa_depth_ = make_renderbuffer();
+    resolved_color_ = make_renderbuffer();
+    resolved_depth_ = make_renderbuffer();
+    glNamedRenderbufferStorageMultisample(msaa_color_.get(), samples, GL_RGBA8, width, height);
+    glNamedRenderbufferStorageMultisample(msaa_depth_.get(), samples, GL_DEPTH_COMPONENT32F, width, height);
+    glNamedRenderbufferStorage(resolved_color_.get(), GL_RGBA8, width, height);
+    glNamedRenderbufferStorage(resolved_depth_.get(), GL_DEPTH_COMPONENT32F, width, height);
+    msaa_ = make_framebuffer();
+    resolved_ = make_framebuffer();
+    glNamedFramebufferRenderbuffer(msaa_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_.get());
+    glNamedFramebufferRenderbuffer(msaa_.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
+    glNamedFramebufferRenderbuffer(resolved_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolved_color_.get());
+    glNamedFramebufferRenderbuffer(resolved_.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, resolved_depth_.get());
+    check_complete(msaa_.get(), "multisampled");
+    check_complete(resolved_.get(), "resolve");
+    width_ = width;
+    height_ = height;
+}
+
+void RenderTargets::bind_for_drawing() const
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+    glViewport(0, 0, width_, height_);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+}
+
+void RenderTargets::resolve() const
+{
+    // Depth cannot be averaged: NEAREST takes one sample, colour samples are averaged anyway.
+    glBlitNamedFramebuffer(msaa_.get(), resolved_.get(), 0, 0, width_, height_, 0, 0, width_, height_,
+                           GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+}
+
+std::vector<std::uint8_t> RenderTargets::read_rgba() const
+{
+    const std::size_t row = std::size_t(width_) * 4;
+    std::vector<std::uint8_t> bottom_up(row * height_), top_down(row * height_);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved_.get());
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+    for (int y = 0; y < height_; ++y)
+        std::memcpy(&top_down[std::size_t(y) * row], &bottom_up[std::size_t(height_ - 1 - y) * row], row);
+    return top_down;
+}
+
+float RenderTargets::read_depth(int x, int y) const
+{
+    float depth = 1.0f;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved_.get());
+    glReadPixels(x, height_ - 1 - y, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &depth);
+    return depth;
+}
+
+}  // namespace kiri::render::detail

@@ -1,0 +1,114 @@
+#include "kiri/render/renderer.hpp"
+
+#include <chrono>
+#include <optional>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "frame_context.hpp"
+#include "gl_debug.hpp"
+#include "render_targets.hpp"
+#include "sky_pass.hpp"
+#include "terrain_pass.hpp"
+
+namespace kiri::render {
+
+using detail::FrameContext;
+
+// A GL_TIME_ELAPSED query around one pass; results are read after the frame's readback,
+// when the GPU has finished anyway.
+class PassTimer {
+public:
+    explicit PassTimer(std::string name) : name_(std::move(name)), query_(detail::make_query(GL_TIME_ELAPSED)) {}
+    void begin()
+    {
+        cpu_start_ = std::chrono::steady_clock::now();
+        glBeginQuery(GL_TIME_ELAPSED, query_.get());
+    }
+    void end()
+    {
+        glEndQuery(GL_TIME_ELAPSED);
+        cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start_).count();
+    }
+    PassTime result() const
+    {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(query_.get(), GL_QUERY_RESULT, &ns);
+        return {name_, double(ns) * 1e-6, cpu_ms_};
+    }
+
+private:
+    std::string name_;
+    detail::Query query_;
+    std::chrono::steady_clock::time_point cpu_start_;
+    double cpu_ms_ = 0.0;
+};
+
+struct Renderer::Impl {
+    detail::SkyPass sky;
+    detail::TerrainPass terrain;
+    detail::RenderTargets targets;
+    SunLight sun;
+    FrameStats stats;
+    int pending_uploads = 0;
+    std::optional<FrameContext> last_frame;
+    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, resolve_timer{"resolve+readback"};
+};
+
+Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
+Renderer::~Renderer() = default;
+
+void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration)
+{
+    if (impl_->terrain.set_terrain(terrain, exaggeration))
+        ++impl_->pending_uploads;
+}
+
+void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
+
+Image Renderer::render(const Camera& camera, int width, int height)
+{
+    Impl& r = *impl_;
+    const auto start = std::chrono::steady_clock::now();
+    r.targets.ensure(width, height);
+    const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, r.terrain.bounds_min(),
+                                                          r.terrain.bounds_max());
+    r.targets.bind_for_drawing();
+    r.sky_timer.begin();
+    r.sky.draw(frame);
+    r.sky_timer.end();
+    r.terrain_timer.begin();
+    r.terrain.draw(frame);
+    r.terrain_timer.end();
+    r.resolve_timer.begin();
+    r.targets.resolve();
+    Image image{width, height, r.targets.read_rgba()};
+    r.resolve_timer.end();
+    detail::check_gl_errors("Renderer::render");
+
+    r.stats = {};
+    for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.resolve_timer})
+        r.stats.passes.push_back(t->result());
+    r.stats.uploads = std::exchange(r.pending_uploads, 0);
+    r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    r.last_frame = frame;
+    return image;
+}
+
+const FrameStats& Renderer::last_stats() const { return impl_->stats; }
+
+std::optional<glm::dvec3> Renderer::pick(int x, int y) const
+{
+    const Impl& r = *impl_;
+    if (!r.last_frame || x < 0 || y < 0 || x >= r.targets.width() || y >= r.targets.height())
+        return std::nullopt;
+    const float depth = r.targets.read_depth(x, y);
+    if (depth >= 1.0f)
+        return std::nullopt;
+    const FrameContext& f = *r.last_frame;
+    const glm::dvec4 ndc((x + 0.5) / f.width * 2.0 - 1.0, 1.0 - (y + 0.5) / f.height * 2.0, depth * 2.0 - 1.0, 1.0);
+    const glm::dvec4 world = glm::inverse(f.projection * f.view) * ndc;
+    return glm::dvec3(world) / world.w;
+}
+
+}  // namespace kiri::render

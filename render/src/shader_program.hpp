@@ -1,0 +1,36 @@
+#pragma once
+// Shader programs built from the embedded GLSL files (render/shaders/), with compile and link
+// errors that name the file.
+#include <epoxy/gl.h>
+
+#include <initializer_list>
+#include <string_view>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "gl_objects.hpp"
+
+namespace kiri::render::detail {
+
+//! The text of an embedded shader file, e.g. "terrain.vert". Throws kiri::Error if unknown.
+std::string_view shader_source(std::string_view file_name);
+
+class ShaderProgram {
+public:
+    //! Compiles and links the named files; the stage comes from the extension
+    //! (.vert, .frag, .comp, .geom). Throws kiri::Error naming the file on failure.
+    explicit ShaderProgram(std::initializer_list<std::string_view> files);
+    GLuint id() const { return program_.get(); }
+    void use() const { glUseProgram(program_.get()); }
+    GLint location(const char* uniform) const { return glGetUniformLocation(program_.get(), uniform); }
+    void set(const char* uniform, float v) const { glProgramUniform1f(id(), location(uniform), v); }
+    void set(const char* uniform, int v) const { glProgramUniform1i(id(), location(uniform), v); }
+    void set(const char* uniform, const glm::vec3& v) const;
+    void set(const char* uniform, const glm::mat4& m) const;
+
+private:
+    ProgramName program_;
+};
+
+}  // namespace kiri::render::detail

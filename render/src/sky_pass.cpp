@@ -1,0 +1,24 @@
+#include "sky_pass.hpp"
+
+namespace kiri::render::detail {
+
+SkyPass::SkyPass() : program_({"fullscreen.vert", "sky.frag"}), empty_vao_(make_vertex_array()) {}
+
+void SkyPass::draw(const FrameContext& frame) const
+{
+    program_.set("u_inverse_view_projection", frame.inverse_view_projection);
+    program_.set("u_eye", frame.eye);
+    program_.set("u_sun_direction", frame.sun_direction);
+    program_.set("u_sun_radiance", frame.sun_radiance);
+    program_.set("u_sky_zenith", frame.sky_zenith);
+    program_.set("u_sky_horizon", frame.sky_horizon);
+    program_.set("u_exposure", frame.exposure);
+    program_.use();
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(empty_vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+}
+
+}  // namespace kiri::render::detail

@@ -1,0 +1,38 @@
+#pragma once
+#include <cstddef>
+
+#include <glm/vec3.hpp>
+
+#include "frame_context.hpp"
+#include "shader_program.hpp"
+
+namespace kiri::geometry {
+class Terrain;
+}
+
+namespace kiri::render::detail {
+
+//! The terrain as one indexed grid mesh, uploaded once per (terrain, exaggeration).
+class TerrainPass {
+public:
+    TerrainPass();
+    //! Returns true when it had to upload (the terrain or the exaggeration changed).
+    bool set_terrain(const geometry::Terrain& terrain, double exaggeration);
+    bool has_terrain() const { return index_count_ > 0; }
+    void draw(const FrameContext& frame) const;
+    glm::dvec3 bounds_min() const { return min_; }
+    glm::dvec3 bounds_max() const { return max_; }
+
+private:
+    ShaderProgram program_;
+    VertexArray vao_;
+    Buffer vertices_, indices_;
+    GLsizei index_count_ = 0;
+    glm::dvec3 min_{0.0}, max_{-1.0};
+    // What is on the GPU now, to skip redundant uploads.
+    const void* uploaded_heights_ = nullptr;
+    std::size_t uploaded_size_ = 0;
+    double uploaded_exaggeration_ = 0.0;
+};
+
+}  // namespace kiri::render::detail

@@ -1,0 +1,149 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include <glm/geometric.hpp>
+
+#include "kiri/render/camera.hpp"
+#include "kiri/render/renderer.hpp"
+#include "render/render_fixture.hpp"
+
+namespace {
+
+using kiri::render::Camera;
+using kiri::render::Image;
+using kiri::render::Renderer;
+
+Camera oblique_camera()
+{
+    Camera c;
+    c.position = {-300.0, -1500.0, 900.0};
+    c.target = {0.0, 0.0, 80.0};
+    c.fov_y_deg = 50.0;
+    return c;
+}
+
+class RendererGl : public kiri::test::GlTest {};
+
+TEST(Camera, TargetProjectsToImageCentreAndFovEdgeToTopRow)
+{
+    Camera c;
+    c.position = {10.0, -200.0, 50.0};
+    c.target = {10.0, 0.0, 50.0};
+    c.fov_y_deg = 60.0;
+    const glm::dvec2 centre = kiri::render::project_to_pixel(c, c.target, 640, 480);
+    EXPECT_NEAR(centre.x, 320.0, 1e-9);
+    EXPECT_NEAR(centre.y, 240.0, 1e-9);
+    // A point at half the vertical field of view above the axis lands on the top edge, and
+    // one to the right at the horizontal half-angle on the right edge.
+    const double t = std::tan(M_PI / 6.0) * 200.0;
+    const glm::dvec2 top = kiri::render::project_to_pixel(c, {10.0, 0.0, 50.0 + t}, 640, 480);
+    EXPECT_NEAR(top.x, 320.0, 1e-9);
+    EXPECT_NEAR(top.y, 0.0, 1e-9);
+    const glm::dvec2 right = kiri::render::project_to_pixel(c, {10.0 + t * 640.0 / 480.0, 0.0, 50.0}, 640, 480);
+    EXPECT_NEAR(right.x, 640.0, 1e-9);
+}
+
+TEST_F(RendererGl, KnownTerrainPointsAppearAtTheirProjectedPixels)
+{
+    const kiri::geometry::Terrain hill = kiri::test::gaussian_hill();
+    Renderer renderer;
+    renderer.set_terrain(hill);
+    const Camera camera = oblique_camera();
+    const int w = 320, h = 240;
+    renderer.render(camera, w, h);
+    int checked = 0;
+    // Points on the hill's near flank and the plain in front of it: visible from the camera.
+    for (double x : {-400.0, -150.0, 0.0, 200.0, 450.0})
+        for (double y : {-500.0, -300.0, -120.0}) {
+            const glm::dvec3 world(x, y, hill.height(x, y));
+            const glm::dvec2 px = kiri::render::project_to_pixel(camera, world, w, h);
+            ASSERT_GT(px.x, 0.0);
+            ASSERT_LT(px.x, w);
+            const auto seen = renderer.pick(int(px.x), int(px.y));
+            ASSERT_TRUE(seen.has_value()) << "nothing drawn at the projection of " << x << ", " << y;
+            // The pixel centre is at most half a pixel diagonal away from the projection: its
+            // footprint on the ground at this distance bounds the error.
+            const double distance = glm::length(world - camera.position);
+            const double pixel_m = 2.0 * distance * std::tan(glm::radians(camera.fov_y_deg) / 2.0) / h;
+            const double slant = 1.0 / std::max(0.2, std::abs(glm::dot(glm::normalize(world - camera.position),
+                                                                      hill.normal(x, y))));
+            EXPECT_LT(glm::length(*seen - world), 1.5 * pixel_m * slant) << "at " << x << ", " << y;
+            EXPECT_NEAR(seen->z, hill.height(seen->x, seen->y), 0.5 * pixel_m * slant);
+            ++checked;
+        }
+    EXPECT_EQ(checked, 15);
+    // The sky above the horizon has no surface.
+    EXPECT_FALSE(renderer.pick(w / 2, 0).has_value());
+}
+
+TEST_F(RendererGl, StaticSceneUploadsOnce)
+{
+    const kiri::geometry::Terrain hill = kiri::test::gaussian_hill();
+    Renderer renderer;
+    renderer.set_terrain(hill);
+    renderer.render(oblique_camera(), 64, 48);
+    EXPECT_EQ(renderer.last_stats().uploads, 1);
+    renderer.set_terrain(hill);
+    renderer.render(oblique_camera(), 64, 48);
+    EXPECT_EQ(renderer.last_stats().uploads, 0);
+    renderer.set_terrain(hill, 2.0);
+    renderer.render(oblique_camera(), 64, 48);
+    EXPECT_EQ(renderer.last_stats().uploads, 1);
+    ASSERT_EQ(renderer.last_stats().passes.size(), 3u);
+    EXPECT_EQ(renderer.last_stats().passes[1].pass, "terrain");
+}
+
+TEST_F(RendererGl, ExaggerationRaisesThePickedSurface)
+{
+    const kiri::geometry::Terrain hill = kiri::test::gaussian_hill();
+    Renderer renderer;
+    renderer.set_terrain(hill, 2.0);
+    Camera top;
+    top.position = {0.0, -1.0, 3000.0};
+    top.target = {0.0, 0.0, 0.0};
+    renderer.render(top, 101, 101);
+    const auto peak = renderer.pick(50, 50);
+    ASSERT_TRUE(peak.has_value());
+    EXPECT_NEAR(peak->z, 600.0, 3.0);
+}
+
+// llvmpipe is deterministic: the same scene gives the same pixels, so a stored reference
+// catches any change of shading or geometry. KIRI_UPDATE_REFERENCE=1 rewrites it.
+TEST_F(RendererGl, GaussianHillMatchesReferenceImage)
+{
+    const kiri::geometry::Terrain hill = kiri::test::gaussian_hill();
+    Renderer renderer;
+    renderer.set_terrain(hill);
+    kiri::render::SunLight sun;
+    sun.direction = {0.6, -0.2, 0.5};
+    renderer.set_sun(sun);
+    const Image image = renderer.render(oblique_camera(), 160, 120);
+    const std::filesystem::path reference = std::filesystem::path(KIRI_TESTS_DIR) / "render/reference/gaussian_hill.png";
+    if (std::getenv("KIRI_UPDATE_REFERENCE"))
+        kiri::render::write_png_atomic(reference, image);
+    const Image expected = kiri::render::read_png(reference);
+    ASSERT_EQ(expected.width, image.width);
+    ASSERT_EQ(expected.height, image.height);
+    double sum = 0.0;
+    int large = 0;
+    for (std::size_t k = 0; k < image.rgba.size(); ++k) {
+        const int d = std::abs(int(image.rgba[k]) - int(expected.rgba[k]));
+        sum += d;
+        large += d > 8;
+    }
+    EXPECT_LE(sum / double(image.rgba.size()), 0.5);
+    EXPECT_LE(large, int(image.rgba.size() / 200));
+    // And it is a picture, not a blank: the hill is lit differently from the sky.
+    const auto luminance = [&](int x, int y) {
+        const std::uint8_t* p = &image.rgba[(std::size_t(y) * 160 + x) * 4];
+        return 0.3 * p[0] + 0.59 * p[1] + 0.11 * p[2];
+    };
+    EXPECT_GT(std::abs(luminance(80, 2) - luminance(80, 90)), 30.0);
+}
+
+TEST_F(RendererGl, NoGlErrors) { EXPECT_EQ(kiri::render::gl_error_count(), 0); }
+
+}  // namespace
