@@ -39,8 +39,9 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
     f.sun_direction = glm::vec3(len > 0.0 ? sun.direction / len : glm::dvec3(0.0, 0.0, 1.0));
     f.sun_radiance = glm::vec3(sun.color * sun.intensity);
     f.ambient = glm::vec3(sun.ambient);
-    f.sky_zenith = glm::vec3(sun.ambient * 1.6);
-    f.sky_horizon = glm::vec3(glm::mix(sun.ambient * 2.6, glm::dvec3(0.9, 0.92, 0.95), 0.35));
+    // The sky is the ambient light seen directly: deeper blue overhead, paler at the horizon.
+    f.sky_zenith = glm::vec3(sun.ambient * glm::dvec3(0.9, 1.5, 2.6));
+    f.sky_horizon = glm::vec3(glm::mix(sun.ambient * 3.0, glm::dvec3(1.0, 1.0, 1.0), 0.3));
     return f;
 }
 

@@ -18,8 +18,8 @@ struct FrameContext {
     glm::vec3 sun_radiance{1.0f};
     glm::vec3 ambient{0.3f};
     glm::vec3 sky_zenith{0.3f}, sky_horizon{0.8f};
-    float exposure = 1.0f;
-    float haze_density = 1.0f / 60000.0f;  // 1/m: the far side of a 30 km DEM is ~40% hazed
+    float exposure = 0.7f;
+    float haze_density = 1.0f / 150000.0f;  // 1/m: the far side of a 30 km DEM is ~20% hazed
 };
 
 //! Builds the frame's context; near and far planes are fitted to the scene's bounds so that

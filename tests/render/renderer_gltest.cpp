@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "kiri/render/camera.hpp"
 #include "kiri/render/renderer.hpp"
