@@ -118,6 +118,7 @@ Built build(const BaseSurface& surface, const std::vector<PatchSides>& sides, co
     mesh.request_vertex_texcoords2D();
     OpenMesh::VPropHandleT<int> pid;
     mesh.add_property(pid, patch_id_property);
+    mesh.property(pid).set_persistent(true);  // written by PLY with Options::Custom
     if (measure)
         out.face_error.assign(nf, 0.0);
     auto add = [&](const Sample& s, glm::dvec2 uv, int f) {

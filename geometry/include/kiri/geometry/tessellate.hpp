@@ -28,7 +28,7 @@ struct Tessellation {
     double max_error = 0.0;        //!< measured max |S(u,v) - triangle| (m), see tessellation_error
 };
 
-inline constexpr const char* patch_id_property = "kiri:patch_id";
+inline constexpr const char* patch_id_property = "patch_id";
 
 //! \throw InputError on a level < 1 or a non-finite / negative tolerance.
 Tessellation tessellate(const BaseSurface& surface, const TessellationOptions& options);
