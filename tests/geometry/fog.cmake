@@ -4,3 +4,4 @@ kiri_test(base_surface_test SOURCES base_surface_test.cpp LIBS kiri_geometry LAB
 kiri_test(tessellate_test SOURCES tessellate_test.cpp LIBS kiri_geometry LABELS unit)
 find_package(nlohmann_json REQUIRED)
 kiri_test(fog_spec_test SOURCES fog_spec_test.cpp LIBS kiri_geometry nlohmann_json::nlohmann_json LABELS unit)
+kiri_test(author_test SOURCES author_test.cpp LIBS kiri_geometry nlohmann_json::nlohmann_json LABELS unit)
