@@ -122,11 +122,11 @@ TEST(BaseSurfaceFit, RefitChangesOnlyHeights)
     FitOptions o;
     o.smoothing_length = 0.0;
     o.offset = 20.0;
-    s.fit(t, o);
+    EXPECT_FALSE(s.fit(t, o).samples_reused);
     const auto h1 = s.heights();
     const auto p1 = s.control().mesh.point(PolyMesh::VertexHandle(5));
     o.offset = 45.0;
-    s.fit(t, o);
+    EXPECT_TRUE(s.fit(t, o).samples_reused);
     const auto h2 = s.heights();
     const auto p2 = s.control().mesh.point(PolyMesh::VertexHandle(5));
     EXPECT_EQ(p1[0], p2[0]);

@@ -133,7 +133,13 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     const int K = o.samples_per_patch > 0 ? o.samples_per_patch : 4;
     rep.samples_per_patch = K;
     const int nf = num_patches(), nv = control_.num_vertices();
-    const FitSamples smp = make_fit_samples(control_, *stencils_, hf, K, true);
+    const std::vector<double> key = {double(hf.nx), double(hf.ny), hf.dx, hf.dy, hf.x0, hf.y0, double(K)};
+    rep.samples_reused = samples_ && samples_key_ == key;
+    if (!rep.samples_reused) {
+        samples_ = std::make_shared<const FitSamples>(make_fit_samples(control_, *stencils_, hf, K, true));
+        samples_key_ = key;
+    }
+    const FitSamples& smp = *samples_;
     rep.grid_vertex_samples = smp.grid_vertex_samples;
     const std::size_t ns = smp.uv.size();
     const glm::dvec2 origin = control_.origin;

@@ -15,6 +15,7 @@
 namespace kiri::geometry {
 
 class FaceStencils;
+struct FitSamples;
 
 enum class FitMode {
     blanket,  //!< smoothed terrain + offset, never below terrain + clearance
@@ -56,6 +57,7 @@ struct FitReport {
     long long nodata_samples = 0; //!< samples over nodata cells (left out of data and constraint)
     long long active_constraints = 0;  //!< samples held at terrain + clearance (blanket)
     int iterations = 0;           //!< active-set solves
+    bool samples_reused = false;  //!< the sample layout of the previous fit (same terrain grid)
     int samples_per_patch = 0;
     double seconds_target = 0.0, seconds_assemble = 0.0, seconds_solve = 0.0;
 };
@@ -95,6 +97,9 @@ private:
     SurfaceKind kind_;
     std::unique_ptr<FaceStencils> stencils_;  // the fit's linear map
     std::unique_ptr<Surface> surface_;        // evaluation (surface module)
+    // The samples' (face, u, v) depend on the terrain's grid, not its heights: kept for refits.
+    std::shared_ptr<const FitSamples> samples_;
+    std::vector<double> samples_key_;
 };
 
 const char* to_string(FitMode mode);
