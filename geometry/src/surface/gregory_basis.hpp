@@ -64,6 +64,33 @@ KIRI_ALWAYS_INLINE Bernstein3<T> bernstein3(T t)
     return r;
 }
 
+//! The rational blend of interior corner c (0: Q11, 1: Q21, 2: Q12, 3: Q22; storage index of
+//! its k = 1 point is 16 + c): Q = r P_ij0 + q P_ij1, and the bounded derivative terms
+//! au = B_i B_j dr/du, av = B_i B_j dr/dv (top of this file). Shared by gregory_visit and the
+//! tensor-form batch kernel, so the formula exists once.
+template <class T>
+struct CornerBlend {
+    T r, q, au, av;
+};
+
+template <class T>
+KIRI_ALWAYS_INLINE CornerBlend<T> gregory_corner(T u, T v, int c)
+{
+    const bool fu = (c & 1) != 0, fv = (c & 2) != 0;
+    const double sx = fu ? -1.0 : 1.0, sy = fv ? -1.0 : 1.0;
+    const T zero{}, half = zero + 0.5;
+    const T x = fu ? 1.0 - u : u, y = fv ? 1.0 - v : v;
+    const T cx = fu ? u : 1.0 - u, cy = fv ? v : 1.0 - v;  // 1 - x, 1 - y
+    const T s = x + y;
+    CornerBlend<T> b;
+    b.r = s > zero ? x / s : half;
+    b.q = s > zero ? y / s : half;
+    const T g = 9.0 * cx * cx * cy * cy * b.r * b.q;
+    b.au = sx * g * y;
+    b.av = -sy * g * x;
+    return b;
+}
+
 //! The 20 Gregory weights at (u, v) and their derivatives up to `Order` (0, 1 or 2), handed
 //! to emit(k, d) point by point (k in storage order, d[0] = weight, d[1..2] = d/du, d/dv,
 //! d[3..5] = d2/du2, d2/dudv, d2/dv2). Branch-free (selects only), so with T a vector of
@@ -73,7 +100,6 @@ KIRI_ALWAYS_INLINE void gregory_visit(T u, T v, Emit&& emit)
 {
     constexpr int N = Order == 0 ? 1 : Order == 1 ? 3 : 6;
     const Bernstein3<T> U = bernstein3(u), V = bernstein3(v);
-    const T zero{}, half = zero + 0.5;
     for (int j = 0; j < 4; ++j)
         for (int i = 0; i < 4; ++i) {
             T d[N];
@@ -94,24 +120,22 @@ KIRI_ALWAYS_INLINE void gregory_visit(T u, T v, Emit&& emit)
             }
             // Split the tensor weight into r (P_ij0) and q (P_ij1), plus the bounded terms
             // of the derivatives of r (see the top of this file). sx = dx/du, sy = dy/dv.
-            const bool fu = i == 2, fv = j == 2;
-            const double sx = fu ? -1.0 : 1.0, sy = fv ? -1.0 : 1.0;
-            const T x = fu ? 1.0 - u : u, y = fv ? 1.0 - v : v;
-            const T cx = fu ? u : 1.0 - u, cy = fv ? v : 1.0 - v;  // 1 - x, 1 - y
-            const T s = x + y;
-            const T r = s > zero ? x / s : half, q = s > zero ? y / s : half;
+            const int c = (i - 1) + 2 * (j - 1);
+            const CornerBlend<T> bl = gregory_corner(u, v, c);
+            const T r = bl.r, q = bl.q;
             T d0[N], d1[N];
             d0[0] = d[0] * r;
             d1[0] = d[0] * q;
             if constexpr (Order >= 1) {
-                const T cc = 9.0 * cx * cx * cy * cy;
-                const T g = cc * r * q;
-                const T au = sx * g * y, av = -sy * g * x;
-                d0[1] = d[1] * r + au;
-                d1[1] = d[1] * q - au;
-                d0[2] = d[2] * r + av;
-                d1[2] = d[2] * q - av;
+                d0[1] = d[1] * r + bl.au;
+                d1[1] = d[1] * q - bl.au;
+                d0[2] = d[2] * r + bl.av;
+                d1[2] = d[2] * q - bl.av;
                 if constexpr (Order >= 2) {
+                    const bool fu = i == 2, fv = j == 2;
+                    const double sx = fu ? -1.0 : 1.0, sy = fv ? -1.0 : 1.0;
+                    const T cx = fu ? u : 1.0 - u, cy = fv ? v : 1.0 - v;
+                    const T cc = 9.0 * cx * cx * cy * cy;
                     const T dBi = U.d[i], dBj = V.d[j];
                     const T ay = 3.0 * cy * cy, ax = 3.0 * cx * cx;
                     const T buu = 2.0 * sx * dBi * ay * q * q - 2.0 * cc * r * q * q;

@@ -103,8 +103,9 @@ struct PatchSamples {
 };
 
 //! Batch evaluation at (u[i], v[i]): position and exact first derivatives (and unit normals
-//! if out.nx is not empty). Allocates nothing; blocks of points are evaluated lane by lane
-//! so the compiler vectorises them (AVX2/FMA clone chosen at run time on x86-64).
+//! if out.nx is not empty). Allocates nothing. Points go in vector lanes (4 with AVX2+FMA,
+//! chosen at run time on x86-64, else 2) through the tensor form: the four rational blends,
+//! the bicubic Bezier sums over the 4 x 4 net, plus the terms of the blends' derivatives.
 //! Parameters are clamped to [0,1]. \throw InputError if u and v differ in size or an
 //! output span is shorter than u.
 void evaluate_into(const GregoryPatch& patch, std::span<const double> u, std::span<const double> v,
