@@ -2,7 +2,9 @@
 // derivatives) by kiri's vectorised evaluate_into against OpenSubdiv evaluating the same
 // patches (its GREGORY_BASIS patch basis, as PatchTable::EvaluateBasis does, then the
 // weighted sum of the 20 points), side by side at several batch sizes. Error column: the
-// largest position difference between the two over every evaluated point.
+// largest position difference between the two over every evaluated point. Second pair of
+// series: the Surface interface on a regular grid, Gregory network vs OpenSubdiv's Bfr limit
+// (the same bicubic B-spline surface there).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -51,6 +53,56 @@ std::vector<GregoryPatch> network_patches()
     return out;
 }
 
+// On a regular grid the Gregory network is the bicubic B-spline, the same surface as
+// OpenSubdiv's Catmull-Clark limit: both evaluated through kiri's Surface interface (the
+// limit by Bfr::Surface::Evaluate on prepared patch points), same faces and points.
+void run_regular_grid(Context& ctx, std::size_t batch, const std::vector<double>& u, const std::vector<double>& v,
+                      std::size_t total)
+{
+    PolyMesh m;
+    const int n = 8;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> dz(-20.0, 20.0);
+    std::vector<PolyMesh::VertexHandle> vh;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i)
+            vh.push_back(m.add_vertex(PolyMesh::Point(100.0 * i, 100.0 * j, 300.0 + dz(rng))));
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int a = j * (n + 1) + i;
+            m.add_face(std::vector<PolyMesh::VertexHandle>{vh[a], vh[a + 1], vh[a + n + 2], vh[a + n + 1]});
+        }
+    const auto g = make_surface(m, SurfaceKind::gregory);
+    const auto c = make_surface(m, SurfaceKind::catmull_clark);
+    PatchSamples a, b;
+    a.resize(batch, false);
+    b.resize(batch, false);
+    const std::size_t rounds = std::max<std::size_t>(1, total / batch);
+    const double points = double(rounds) * double(batch);
+    auto run = [&](const Surface& s, PatchSamples& out) {
+        const PatchSampleSpans sp = out.spans();
+        for (std::size_t r = 0; r < rounds; ++r)
+            s.evaluate_into(int(r % std::size_t(s.num_faces())), u, v, sp);
+    };
+    const auto tg = ctx.measure([&] { run(*g, a); }, 3);
+    const auto tc = ctx.measure([&] { run(*c, b); }, 3);
+    double err = 0.0;
+    for (int f = 0; f < g->num_faces(); ++f) {
+        g->evaluate_into(f, u, v, a.spans());
+        c->evaluate_into(f, u, v, b.spans());
+        for (std::size_t i = 0; i < batch; ++i)
+            err = std::max(err, std::hypot(a.px[i] - b.px[i], a.py[i] - b.py[i], a.pz[i] - b.pz[i]));
+    }
+    const double rg = points / tg.seconds, rc = points / tc.seconds;
+    char ratio[64];
+    std::snprintf(ratio, sizeof ratio, " speedup=%.2fx", rg / rc);
+    const std::string params = "batch=" + std::to_string(batch) + " grid=8x8";
+    ctx.add(Row{"kiri surface gregory (regular grid)", params + ratio, double(batch), tg.seconds,
+                "max |p_gregory - p_limit| (m)", err, rg, tg.peak_rss_mb});
+    ctx.add(Row{"opensubdiv Bfr limit (regular grid)", params, double(batch), tc.seconds,
+                "max |p_gregory - p_limit| (m)", err, rc, tc.peak_rss_mb});
+}
+
 void run_surface(Context& ctx)
 {
     const std::vector<GregoryPatch> patches = network_patches();
@@ -97,6 +149,7 @@ void run_surface(Context& ctx)
                     "max |p_kiri - p_osd| (m)", err, rk, tk.peak_rss_mb});
         ctx.add(Row{"opensubdiv GREGORY_BASIS", params, double(batch), to.seconds, "max |p_kiri - p_osd| (m)", err,
                     ro, to.peak_rss_mb});
+        run_regular_grid(ctx, batch, u, v, total / 4);
     }
 }
 
