@@ -279,7 +279,7 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
                     for (int c = 0; c < 4; ++c) {
                         const int l = corner_of[q[c]] ? 2 : out.mesh.valence(PolyMesh::VertexHandle(q[c])) == 2 ? 0 : 1;
                         if (l == level || round == 11)
-                            t[q[c]] = (round >= 9 || l == 0) ? 0.0 : 0.5 * t[q[c]];
+                            t[q[c]] = round >= 9 ? 0.0 : 0.5 * t[q[c]];
                     }
                 }
             }
