@@ -1,11 +1,11 @@
-#include <stdexcept>
+#include <string>
 
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
-#include <opensubdiv/far/topologyDescriptor.h>
-#include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include "kiri/geometry/error.hpp"
 #include "surface/face_stencil.hpp"
+#include "surface/osd_refiner.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -15,33 +15,13 @@ class CatmullClarkStencils final : public FaceStencils {
 public:
     explicit CatmullClarkStencils(const PolyMesh& mesh)
     {
-        std::vector<int> counts, indices;
-        for (auto f : mesh.faces()) {
-            int n = 0;
-            for (auto v : mesh.fv_range(f)) {
-                indices.push_back(v.idx());
-                ++n;
-            }
-            counts.push_back(n);
-        }
-        Far::TopologyDescriptor desc;
-        desc.numVertices = static_cast<int>(mesh.n_vertices());
-        desc.numFaces = static_cast<int>(mesh.n_faces());
-        desc.numVertsPerFace = counts.data();
-        desc.vertIndicesPerFace = indices.data();
-        Sdc::Options sdc;
-        // The default (VTX_BOUNDARY_NONE) drops the boundary faces of an open mesh.
-        sdc.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
-        using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-        refiner_.reset(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdc)));
-        if (!refiner_)
-            throw std::runtime_error("OpenSubdiv refused the control mesh topology");
+        refiner_ = make_catmark_refiner(mesh);  // one topology rule for both users
         Bfr::RefinerSurfaceFactory<> factory(*refiner_);
         surfaces_.resize(mesh.n_faces());
         support_.resize(mesh.n_faces());
-        for (int f = 0; f < desc.numFaces; ++f) {
+        for (int f = 0; f < int(mesh.n_faces()); ++f) {
             if (!factory.InitVertexSurface<double>(f, &surfaces_[f]))
-                throw std::runtime_error("OpenSubdiv has no limit surface for face " + std::to_string(f));
+                throw InputError("", "control mesh/face " + std::to_string(f), "OpenSubdiv has no limit surface");
             support_[f].resize(surfaces_[f].GetNumControlPoints());
             surfaces_[f].GetControlPointIndices(support_[f].data());
         }
