@@ -1,5 +1,6 @@
 // Bench stage of the base-surface tessellation (issue 4, benchmark 1): triangles against the
 // maximum distance to the exact surface, uniform levels and adaptive tolerances.
+#include <cstdio>
 #include <string>
 
 #include "bench/bench.hpp"
@@ -31,7 +32,9 @@ KIRI_BENCH_STAGE({"tessellation", "Base surface tessellation: triangles vs max d
                               break;
                           Tessellation t;
                           const auto m = c.measure([&] { t = tessellate(s, {8, tol, 128}); });
-                          c.add({"adaptive", "tolerance=" + std::to_string(tol) + "m", double(t.mesh.n_faces()),
+                          char label[64];
+                          std::snprintf(label, sizeof label, "tolerance=%gm", tol);
+                          c.add({"adaptive", label, double(t.mesh.n_faces()),
                                  m.seconds, "max distance (m)", t.max_error, double(t.mesh.n_faces()) / m.seconds,
                                  m.peak_rss_mb});
                       }
