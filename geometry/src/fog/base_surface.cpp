@@ -340,6 +340,9 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
         constexpr double kStencilBound = 2.0;
         const double inf = std::numeric_limits<double>::infinity();
         std::vector<double> moved(nf, inf), min_slack(nf, -inf);
+        // The one-step inner solves can cycle on hard terrains: keep the best iterate.
+        std::vector<double> best = hts;
+        double best_worst = inf;
         for (int it = 0; it < o.max_active_set_iterations; ++it) {
             long long held = 0;
             double worst = 0.0;
@@ -372,6 +375,10 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
                     }
             }
             rep.active_constraints = held;
+            if (worst < best_worst) {
+                best_worst = worst;
+                best = hts;
+            }
             if (worst <= tol)
                 break;
             const std::vector<double> before = hts;
@@ -383,6 +390,7 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
                 moved[f] += kStencilBound * d;
             }
         }
+        hts = best;  // (the last solve is unchecked: the loop ends on a check when it converges)
     }
 
     // Local guarantee (blanket): raise the control vertices under each sample still short of

@@ -37,7 +37,7 @@ struct FitOptions {
     //! Samples: every terrain grid vertex under the control mesh, plus this many cell-centred
     //! (u, v) samples per patch side (so each patch has data on coarse terrains); 0 = 4.
     int samples_per_patch = 0;
-    int max_active_set_iterations = 30;
+    int max_active_set_iterations = 50;
 };
 
 //! Fit figures over the samples that have terrain data (issue 4 "report").
