@@ -46,12 +46,8 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     const Scene scene = load_scene(scene_path);
     if (!scene.fog)
         throw InputError(scene_path.string(), "/fog", "the scene has no fog section to author");
-    DemOptions dem;
-    dem.cell_size = scene.terrain.cell_size;
-    dem.vertical_scale = scene.terrain.vertical_scale * scene.terrain.exaggeration;
-    dem.vertical_offset = scene.terrain.vertical_offset;
     const auto t0 = std::chrono::steady_clock::now();
-    const Terrain terrain(load_dem(scene.terrain.path, dem));
+    const Terrain terrain = load_scene_terrain(scene);
     const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const AuthoredSurface a = author_base_surface(terrain, *scene.fog, scene_path.string());
 
@@ -87,7 +83,7 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
 }
 }  // namespace
 
-//! Registers `kiri author`. Errors: one line on stderr, exit code 2.
+//! Registers `kiri author`.
 void add_author_command(CLI::App& app)
 {
     auto* sub = app.add_subcommand("author", "Fit the scene's fog base surface; write OBJ, PLY and report.json");
@@ -95,15 +91,8 @@ void add_author_command(CLI::App& app)
     auto out = std::make_shared<std::string>();
     sub->add_option("scene", *scene, "scene file (JSON) with a fog section")->required();
     sub->add_option("-o,--out", *out, "output folder")->required();
-    sub->callback([scene, out] {
-        try {
-            author(*scene, *out);
-        } catch (const std::exception& e) {
-            std::fprintf(stderr, "kiri author: %s\n", e.what());
-            std::fflush(stderr);
-            std::exit(2);
-        }
-    });
+    // Errors propagate to main, which prints one line and exits with code 2.
+    sub->callback([scene, out] { author(*scene, *out); });
 }
 
 }  // namespace kiri::cli

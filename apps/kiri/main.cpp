@@ -1,3 +1,35 @@
-// Replaced by the CLI (issue 2); kept minimal so the skeleton links.
+// kiri: the command-line tool. Exit codes: 0 success, 2 any error (bad input, bad usage,
+// failure to write), with exactly one line on stderr.
 #include <cstdio>
-int main() { std::puts("kiri 0.1.0"); return 0; }
+#include <exception>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv)
+{
+    CLI::App app{"kiri: fog clouds that follow real terrain"};
+    app.set_version_flag("--version", "kiri 0.1.0");
+    app.require_subcommand(1);
+    kiri::cli::add_info_command(app);
+    kiri::cli::add_render_command(app);
+    kiri::cli::add_author_command(app);
+    kiri::cli::add_bench_command(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "kiri: %s (see kiri --help)\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "kiri: %s\n", e.what());
+        return 2;
+    }
+    return 0;
+}

@@ -1,3 +1,8 @@
 # Sources of kiri bench (paths relative to apps/kiri/); one file per stage.
 list(APPEND KIRI_BENCH_SOURCES
+  bench/end_to_end_bench.cpp
+  bench/fit_bench.cpp
+  bench/surface_bench.cpp
+  bench/terrain_bench.cpp
+  bench/tessellation_bench.cpp
 )

@@ -1,4 +1,5 @@
 # Sources of geometry/src/scene (paths relative to geometry/)
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/scene/error.cpp
+  src/scene/scene.cpp
 )

@@ -3,11 +3,14 @@
 //! The scene file (JSON): what a user authors. Later stages extend this schema; every key
 //! is documented in docs/scene.md. Unknown keys are errors.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include <glm/vec3.hpp>
+
+#include "kiri/geometry/fog_spec.hpp"
 
 namespace kiri::geometry {
 
@@ -40,12 +43,15 @@ struct ImageSpec {
 struct Scene {
     std::filesystem::path file;   //!< where it was loaded from (for messages); may be empty
     TerrainSpec terrain;
-    std::vector<CameraSpec> cameras;  //!< at least one after loading
+    std::vector<CameraSpec> cameras;  //!< may be empty: renderers then frame the terrain
     SunSpec sun;
     ImageSpec image;
+    std::optional<FogSpec> fog;       //!< the "fog" section (docs/scene.md), if any
 
-    //! The camera called name; the first when name is empty. \throw InputError if absent.
-    const CameraSpec& camera(std::string_view name = {}) const;
+    //! The camera called name; the first when name is empty; a view framing `terrain_bounds`
+    //! (min, max) from the south-west when the scene has no camera and name is empty.
+    //! \throw InputError naming /cameras if a named camera is absent.
+    CameraSpec camera(std::string_view name, const glm::dvec3& terrain_min, const glm::dvec3& terrain_max) const;
 };
 
 //! \throw InputError "FILE: /json/pointer: reason" on any problem.
@@ -55,5 +61,10 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label,
                   const std::filesystem::path& base_dir);
 //! Writes the scene back as JSON that parse_scene reads to an equal Scene.
 std::string scene_to_json(const Scene& scene);
+
+class Terrain;
+//! Loads the scene's terrain in world units: heights in metres times the vertical
+//! exaggeration, so every stage (fit, layers, renderers) sees the same exaggerated ground.
+Terrain load_scene_terrain(const Scene& scene);
 
 }  // namespace kiri::geometry

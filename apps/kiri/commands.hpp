@@ -1,0 +1,17 @@
+#pragma once
+// Each subcommand of `kiri` registers itself on the app; its callback throws on failure and
+// main turns any exception into one line on stderr and exit code 2.
+#include <CLI/CLI.hpp>
+
+namespace kiri::cli {
+
+void add_info_command(CLI::App& app);
+void add_render_command(CLI::App& app);
+void add_author_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+
+//! Fails fast, before any expensive work, when `path` cannot be created: its folder must exist
+//! and be writable. \throw kiri::IoError naming the path.
+void check_output_file(const std::string& path);
+
+}  // namespace kiri::cli

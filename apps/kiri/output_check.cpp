@@ -1,0 +1,26 @@
+#include <filesystem>
+
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "kiri/geometry/error.hpp"
+
+namespace kiri::cli {
+
+void check_output_file(const std::string& path)
+{
+    namespace fs = std::filesystem;
+    const fs::path target(path);
+    fs::path folder = target.parent_path();
+    if (folder.empty())
+        folder = ".";
+    std::error_code ec;
+    if (fs::is_directory(target, ec))
+        throw IoError(path, "", "is a folder, expected a file name");
+    if (!fs::is_directory(folder, ec))
+        throw IoError(path, "", "the folder " + folder.string() + " does not exist");
+    if (::access(folder.c_str(), W_OK) != 0)
+        throw IoError(path, "", "the folder " + folder.string() + " is not writable");
+}
+
+}  // namespace kiri::cli
