@@ -1,1 +1,2 @@
 kiri_test(error_test SOURCES error_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(scene_test SOURCES scene_test.cpp LIBS kiri_geometry LABELS unit)

@@ -178,7 +178,8 @@ json fog_spec_to_json(const FogSpec& s)
     j["clearance"] = s.fit.clearance;
     j["thickness"] = s.fit.thickness;
     j["smoothness"] = s.fit.smoothness;
-    j["samples_per_patch"] = s.fit.samples_per_patch;
+    if (s.fit.samples_per_patch > 0)  // 0 = automatic, which the reader expresses by omission
+        j["samples_per_patch"] = s.fit.samples_per_patch;
     j["tessellation"] = {{"level", s.tessellation.level}, {"max_level", s.tessellation.max_level}};
     if (s.tessellation.tolerance > 0.0)
         j["tessellation"]["tolerance"] = s.tessellation.tolerance;

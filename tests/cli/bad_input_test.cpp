@@ -1,0 +1,188 @@
+// Bad input as users bring it: each case must give exactly one line on stderr naming the file
+// (and the JSON path or raster property), exit code 2, and leave no output file behind.
+#include <gtest/gtest.h>
+
+#include <gdal.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cli/kiri_runner.hpp"
+
+namespace fs = std::filesystem;
+using kiri::test::run_kiri;
+using kiri::test::RunResult;
+using kiri::test::shell_quote;
+
+namespace {
+
+class BadInput : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        dir_ = fs::temp_directory_path() /
+               ("kiri_bad_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        GDALAllRegister();
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    fs::path file(const std::string& name, const std::string& content) const
+    {
+        const fs::path p = dir_ / name;
+        std::ofstream(p, std::ios::binary) << content;
+        return p;
+    }
+    // A scene that renders the given raster (so every raster problem is also checked through
+    // `kiri render`, the command users run most).
+    fs::path scene_for(const fs::path& raster) const
+    {
+        return file("scene.json", R"({"terrain": {"path": ")" + raster.string() + R"("}})");
+    }
+    fs::path geotiff(const std::string& name, int w, int h, double value, bool with_nodata,
+                     const std::vector<std::string>& options = {}) const
+    {
+        const fs::path p = dir_ / name;
+        std::vector<const char*> opts;
+        for (const std::string& o : options)
+            opts.push_back(o.c_str());
+        opts.push_back(nullptr);
+        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), p.c_str(), w, h, 1, GDT_Float32,
+                                     const_cast<char**>(opts.data()));
+        double gt[6] = {500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0};
+        GDALSetGeoTransform(ds, gt);
+        GDALRasterBandH band = GDALGetRasterBand(ds, 1);
+        if (with_nodata)
+            GDALSetRasterNoDataValue(band, value);
+        if (std::size_t(w) * h < 1000000) {
+            std::vector<float> data(std::size_t(w) * h, float(value));
+            EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, w, h, data.data(), w, h, GDT_Float32, 0, 0), CE_None);
+        }
+        GDALClose(ds);
+        return p;
+    }
+
+    // The contract of every bad-input case.
+    void expect_refused(const RunResult& r, const std::vector<std::string>& mentions, const fs::path& output) const
+    {
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_EQ(r.error_lines(), 1) << r.err;
+        EXPECT_EQ(r.err.rfind("kiri: ", 0), 0u) << r.err;
+        for (const std::string& m : mentions)
+            EXPECT_NE(r.err.find(m), std::string::npos) << "stderr does not mention \"" << m << "\": " << r.err;
+        EXPECT_FALSE(fs::exists(output)) << output;
+        for (const auto& entry : fs::directory_iterator(output.parent_path()))
+            EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "leftover " << entry.path();
+    }
+    RunResult render(const fs::path& scene) const
+    {
+        return run_kiri("render " + shell_quote(scene.string()) + " -o " + shell_quote(out().string()) +
+                        " --width 64 --height 48");
+    }
+    fs::path out() const { return dir_ / "out.png"; }
+
+    fs::path dir_;
+};
+
+TEST_F(BadInput, MissingFile)
+{
+    const fs::path missing = dir_ / "no_such.tif";
+    expect_refused(run_kiri("info " + missing.string()), {missing.string(), "no such file"}, out());
+    expect_refused(render(scene_for(missing)), {missing.string()}, out());
+    expect_refused(render(dir_ / "no_such_scene.json"), {"no_such_scene.json", "no such file"}, out());
+}
+
+TEST_F(BadInput, NotARaster)
+{
+    const fs::path text = file("notes.tif", "these are not elevations\n");
+    expect_refused(run_kiri("info " + text.string()), {text.string()}, out());
+    expect_refused(render(scene_for(text)), {text.string()}, out());
+}
+
+TEST_F(BadInput, TruncatedTiff)
+{
+    const std::string whole = kiri::test::read_all(fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif");
+    ASSERT_GT(whole.size(), 1000u);
+    const fs::path cut = file("cut.tif", whole.substr(0, whole.size() / 2));
+    expect_refused(render(scene_for(cut)), {cut.string()}, out());
+}
+
+TEST_F(BadInput, ZeroSizeRaster)
+{
+    const fs::path empty = file("empty.tif", "");
+    expect_refused(run_kiri("info " + empty.string()), {empty.string()}, out());
+    expect_refused(render(scene_for(empty)), {empty.string()}, out());
+}
+
+TEST_F(BadInput, AllNodataRaster)
+{
+    const fs::path nodata = geotiff("nodata.tif", 8, 8, -9999.0, true);
+    const RunResult r = render(scene_for(nodata));
+    expect_refused(r, {nodata.string(), "nodata"}, out());
+}
+
+TEST_F(BadInput, AbsurdDimensionsRefusedBeforeAllocating)
+{
+    // 200000 x 200000 float cells would need 160 GB as doubles; the sparse file is tiny.
+    const fs::path huge = geotiff("huge.tif", 200000, 200000, 0.0, false, {"SPARSE_OK=TRUE", "TILED=YES"});
+    ASSERT_LT(fs::file_size(huge), 50u << 20);
+    expect_refused(run_kiri("info " + huge.string()), {huge.string()}, out());
+    const RunResult r = render(scene_for(huge));
+    expect_refused(r, {huge.string(), "200000"}, out());
+}
+
+TEST_F(BadInput, MalformedJson)
+{
+    const fs::path scene = file("broken.json", "{\n  \"terrain\": {\"path\": \"x.tif\"\n");
+    expect_refused(render(scene), {scene.string(), "malformed JSON", "line"}, out());
+}
+
+TEST_F(BadInput, WrongTypes)
+{
+    const fs::path dem = fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif";
+    const fs::path scene = file("types.json", R"({"terrain": {"path": ")" + dem.string() +
+                                                  R"("}, "sun": {"direction": "up"}})");
+    expect_refused(render(scene), {scene.string(), "/sun/direction", "expected an array of 3 numbers"}, out());
+}
+
+TEST_F(BadInput, UnknownKeys)
+{
+    const fs::path dem = fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif";
+    const fs::path scene = file("keys.json", R"({"terrain": {"path": ")" + dem.string() + R"(", "exagerration": 2}})");
+    expect_refused(render(scene), {scene.string(), "/terrain/exagerration", "unknown key"}, out());
+}
+
+TEST_F(BadInput, UnwritableOutputPath)
+{
+    const fs::path scene = fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json";
+    const fs::path missing_dir = dir_ / "no_dir" / "out.png";
+    RunResult r = run_kiri("render " + scene.string() + " -o " + missing_dir.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.error_lines(), 1) << r.err;
+    EXPECT_NE(r.err.find(missing_dir.string()), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("does not exist"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(missing_dir.parent_path()));
+    // A folder where a file is expected.
+    r = run_kiri("render " + scene.string() + " -o " + dir_.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("is a folder"), std::string::npos) << r.err;
+}
+
+TEST_F(BadInput, UsageErrorsExitWithTwo)
+{
+    RunResult r = run_kiri("render");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.error_lines(), 1) << r.err;
+    r = run_kiri("no-such-command");
+    EXPECT_EQ(r.exit_code, 2);
+    r = run_kiri("render " + (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string() + " -o " +
+                 out().string() + " --mode nonsense");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("nonsense"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out()));
+}
+
+}  // namespace

@@ -1,0 +1,138 @@
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/scene.hpp"
+
+namespace {
+
+using kiri::geometry::parse_scene;
+using kiri::geometry::Scene;
+
+std::string error_of(const std::string& json)
+{
+    try {
+        parse_scene(json, "s.json", "/scenes");
+    } catch (const kiri::InputError& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+const char* minimal = R"({"terrain": {"path": "../t.tif"}})";
+
+TEST(Scene, MinimalSceneTakesDefaultsAndResolvesThePath)
+{
+    const Scene s = parse_scene(minimal, "s.json", "/scenes");
+    EXPECT_EQ(s.terrain.path, std::filesystem::path("/scenes/../t.tif"));
+    EXPECT_EQ(s.terrain.exaggeration, 1.0);
+    EXPECT_TRUE(s.cameras.empty());
+    EXPECT_EQ(s.image.width, 1280);
+    EXPECT_EQ(s.image.height, 720);
+    EXPECT_FALSE(s.fog.has_value());
+}
+
+TEST(Scene, ErrorsNameFilePointerAndReason)
+{
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "sun": {"direction": "up"}})"),
+              "s.json: /sun/direction: expected an array of 3 numbers");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "sun": {"direction": [1, 2]}})"),
+              "s.json: /sun/direction: expected an array of 3 numbers");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "sun": {"direction": [0, 0, 0]}})"),
+              "s.json: /sun/direction: must not be the zero vector");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": 3}})"), "s.json: /terrain/path: expected a string");
+    EXPECT_EQ(error_of(R"({"cameras": []})"), "s.json: /terrain: missing (every scene needs a terrain)");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif", "exaggeration": 0}})"),
+              "s.json: /terrain/exaggeration: must be in (0, 100), got 0");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": {"width": 1.5}})"),
+              "s.json: /image/width: expected an integer");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": {"height": 0}})"),
+              "s.json: /image/height: must be in [1, 16384], got 0");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,0], "fov": 180}]})"),
+              "s.json: /cameras/0/fov: must be in (0, 180), got 180");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,1]}]})"),
+              "s.json: /cameras/0/target: equals the position: the view direction is undefined");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1]}]})"),
+              "s.json: /cameras/0: a camera needs \"position\" and \"target\" (local metres)");
+}
+
+TEST(Scene, UnknownKeysAreErrors)
+{
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "colour": 1})"),
+              "s.json: /colour: unknown key (expected one of: cameras, fog, image, sun, terrain)");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif", "exagerration": 2}})"),
+              "s.json: /terrain/exagerration: unknown key (expected one of: cell_size, exaggeration, path, "
+              "vertical_offset, vertical_scale)");
+}
+
+TEST(Scene, MalformedJsonGivesLineAndColumn)
+{
+    const std::string e = error_of("{\n  \"terrain\": {\"path\": \"t.tif\",}\n}");
+    EXPECT_EQ(e.rfind("s.json: malformed JSON: parse error at line 2, column ", 0), 0u) << e;
+}
+
+TEST(Scene, RoundTripsThroughJson)
+{
+    const Scene a = parse_scene(R"({
+        "terrain": {"path": "/data/t.tif", "exaggeration": 1.5, "cell_size": 30, "vertical_scale": 0.1},
+        "cameras": [{"name": "a", "position": [1, 2, 3], "target": [4, 5, 6], "fov": 30},
+                    {"name": "b", "position": [-1, -2, 300], "target": [0, 0, 0]}],
+        "sun": {"direction": [0, 0, 2], "color": [1, 0.5, 0.25], "intensity": 2, "ambient": [0.1, 0.2, 0.3]},
+        "image": {"width": 64, "height": 32},
+        "fog": {"footprint": {"type": "rectangle", "min": [-100, -100], "max": [100, 100]}, "mode": "lake",
+                "altitude": 500}})",
+                                "s.json", "/x");
+    EXPECT_EQ(a.sun.direction, glm::dvec3(0.0, 0.0, 1.0));  // normalised on load
+    const Scene b = parse_scene(kiri::geometry::scene_to_json(a), "again.json", "/y");
+    EXPECT_EQ(b.terrain.path, a.terrain.path);
+    EXPECT_EQ(b.terrain.exaggeration, 1.5);
+    EXPECT_EQ(b.terrain.cell_size, 30.0);
+    EXPECT_EQ(b.terrain.vertical_scale, 0.1);
+    ASSERT_EQ(b.cameras.size(), 2u);
+    EXPECT_EQ(b.cameras[1].name, "b");
+    EXPECT_EQ(b.cameras[1].position, glm::dvec3(-1.0, -2.0, 300.0));
+    EXPECT_EQ(b.cameras[0].fov_y_deg, 30.0);
+    EXPECT_EQ(b.sun.color, a.sun.color);
+    EXPECT_EQ(b.sun.ambient, a.sun.ambient);
+    EXPECT_EQ(b.image.width, 64);
+    ASSERT_TRUE(b.fog.has_value());
+    EXPECT_EQ(kiri::geometry::scene_to_json(b), kiri::geometry::scene_to_json(a));
+}
+
+TEST(Scene, CamerasByNameAndAutomaticFraming)
+{
+    Scene s = parse_scene(R"({"terrain": {"path": "t.tif"},
+        "cameras": [{"name": "a", "position": [1, 2, 3], "target": [4, 5, 6]}]})", "s.json", "/");
+    EXPECT_EQ(s.camera("", {}, {}).name, "a");
+    EXPECT_EQ(s.camera("a", {}, {}).position, glm::dvec3(1, 2, 3));
+    try {
+        s.camera("b", {}, {});
+        FAIL();
+    } catch (const kiri::InputError& e) {
+        EXPECT_EQ(e.field(), "/cameras");
+        EXPECT_NE(std::string(e.what()).find("no camera named \"b\" (cameras: a)"), std::string::npos);
+    }
+    s.cameras.clear();
+    const auto c = s.camera("", {-1000, -1000, 0}, {1000, 1000, 200});
+    EXPECT_EQ(c.target, glm::dvec3(0, 0, 100));
+    // From the south-west, looking down 35 degrees, far enough to see the whole box in 45 degrees.
+    const glm::dvec3 d = c.position - c.target;
+    EXPECT_NEAR(d.x, d.y, 1e-9);
+    EXPECT_LT(d.x, 0.0);
+    EXPECT_NEAR(std::atan2(d.z, std::hypot(d.x, d.y)), 35.0 * M_PI / 180.0, 1e-12);
+    EXPECT_NEAR(std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z) * std::sin(22.5 * M_PI / 180.0),
+                0.5 * std::sqrt(2000.0 * 2000.0 * 2 + 200.0 * 200.0), 1e-6);
+}
+
+TEST(Scene, LoadSceneNamesMissingFile)
+{
+    try {
+        kiri::geometry::load_scene("/no/such/scene.json");
+        FAIL();
+    } catch (const kiri::InputError& e) {
+        EXPECT_STREQ(e.what(), "/no/such/scene.json: no such file");
+    }
+}
+
+}  // namespace
