@@ -77,7 +77,7 @@ bool write_plot(const std::filesystem::path& png, const Stage& stage, const std:
            << "set title " << quoted(stage.title) << " noenhanced\n"
            << "set xlabel " << quoted(stage.plot.x_label) << " noenhanced\n"
            << "set ylabel " << quoted(stage.plot.y_label) << " noenhanced\n"
-           << "set grid\nset key outside right top noenhanced\n";
+           << "set grid\nset key below noenhanced\n";
     if (stage.plot.log_x)
         script << "set logscale x\n";
     if (stage.plot.log_y)
