@@ -136,3 +136,41 @@ TEST(Scene, LoadSceneNamesMissingFile)
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Scene, MoreErrorClasses)
+{
+    // JSON has no NaN or Inf, but 1e400 overflows double while parsing: refused, naming the file.
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif", "vertical_offset": 1e400}})"),
+              "s.json: malformed JSON: number overflow parsing '1e400' (not a finite number)");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": {"width": 18446744073709551615}})"),
+              "s.json: /image/width: must be in [1, 16384], got 18446744073709551615");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": {"width": -3}})"),
+              "s.json: /image/width: must be in [1, 16384], got -3");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [
+        {"name": "a", "position": [0,0,1], "target": [0,0,0]},
+        {"name": "a", "position": [0,0,2], "target": [0,0,0]}]})"),
+              "s.json: /cameras/1/name: duplicate camera name \"a\"");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "sun": {"color": [1, -0.5, 1]}})"),
+              "s.json: /sun/color: colour components must be >= 0");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": {"name": "a"}})"),
+              "s.json: /cameras: expected an array of cameras");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": [640, 480]})"), "s.json: /image: expected an object");
+    EXPECT_EQ(error_of(R"([1, 2])"), "s.json: /: expected an object");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": ""}})"), "s.json: /terrain/path: must not be empty");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,0], "zoom": 2}]})"),
+              "s.json: /cameras/0/zoom: unknown key (expected one of: fov, name, position, target)");
+}
+
+TEST(Scene, SunDirectionIsNormalisedAndAbsolutePathsKept)
+{
+    const Scene s = parse_scene(R"({"terrain": {"path": "/data/t.tif"}, "sun": {"direction": [3, 0, 4]}})", "s.json",
+                                "/scenes");
+    EXPECT_EQ(s.terrain.path, std::filesystem::path("/data/t.tif"));
+    EXPECT_DOUBLE_EQ(s.sun.direction.x, 0.6);
+    EXPECT_DOUBLE_EQ(s.sun.direction.y, 0.0);
+    EXPECT_DOUBLE_EQ(s.sun.direction.z, 0.8);
+}
+
+}  // namespace

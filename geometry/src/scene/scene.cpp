@@ -61,9 +61,13 @@ struct Reader {
     {
         if (!j.is_number_integer())
             fail(ptr, "expected an integer");
-        const long long v = j.get<long long>();
-        if (v < lo || v > hi)
-            fail(ptr, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " + std::to_string(v));
+        // Compared as double: a huge unsigned value must not wrap into the range.
+        const double v = j.get<double>();
+        if (v < lo || v > hi) {
+            std::ostringstream why;
+            why << "must be in [" << lo << ", " << hi << "], got " << j.dump();
+            fail(ptr, why.str());
+        }
         return int(v);
     }
     std::string string(const json& j, const std::string& ptr) const
@@ -168,13 +172,14 @@ ImageSpec read_image(const Reader& r, const json& j)
 }
 
 // nlohmann's messages start with "[json.exception.parse_error.101] "; the rest is the useful part.
-std::string parse_error_reason(const json::parse_error& e)
+std::string strip_exception_id(std::string what)
 {
-    std::string what = e.what();
     if (const auto close = what.find("] "); what.rfind("[json.exception", 0) == 0 && close != std::string::npos)
         what = what.substr(close + 2);
-    return "malformed JSON: " + what;
+    return what;
 }
+
+std::string parse_error_reason(const json::parse_error& e) { return "malformed JSON: " + strip_exception_id(e.what()); }
 
 json arr(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
@@ -187,6 +192,9 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         root = json::parse(json_text.begin(), json_text.end());
     } catch (const json::parse_error& e) {
         throw InputError(file_label, "", parse_error_reason(e));
+    } catch (const json::out_of_range& e) {
+        // A number literal beyond double (e.g. 1e400): nlohmann gives no position for it.
+        throw InputError(file_label, "", "malformed JSON: " + strip_exception_id(e.what()) + " (not a finite number)");
     }
     const Reader r{file_label};
     r.only(root, "", {"terrain", "cameras", "sun", "image", "fog"});
@@ -200,8 +208,14 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         scene.sun = read_sun(r, root["sun"]);
     if (root.contains("image"))
         scene.image = read_image(r, root["image"]);
-    if (root.contains("fog"))
-        scene.fog = parse_fog_spec(root["fog"], file_label, "/fog");
+    if (root.contains("fog")) {
+        // The fog reader throws InputError itself; a stray nlohmann exception still names the file.
+        try {
+            scene.fog = parse_fog_spec(root["fog"], file_label, "/fog");
+        } catch (const json::exception& e) {
+            r.fail("/fog", strip_exception_id(e.what()));
+        }
+    }
     return scene;
 }
 
