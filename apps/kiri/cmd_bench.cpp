@@ -60,13 +60,18 @@ void run(const BenchArgs& a)
         std::fflush(stdout);
         bench::Context context(a.out, data_dir(), a.quick);
         stage.run(context);
-        for (const bench::Row& r : context.rows())
-            std::printf("  %-18s %-28s %10.4f s  %s %-10.3g %8.1f MiB\n", r.series.c_str(), r.parameters.c_str(),
-                        r.time_s, r.error_metric.empty() ? "" : (r.error_metric + " =").c_str(), r.error_value,
-                        r.peak_rss_mb);
+        for (const bench::Row& r : context.rows()) {
+            // Rows without an error metric leave the column empty rather than print a 0.
+            char error[160] = "";
+            if (!r.error_metric.empty())
+                std::snprintf(error, sizeof error, "%s = %.3g", r.error_metric.c_str(), r.error_value);
+            std::printf("  %-24s %-20s %10.4f s %9.1f MiB  %s\n", r.series.c_str(), r.parameters.c_str(), r.time_s,
+                        r.peak_rss_mb, error);
+        }
         const std::filesystem::path base = std::filesystem::path(a.out) / stage.name;
         bench::write_csv(base.string() + ".csv", stage, context.rows());
-        bench::write_plot(base.string() + ".png", stage, context.rows());
+        const bool plotted = bench::write_plot(base.string() + ".png", stage, context.rows());
+        std::printf("  -> %s.csv%s\n", base.c_str(), plotted ? (", " + base.string() + ".png").c_str() : "");
         std::fflush(stdout);
     }
 }
