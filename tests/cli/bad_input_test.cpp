@@ -90,16 +90,16 @@ protected:
 TEST_F(BadInput, MissingFile)
 {
     const fs::path missing = dir_ / "no_such.tif";
-    expect_refused(run_kiri("info " + missing.string()), {missing.string(), "no such file"}, out());
-    expect_refused(render(scene_for(missing)), {missing.string()}, out());
+    expect_refused(run_kiri("info " + missing.string()), {missing.string() + ": file: no such file"}, out());
+    expect_refused(render(scene_for(missing)), {missing.string() + ": file: no such file"}, out());
     expect_refused(render(dir_ / "no_such_scene.json"), {"no_such_scene.json", "no such file"}, out());
 }
 
 TEST_F(BadInput, NotARaster)
 {
     const fs::path text = file("notes.tif", "these are not elevations\n");
-    expect_refused(run_kiri("info " + text.string()), {text.string()}, out());
-    expect_refused(render(scene_for(text)), {text.string()}, out());
+    expect_refused(run_kiri("info " + text.string()), {text.string() + ": format: not a raster"}, out());
+    expect_refused(render(scene_for(text)), {text.string() + ": format: not a raster"}, out());
 }
 
 TEST_F(BadInput, TruncatedTiff)
@@ -107,21 +107,22 @@ TEST_F(BadInput, TruncatedTiff)
     const std::string whole = kiri::test::read_all(fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif");
     ASSERT_GT(whole.size(), 1000u);
     const fs::path cut = file("cut.tif", whole.substr(0, whole.size() / 2));
-    expect_refused(render(scene_for(cut)), {cut.string()}, out());
+    expect_refused(render(scene_for(cut)), {cut.string() + ": data: ", "truncated"}, out());
+    expect_refused(run_kiri("info " + cut.string()), {cut.string() + ": data: ", "truncated"}, out());
 }
 
 TEST_F(BadInput, ZeroSizeRaster)
 {
     const fs::path empty = file("empty.tif", "");
-    expect_refused(run_kiri("info " + empty.string()), {empty.string()}, out());
-    expect_refused(render(scene_for(empty)), {empty.string()}, out());
+    expect_refused(run_kiri("info " + empty.string()), {empty.string() + ": size: empty file (0 bytes)"}, out());
+    expect_refused(render(scene_for(empty)), {empty.string() + ": size: empty file (0 bytes)"}, out());
 }
 
 TEST_F(BadInput, AllNodataRaster)
 {
     const fs::path nodata = geotiff("nodata.tif", 8, 8, -9999.0, true);
     const RunResult r = render(scene_for(nodata));
-    expect_refused(r, {nodata.string(), "nodata"}, out());
+    expect_refused(r, {nodata.string() + ": nodata: every cell is nodata"}, out());
 }
 
 TEST_F(BadInput, AbsurdDimensionsRefusedBeforeAllocating)
@@ -129,9 +130,9 @@ TEST_F(BadInput, AbsurdDimensionsRefusedBeforeAllocating)
     // 200000 x 200000 float cells would need 160 GB as doubles; the sparse file is tiny.
     const fs::path huge = geotiff("huge.tif", 200000, 200000, 0.0, false, {"SPARSE_OK=TRUE", "TILED=YES"});
     ASSERT_LT(fs::file_size(huge), 50u << 20);
-    expect_refused(run_kiri("info " + huge.string()), {huge.string()}, out());
+    expect_refused(run_kiri("info " + huge.string()), {huge.string() + ": size: 200000 x 200000", "limit"}, out());
     const RunResult r = render(scene_for(huge));
-    expect_refused(r, {huge.string(), "200000"}, out());
+    expect_refused(r, {huge.string() + ": size: 200000 x 200000", "limit"}, out());
 }
 
 TEST_F(BadInput, MalformedJson)

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli/kiri_runner.hpp"
 #include "kiri/render/image.hpp"
@@ -53,4 +56,45 @@ TEST(KiriRender, DefaultSceneWritesAPictureAndPrintsItsPath)
     EXPECT_GT(hi - lo, 80);
     EXPECT_GT(top / (10 * 160), bottom / (30 * 160) + 20);
     fs::remove(out);
+}
+
+TEST(KiriBench, EndToEndStageWritesCsvAndPlot)
+{
+    const fs::path dir = fs::temp_directory_path() / "kiri_commands_test_bench";
+    fs::remove_all(dir);
+    const auto r = run_kiri("bench --quick -o " + dir.string() + " --stage end_to_end");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string csv = kiri::test::read_all(dir / "end_to_end.csv");
+    ASSERT_EQ(csv.rfind("stage,series,parameters,x,time_s,error_metric,error_value,items_per_s,peak_rss_mb\n", 0), 0u)
+        << csv;
+    // --quick renders 640x360 and 1280x720: one row each, with a time and a peak memory > 0.
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3) << csv;
+    std::istringstream lines(csv);
+    std::string line;
+    std::getline(lines, line);
+    for (const char* size : {"640x360", "1280x720"}) {
+        ASSERT_TRUE(std::getline(lines, line));
+        EXPECT_NE(line.find(size), std::string::npos) << line;
+        std::vector<std::string> cols;
+        std::string col;
+        for (std::istringstream cells(line); std::getline(cells, col, ',');)
+            cols.push_back(col);
+        ASSERT_EQ(cols.size(), 9u) << line;
+        EXPECT_GT(std::stod(cols[4]), 0.0) << line;   // time_s
+        EXPECT_GT(std::stod(cols[8]), 10.0) << line;  // peak_rss_mb of the child: a GL context and a DEM
+    }
+    const std::string png = kiri::test::read_all(dir / "end_to_end.png");
+    EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    EXPECT_NE(r.out.find("kiri render (cold start)"), std::string::npos) << r.out;
+    fs::remove_all(dir);
+}
+
+TEST(KiriBench, UnknownStageIsAUsageError)
+{
+    const fs::path dir = fs::temp_directory_path() / "kiri_commands_test_bench_bad";
+    fs::remove_all(dir);
+    const auto r = run_kiri("bench -o " + dir.string() + " --stage nonsense");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "kiri: --stage: unknown stage \"nonsense\" (see kiri bench --list)\n");
+    EXPECT_FALSE(fs::exists(dir));
 }
