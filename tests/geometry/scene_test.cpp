@@ -174,3 +174,41 @@ TEST(Scene, SunDirectionIsNormalisedAndAbsolutePathsKept)
 }
 
 }  // namespace
+
+namespace {
+
+// Every bundled scene parses, its terrain path resolves to an existing file, and it survives a
+// write/read round trip unchanged.
+TEST(Scene, BundledScenesLoadAndRoundTrip)
+{
+    int count = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(KIRI_DATA_DIR) / "scenes")) {
+        if (entry.path().extension() != ".json")
+            continue;
+        ++count;
+        SCOPED_TRACE(entry.path().string());
+        const Scene a = kiri::geometry::load_scene(entry.path());
+        EXPECT_TRUE(std::filesystem::is_regular_file(a.terrain.path)) << a.terrain.path;
+        EXPECT_FALSE(a.cameras.empty());
+        const std::string text = kiri::geometry::scene_to_json(a);
+        const Scene b = parse_scene(text, "again.json", "/");
+        EXPECT_EQ(kiri::geometry::scene_to_json(b), text);
+    }
+    EXPECT_GE(count, 1);
+}
+
+TEST(Scene, DefaultSceneHasTheDocumentedCameras)
+{
+    const Scene s = kiri::geometry::load_scene(std::filesystem::path(KIRI_DATA_DIR) / "scenes/jacksboro.json");
+    EXPECT_EQ(s.cameras.front().name, "default");
+    EXPECT_EQ(s.camera("top", {}, {}).name, "top");
+    EXPECT_EQ(s.image.width, 1280);
+    EXPECT_EQ(s.image.height, 720);
+    // A low sun from the side: well above the horizon but below 30 degrees, for relief.
+    const double elevation = std::asin(s.sun.direction.z) * 180.0 / M_PI;
+    EXPECT_GT(elevation, 5.0);
+    EXPECT_LT(elevation, 30.0);
+    EXPECT_TRUE(s.fog.has_value());
+}
+
+}  // namespace

@@ -143,7 +143,10 @@ SunSpec read_sun(const Reader& r, const json& j)
                                      s.direction.z * s.direction.z);
         if (!(len > 0.0))
             r.fail("/sun/direction", "must not be the zero vector");
-        s.direction /= len;
+        // Dividing a unit vector by its computed length can move its last bits; leaving
+        // vectors already unit to rounding untouched makes scene_to_json -> parse exact.
+        if (std::abs(len - 1.0) > 1e-14)
+            s.direction /= len;
     }
     const auto colour = [&](const char* key, glm::dvec3& out) {
         if (!j.contains(key))
