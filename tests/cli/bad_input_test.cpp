@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <gdal.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -23,7 +24,8 @@ protected:
     void SetUp() override
     {
         dir_ = fs::temp_directory_path() /
-               ("kiri_bad_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+               ("kiri_bad_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                "_" + std::to_string(::getpid()));  // other build trees run these tests at the same time
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         GDALAllRegister();
