@@ -49,7 +49,7 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     const auto t0 = std::chrono::steady_clock::now();
     const Terrain terrain = load_scene_terrain(scene);
     const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const AuthoredSurface a = author_base_surface(terrain, *scene.fog, scene_path.string());
+    const AuthoredSurface a = author_base_surface(terrain, world_fog_spec(scene), scene_path.string());
 
     std::error_code ec;
     fs::create_directories(out_dir, ec);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "cli/kiri_runner.hpp"
+#include "temp_path.hpp"
 
 namespace fs = std::filesystem;
 using kiri::test::run_kiri;
@@ -23,9 +24,8 @@ class BadInput : public ::testing::Test {
 protected:
     void SetUp() override
     {
-        dir_ = fs::temp_directory_path() /
-               ("kiri_bad_input_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
-                "_" + std::to_string(::getpid()));  // other build trees run these tests at the same time
+        dir_ = kiri::test::temp_path("bad_input_" +
+                                     std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         fs::remove_all(dir_);
         fs::create_directories(dir_);
         GDALAllRegister();

@@ -1,6 +1,8 @@
 // The commands as users run them on the bundled data.
 #include <gtest/gtest.h>
 
+#include "temp_path.hpp"
+
 #include <algorithm>
 #include <filesystem>
 #include <unistd.h>
@@ -13,11 +15,6 @@
 
 namespace fs = std::filesystem;
 using kiri::test::run_kiri;
-
-namespace {
-// Other build trees run these tests at the same time: temporary names carry the process id.
-std::string unique(const std::string& name) { return std::to_string(::getpid()) + "_" + name; }
-}  // namespace
 
 TEST(KiriInfo, JacksboroGridCellsAndRange)
 {
@@ -38,7 +35,7 @@ TEST(KiriVersion, PrintsVersion)
 
 TEST(KiriRender, DefaultSceneWritesAPictureAndPrintsItsPath)
 {
-    const fs::path out = fs::temp_directory_path() / unique("kiri_commands_test_default.png");
+    const fs::path out = kiri::test::temp_path("commands_test_default.png");
     fs::remove(out);
     const auto r = run_kiri("render " + (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string() + " -o " +
                             out.string() + " --width 160 --height 90");
@@ -66,7 +63,7 @@ TEST(KiriRender, DefaultSceneWritesAPictureAndPrintsItsPath)
 
 TEST(KiriBench, EndToEndStageWritesCsvAndPlot)
 {
-    const fs::path dir = fs::temp_directory_path() / unique("kiri_commands_test_bench");
+    const fs::path dir = kiri::test::temp_path("commands_test_bench");
     fs::remove_all(dir);
     const auto r = run_kiri("bench --quick -o " + dir.string() + " --stage end_to_end");
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -97,7 +94,7 @@ TEST(KiriBench, EndToEndStageWritesCsvAndPlot)
 
 TEST(KiriBench, UnknownStageIsAUsageError)
 {
-    const fs::path dir = fs::temp_directory_path() / unique("kiri_commands_test_bench_bad");
+    const fs::path dir = kiri::test::temp_path("commands_test_bench_bad");
     fs::remove_all(dir);
     const auto r = run_kiri("bench -o " + dir.string() + " --stage nonsense");
     EXPECT_EQ(r.exit_code, 2);

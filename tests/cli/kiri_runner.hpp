@@ -9,6 +9,8 @@
 #include <string>
 #include <unistd.h>
 
+#include "temp_path.hpp"
+
 namespace kiri::test {
 
 struct RunResult {
@@ -41,9 +43,7 @@ inline std::string shell_quote(const std::string& s)
 
 inline RunResult run_kiri(const std::string& args)
 {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path();
-    const std::string tag = std::to_string(::getpid());
-    const std::filesystem::path out = dir / ("kiri_cli_out_" + tag), err = dir / ("kiri_cli_err_" + tag);
+    const std::filesystem::path out = temp_path("cli_stdout"), err = temp_path("cli_stderr");
     const std::string command = shell_quote(KIRI_EXE) + " " + args + " >" + out.string() + " 2>" + err.string();
     const int status = std::system(command.c_str());
     RunResult r;

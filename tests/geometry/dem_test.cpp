@@ -2,6 +2,8 @@
 // GDAL or by hand) with known values, and every bad-raster case of issue 2.
 #include <gtest/gtest.h>
 
+#include "temp_path.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -41,7 +43,7 @@ protected:
     {
         GDALAllRegister();
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir = fs::temp_directory_path() / ("kiri_dem_test_" + std::string(info->name()));
+        dir = kiri::test::temp_path("dem_test_" + std::string(info->name()));
         fs::remove_all(dir);
         fs::create_directories(dir);
     }

@@ -1,6 +1,8 @@
 // Scattered points -> heightfield (CGAL Delaunay TIN), against analytic surfaces.
 #include <gtest/gtest.h>
 
+#include "temp_path.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -43,8 +45,8 @@ protected:
     fs::path dir;
     void SetUp() override
     {
-        dir = fs::temp_directory_path() /
-              ("kiri_xyz_test_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+        dir = kiri::test::temp_path("xyz_test_" +
+                                    std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
         fs::remove_all(dir);
         fs::create_directories(dir);
     }

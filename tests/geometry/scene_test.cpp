@@ -212,3 +212,19 @@ TEST(Scene, DefaultSceneHasTheDocumentedCameras)
 }
 
 }  // namespace
+
+TEST(Scene, FogVerticalQuantitiesFollowTheExaggeration)
+{
+    const Scene s = parse_scene(R"({"terrain": {"path": "t.tif", "exaggeration": 1.5},
+        "fog": {"mode": "lake", "altitude": 420, "offset": 40, "clearance": 10, "thickness": 100,
+                "smoothing": 300}})", "s.json", "/");
+    const kiri::geometry::FogSpec w = kiri::geometry::world_fog_spec(s);
+    EXPECT_EQ(w.fit.altitude, 630.0);
+    EXPECT_EQ(w.fit.offset, 60.0);
+    EXPECT_EQ(w.fit.clearance, 15.0);
+    EXPECT_EQ(w.fit.thickness, 150.0);
+    EXPECT_EQ(w.fit.smoothing_length, 300.0);  // horizontal: unchanged
+    EXPECT_EQ(s.fog->fit.altitude, 420.0);     // the scene keeps what the user wrote
+    const Scene none = parse_scene(minimal, "s.json", "/");
+    EXPECT_THROW(kiri::geometry::world_fog_spec(none), kiri::InputError);
+}

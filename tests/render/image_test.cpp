@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "temp_path.hpp"
+
 #include <filesystem>
 
 #include "kiri/geometry/error.hpp"
@@ -12,7 +14,7 @@ TEST(Png, RoundTripsExactly)
     kiri::render::Image image{3, 2, {}};
     for (int k = 0; k < 3 * 2 * 4; ++k)
         image.rgba.push_back(std::uint8_t(k * 11));
-    const fs::path path = fs::temp_directory_path() / "kiri_image_test.png";
+    const fs::path path = kiri::test::temp_path("image_test.png");
     kiri::render::write_png_atomic(path, image);
     const kiri::render::Image back = kiri::render::read_png(path);
     EXPECT_EQ(back.width, 3);
@@ -24,20 +26,20 @@ TEST(Png, RoundTripsExactly)
 TEST(Png, UnwritablePathThrowsAndLeavesNothing)
 {
     const kiri::render::Image image{1, 1, {1, 2, 3, 4}};
-    const fs::path dir = fs::temp_directory_path() / "kiri_no_such_dir";
+    const fs::path dir = kiri::test::temp_path("no_such_dir");
     fs::remove_all(dir);
     try {
         kiri::render::write_png_atomic(dir / "out.png", image);
         FAIL() << "expected an IoError";
     } catch (const kiri::IoError& e) {
-        EXPECT_NE(std::string(e.what()).find("kiri_no_such_dir/out.png"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find((dir / "out.png").string()), std::string::npos) << e.what();
     }
     EXPECT_FALSE(fs::exists(dir));
 }
 
 TEST(Png, NotAPngIsAnInputError)
 {
-    const fs::path path = fs::temp_directory_path() / "kiri_not_a_png.png";
+    const fs::path path = kiri::test::temp_path("not_a_png.png");
     { std::FILE* f = std::fopen(path.c_str(), "w"); std::fputs("hello", f); std::fclose(f); }
     EXPECT_THROW(kiri::render::read_png(path), kiri::InputError);
     fs::remove(path);

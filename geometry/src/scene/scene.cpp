@@ -306,4 +306,17 @@ Terrain load_scene_terrain(const Scene& scene)
     return Terrain(load_dem(scene.terrain.path, options));
 }
 
+FogSpec world_fog_spec(const Scene& scene)
+{
+    if (!scene.fog)
+        throw InputError(scene.file.string(), "/fog", "the scene has no fog section");
+    FogSpec spec = *scene.fog;
+    const double e = scene.terrain.exaggeration;
+    spec.fit.altitude *= e;
+    spec.fit.offset *= e;
+    spec.fit.clearance *= e;
+    spec.fit.thickness *= e;
+    return spec;
+}
+
 }  // namespace kiri::geometry

@@ -67,4 +67,9 @@ class Terrain;
 //! exaggeration, so every stage (fit, layers, renderers) sees the same exaggerated ground.
 Terrain load_scene_terrain(const Scene& scene);
 
+//! The scene's fog section in world units: its vertical quantities (lake altitude, offset,
+//! clearance, thickness) are written in metres of the DEM and stretched here by the vertical
+//! exaggeration, like the terrain. \throw InputError naming /fog when the scene has none.
+FogSpec world_fog_spec(const Scene& scene);
+
 }  // namespace kiri::geometry
