@@ -5,3 +5,4 @@ kiri_test(tessellate_test SOURCES tessellate_test.cpp LIBS kiri_geometry LABELS 
 find_package(nlohmann_json REQUIRED)
 kiri_test(fog_spec_test SOURCES fog_spec_test.cpp LIBS kiri_geometry nlohmann_json::nlohmann_json LABELS unit)
 kiri_test(author_test SOURCES author_test.cpp LIBS kiri_geometry nlohmann_json::nlohmann_json LABELS unit)
+kiri_test(layer_stack_test SOURCES layer_stack_test.cpp LIBS kiri_geometry LABELS unit)

@@ -5,64 +5,14 @@
 #include <set>
 
 #include "kiri/geometry/error.hpp"
+#include "scene/json_reader.hpp"
 
 namespace kiri::geometry {
 namespace {
 
 using json = nlohmann::json;
 
-struct Reader {
-    const std::string& file;
-
-    [[noreturn]] void fail(const std::string& ptr, const std::string& why) const { throw InputError(file, ptr, why); }
-
-    void only(const json& j, const std::string& ptr, std::set<std::string> keys) const
-    {
-        if (!j.is_object())
-            fail(ptr, "expected an object");
-        for (const auto& [k, v] : j.items())
-            if (!keys.count(k))
-                fail(ptr + "/" + k, "unknown key");
-    }
-    double number(const json& j, const std::string& ptr) const
-    {
-        if (!j.is_number())
-            fail(ptr, "expected a number");
-        const double v = j.get<double>();
-        if (!std::isfinite(v))
-            fail(ptr, "expected a finite number");
-        return v;
-    }
-    double positive(const json& j, const std::string& ptr) const
-    {
-        const double v = number(j, ptr);
-        if (!(v > 0.0))
-            fail(ptr, "must be > 0");
-        return v;
-    }
-    double non_negative(const json& j, const std::string& ptr) const
-    {
-        const double v = number(j, ptr);
-        if (v < 0.0)
-            fail(ptr, "must be >= 0");
-        return v;
-    }
-    int integer(const json& j, const std::string& ptr, int lo, int hi) const
-    {
-        if (!j.is_number_integer())
-            fail(ptr, "expected an integer");
-        const auto v = j.get<long long>();
-        if (v < lo || v > hi)
-            fail(ptr, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-        return int(v);
-    }
-    glm::dvec2 point(const json& j, const std::string& ptr) const
-    {
-        if (!j.is_array() || j.size() != 2)
-            fail(ptr, "expected an array of 2 numbers [x, y] (local metres)");
-        return {number(j[0], ptr + "/0"), number(j[1], ptr + "/1")};
-    }
-};
+using Reader = JsonReader;
 
 }  // namespace
 

@@ -8,6 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "fog/fog_spec_json.hpp"
+#include "layers/layer_options_json.hpp"
+#include "scene/json_reader.hpp"
 #include "kiri/geometry/dem.hpp"
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/terrain.hpp"
@@ -17,72 +19,7 @@ namespace {
 
 using json = nlohmann::json;
 
-// Reads typed values out of the JSON tree; every failure names the file and JSON pointer.
-struct Reader {
-    const std::string& file;
-
-    [[noreturn]] void fail(const std::string& ptr, const std::string& why) const { throw InputError(file, ptr, why); }
-
-    void only(const json& j, const std::string& ptr, const std::set<std::string>& keys) const
-    {
-        if (!j.is_object())
-            fail(ptr.empty() ? "/" : ptr, "expected an object");
-        for (const auto& item : j.items())
-            if (!keys.count(item.key()))
-                fail(ptr + "/" + item.key(), "unknown key (expected one of: " + join(keys) + ")");
-    }
-    static std::string join(const std::set<std::string>& keys)
-    {
-        std::string out;
-        for (const std::string& k : keys)
-            out += (out.empty() ? "" : ", ") + k;
-        return out;
-    }
-    double number(const json& j, const std::string& ptr) const
-    {
-        if (!j.is_number())
-            fail(ptr, "expected a number");
-        const double v = j.get<double>();
-        if (!std::isfinite(v))
-            fail(ptr, "expected a finite number");
-        return v;
-    }
-    double in_range(const json& j, const std::string& ptr, double lo, double hi, bool open) const
-    {
-        const double v = number(j, ptr);
-        if (open ? !(v > lo && v < hi) : !(v >= lo && v <= hi)) {
-            std::ostringstream why;
-            why << "must be in " << (open ? "(" : "[") << lo << ", " << hi << (open ? ")" : "]") << ", got " << v;
-            fail(ptr, why.str());
-        }
-        return v;
-    }
-    int integer(const json& j, const std::string& ptr, int lo, int hi) const
-    {
-        if (!j.is_number_integer())
-            fail(ptr, "expected an integer");
-        // Compared as double: a huge unsigned value must not wrap into the range.
-        const double v = j.get<double>();
-        if (v < lo || v > hi) {
-            std::ostringstream why;
-            why << "must be in [" << lo << ", " << hi << "], got " << j.dump();
-            fail(ptr, why.str());
-        }
-        return int(v);
-    }
-    std::string string(const json& j, const std::string& ptr) const
-    {
-        if (!j.is_string())
-            fail(ptr, "expected a string");
-        return j.get<std::string>();
-    }
-    glm::dvec3 vec3(const json& j, const std::string& ptr) const
-    {
-        if (!j.is_array() || j.size() != 3 || !j[0].is_number() || !j[1].is_number() || !j[2].is_number())
-            fail(ptr, "expected an array of 3 numbers");
-        return {number(j[0], ptr + "/0"), number(j[1], ptr + "/1"), number(j[2], ptr + "/2")};
-    }
-};
+using Reader = JsonReader;
 
 TerrainSpec read_terrain(const Reader& r, const json& j, const std::filesystem::path& base_dir)
 {
@@ -200,7 +137,7 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         throw InputError(file_label, "", "malformed JSON: " + strip_exception_id(e.what()) + " (not a finite number)");
     }
     const Reader r{file_label};
-    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog"});
+    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers"});
     if (!root.contains("terrain"))
         r.fail("/terrain", "missing (every scene needs a terrain)");
     Scene scene;
@@ -219,6 +156,8 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
             r.fail("/fog", strip_exception_id(e.what()));
         }
     }
+    if (root.contains("layers"))
+        scene.layers = parse_layer_options(root["layers"], file_label);
     return scene;
 }
 
@@ -263,6 +202,7 @@ std::string scene_to_json(const Scene& scene)
     root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}};
     if (scene.fog)
         root["fog"] = fog_spec_to_json(*scene.fog);
+    root["layers"] = layer_options_to_json(scene.layers);
     return root.dump(2) + "\n";
 }
 
@@ -317,6 +257,16 @@ FogSpec world_fog_spec(const Scene& scene)
     spec.fit.clearance *= e;
     spec.fit.thickness *= e;
     return spec;
+}
+
+LayerOptions world_layer_options(const Scene& scene)
+{
+    LayerOptions options = scene.layers;
+    const double e = scene.terrain.exaggeration;
+    options.thickness = (scene.fog ? scene.fog->fit.thickness : FitOptions{}.thickness) * e;
+    options.ground_fade *= e;
+    validate_layer_options(options, scene.file.string());
+    return options;
 }
 
 }  // namespace kiri::geometry

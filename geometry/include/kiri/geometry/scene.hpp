@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/fog_spec.hpp"
+#include "kiri/geometry/layer_stack.hpp"
 
 namespace kiri::geometry {
 
@@ -47,6 +48,7 @@ struct Scene {
     SunSpec sun;
     ImageSpec image;
     std::optional<FogSpec> fog;       //!< the "fog" section (docs/scene.md), if any
+    LayerOptions layers;              //!< the "layers" section (defaults when absent)
 
     //! The camera called name; the first when name is empty; a view framing `terrain_bounds`
     //! (min, max) from the south-west when the scene has no camera and name is empty.
@@ -71,5 +73,8 @@ Terrain load_scene_terrain(const Scene& scene);
 //! clearance, thickness) are written in metres of the DEM and stretched here by the vertical
 //! exaggeration, like the terrain. \throw InputError naming /fog when the scene has none.
 FogSpec world_fog_spec(const Scene& scene);
+//! The scene's layer options in world units: thickness = fog.thickness and ground_fade
+//! stretched by the exaggeration. \throw InputError naming /layers on options out of range.
+LayerOptions world_layer_options(const Scene& scene);
 
 }  // namespace kiri::geometry

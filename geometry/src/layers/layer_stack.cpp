@@ -1,0 +1,186 @@
+#include "kiri/geometry/layer_stack.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "kiri/geometry/error.hpp"
+
+namespace kiri::geometry {
+namespace {
+
+[[noreturn]] void refuse(const std::string& label, const std::string& field, const std::string& why)
+{
+    throw InputError(label, "/layers/" + field, why);
+}
+
+bool finite2(const glm::dvec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+}  // namespace
+
+void validate_layer_options(const LayerOptions& o, const std::string& label)
+{
+    if (o.count < 0 || o.count > 1000)
+        refuse(label, "count", "must be in [0, 1000], got " + std::to_string(o.count));
+    if (o.max_count < std::max(o.count, 1) || o.max_count > 1000)
+        refuse(label, "max_count", "must be in [count, 1000], got " + std::to_string(o.max_count));
+    if (!(o.thickness > 0.0) || !std::isfinite(o.thickness))
+        refuse(label, "thickness", "must be a finite number > 0 (fog.thickness)");
+    if (!(o.spacing_divisor > 0.0) || !std::isfinite(o.spacing_divisor))
+        refuse(label, "spacing_divisor", "must be > 0");
+    if (!(o.enlargement_rate >= 0.0 && o.enlargement_rate * o.max_count < 1.0))
+        refuse(label, "enlargement_rate", "must be >= 0 and below 1 / max_count");
+    if (!(o.opacity >= 0.0 && o.opacity <= 0.999))
+        refuse(label, "opacity", "must be in [0, 0.999]");
+    if (!(o.ground_fade >= 0.0) || !std::isfinite(o.ground_fade))
+        refuse(label, "ground_fade", "must be >= 0");
+    if (!(o.detail >= 0.0 && o.detail <= 1.0))
+        refuse(label, "detail", "must be in [0, 1]");
+    if (!(o.detail_scale > 0.0) || !std::isfinite(o.detail_scale))
+        refuse(label, "detail_scale", "must be > 0");
+    if (!(o.dissipation_half_life >= 0.0) || !std::isfinite(o.dissipation_half_life))
+        refuse(label, "dissipation_half_life", "must be >= 0 (0: no dissipation)");
+    if (!finite2(o.wind))
+        refuse(label, "wind", "must be finite");
+    if (!std::isfinite(o.time))
+        refuse(label, "time", "must be finite");
+}
+
+LayerColumn layer_column(const LayerOptions& o, const glm::dvec3& eye, const glm::dvec3& point,
+                         const glm::dvec3& normal)
+{
+    LayerColumn c;
+    if (o.count == 0)
+        return c;  // the base alone
+    const double r0 = o.thickness / o.count;
+    double r = r0;
+    if (o.narrowing) {
+        const double reference_distance = o.spacing_divisor * r0;
+        const double distance = glm::length(eye - point);
+        const double moved = std::isfinite(distance) ? reference_distance - distance : 0.0;
+        r = narrowed_spacing(r0, moved, reference_distance);
+    }
+    r = std::max(r, o.thickness / o.max_count);
+    c.spacing = r;
+    c.count = o.thickness / r;
+    c.sin_theta = o.enlargement ? std::sin(elevation_angle(eye, point, normal)) : 0.0;
+    return c;
+}
+
+LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, const glm::dvec3& point,
+                         const glm::dvec2& centre)
+{
+    LayerVertex v;
+    if (o.count == 0 || c.count <= 0.0) {
+        v.position = point;
+        v.alpha = i == 0 ? 1.0 : 0.0;
+        return v;
+    }
+    const double n = c.count;
+    const double fade_in = std::clamp(n + 1.0 - i, 0.0, 1.0);
+    v.alpha = fade_in * layer_alpha(std::min(double(i), n), n);
+    v.exponent = c.spacing / (o.thickness / o.count);
+    const double scale = 1.0 + i * o.enlargement_rate * c.sin_theta;
+    const glm::dvec2 xy = centre + scale * (glm::dvec2(point) - centre);
+    v.position = {xy.x, xy.y, point.z + i * c.spacing};
+    return v;
+}
+
+double layer_dissipation(const LayerOptions& o, int i, double n)
+{
+    if (!(o.dissipation_half_life > 0.0) || o.time <= 0.0)
+        return 1.0;
+    const double height = n > 0.0 ? std::min(i / n, 1.0) : 0.0;
+    return std::exp2(-o.time / o.dissipation_half_life * (1.0 + height));
+}
+
+LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessellation, const LayerOptions& options,
+                          const std::string& label)
+{
+    validate_layer_options(options, label);
+    const ControlMesh& control = surface.control();
+    std::vector<BorderMask> masks(std::size_t(control.num_faces()));
+    for (int f = 0; f < control.num_faces(); ++f)
+        masks[std::size_t(f)] = patch_border_mask(control, f);
+    LayerBase base;
+    try {
+        base.texture = make_layer_texture(masks, options.texture);
+    } catch (const InputError& e) {
+        throw InputError(label, "/" + e.field(), e.reason());
+    }
+
+    // Centre of enlargement: the patches' O (mean of the four corner points), area-weighted.
+    glm::dvec2 weighted{0.0};
+    double area = 0.0;
+    for (int f = 0; f < control.num_faces(); ++f) {
+        const glm::dvec3 c[4] = {surface.evaluate(f, 0, 0), surface.evaluate(f, 1, 0), surface.evaluate(f, 1, 1),
+                                 surface.evaluate(f, 0, 1)};
+        const glm::dvec2 o = 0.25 * glm::dvec2(c[0] + c[1] + c[2] + c[3]);
+        const glm::dvec2 d1 = glm::dvec2(c[2] - c[0]), d2 = glm::dvec2(c[3] - c[1]);
+        const double a = 0.5 * std::abs(d1.x * d2.y - d1.y * d2.x);
+        weighted += a * o;
+        area += a;
+    }
+    if (area > 0.0)
+        base.centre = weighted / area;
+
+    const TriMesh& mesh = tessellation.mesh;
+    OpenMesh::VPropHandleT<int> patch_id;
+    if (!mesh.get_property_handle(patch_id, patch_id_property))
+        throw InputError(label, "/fog/tessellation", "the tessellation carries no patch ids");
+    const std::size_t nv = mesh.n_vertices();
+    base.position.resize(nv);
+    base.normal.resize(nv);
+    base.atlas_uv.resize(nv);
+    base.min = glm::dvec3(INFINITY);
+    base.max = glm::dvec3(-INFINITY);
+    for (auto vh : mesh.vertices()) {
+        const auto i = std::size_t(vh.idx());
+        const auto& p = mesh.point(vh);
+        const auto& n = mesh.normal(vh);
+        const auto& t = mesh.texcoord2D(vh);
+        base.position[i] = {p[0], p[1], p[2]};
+        base.normal[i] = {n[0], n[1], n[2]};
+        base.atlas_uv[i] = base.texture.atlas_uv(masks[std::size_t(mesh.property(patch_id, vh))], t[0], t[1]);
+        base.min = glm::min(base.min, base.position[i]);
+        base.max = glm::max(base.max, base.position[i]);
+    }
+    base.triangles.reserve(mesh.n_faces() * 3);
+    for (auto fh : mesh.faces())
+        for (auto vh : mesh.fv_range(fh))
+            base.triangles.push_back(std::uint32_t(vh.idx()));
+    return base;
+}
+
+int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)
+{
+    if (options.count == 0)
+        return 0;
+    double most = options.count;
+    for (std::size_t i = 0; i < base.position.size(); ++i)
+        most = std::max(most, layer_column(options, eye, base.position[i], base.normal[i]).count);
+    return std::min(int(std::ceil(most - 1e-9)), options.max_count);
+}
+
+std::vector<LayerMesh> build_layers(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)
+{
+    const int top = layers_for_eye(base, options, eye);
+    std::vector<LayerColumn> columns(base.position.size());
+    for (std::size_t v = 0; v < columns.size(); ++v)
+        columns[v] = layer_column(options, eye, base.position[v], base.normal[v]);
+    std::vector<LayerMesh> layers(std::size_t(top) + 1);
+    for (int i = 0; i <= top; ++i) {
+        LayerMesh& layer = layers[std::size_t(i)];
+        layer.index = i;
+        layer.vertices.resize(columns.size());
+        for (std::size_t v = 0; v < columns.size(); ++v) {
+            layer.vertices[v] = layer_vertex(options, columns[v], i, base.position[v], base.centre);
+            layer.vertices[v].alpha *= layer_dissipation(options, i, columns[v].count);
+        }
+    }
+    return layers;
+}
+
+}  // namespace kiri::geometry

@@ -1,0 +1,419 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include <glm/geometric.hpp>
+
+#include "fog_test_terrains.hpp"
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/layer_stack.hpp"
+#include "kiri/geometry/scene.hpp"
+
+using namespace kiri::geometry;
+using kiri::InputError;
+
+namespace {
+
+const double pi = std::acos(-1.0);
+
+LayerOptions options_15()
+{
+    LayerOptions o;
+    o.count = 15;
+    o.thickness = 150.0;  // r0 = 10 m, reference distance L0 = 2000 m
+    o.max_count = 120;
+    return o;
+}
+
+bool finite(const LayerVertex& v)
+{
+    return std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z) &&
+           std::isfinite(v.alpha) && std::isfinite(v.exponent);
+}
+
+}  // namespace
+
+// ---- (2.6) - (2.10) exactly -------------------------------------------------------------------
+
+TEST(LayerFormulas, SpacingIsDistanceOver200)
+{
+    for (double L : {0.0, 1e-300, 0.5, 1.0, 200.0, 1234.5678, 1e7})
+        EXPECT_EQ(layer_spacing(L), L / 200.0) << L;
+    EXPECT_EQ(layer_spacing(0.0), 0.0);
+    EXPECT_EQ(layer_spacing(1e7), 5e4);
+    EXPECT_EQ(layer_spacing(300.0, 100.0), 3.0);
+}
+
+TEST(LayerFormulas, AlphaFallsLinearlyToATenth)
+{
+    for (int l : {1, 2, 15, 30, 50})
+        for (int i = 0; i <= l; ++i)
+            EXPECT_NEAR(layer_alpha(i, l), 1.0 - 0.9 * i / l, 1e-15) << i << "/" << l;
+    EXPECT_EQ(layer_alpha(0, 0), 1.0);  // l = 0: the base alone, opaque
+    EXPECT_EQ(layer_alpha(0, 1), 1.0);
+    EXPECT_NEAR(layer_alpha(1, 1), 0.1, 1e-15);
+    EXPECT_NEAR(layer_alpha(15, 15), 0.1, 1e-15);
+}
+
+TEST(LayerFormulas, NarrowingFollowsTheEyeAndIsContinuous)
+{
+    const double L0 = 2000.0, r0 = layer_spacing(L0);
+    EXPECT_EQ(narrowed_spacing(r0, 0.0, L0), r0);
+    for (double m : {1.0, 500.0, 1000.0, 1999.0}) {
+        EXPECT_NEAR(narrowed_spacing(r0, m, L0), r0 * (1.0 - m / L0), 1e-15 * r0);
+        // Straight at O: the new spacing is the new distance / 200 (REFERENCE 1.3).
+        EXPECT_NEAR(narrowed_spacing(r0, m, L0), layer_spacing(L0 - m), 1e-15 * r0);
+    }
+    EXPECT_EQ(narrowed_spacing(r0, L0, L0), 0.0);        // eye at O
+    EXPECT_EQ(narrowed_spacing(r0, 2.0 * L0, L0), 0.0);  // clamped
+    EXPECT_EQ(narrowed_spacing(r0, -500.0, L0), r0);     // moving away does not widen
+    EXPECT_EQ(narrowed_spacing(r0, 10.0, 0.0), 0.0);     // reference eye at O (L = 0)
+    // Continuity: tiny moves give tiny changes across the clamp points.
+    EXPECT_NEAR(narrowed_spacing(r0, 1e-9, L0), r0, 1e-11);
+    EXPECT_NEAR(narrowed_spacing(r0, L0 - 1e-9, L0), 0.0, 1e-11);
+}
+
+TEST(LayerFormulas, LayersAreAddedToKeepTheThickness)
+{
+    for (int l0 : {1, 2, 3, 7, 10, 15, 30, 49, 50, 199}) {
+        const double T0 = 173.3;
+        const double r0 = T0 / l0;
+        EXPECT_EQ(layer_count_for_thickness(r0, T0, 0, 1000), l0) << l0;
+        EXPECT_EQ(layer_count_for_thickness(r0 / 2.0, T0, 0, 1000), 2 * l0) << l0;
+        // (2.9): r'(n + 1) <= T0 adds a layer; just above r0 / 2 it does not reach 2 l0.
+        EXPECT_EQ(layer_count_for_thickness(r0 / 2.0 * 1.001, T0, 0, 1000), 2 * l0 - 1) << l0;
+    }
+    EXPECT_EQ(layer_count_for_thickness(0.0, 100.0, 15, 120), 120);  // eye touching: the cap
+    EXPECT_EQ(layer_count_for_thickness(1e9, 100.0, 15, 120), 15);   // far away: the minimum
+    EXPECT_EQ(layer_count_for_thickness(1.0, 100.0, 0, 50), 50);
+}
+
+TEST(LayerFormulas, EnlargementGrowsWithLayerAndAngle)
+{
+    for (int k : {0, 1, 15, 50}) {
+        EXPECT_EQ(layer_scale(k, 0.0), 1.0);
+        EXPECT_NEAR(layer_scale(k, pi / 2.0), 1.0 + k / 1000.0, 1e-15);
+        for (double theta : {0.1, 0.7, 1.3})
+            EXPECT_NEAR(layer_scale(k, theta), 1.0 + (k / 1000.0) * std::sin(theta), 1e-15);
+    }
+}
+
+TEST(LayerFormulas, ElevationAngle)
+{
+    const glm::dvec3 up{0, 0, 1}, p{10, 20, 30};
+    EXPECT_NEAR(elevation_angle(p + glm::dvec3(0, 0, 500), p, up), pi / 2.0, 1e-15);
+    EXPECT_EQ(elevation_angle(p + glm::dvec3(500, 0, 0), p, up), 0.0);
+    EXPECT_NEAR(elevation_angle(p + glm::dvec3(100, 0, 100), p, up), pi / 4.0, 1e-15);
+    // Below the plane: the same angle as the mirrored eye.
+    EXPECT_NEAR(elevation_angle(p + glm::dvec3(100, 0, -100), p, up), pi / 4.0, 1e-15);
+    EXPECT_EQ(elevation_angle(p, p, up), 0.0);  // eye at the point (L = 0)
+    EXPECT_NEAR(elevation_angle(p + glm::dvec3(0, 0, 1e7), p, up), pi / 2.0, 1e-15);
+}
+
+// ---- Per-vertex columns -------------------------------------------------------------------
+
+TEST(LayerColumn, FarEyeGivesTheReferenceStack)
+{
+    const LayerOptions o = options_15();
+    const glm::dvec3 p{0, 0, 100}, n{0, 0, 1};
+    for (const glm::dvec3 eye : {glm::dvec3(0, 0, 1e7), glm::dvec3(1e7, 0, 100), glm::dvec3(0, 0, 2100)}) {
+        const LayerColumn c = layer_column(o, eye, p, n);
+        EXPECT_EQ(c.spacing, 10.0);
+        EXPECT_EQ(c.count, 15.0);
+        for (int i = 0; i <= 15; ++i) {
+            const LayerVertex v = layer_vertex(o, c, i, p, {0, 0});
+            EXPECT_NEAR(v.alpha, 1.0 - 0.9 * i / 15, 1e-15);
+            EXPECT_EQ(v.exponent, 1.0);
+            EXPECT_NEAR(v.position.z, 100.0 + 10.0 * i, 1e-12);
+        }
+        EXPECT_EQ(layer_vertex(o, c, 16, p, {0, 0}).alpha, 0.0);  // above the stack
+    }
+}
+
+TEST(LayerColumn, ApproachingNarrowsAndAddsLayersKeepingTheThickness)
+{
+    const LayerOptions o = options_15();
+    const glm::dvec3 p{0, 0, 100}, n{0, 0, 1};
+    for (double L : {1999.0, 1000.0, 400.0, 250.0}) {
+        const LayerColumn c = layer_column(o, p + glm::dvec3(L, 0, 0), p, n);
+        EXPECT_NEAR(c.spacing, L / 200.0, 1e-13) << L;
+        EXPECT_NEAR(c.count * c.spacing, o.thickness, 1e-12);
+        const int whole = layer_count_for_thickness(c.spacing, o.thickness, 15, 120);
+        // The top whole layer has (2.7)'s 0.1 only when the count is whole; a_i follows (2.7) for n.
+        const LayerVertex top = layer_vertex(o, c, whole, p, {0, 0});
+        EXPECT_NEAR(top.alpha, layer_alpha(whole, c.count), 1e-15);
+        EXPECT_NEAR(top.exponent, c.spacing / 10.0, 1e-15);
+    }
+    // Exactly at half the reference distance: twice the layers, a_i for l = 30.
+    const LayerColumn half = layer_column(o, p + glm::dvec3(0, 0, 1000), p, n);
+    EXPECT_EQ(half.count, 30.0);
+    for (int i = 0; i <= 30; ++i)
+        EXPECT_NEAR(layer_vertex(o, half, i, p, {0, 0}).alpha, layer_alpha(i, 30), 1e-15);
+    // Without narrowing the spacing stays.
+    LayerOptions fixed = o;
+    fixed.narrowing = false;
+    EXPECT_EQ(layer_column(fixed, p + glm::dvec3(0, 0, 300), p, n).spacing, 10.0);
+}
+
+TEST(LayerColumn, PartialTopLayerFadesIn)
+{
+    const LayerOptions o = options_15();
+    const glm::dvec3 p{0, 0, 0}, n{0, 0, 1};
+    const LayerColumn c = layer_column(o, {0, 0, 1900}, p, n);  // n = 15.789...
+    ASSERT_GT(c.count, 15.0);
+    ASSERT_LT(c.count, 16.0);
+    const double top = layer_vertex(o, c, 16, p, {0, 0}).alpha;
+    EXPECT_NEAR(top, (c.count - 15.0) * layer_alpha(c.count, c.count), 1e-15);
+    // Continuity: just below the reference distance the new layer is almost invisible.
+    const LayerColumn near_ref = layer_column(o, {0, 0, 1999.999}, p, n);
+    EXPECT_LT(layer_vertex(o, near_ref, 16, p, {0, 0}).alpha, 1e-5);
+}
+
+TEST(LayerColumn, SingularEyes)
+{
+    const LayerOptions o = options_15();
+    const glm::dvec3 p{5, 5, 100}, n{0, 0, 1};
+    // Eye at the point (L = 0): spacing at its floor, count at the cap, everything finite.
+    const LayerColumn at = layer_column(o, p, p, n);
+    EXPECT_EQ(at.spacing, o.thickness / o.max_count);
+    EXPECT_EQ(at.count, double(o.max_count));
+    EXPECT_EQ(at.sin_theta, 0.0);
+    for (int i : {0, 1, 60, 120, 121})
+        EXPECT_TRUE(finite(layer_vertex(o, at, i, p, {0, 0}))) << i;
+    // Eye below the base surface: the same column as the mirrored eye above.
+    const LayerColumn below = layer_column(o, p + glm::dvec3(30, 0, -400), p, n);
+    const LayerColumn above = layer_column(o, p + glm::dvec3(30, 0, 400), p, n);
+    EXPECT_EQ(below.spacing, above.spacing);
+    EXPECT_EQ(below.count, above.count);
+    EXPECT_NEAR(below.sin_theta, above.sin_theta, 1e-15);
+    // Eye very far: the reference stack, finite.
+    const LayerColumn far = layer_column(o, {1e7, -1e7, 1e7}, p, n);
+    EXPECT_EQ(far.count, 15.0);
+    EXPECT_TRUE(finite(layer_vertex(o, far, 15, p, {0, 0})));
+}
+
+TEST(LayerColumn, ZeroAndOneLayer)
+{
+    LayerOptions o = options_15();
+    o.count = 0;
+    const glm::dvec3 p{0, 0, 0}, n{0, 0, 1};
+    const LayerColumn c0 = layer_column(o, {0, 0, 50}, p, n);
+    EXPECT_EQ(layer_vertex(o, c0, 0, p, {0, 0}).alpha, 1.0);
+    EXPECT_EQ(layer_vertex(o, c0, 0, p, {0, 0}).position, p);
+    o.count = 1;
+    o.thickness = 10.0;  // r0 = 10, L0 = 2000
+    const LayerColumn c1 = layer_column(o, {0, 0, 5000}, p, n);
+    EXPECT_EQ(c1.count, 1.0);
+    EXPECT_EQ(layer_vertex(o, c1, 0, p, {0, 0}).alpha, 1.0);
+    EXPECT_NEAR(layer_vertex(o, c1, 1, p, {0, 0}).alpha, 0.1, 1e-15);
+    EXPECT_EQ(layer_vertex(o, c1, 1, p, {0, 0}).position.z, 10.0);
+}
+
+TEST(LayerColumn, EnlargementAboutTheCentre)
+{
+    LayerOptions o = options_15();
+    const glm::dvec3 p{1000, -500, 0}, n{0, 0, 1};
+    const glm::dvec2 centre{200, 100};
+    // Straight above (theta = pi/2): P_k = 1 + k / 1000.
+    const LayerColumn top = layer_column(o, p + glm::dvec3(0, 0, 3000), p, n);
+    EXPECT_NEAR(top.sin_theta, 1.0, 1e-15);
+    const LayerVertex v = layer_vertex(o, top, 10, p, centre);
+    const glm::dvec2 expect = centre + (1.0 + 10 / 1000.0) * (glm::dvec2(p) - centre);
+    EXPECT_NEAR(v.position.x, expect.x, 1e-12);
+    EXPECT_NEAR(v.position.y, expect.y, 1e-12);
+    // From the side (theta = 0): no enlargement.
+    const LayerColumn side = layer_column(o, p + glm::dvec3(3000, 0, 0), p, n);
+    EXPECT_EQ(layer_vertex(o, side, 10, p, centre).position.x, p.x);
+    o.enlargement = false;
+    EXPECT_EQ(layer_vertex(o, layer_column(o, p + glm::dvec3(0, 0, 3000), p, n), 10, p, centre).position.x, p.x);
+}
+
+TEST(LayerColumn, DissipationThinsTopLayersFirst)
+{
+    LayerOptions o = options_15();
+    EXPECT_EQ(layer_dissipation(o, 10, 15), 1.0);  // no half-life: no dissipation
+    o.dissipation_half_life = 60.0;
+    o.time = 0.0;
+    EXPECT_EQ(layer_dissipation(o, 10, 15), 1.0);
+    o.time = 60.0;
+    EXPECT_NEAR(layer_dissipation(o, 0, 15), 0.5, 1e-15);
+    EXPECT_NEAR(layer_dissipation(o, 15, 15), 0.25, 1e-15);
+    double previous = 1.0;
+    for (double t : {10.0, 30.0, 90.0, 300.0}) {
+        o.time = t;
+        const double d = layer_dissipation(o, 5, 15);
+        EXPECT_LT(d, previous);
+        EXPECT_LT(layer_dissipation(o, 12, 15), d);
+        previous = d;
+    }
+}
+
+// ---- Texture --------------------------------------------------------------------------------
+
+TEST(LayerTexture, BorderAlpha)
+{
+    const BorderMask all_sides = 0x0F;
+    EXPECT_EQ(border_alpha(all_sides, 0.5, 0.5, 0.5), 1.0);  // a single patch: opaque centre
+    EXPECT_EQ(border_alpha(all_sides, 0.0, 0.5, 0.5), 0.0);
+    EXPECT_EQ(border_alpha(all_sides, 0.5, 1.0, 0.5), 0.0);
+    EXPECT_NEAR(border_alpha(all_sides, 0.25, 0.5, 0.5), 0.5, 1e-15);  // smoothstep(1/2)
+    EXPECT_EQ(border_alpha(0, 0.0, 0.0, 0.5), 1.0);                     // interior patch: uniform
+    // Side v = 0 only: alpha depends on v alone, zero on that side, one from w on.
+    EXPECT_EQ(border_alpha(0x01, 0.3, 0.0, 0.4), 0.0);
+    EXPECT_EQ(border_alpha(0x01, 0.0, 0.4, 0.4), 1.0);
+    EXPECT_EQ(border_alpha(0x01, 0.9, 0.2, 0.4), border_alpha(0x01, 0.1, 0.2, 0.4));
+    // A border corner (0,0): radial fade meeting the neighbours' side fades along the sides.
+    EXPECT_EQ(border_alpha(0x10, 0.0, 0.0, 0.5), 0.0);
+    EXPECT_EQ(border_alpha(0x10, 0.0, 0.2, 0.5), border_alpha(0x01, 0.7, 0.2, 0.5));
+}
+
+TEST(LayerTexture, AtlasHasOneTilePerMaskAndStaysInsideIt)
+{
+    LayerTextureOptions options;
+    options.resolution = 16;
+    const LayerTexture t = make_layer_texture({0, 3, 3, 0x0F, 0x10, 0}, options);
+    EXPECT_EQ(t.tiles.size(), 4u);
+    EXPECT_EQ(t.width % 16, 0);
+    for (const auto& [mask, origin] : t.tiles) {
+        for (int y = 0; y < 16; ++y)
+            for (int x = 0; x < 16; ++x) {
+                const double a = border_alpha(mask, x / 15.0, y / 15.0, options.fade_width);
+                const auto texel = t.rgba[(std::size_t(origin.y + y) * t.width + origin.x + x) * 4 + 3];
+                EXPECT_EQ(texel, std::lround(a * 255.0));
+            }
+        const glm::dvec2 lo = t.atlas_uv(mask, 0, 0), hi = t.atlas_uv(mask, 1, 1);
+        EXPECT_NEAR(lo.x * t.width, origin.x + 0.5, 1e-12);
+        EXPECT_NEAR(hi.y * t.height, origin.y + 15.5, 1e-12);
+    }
+    options.resolution = 2;
+    EXPECT_THROW(make_layer_texture({0}, options), InputError);
+}
+
+// ---- The stack over a fitted network ------------------------------------------------------
+
+namespace {
+struct FittedHills {
+    Terrain terrain{kiri::test::make_heightfield(101, 101, 20.0, -1000.0, -1000.0, kiri::test::hills)};
+    BaseSurface surface;
+    Tessellation tessellation;
+    FittedHills()
+        : surface(build_control_mesh({{{-900, -850}, {880, -700}, {700, 800}, {-600, 650}}}, terrain, {250.0}),
+                  SurfaceKind::gregory)
+    {
+        surface.fit(terrain, FitOptions{});
+        tessellation = tessellate(surface, {6});
+    }
+};
+const FittedHills& hills()
+{
+    static const FittedHills h;
+    return h;
+}
+}  // namespace
+
+TEST(LayerStack, NoCracksBetweenPatchesInAnyLayer)
+{
+    const auto& h = hills();
+    LayerOptions o = options_15();
+    const LayerBase base = make_layer_base(h.surface, h.tessellation, o);
+    ASSERT_GT(h.surface.num_patches(), 8);
+    // Group base vertices by position: copies on shared edges and corners.
+    std::map<std::tuple<double, double, double>, std::vector<std::size_t>> copies;
+    for (std::size_t v = 0; v < base.position.size(); ++v)
+        copies[{base.position[v].x, base.position[v].y, base.position[v].z}].push_back(v);
+    int shared = 0;
+    for (const glm::dvec3 eye : {glm::dvec3(-200, -300, 800), glm::dvec3(3000, -4000, 2500), glm::dvec3(0, 0, 450)}) {
+        const std::vector<LayerMesh> layers = build_layers(base, o, eye);
+        ASSERT_GE(layers.size(), 16u);
+        for (const auto& [key, list] : copies) {
+            if (list.size() < 2)
+                continue;
+            ++shared;
+            for (const LayerMesh& layer : layers)
+                for (std::size_t k = 1; k < list.size(); ++k) {
+                    const LayerVertex& a = layer.vertices[list[0]];
+                    const LayerVertex& b = layer.vertices[list[k]];
+                    ASSERT_EQ(a.position, b.position) << "layer " << layer.index;
+                    ASSERT_EQ(a.alpha, b.alpha);
+                    ASSERT_EQ(a.exponent, b.exponent);
+                }
+        }
+    }
+    EXPECT_GT(shared, 100);
+}
+
+TEST(LayerStack, TextureIsContinuousAcrossSharedEdges)
+{
+    const auto& h = hills();
+    const TriMesh& m = h.tessellation.mesh;
+    OpenMesh::VPropHandleT<int> pid;
+    ASSERT_TRUE(m.get_property_handle(pid, patch_id_property));
+    std::map<std::tuple<double, double>, std::vector<double>> alpha_at;
+    for (auto v : m.vertices()) {
+        const auto& p = m.point(v);
+        const auto& t = m.texcoord2D(v);
+        const BorderMask mask = patch_border_mask(h.surface.control(), m.property(pid, v));
+        alpha_at[{p[0], p[1]}].push_back(border_alpha(mask, t[0], t[1], 0.5));
+    }
+    int checked = 0, zero = 0;
+    for (const auto& [key, list] : alpha_at) {
+        for (double a : list)
+            EXPECT_NEAR(a, list[0], 1e-12);
+        checked += list.size() > 1;
+        zero += list[0] == 0.0;
+    }
+    EXPECT_GT(checked, 100);
+    EXPECT_GT(zero, 20);  // the outer border is transparent
+}
+
+TEST(LayerStack, EyeDecidesTheCount)
+{
+    const auto& h = hills();
+    LayerOptions o = options_15();
+    const LayerBase base = make_layer_base(h.surface, h.tessellation, o);
+    EXPECT_EQ(layers_for_eye(base, o, {0, 0, 1e7}), 15);
+    EXPECT_EQ(layers_for_eye(base, o, base.position[0]), o.max_count);
+    const int near = layers_for_eye(base, o, {0, -1500, 700});
+    EXPECT_GT(near, 15);
+    EXPECT_LE(near, o.max_count);
+    o.narrowing = false;
+    EXPECT_EQ(layers_for_eye(base, o, base.position[0]), 15);
+    // The centre of enlargement lies inside the footprint.
+    EXPECT_GT(base.centre.x, -600.0);
+    EXPECT_LT(base.centre.x, 600.0);
+}
+
+TEST(LayerOptionsJson, RoundTripAndRefusals)
+{
+    const std::string scene = R"({"terrain": {"path": "x.tif"}, "fog": {"thickness": 120},
+        "layers": {"count": 30, "opacity": 0.2, "narrowing": false, "wind": [3, -1], "dissipation_half_life": 90}})";
+    const Scene s = parse_scene(scene, "s.json", ".");
+    EXPECT_EQ(s.layers.count, 30);
+    EXPECT_EQ(s.layers.opacity, 0.2);
+    EXPECT_FALSE(s.layers.narrowing);
+    EXPECT_EQ(s.layers.wind, glm::dvec2(3, -1));
+    const Scene back = parse_scene(scene_to_json(s), "s.json", ".");
+    EXPECT_EQ(back.layers.count, 30);
+    EXPECT_EQ(back.layers.dissipation_half_life, 90.0);
+    const LayerOptions world = world_layer_options(s);
+    EXPECT_EQ(world.thickness, 120.0);
+    auto refused = [](const std::string& layers, const std::string& pointer) {
+        try {
+            parse_scene(R"({"terrain": {"path": "x.tif"}, "layers": )" + layers + "}", "s.json", ".");
+        } catch (const InputError& e) {
+            EXPECT_EQ(e.field(), pointer) << e.what();
+            return;
+        }
+        ADD_FAILURE() << layers << " was accepted";
+    };
+    refused(R"({"count": -1})", "/layers/count");
+    refused(R"({"count": 2.5})", "/layers/count");
+    refused(R"({"opacity": 1})", "/layers/opacity");
+    refused(R"({"fade_width": 0})", "/layers/fade_width");
+    refused(R"({"texture_size": 2})", "/layers/texture_size");
+    refused(R"({"narrowing": "yes"})", "/layers/narrowing");
+    refused(R"({"colour": 1})", "/layers/colour");
+    refused(R"({"count": 30, "max_count": 20})", "/layers/max_count");
+}
