@@ -3,10 +3,12 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "commands.hpp"
 #include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/terrain.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/renderer.hpp"
@@ -15,7 +17,7 @@ namespace kiri::cli {
 namespace {
 
 struct RenderArgs {
-    std::string scene, out, camera, mode = "terrain";
+    std::string scene, out, camera, mode = "auto";
     int width = 0, height = 0;
 };
 
@@ -45,11 +47,18 @@ void run(const RenderArgs& a)
     render::Renderer renderer;
     renderer.set_terrain(terrain);
     renderer.set_sun(to_sun(scene.sun));
+    // "auto" draws what the scene has: its fog as layers when it has a fog section.
+    const std::string mode = a.mode != "auto" ? a.mode : scene.fog ? "layers" : "terrain";
+    std::optional<geometry::SceneFog> fog;
+    if (mode == "layers") {
+        fog = geometry::author_scene_fog(scene, terrain);
+        renderer.set_layers(fog->base, fog->layers);
+    }
     const render::Image image = renderer.render(camera, width, height);
     render::write_png_atomic(a.out, image);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n", a.out.c_str());
-    std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, a.mode.c_str(), seconds);
+    std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, mode.c_str(), seconds);
 }
 
 }  // namespace
@@ -63,7 +72,8 @@ void add_render_command(CLI::App& app)
     sub->add_option("--width", a->width, "image width in pixels (default: the scene's)")->check(CLI::Range(1, 16384));
     sub->add_option("--height", a->height, "image height in pixels (default: the scene's)")->check(CLI::Range(1, 16384));
     sub->add_option("--camera", a->camera, "camera name from the scene (default: its first)");
-    sub->add_option("--mode", a->mode, "what to draw")->check(CLI::IsMember({"terrain"}));
+    sub->add_option("--mode", a->mode, "what to draw: terrain, layers (the fog's layer stack), auto (layers when the scene has fog)")
+        ->check(CLI::IsMember({"auto", "terrain", "layers"}));
     sub->callback([a] { run(*a); });
 }
 

@@ -7,6 +7,8 @@
 
 #include "frame_context.hpp"
 #include "gl_debug.hpp"
+#include "kiri/geometry/terrain.hpp"
+#include "layers_pass.hpp"
 #include "render_targets.hpp"
 #include "sky_pass.hpp"
 #include "terrain_pass.hpp"
@@ -47,12 +49,13 @@ private:
 struct Renderer::Impl {
     detail::SkyPass sky;
     detail::TerrainPass terrain;
+    detail::LayersPass layers;
     detail::RenderTargets targets;
     SunLight sun;
     FrameStats stats;
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
-    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, resolve_timer{"resolve+readback"};
+    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve+readback"};
 };
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -62,7 +65,18 @@ void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration
 {
     if (impl_->terrain.set_terrain(terrain, exaggeration))
         ++impl_->pending_uploads;
+    if (impl_->layers.set_ground(terrain.heightfield(), exaggeration))
+        ++impl_->pending_uploads;
 }
+
+void Renderer::set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options)
+{
+    if (impl_->layers.set_base(base))
+        ++impl_->pending_uploads;
+    impl_->layers.set_options(options);
+}
+
+void Renderer::clear_layers() { impl_->layers.clear(); }
 
 void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
 
@@ -71,8 +85,9 @@ Image Renderer::render(const Camera& camera, int width, int height)
     Impl& r = *impl_;
     const auto start = std::chrono::steady_clock::now();
     r.targets.ensure(width, height);
-    const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, r.terrain.bounds_min(),
-                                                          r.terrain.bounds_max());
+    glm::dvec3 scene_min = r.terrain.bounds_min(), scene_max = r.terrain.bounds_max();
+    r.layers.extend_bounds(scene_min, scene_max);
+    const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
     r.targets.bind_for_drawing();
     r.sky_timer.begin();
     r.sky.draw(frame);
@@ -80,6 +95,9 @@ Image Renderer::render(const Camera& camera, int width, int height)
     r.terrain_timer.begin();
     r.terrain.draw(frame);
     r.terrain_timer.end();
+    r.layers_timer.begin();
+    r.layers.draw(frame);
+    r.layers_timer.end();
     r.resolve_timer.begin();
     r.targets.resolve();
     Image image{width, height, r.targets.read_rgba()};
@@ -87,9 +105,10 @@ Image Renderer::render(const Camera& camera, int width, int height)
     detail::check_gl_errors("Renderer::render");
 
     r.stats = {};
-    for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.resolve_timer})
+    for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer})
         r.stats.passes.push_back(t->result());
     r.stats.uploads = std::exchange(r.pending_uploads, 0);
+    r.stats.layers = r.layers.last_layer_count();
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     r.last_frame = frame;
     return image;

@@ -7,7 +7,9 @@
 #include <string_view>
 
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "gl_objects.hpp"
 
@@ -26,7 +28,12 @@ public:
     GLint location(const char* uniform) const { return glGetUniformLocation(program_.get(), uniform); }
     void set(const char* uniform, float v) const { glProgramUniform1f(id(), location(uniform), v); }
     void set(const char* uniform, int v) const { glProgramUniform1i(id(), location(uniform), v); }
+    void set(const char* uniform, const glm::vec2& v) const { glProgramUniform2f(id(), location(uniform), v.x, v.y); }
     void set(const char* uniform, const glm::vec3& v) const;
+    void set(const char* uniform, const glm::vec4& v) const
+    {
+        glProgramUniform4f(id(), location(uniform), v.x, v.y, v.z, v.w);
+    }
     void set(const char* uniform, const glm::mat4& m) const;
 
 private:

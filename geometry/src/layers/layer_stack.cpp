@@ -42,6 +42,8 @@ void validate_layer_options(const LayerOptions& o, const std::string& label)
         refuse(label, "detail_scale", "must be > 0");
     if (!(o.dissipation_half_life >= 0.0) || !std::isfinite(o.dissipation_half_life))
         refuse(label, "dissipation_half_life", "must be >= 0 (0: no dissipation)");
+    if (!std::isfinite(o.base_offset))
+        refuse(label, "base_offset", "must be finite");
     if (!finite2(o.wind))
         refuse(label, "wind", "must be finite");
     if (!std::isfinite(o.time))
@@ -141,7 +143,7 @@ LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessel
         const auto& p = mesh.point(vh);
         const auto& n = mesh.normal(vh);
         const auto& t = mesh.texcoord2D(vh);
-        base.position[i] = {p[0], p[1], p[2]};
+        base.position[i] = {p[0], p[1], p[2] + options.base_offset};
         base.normal[i] = {n[0], n[1], n[2]};
         base.atlas_uv[i] = base.texture.atlas_uv(masks[std::size_t(mesh.property(patch_id, vh))], t[0], t[1]);
         base.min = glm::min(base.min, base.position[i]);
@@ -156,12 +158,21 @@ LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessel
 
 int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)
 {
-    if (options.count == 0)
+    if (options.count == 0 || base.position.empty())
         return 0;
-    double most = options.count;
-    for (std::size_t i = 0; i < base.position.size(); ++i)
-        most = std::max(most, layer_column(options, eye, base.position[i], base.normal[i]).count);
-    return std::min(int(std::ceil(most - 1e-9)), options.max_count);
+    // A column's count only grows as the eye comes closer: the nearest vertex decides.
+    std::size_t nearest = 0;
+    double best = INFINITY;
+    for (std::size_t i = 0; i < base.position.size(); ++i) {
+        const glm::dvec3 d = eye - base.position[i];
+        const double d2 = glm::dot(d, d);
+        if (d2 < best) {
+            best = d2;
+            nearest = i;
+        }
+    }
+    const double most = layer_column(options, eye, base.position[nearest], base.normal[nearest]).count;
+    return std::clamp(int(std::ceil(most - 1e-9)), options.count, options.max_count);
 }
 
 std::vector<LayerMesh> build_layers(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)

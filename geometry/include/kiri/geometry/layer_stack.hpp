@@ -51,11 +51,14 @@ struct LayerOptions {
     bool narrowing = true;           //!< (2.8) + (2.9): spacing narrows and layers are added near the eye
     bool enlargement = true;         //!< (2.10)
     double enlargement_rate = 1e-3;  //!< 1/1000 of (2.10)
+    //! Metres added to the base's height: a fog lake's fitted surface is its top, so its stack
+    //! starts one thickness below (author_scene_fog sets -thickness in lake mode).
+    double base_offset = 0.0;
     int max_count = 120;             //!< most layers the narrowing may add (>= count)
-    double opacity = 0.3;            //!< a layer's alpha where a_i = 1, at the reference spacing, [0, 0.999]
+    double opacity = 0.12;           //!< a layer's alpha where a_i = 1, at the reference spacing, [0, 0.999]
     LayerTextureOptions texture;
     double ground_fade = 20.0;       //!< metres: a layer fades out this close to the ground (renderer)
-    double detail = 0.35;            //!< strength of the world-space noise in the alpha, [0, 1] (renderer)
+    double detail = 0.6;             //!< strength of the world-space noise in the alpha, [0, 1] (renderer)
     double detail_scale = 1500.0;    //!< metres: size of the noise's largest features (renderer)
     double dissipation_half_life = 0.0;  //!< seconds; 0: no dissipation (top layers thin faster)
     glm::dvec2 wind{0.0};            //!< m/s: drift of the detail texture

@@ -14,6 +14,8 @@
 
 namespace kiri::geometry {
 class Terrain;
+struct LayerBase;
+struct LayerOptions;
 }
 
 namespace kiri::render {
@@ -35,6 +37,7 @@ struct FrameStats {
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
     int uploads = 0;  //!< GPU resources (re)built during this frame
+    int layers = 0;   //!< fog layers above the base drawn (0: none, or culled off-screen)
 };
 
 class Renderer {
@@ -49,6 +52,10 @@ public:
     //! Re-uploads only when the terrain or the exaggeration changed.
     void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0);
     void set_sun(const SunLight& sun);
+    //! The fog's layer stack over the terrain (base kept by reference: it must outlive the
+    //! renderer's use of it). Uploads only when the base changed; options apply every frame.
+    void set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options);
+    void clear_layers();
 
     //! Renders the frame offscreen and reads it back.
     Image render(const Camera& camera, int width, int height);

@@ -1,0 +1,66 @@
+#version 450 core
+// The layer stack (REFERENCE 1.3) drawn as instances of the base tessellation: instance k is
+// layer i (bottom first or top first). Mirrors geometry::layer_column / layer_vertex
+// (geometry/src/layers/layer_stack.cpp): per-vertex spacing narrowed near the eye (2.8),
+// real-valued count keeping the thickness (2.9) with the partial top layer faded in, alpha
+// (2.7), enlargement about the centre (2.10).
+layout(location = 0) in vec3 a_position;  // base surface, world metres
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in vec2 a_uv;        // into the border-mask atlas
+
+uniform mat4 u_view_projection;
+uniform vec3 u_eye;
+uniform vec2 u_centre;
+uniform float u_thickness;   // T0
+uniform float u_count;       // l0
+uniform float u_max_count;
+uniform float u_divisor;     // 200 of (2.6)
+uniform float u_rate;        // 1/1000 of (2.10)
+uniform int u_narrowing;
+uniform int u_enlargement;
+uniform int u_top;           // layers above the base drawn this frame
+uniform int u_bottom_first;
+uniform float u_time;
+uniform float u_half_life;   // 0: no dissipation
+
+out vec3 v_world;
+out vec2 v_uv;
+out float v_alpha;
+out float v_exponent;
+flat out int v_layer;
+
+void main()
+{
+    int i = u_bottom_first != 0 ? gl_InstanceID : u_top - gl_InstanceID;
+    vec3 p = a_position;
+    v_uv = a_uv;
+    v_layer = i;
+    if (u_count <= 0.0) {  // the base alone
+        v_world = p;
+        v_alpha = i == 0 ? 1.0 : 0.0;
+        v_exponent = 1.0;
+        gl_Position = u_view_projection * vec4(p, 1.0);
+        return;
+    }
+    float r0 = u_thickness / u_count;
+    float r = r0;
+    vec3 d = u_eye - p;
+    float L = length(d);
+    if (u_narrowing != 0) {
+        float L0 = u_divisor * r0;
+        r = r0 * (1.0 - clamp((L0 - L) / L0, 0.0, 1.0));
+    }
+    r = max(r, u_thickness / u_max_count);
+    float n = u_thickness / r;
+    float sin_theta = (u_enlargement != 0 && L > 0.0) ? min(abs(dot(a_normal, d)) / L, 1.0) : 0.0;
+    float fi = float(i);
+    float fade_in = clamp(n + 1.0 - fi, 0.0, 1.0);
+    v_alpha = fade_in * (1.0 - 0.9 * min(fi, n) / n);
+    if (u_half_life > 0.0 && u_time > 0.0)
+        v_alpha *= exp2(-u_time / u_half_life * (1.0 + min(fi / n, 1.0)));
+    v_exponent = r / r0;
+    float scale = 1.0 + fi * u_rate * sin_theta;
+    vec2 xy = u_centre + scale * (p.xy - u_centre);
+    v_world = vec3(xy, p.z + fi * r);
+    gl_Position = u_view_projection * vec4(v_world, 1.0);
+}

@@ -1,0 +1,186 @@
+#include "layers_pass.hpp"
+
+#include <algorithm>
+#include <array>
+#include <vector>
+
+#include "kiri/geometry/heightfield.hpp"
+
+namespace kiri::render::detail {
+namespace {
+
+struct Vertex {
+    float position[3];
+    float normal[3];
+    float uv[2];
+};
+
+}  // namespace
+
+LayersPass::LayersPass() : program_({"layers.vert", "layers.frag"}) {}
+
+bool LayersPass::set_base(const geometry::LayerBase& base)
+{
+    base_ = &base;
+    if (uploaded_base_ == base.position.data() && uploaded_base_size_ == base.position.size() && index_count_ > 0)
+        return false;
+    std::vector<Vertex> vertices(base.position.size());
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+        const glm::dvec3& p = base.position[i];
+        const glm::dvec3& n = base.normal[i];
+        vertices[i] = {{float(p.x), float(p.y), float(p.z)},
+                       {float(n.x), float(n.y), float(n.z)},
+                       {float(base.atlas_uv[i].x), float(base.atlas_uv[i].y)}};
+    }
+    vao_ = make_vertex_array();
+    vertices_ = make_buffer();
+    indices_ = make_buffer();
+    glNamedBufferStorage(vertices_.get(), GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+    glNamedBufferStorage(indices_.get(), GLsizeiptr(base.triangles.size() * sizeof(std::uint32_t)),
+                         base.triangles.data(), 0);
+    glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, sizeof(Vertex));
+    glVertexArrayElementBuffer(vao_.get(), indices_.get());
+    const GLuint sizes[3] = {3, 3, 2};
+    const GLuint offsets[3] = {0, 3 * sizeof(float), 6 * sizeof(float)};
+    for (GLuint a = 0; a < 3; ++a) {
+        glEnableVertexArrayAttrib(vao_.get(), a);
+        glVertexArrayAttribFormat(vao_.get(), a, GLint(sizes[a]), GL_FLOAT, GL_FALSE, offsets[a]);
+        glVertexArrayAttribBinding(vao_.get(), a, 0);
+    }
+    index_count_ = GLsizei(base.triangles.size());
+
+    const geometry::LayerTexture& t = base.texture;
+    atlas_ = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(atlas_.get(), 1, GL_RGBA8, t.width, t.height);
+    glTextureSubImage2D(atlas_.get(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
+    glTextureParameteri(atlas_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(atlas_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(atlas_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(atlas_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    uploaded_base_ = base.position.data();
+    uploaded_base_size_ = base.position.size();
+    return true;
+}
+
+bool LayersPass::set_ground(const geometry::Heightfield& hf, double exaggeration)
+{
+    if (uploaded_heights_ == hf.z.data() && uploaded_exaggeration_ == exaggeration && heights_)
+        return false;
+    std::vector<float> z(hf.z.size());
+    for (std::size_t i = 0; i < z.size(); ++i)
+        z[i] = float(hf.z[i] * exaggeration);
+    heights_ = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(heights_.get(), 1, GL_R32F, hf.nx, hf.ny);
+    glTextureSubImage2D(heights_.get(), 0, 0, 0, hf.nx, hf.ny, GL_RED, GL_FLOAT, z.data());
+    glTextureParameteri(heights_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(heights_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(heights_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(heights_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const double ex = std::max(hf.x_max() - hf.x0, 1e-9), ey = std::max(hf.y_max() - hf.y0, 1e-9);
+    height_rect_ = {float(hf.x0), float(hf.y0), float(1.0 / ex), float(1.0 / ey)};
+    height_texels_ = {float(hf.nx), float(hf.ny)};
+    uploaded_heights_ = hf.z.data();
+    uploaded_exaggeration_ = exaggeration;
+    return true;
+}
+
+void LayersPass::stack_bounds(glm::dvec3& lo, glm::dvec3& hi) const
+{
+    // The base raised by the thickness (plus the partial top layer) and grown by the largest
+    // enlargement about the centre.
+    const double grow = 1.0 + options_.max_count * options_.enlargement_rate;
+    lo = base_->min;
+    hi = base_->max;
+    for (int k = 0; k < 2; ++k) {
+        lo[k] = base_->centre[k] + grow * (lo[k] - base_->centre[k]);
+        hi[k] = base_->centre[k] + grow * (hi[k] - base_->centre[k]);
+    }
+    hi.z += options_.thickness * (1.0 + 1.0 / std::max(options_.count, 1));
+}
+
+void LayersPass::extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const
+{
+    if (!has_layers() || !base_)
+        return;
+    glm::dvec3 a, b;
+    stack_bounds(a, b);
+    lo = glm::min(lo, a);
+    hi = glm::max(hi, b);
+}
+
+bool LayersPass::visible(const FrameContext& frame) const
+{
+    if (!has_layers() || !base_)
+        return false;
+    glm::dvec3 lo, hi;
+    stack_bounds(lo, hi);
+    std::array<glm::dvec4, 8> clip;
+    for (int c = 0; c < 8; ++c)
+        clip[c] = frame.projection * frame.view *
+                  glm::dvec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0);
+    for (int axis = 0; axis < 3; ++axis)
+        for (double side : {-1.0, 1.0}) {
+            bool all_out = true;
+            for (const glm::dvec4& q : clip)
+                all_out = all_out && side * q[axis] > q.w;
+            if (all_out)
+                return false;
+        }
+    return true;
+}
+
+void LayersPass::draw(const FrameContext& frame)
+{
+    last_layers_ = 0;
+    if (!visible(frame) || !heights_)
+        return;
+    const glm::dvec3 eye(frame.eye);
+    const int top = geometry::layers_for_eye(*base_, options_, eye);
+    last_layers_ = top;
+    const bool bottom_first = eye.z >= 0.5 * (base_->min.z + base_->max.z);
+    const auto& o = options_;
+    program_.set("u_view_projection", frame.view_projection);
+    program_.set("u_eye", frame.eye);
+    program_.set("u_centre", glm::vec2(base_->centre));
+    program_.set("u_thickness", float(o.thickness));
+    program_.set("u_count", float(o.count));
+    program_.set("u_max_count", float(o.max_count));
+    program_.set("u_divisor", float(o.spacing_divisor));
+    program_.set("u_rate", float(o.enlargement_rate));
+    program_.set("u_narrowing", int(o.narrowing));
+    program_.set("u_enlargement", int(o.enlargement));
+    program_.set("u_top", top);
+    program_.set("u_bottom_first", int(bottom_first));
+    program_.set("u_time", float(o.time));
+    program_.set("u_half_life", float(o.dissipation_half_life));
+    program_.set("u_atlas", 0);
+    program_.set("u_heights", 1);
+    program_.set("u_height_rect", height_rect_);
+    program_.set("u_height_texels", height_texels_);
+    program_.set("u_opacity", float(o.opacity));
+    program_.set("u_ground_fade", float(o.ground_fade));
+    program_.set("u_detail", float(o.detail));
+    program_.set("u_detail_scale", float(o.detail_scale));
+    program_.set("u_drift", glm::vec2(o.wind * o.time));
+    program_.set("u_sun_direction", frame.sun_direction);
+    program_.set("u_sun_radiance", frame.sun_radiance);
+    program_.set("u_ambient", frame.ambient);
+    program_.set("u_sky_horizon", frame.sky_horizon);
+    program_.set("u_haze_density", frame.haze_density);
+    program_.set("u_exposure", frame.exposure);
+    program_.use();
+    glBindTextureUnit(0, atlas_.get());
+    glBindTextureUnit(1, heights_.get());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glDisable(GL_CULL_FACE);
+    glBindVertexArray(vao_.get());
+    glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, top + 1);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+}
+
+}  // namespace kiri::render::detail

@@ -1,0 +1,55 @@
+#pragma once
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "frame_context.hpp"
+#include "kiri/geometry/layer_stack.hpp"
+#include "shader_program.hpp"
+
+namespace kiri::geometry {
+struct Heightfield;
+}
+
+namespace kiri::render::detail {
+
+//! The fog's layer stack: the base tessellation uploaded once, drawn as instances (one per
+//! layer) with the stack's formulas in the vertex shader, blended over the terrain with the
+//! depth test on and depth writes off.
+class LayersPass {
+public:
+    LayersPass();
+    //! Uploads the base and its atlas; returns true when it did (a new base).
+    bool set_base(const geometry::LayerBase& base);
+    void set_options(const geometry::LayerOptions& options) { options_ = options; }
+    //! The ground the layers fade into (world heights, exaggeration applied).
+    bool set_ground(const geometry::Heightfield& heightfield, double exaggeration);
+    void clear() { index_count_ = 0; }
+    bool has_layers() const { return index_count_ > 0; }
+    //! Layers above the base the last draw used (0 when culled or empty).
+    int last_layer_count() const { return last_layers_; }
+    //! Grows (lo, hi) to hold every layer (for the frame's near and far planes).
+    void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
+    //! False when the stack's bounds lie outside the view (the pass then costs nothing).
+    bool visible(const FrameContext& frame) const;
+    void draw(const FrameContext& frame);
+
+private:
+    ShaderProgram program_;
+    VertexArray vao_;
+    Buffer vertices_, indices_;
+    Texture atlas_, heights_;
+    GLsizei index_count_ = 0;
+    geometry::LayerOptions options_;
+    const geometry::LayerBase* base_ = nullptr;
+    const void* uploaded_base_ = nullptr;
+    std::size_t uploaded_base_size_ = 0;
+    const void* uploaded_heights_ = nullptr;
+    double uploaded_exaggeration_ = 0.0;
+    glm::vec4 height_rect_{0.0f};
+    glm::vec2 height_texels_{1.0f};
+    int last_layers_ = 0;
+    void stack_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
+};
+
+}  // namespace kiri::render::detail
