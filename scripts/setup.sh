@@ -26,3 +26,8 @@ fi
 if ! command -v npm >/dev/null 2>&1; then
   DEBIAN_FRONTEND=noninteractive ${SUDO:-} apt-get install -y -qq nodejs npm
 fi
+# The Khronos glTF validator (tests run it on exported .glb files), pinned in tools/gltf-validator.
+VALIDATOR_DIR="$(dirname "$0")/../tools/gltf-validator"
+if [ ! -f "$VALIDATOR_DIR/node_modules/gltf-validator/package.json" ]; then
+  (cd "$VALIDATOR_DIR" && npm install --no-audit --no-fund --loglevel=error)
+fi

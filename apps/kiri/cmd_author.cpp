@@ -13,6 +13,8 @@
 #include "kiri/geometry/dem.hpp"
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/fog_spec.hpp"
+#include "kiri/geometry/layer_export.hpp"
+#include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/scene.hpp"
 #include "kiri/geometry/terrain.hpp"
 
@@ -49,7 +51,12 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     const auto t0 = std::chrono::steady_clock::now();
     const Terrain terrain = load_scene_terrain(scene);
     const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const AuthoredSurface a = author_base_surface(terrain, world_fog_spec(scene), scene_path.string());
+    const SceneFog fog = author_scene_fog(scene, terrain);
+    const AuthoredSurface& a = fog.authored;
+    // The layers are view dependent: exported as the scene's first camera sees them.
+    const Bounds3 bounds = terrain.bounds();
+    const glm::dvec3 eye = scene.camera("", bounds.min, bounds.max).position;
+    const std::vector<LayerMesh> layers = build_layers(fog.base, fog.layers, eye);
 
     std::error_code ec;
     fs::create_directories(out_dir, ec);
@@ -58,7 +65,10 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     const std::string stem = ".kiri-author.tmp.";
     const std::pair<fs::path, fs::path> files[] = {{out_dir / (stem + "obj"), out_dir / "base_surface.obj"},
                                                    {out_dir / (stem + "ply"), out_dir / "base_surface.ply"},
-                                                   {out_dir / (stem + "json"), out_dir / "report.json"}};
+                                                   {out_dir / (stem + "json"), out_dir / "report.json"},
+                                                   {out_dir / (stem + "glb"), out_dir / "layers.glb"},
+                                                   {out_dir / (stem + "layers.obj"), out_dir / "layers.obj"},
+                                                   {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"}};
     try {
         write_mesh_file(a.tessellation.mesh, files[0].first, false);
         write_mesh_file(a.tessellation.mesh, files[1].first, true);
@@ -66,6 +76,9 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
         // The terrain's load time sits with the other stages' timings.
         report.insert(report.find("\"timings_s\": {") + 14, "\n    \"load_terrain\": " + std::to_string(load_s) + ",");
         write_text(report, files[2].first);
+        write_layers_glb(files[3].first, fog.base, layers, fog.layers, &terrain.mesh());
+        write_layers_obj(files[4].first, fog.base, layers);
+        write_layers_ply(files[5].first, fog.base, layers, fog.layers);
         for (const auto& [tmp, final_path] : files) {
             fs::rename(tmp, final_path, ec);
             if (ec)
@@ -76,9 +89,10 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
             fs::remove(tmp, ec);
         throw;
     }
-    std::printf("%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m -> %s\n",
+    std::printf("%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
+                "%zu layers -> %s\n",
                 scene_path.filename().string().c_str(), a.surface.num_patches(), a.tessellation.mesh.n_faces(),
-                a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, out_dir.string().c_str());
+                a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, layers.size(), out_dir.string().c_str());
     return 0;
 }
 }  // namespace
@@ -86,7 +100,7 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
 //! Registers `kiri author`.
 void add_author_command(CLI::App& app)
 {
-    auto* sub = app.add_subcommand("author", "Fit the scene's fog base surface; write OBJ, PLY and report.json");
+    auto* sub = app.add_subcommand("author", "Fit the scene's fog; write its base surface and layers (OBJ, PLY, glTF) and report.json");
     auto scene = std::make_shared<std::string>();
     auto out = std::make_shared<std::string>();
     sub->add_option("scene", *scene, "scene file (JSON) with a fog section")->required();

@@ -62,8 +62,18 @@ bool LayersPass::set_base(const geometry::LayerBase& base)
     return true;
 }
 
-bool LayersPass::set_ground(const geometry::Heightfield& hf, double exaggeration)
+void LayersPass::set_ground(const geometry::Heightfield& hf, double exaggeration)
 {
+    ground_ = &hf;
+    ground_exaggeration_ = exaggeration;
+}
+
+bool LayersPass::upload_ground()
+{
+    if (!ground_ || ground_->nx < 2 || ground_->ny < 2)
+        return false;
+    const geometry::Heightfield& hf = *ground_;
+    const double exaggeration = ground_exaggeration_;
     if (uploaded_heights_ == hf.z.data() && uploaded_exaggeration_ == exaggeration && heights_)
         return false;
     std::vector<float> z(hf.z.size());
@@ -129,11 +139,14 @@ bool LayersPass::visible(const FrameContext& frame) const
     return true;
 }
 
-void LayersPass::draw(const FrameContext& frame)
+bool LayersPass::draw(const FrameContext& frame)
 {
     last_layers_ = 0;
-    if (!visible(frame) || !heights_)
-        return;
+    if (!visible(frame))
+        return false;
+    const bool uploaded = upload_ground();
+    if (!heights_)
+        return uploaded;
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
@@ -181,6 +194,7 @@ void LayersPass::draw(const FrameContext& frame)
     glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, top + 1);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
+    return uploaded;
 }
 
 }  // namespace kiri::render::detail

@@ -22,8 +22,9 @@ public:
     //! Uploads the base and its atlas; returns true when it did (a new base).
     bool set_base(const geometry::LayerBase& base);
     void set_options(const geometry::LayerOptions& options) { options_ = options; }
-    //! The ground the layers fade into (world heights, exaggeration applied).
-    bool set_ground(const geometry::Heightfield& heightfield, double exaggeration);
+    //! The ground the layers fade into (kept by reference; uploaded on the first draw with
+    //! layers, so a scene without fog never pays for it).
+    void set_ground(const geometry::Heightfield& heightfield, double exaggeration);
     void clear() { index_count_ = 0; }
     bool has_layers() const { return index_count_ > 0; }
     //! Layers above the base the last draw used (0 when culled or empty).
@@ -32,7 +33,8 @@ public:
     void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
     //! False when the stack's bounds lie outside the view (the pass then costs nothing).
     bool visible(const FrameContext& frame) const;
-    void draw(const FrameContext& frame);
+    //! Returns true when it had to upload the ground first.
+    bool draw(const FrameContext& frame);
 
 private:
     ShaderProgram program_;
@@ -44,6 +46,9 @@ private:
     const geometry::LayerBase* base_ = nullptr;
     const void* uploaded_base_ = nullptr;
     std::size_t uploaded_base_size_ = 0;
+    const geometry::Heightfield* ground_ = nullptr;
+    double ground_exaggeration_ = 1.0;
+    bool upload_ground();
     const void* uploaded_heights_ = nullptr;
     double uploaded_exaggeration_ = 0.0;
     glm::vec4 height_rect_{0.0f};

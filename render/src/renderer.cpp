@@ -65,8 +65,7 @@ void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration
 {
     if (impl_->terrain.set_terrain(terrain, exaggeration))
         ++impl_->pending_uploads;
-    if (impl_->layers.set_ground(terrain.heightfield(), exaggeration))
-        ++impl_->pending_uploads;
+    impl_->layers.set_ground(terrain.heightfield(), exaggeration);
 }
 
 void Renderer::set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options)
@@ -96,7 +95,8 @@ Image Renderer::render(const Camera& camera, int width, int height)
     r.terrain.draw(frame);
     r.terrain_timer.end();
     r.layers_timer.begin();
-    r.layers.draw(frame);
+    if (r.layers.draw(frame))
+        ++r.pending_uploads;
     r.layers_timer.end();
     r.resolve_timer.begin();
     r.targets.resolve();

@@ -38,7 +38,7 @@ TEST(KiriRender, DefaultSceneWritesAPictureAndPrintsItsPath)
     const fs::path out = kiri::test::temp_path("commands_test_default.png");
     fs::remove(out);
     const auto r = run_kiri("render " + (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string() + " -o " +
-                            out.string() + " --width 160 --height 90");
+                            out.string() + " --width 160 --height 90 --mode terrain");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.out, out.string() + "\n");
     const kiri::render::Image image = kiri::render::read_png(out);

@@ -60,7 +60,8 @@ TEST(FogSpecJson, RectangleAndTerrainFootprints)
 
 TEST(FogSpecJson, PreciseErrors)
 {
-    EXPECT_EQ(error_of(R"({"colour": 1})"), "s.json: /fog/colour: unknown key");
+    EXPECT_EQ(error_of(R"({"colour": 1})"), "s.json: /fog/colour: unknown key (expected one of: altitude, clearance, footprint, mode, offset, patch_size, "
+              "samples_per_patch, smoothing, smoothness, surface, tessellation, thickness)");
     EXPECT_EQ(error_of(R"({"surface": "nurbs"})"), "s.json: /fog/surface: expected \"gregory\" or \"catmull-clark\"");
     EXPECT_EQ(error_of(R"({"patch_size": -3})"), "s.json: /fog/patch_size: must be > 0");
     EXPECT_EQ(error_of(R"({"mode": "lake"})"), "s.json: /fog/altitude: lake mode needs the altitude of the fog top (metres)");
@@ -68,7 +69,7 @@ TEST(FogSpecJson, PreciseErrors)
               "s.json: /fog/footprint/max: expected an array of 2 numbers [x, y] (local metres)");
     EXPECT_EQ(error_of(R"({"footprint": {"type": "polygon", "points": [[0, 0], [1, "a"], [2, 2]]}})"),
               "s.json: /fog/footprint/points/1/1: expected a number");
-    EXPECT_EQ(error_of(R"({"tessellation": {"level": 0}})"), "s.json: /fog/tessellation/level: must be in [1, 256]");
+    EXPECT_EQ(error_of(R"({"tessellation": {"level": 0}})"), "s.json: /fog/tessellation/level: must be in [1, 256], got 0");
     EXPECT_NE(error_of(R"({"clearance": 300, "thickness": 100})").find("s.json: /fog/clearance: clearance 300"),
               std::string::npos);
     EXPECT_EQ(error_of(R"({"footprint": {"type": "polygon", "points": [[0, 0], [200, 100], [200, 0], [0, 150]]}})"),

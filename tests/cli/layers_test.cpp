@@ -1,0 +1,93 @@
+// The layer stack as users meet it: `kiri render --mode layers` and `kiri author`'s exports,
+// the .glb checked by the Khronos glTF validator (installed by scripts/setup.sh).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "cli/kiri_runner.hpp"
+#include "kiri/render/image.hpp"
+
+namespace fs = std::filesystem;
+using kiri::test::run_kiri;
+
+namespace {
+
+const std::string default_scene = (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string();
+
+kiri::render::Image render(const std::string& mode, const std::string& scene = default_scene)
+{
+    const fs::path out = kiri::test::temp_path("layers_test_" + mode + ".png");
+    const auto r = run_kiri("render " + scene + " -o " + out.string() + " --width 192 --height 108 --mode " + mode);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    kiri::render::Image image = kiri::render::read_png(out);
+    fs::remove(out);
+    return image;
+}
+
+struct Tone {
+    double luminance = 0.0, saturation = 0.0;
+};
+
+// Mean luminance and saturation of the lower half (the terrain under the fog).
+Tone lower_half(const kiri::render::Image& image)
+{
+    Tone t;
+    int n = 0;
+    for (int y = image.height / 2; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const std::uint8_t* p = &image.rgba[(std::size_t(y) * image.width + x) * 4];
+            const int hi = std::max({p[0], p[1], p[2]}), lo = std::min({p[0], p[1], p[2]});
+            t.luminance += 0.3 * p[0] + 0.6 * p[1] + 0.1 * p[2];
+            t.saturation += hi > 0 ? double(hi - lo) / hi : 0.0;
+            ++n;
+        }
+    t.luminance /= n;
+    t.saturation /= n;
+    return t;
+}
+
+}  // namespace
+
+TEST(KiriLayers, FogMakesTheTerrainBrighterAndGreyer)
+{
+    const Tone bare = lower_half(render("terrain"));
+    const Tone fog = lower_half(render("layers"));
+    EXPECT_GT(fog.luminance, bare.luminance + 25.0) << bare.luminance << " -> " << fog.luminance;
+    EXPECT_LT(fog.saturation, 0.7 * bare.saturation) << bare.saturation << " -> " << fog.saturation;
+    // auto = layers for a scene with fog.
+    const kiri::render::Image automatic = render("auto");
+    EXPECT_NEAR(lower_half(automatic).luminance, fog.luminance, 1e-9);
+}
+
+TEST(KiriLayers, AuthorWritesLayersThatTheKhronosValidatorAccepts)
+{
+    const fs::path dir = kiri::test::temp_path("layers_test_author");
+    fs::remove_all(dir);
+    const auto r = run_kiri("author " + default_scene + " -o " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("16 layers"), std::string::npos) << r.out;
+    for (const char* name : {"layers.glb", "layers.obj", "layers.ply", "base_surface.obj", "report.json"})
+        EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
+    for (const auto& entry : fs::directory_iterator(dir))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
+
+    const std::string glb = kiri::test::read_all(dir / "layers.glb");
+    ASSERT_GT(glb.size(), 12u);
+    EXPECT_EQ(glb.substr(0, 4), "glTF");
+    const fs::path report = dir / "validator.txt";
+    const std::string command = "node " + kiri::test::shell_quote(KIRI_VALIDATOR) + " " +
+                                kiri::test::shell_quote((dir / "layers.glb").string()) + " > " + report.string() + " 2>&1";
+    const int status = std::system(command.c_str());
+    const std::string text = kiri::test::read_all(report);
+    EXPECT_EQ(status, 0) << text;
+    EXPECT_NE(text.find(": 0 errors, 0 warnings"), std::string::npos) << text;
+    EXPECT_NE(text.find("17 draw calls"), std::string::npos) << text;  // 16 layers + terrain
+    // PLY header: every layer's vertices with their alpha.
+    const std::string ply = kiri::test::read_all(dir / "layers.ply");
+    EXPECT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+    EXPECT_NE(ply.find("property float alpha"), std::string::npos);
+    fs::remove_all(dir);
+}
