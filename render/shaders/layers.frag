@@ -10,6 +10,7 @@ in float v_exponent;
 flat in int v_layer;
 
 uniform sampler2D u_atlas;
+uniform sampler2D u_noise;       // tileable value noise (noise_texture.cpp)
 uniform sampler2D u_heights;     // terrain heights (world metres), R32F
 uniform vec4 u_height_rect;      // x0, y0, 1 / extent x, 1 / extent y
 uniform vec2 u_height_texels;    // nx, ny
@@ -29,26 +30,12 @@ out vec4 o_color;
 
 vec3 tonemap(vec3 radiance) { return pow(vec3(1.0) - exp(-radiance * u_exposure), vec3(1.0 / 2.2)); }
 
-float hash(vec3 p)
-{
-    p = fract(p * 0.3183099 + 0.1);
-    p *= 17.0;
-    return fract(p.x * p.y * p.z * (p.x + p.y + p.z));
-}
-
-float value_noise(vec3 x)
-{
-    vec3 i = floor(x), f = fract(x);
-    f = f * f * (3.0 - 2.0 * f);
-    return mix(mix(mix(hash(i), hash(i + vec3(1, 0, 0)), f.x), mix(hash(i + vec3(0, 1, 0)), hash(i + vec3(1, 1, 0)), f.x), f.y),
-               mix(mix(hash(i + vec3(0, 0, 1)), hash(i + vec3(1, 0, 1)), f.x), mix(hash(i + vec3(0, 1, 1)), hash(i + vec3(1, 1, 1)), f.x), f.y),
-               f.z);
-}
-
+// Detail: a tileable noise texture, shifted per layer so neighbouring layers differ.
 float detail_noise(vec2 xy, float layer)
 {
-    vec3 q = vec3((xy - u_drift) / u_detail_scale, layer * 0.07);
-    return 0.5 * value_noise(q) + 0.3 * value_noise(q * 2.03 + 11.0) + 0.2 * value_noise(q * 4.01 + 23.0);
+    // The tile holds 8 of the largest features: it repeats every 8 detail_scale metres.
+    vec2 q = (xy - u_drift) / (8.0 * u_detail_scale) + layer * vec2(0.137, 0.071);
+    return texture(u_noise, q).r;
 }
 
 void main()

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "kiri/geometry/heightfield.hpp"
+#include "noise_texture.hpp"
 
 namespace kiri::render::detail {
 namespace {
@@ -17,7 +18,11 @@ struct Vertex {
 
 }  // namespace
 
-LayersPass::LayersPass() : program_({"layers.vert", "layers.frag"}) {}
+LayersPass::LayersPass()
+    : program_({"layers.vert", "layers.frag"}), composite_({"fullscreen.vert", "layers_composite.frag"}),
+      empty_vao_(make_vertex_array()), noise_(make_noise_texture())
+{
+}
 
 bool LayersPass::set_base(const geometry::LayerBase& base)
 {
@@ -147,6 +152,77 @@ bool LayersPass::draw(const FrameContext& frame)
     const bool uploaded = upload_ground();
     if (!heights_)
         return uploaded;
+    draw_stack(frame);
+    return uploaded;
+}
+
+void LayersPass::ensure_low(int width, int height)
+{
+    if (width == low_width_ && height == low_height_ && low_fbo_)
+        return;
+    low_color_ = make_texture(GL_TEXTURE_2D);
+    low_depth_ = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(low_color_.get(), 1, GL_RGBA16F, width, height);  // 51 blends of small alphas
+    glTextureStorage2D(low_depth_.get(), 1, GL_DEPTH_COMPONENT32F, width, height);
+    // Nearest: the composite does its own depth-aware bilinear weights.
+    for (GLuint t : {low_color_.get(), low_depth_.get()}) {
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
+    low_fbo_ = make_framebuffer();
+    glNamedFramebufferTexture(low_fbo_.get(), GL_COLOR_ATTACHMENT0, low_color_.get(), 0);
+    glNamedFramebufferTexture(low_fbo_.get(), GL_DEPTH_ATTACHMENT, low_depth_.get(), 0);
+    low_width_ = width;
+    low_height_ = height;
+}
+
+bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth)
+{
+    last_layers_ = 0;
+    if (!visible(frame))
+        return false;
+    const bool uploaded = upload_ground();
+    if (!heights_)
+        return uploaded;
+    const int w = std::max(1, int(std::ceil(frame.width * scale))), h = std::max(1, int(std::ceil(frame.height * scale)));
+    ensure_low(w, h);
+    // The terrain's depth, one sample per low-resolution texel.
+    glBlitNamedFramebuffer(resolved_fbo, low_fbo_.get(), 0, 0, frame.width, frame.height, 0, 0, w, h,
+                           GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+    const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
+    glBindFramebuffer(GL_FRAMEBUFFER, low_fbo_.get());
+    glViewport(0, 0, w, h);
+    draw_stack(frame);
+
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    composite_.set("u_layers", 0);
+    composite_.set("u_low_depth", 1);
+    composite_.set("u_depth", 2);
+    composite_.set("u_low_size", glm::vec2(float(w), float(h)));
+    composite_.set("u_near", float(p32 / (p22 - 1.0)));
+    composite_.set("u_far", float(p32 / (p22 + 1.0)));
+    composite_.use();
+    glBindTextureUnit(0, low_color_.get());
+    glBindTextureUnit(1, low_depth_.get());
+    glBindTextureUnit(2, resolved_depth);
+    glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
+    glViewport(0, 0, frame.width, frame.height);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glBindVertexArray(empty_vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    return uploaded;
+}
+
+void LayersPass::draw_stack(const FrameContext& frame)
+{
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
@@ -168,6 +244,7 @@ bool LayersPass::draw(const FrameContext& frame)
     program_.set("u_half_life", float(o.dissipation_half_life));
     program_.set("u_atlas", 0);
     program_.set("u_heights", 1);
+    program_.set("u_noise", 2);
     program_.set("u_height_rect", height_rect_);
     program_.set("u_height_texels", height_texels_);
     program_.set("u_opacity", float(o.opacity));
@@ -184,6 +261,7 @@ bool LayersPass::draw(const FrameContext& frame)
     program_.use();
     glBindTextureUnit(0, atlas_.get());
     glBindTextureUnit(1, heights_.get());
+    glBindTextureUnit(2, noise_.get());
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_FALSE);
@@ -194,7 +272,6 @@ bool LayersPass::draw(const FrameContext& frame)
     glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, top + 1);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
-    return uploaded;
 }
 
 }  // namespace kiri::render::detail

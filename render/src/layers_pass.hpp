@@ -33,11 +33,23 @@ public:
     void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
     //! False when the stack's bounds lie outside the view (the pass then costs nothing).
     bool visible(const FrameContext& frame) const;
-    //! Returns true when it had to upload the ground first.
+    //! Draws into the bound framebuffer. Returns true when it had to upload the ground first.
     bool draw(const FrameContext& frame);
+    //! Draws at `scale` of the frame's resolution into its own target, depth-tested against
+    //! the resolved frame's depth, then composites into `resolved_fbo` with depth-aware
+    //! upsampling (a quarter of the fragments at scale 0.5). Returns true on an upload.
+    bool draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth);
 
 private:
-    ShaderProgram program_;
+    ShaderProgram program_, composite_;
+    VertexArray empty_vao_;
+    Texture noise_;
+    // The reduced-resolution target.
+    Framebuffer low_fbo_;
+    Texture low_color_, low_depth_;
+    int low_width_ = 0, low_height_ = 0;
+    void ensure_low(int width, int height);
+    void draw_stack(const FrameContext& frame);
     VertexArray vao_;
     Buffer vertices_, indices_;
     Texture atlas_, heights_;

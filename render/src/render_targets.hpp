@@ -19,13 +19,16 @@ public:
     std::vector<std::uint8_t> read_rgba() const;
     //! Depth in [0, 1] of pixel (x, y), origin top-left.
     float read_depth(int x, int y) const;
+    GLuint resolved_framebuffer() const { return resolved_.get(); }
+    GLuint resolved_depth() const { return resolved_depth_.get(); }
     int width() const { return width_; }
     int height() const { return height_; }
 
 private:
     int width_ = 0, height_ = 0;
     Framebuffer msaa_, resolved_;
-    Renderbuffer msaa_color_, msaa_depth_, resolved_color_, resolved_depth_;
+    Renderbuffer msaa_color_, msaa_depth_, resolved_color_;
+    Texture resolved_depth_;  // sampled by passes drawn after the resolve
 };
 
 }  // namespace kiri::render::detail

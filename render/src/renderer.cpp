@@ -1,6 +1,8 @@
 #include "kiri/render/renderer.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <optional>
 
 #include <glm/gtc/matrix_inverse.hpp>
@@ -50,12 +52,14 @@ struct Renderer::Impl {
     detail::SkyPass sky;
     detail::TerrainPass terrain;
     detail::LayersPass layers;
+    double layer_scale = 0.5;
+    bool layers_multisampled = false;
     detail::RenderTargets targets;
     SunLight sun;
     FrameStats stats;
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
-    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve+readback"};
+    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve"};
 };
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -77,9 +81,15 @@ void Renderer::set_layers(const geometry::LayerBase& base, const geometry::Layer
 
 void Renderer::clear_layers() { impl_->layers.clear(); }
 
+void Renderer::set_layer_resolution(double scale, bool multisampled)
+{
+    impl_->layer_scale = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
+    impl_->layers_multisampled = multisampled && impl_->layer_scale == 1.0;
+}
+
 void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
 
-Image Renderer::render(const Camera& camera, int width, int height)
+void Renderer::draw(const Camera& camera, int width, int height)
 {
     Impl& r = *impl_;
     const auto start = std::chrono::steady_clock::now();
@@ -94,15 +104,23 @@ Image Renderer::render(const Camera& camera, int width, int height)
     r.terrain_timer.begin();
     r.terrain.draw(frame);
     r.terrain_timer.end();
-    r.layers_timer.begin();
-    if (r.layers.draw(frame))
-        ++r.pending_uploads;
-    r.layers_timer.end();
+    if (r.layers_multisampled) {  // layers straight into the multisampled frame
+        r.layers_timer.begin();
+        if (r.layers.draw(frame))
+            ++r.pending_uploads;
+        r.layers_timer.end();
+    }
     r.resolve_timer.begin();
     r.targets.resolve();
-    Image image{width, height, r.targets.read_rgba()};
     r.resolve_timer.end();
-    detail::check_gl_errors("Renderer::render");
+    if (!r.layers_multisampled) {  // layers in their own target, composited after the resolve
+        r.layers_timer.begin();
+        if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.resolved_framebuffer(), r.targets.resolved_depth()))
+            ++r.pending_uploads;
+        r.layers_timer.end();
+    }
+    glFinish();
+    detail::check_gl_errors("Renderer::draw");
 
     r.stats = {};
     for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer})
@@ -111,6 +129,15 @@ Image Renderer::render(const Camera& camera, int width, int height)
     r.stats.layers = r.layers.last_layer_count();
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     r.last_frame = frame;
+}
+
+Image Renderer::render(const Camera& camera, int width, int height)
+{
+    const auto start = std::chrono::steady_clock::now();
+    draw(camera, width, height);
+    Image image{width, height, impl_->targets.read_rgba()};
+    detail::check_gl_errors("Renderer::render");
+    impl_->stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return image;
 }
 

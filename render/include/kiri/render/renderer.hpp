@@ -56,7 +56,15 @@ public:
     //! renderer's use of it). Uploads only when the base changed; options apply every frame.
     void set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options);
     void clear_layers();
+    //! Resolution of the layer pass relative to the frame, clamped to [1/8, 1]: the layers are
+    //! drawn into their own half-float target and composited with depth-aware upsampling
+    //! (default 0.5, a quarter of the fragments; the fog is smooth, so the picture barely
+    //! changes: `kiri bench --stage layers`). multisampled (scale 1 only) draws them straight
+    //! into the 8-bit multisampled frame instead, the plain way.
+    void set_layer_resolution(double scale, bool multisampled = false);
 
+    //! Renders the frame offscreen and waits for it (no read-back): what a frame costs.
+    void draw(const Camera& camera, int width, int height);
     //! Renders the frame offscreen and reads it back.
     Image render(const Camera& camera, int width, int height);
     const FrameStats& last_stats() const;
