@@ -10,6 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include "commands.hpp"
+#include "kiri/geometry/author_estimate.hpp"
 #include "kiri/geometry/dem.hpp"
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/fog_spec.hpp"
@@ -45,12 +47,18 @@ void write_text(const std::string& text, const fs::path& tmp)
 
 int author(const fs::path& scene_path, const fs::path& out_dir)
 {
+    check_output_folder(out_dir.string());
     const Scene scene = load_scene(scene_path);
     if (!scene.fog)
         throw InputError(scene_path.string(), "/fog", "the scene has no fog section to author");
     const auto t0 = std::chrono::steady_clock::now();
     const Terrain terrain = load_scene_terrain(scene);
     const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The estimate comes before any large allocation; above the limit author_scene_fog refuses.
+    const AuthorEstimate estimate = estimate_author(world_fog_spec(scene), terrain.heightfield(), scene.layers.count);
+    check_author_estimate(estimate, scene_path.string());
+    std::printf("kiri author: %s\n", estimate.summary().c_str());
+    std::fflush(stdout);
     const SceneFog fog = author_scene_fog(scene, terrain);
     const AuthoredSurface& a = fog.authored;
     // The layers are view dependent: exported as the scene's first camera sees them.

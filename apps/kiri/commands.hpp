@@ -13,5 +13,8 @@ void add_bench_command(CLI::App& app);
 //! Fails fast, before any expensive work, when `path` cannot be created: its folder must exist
 //! and be writable. \throw kiri::IoError naming the path.
 void check_output_file(const std::string& path);
+//! The same for an output folder: an existing folder, or one whose nearest existing ancestor is
+//! a writable folder. \throw kiri::IoError naming the path.
+void check_output_folder(const std::string& path);
 
 }  // namespace kiri::cli

@@ -5,5 +5,6 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/fog/base_surface.cpp
   src/fog/fit_samples.cpp
   src/fog/author.cpp
+  src/fog/author_estimate.cpp
   src/fog/fog_spec_json.cpp
 )

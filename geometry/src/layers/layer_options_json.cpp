@@ -15,7 +15,7 @@ LayerOptions parse_layer_options(const json& j, const std::string& file)
                   "dissipation_half_life", "wind", "time"});
     LayerOptions o;
     if (j.contains("count"))
-        o.count = r.integer(j["count"], p + "/count", 0, 1000);
+        o.count = r.integer(j["count"], p + "/count", 1, 1000);
     o.max_count = std::max(o.max_count, o.count);
     if (j.contains("max_count"))
         o.max_count = r.integer(j["max_count"], p + "/max_count", std::max(o.count, 1), 1000);

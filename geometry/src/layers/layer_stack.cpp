@@ -22,8 +22,8 @@ bool finite2(const glm::dvec2& v) { return std::isfinite(v.x) && std::isfinite(v
 
 void validate_layer_options(const LayerOptions& o, const std::string& label)
 {
-    if (o.count < 0 || o.count > 1000)
-        refuse(label, "count", "must be in [0, 1000], got " + std::to_string(o.count));
+    if (o.count < 1 || o.count > 1000)
+        refuse(label, "count", "must be in [1, 1000], got " + std::to_string(o.count));
     if (o.max_count < std::max(o.count, 1) || o.max_count > 1000)
         refuse(label, "max_count", "must be in [count, 1000], got " + std::to_string(o.max_count));
     if (!(o.thickness > 0.0) || !std::isfinite(o.thickness))

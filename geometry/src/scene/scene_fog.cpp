@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "kiri/geometry/author_estimate.hpp"
 #include "kiri/geometry/error.hpp"
 
 namespace kiri::geometry {
@@ -15,6 +16,7 @@ SceneFog author_scene_fog(const Scene& scene, const Terrain& terrain)
     const FogSpec spec = world_fog_spec(scene);
     if (spec.fit.mode == FitMode::lake)
         layers.base_offset = -layers.thickness;
+    check_author_estimate(estimate_author(spec, terrain.heightfield(), layers.count), label);
     SceneFog fog{author_base_surface(terrain, spec, label), layers, {}, 0.0};
     const auto start = std::chrono::steady_clock::now();
     fog.base = make_layer_base(fog.authored.surface, fog.authored.tessellation, fog.layers, label);
