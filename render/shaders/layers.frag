@@ -49,7 +49,7 @@ void main()
     h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
     float clearance = v_world.z - texture(u_heights, h_uv).r;
     a *= u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
-    if (a <= 1.0 / 1024.0)
+    if (a <= 1e-6)  // nothing to add; a larger threshold would bias stacks of many thin layers
         discard;
     // Gray, lit by the sun (forward scattering brightens it towards the sun) and the sky.
     vec3 view = normalize(v_world - u_eye);

@@ -162,7 +162,7 @@ void LayersPass::ensure_low(int width, int height)
         return;
     low_color_ = make_texture(GL_TEXTURE_2D);
     low_depth_ = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(low_color_.get(), 1, GL_RGBA16F, width, height);  // 51 blends of small alphas
+    glTextureStorage2D(low_color_.get(), 1, GL_RGBA32F, width, height);  // hundreds of blends of small alphas
     glTextureStorage2D(low_depth_.get(), 1, GL_DEPTH_COMPONENT32F, width, height);
     // Nearest: the composite does its own depth-aware bilinear weights.
     for (GLuint t : {low_color_.get(), low_depth_.get()}) {
