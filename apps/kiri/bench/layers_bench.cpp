@@ -98,7 +98,7 @@ void table(Context& c)
         s.renderer->set_layer_resolution(1.0);
         const render::Image full = s.renderer->render(s.oblique(), w, h);
         md << "\nHardest cell (10x10, 50 layers); layer pass = frame - terrain alone; plain = the layers drawn straight "
-              "into the 8-bit multisampled frame; full = the same at full resolution in a half-float target:\n\n"
+              "into the 8-bit multisampled frame; full = the same at full resolution in a float target:\n\n"
            << "| layer pass | frame FPS | layer pass ms | layer pass FPS | mean difference to plain | to full (8-bit levels) |\n"
            << "|---|---|---|---|---|---|\n";
         const double plain_pass = std::max(t_plain - terrain_only, 1e-6);
