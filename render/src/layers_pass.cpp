@@ -16,6 +16,14 @@ struct Vertex {
     float uv[2];
 };
 
+void set_sampling(GLuint texture, GLint filter)
+{
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
 }  // namespace
 
 LayersPass::LayersPass()
@@ -58,10 +66,7 @@ bool LayersPass::set_base(const geometry::LayerBase& base)
     atlas_ = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(atlas_.get(), 1, GL_RGBA8, t.width, t.height);
     glTextureSubImage2D(atlas_.get(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
-    glTextureParameteri(atlas_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(atlas_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(atlas_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(atlas_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    set_sampling(atlas_.get(), GL_LINEAR);
     uploaded_base_ = base.position.data();
     uploaded_base_size_ = base.position.size();
     return true;
@@ -87,10 +92,7 @@ bool LayersPass::upload_ground()
     heights_ = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(heights_.get(), 1, GL_R32F, hf.nx, hf.ny);
     glTextureSubImage2D(heights_.get(), 0, 0, 0, hf.nx, hf.ny, GL_RED, GL_FLOAT, z.data());
-    glTextureParameteri(heights_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(heights_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(heights_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(heights_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    set_sampling(heights_.get(), GL_LINEAR);
     const double ex = std::max(hf.x_max() - hf.x0, 1e-9), ey = std::max(hf.y_max() - hf.y0, 1e-9);
     height_rect_ = {float(hf.x0), float(hf.y0), float(1.0 / ex), float(1.0 / ey)};
     height_texels_ = {float(hf.nx), float(hf.ny)};
@@ -144,15 +146,21 @@ bool LayersPass::visible(const FrameContext& frame) const
     return true;
 }
 
-bool LayersPass::draw(const FrameContext& frame)
+bool LayersPass::ready(const FrameContext& frame, bool& uploaded)
 {
     last_layers_ = 0;
+    uploaded = false;
     if (!visible(frame))
         return false;
-    const bool uploaded = upload_ground();
-    if (!heights_)
-        return uploaded;
-    draw_stack(frame);
+    uploaded = upload_ground();
+    return bool(heights_);
+}
+
+bool LayersPass::draw(const FrameContext& frame)
+{
+    bool uploaded = false;
+    if (ready(frame, uploaded))
+        draw_stack(frame);
     return uploaded;
 }
 
@@ -165,12 +173,8 @@ void LayersPass::ensure_low(int width, int height)
     glTextureStorage2D(low_color_.get(), 1, GL_RGBA32F, width, height);  // hundreds of blends of small alphas
     glTextureStorage2D(low_depth_.get(), 1, GL_DEPTH_COMPONENT32F, width, height);
     // Nearest: the composite does its own depth-aware bilinear weights.
-    for (GLuint t : {low_color_.get(), low_depth_.get()}) {
-        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    }
+    set_sampling(low_color_.get(), GL_NEAREST);
+    set_sampling(low_depth_.get(), GL_NEAREST);
     low_fbo_ = make_framebuffer();
     glNamedFramebufferTexture(low_fbo_.get(), GL_COLOR_ATTACHMENT0, low_color_.get(), 0);
     glNamedFramebufferTexture(low_fbo_.get(), GL_DEPTH_ATTACHMENT, low_depth_.get(), 0);
@@ -180,11 +184,8 @@ void LayersPass::ensure_low(int width, int height)
 
 bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth)
 {
-    last_layers_ = 0;
-    if (!visible(frame))
-        return false;
-    const bool uploaded = upload_ground();
-    if (!heights_)
+    bool uploaded = false;
+    if (!ready(frame, uploaded))
         return uploaded;
     const int w = std::max(1, int(std::ceil(frame.width * scale))), h = std::max(1, int(std::ceil(frame.height * scale)));
     ensure_low(w, h);

@@ -49,6 +49,8 @@ private:
     Texture low_color_, low_depth_;
     int low_width_ = 0, low_height_ = 0;
     void ensure_low(int width, int height);
+    //! Whether there is anything to draw this frame; uploads the ground first if needed.
+    bool ready(const FrameContext& frame, bool& uploaded);
     void draw_stack(const FrameContext& frame);
     VertexArray vao_;
     Buffer vertices_, indices_;
