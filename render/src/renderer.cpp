@@ -141,6 +141,18 @@ Image Renderer::render(const Camera& camera, int width, int height)
     return image;
 }
 
+void Renderer::present(int framebuffer_width, int framebuffer_height) const
+{
+    const Impl& r = *impl_;
+    if (r.targets.width() <= 0 || framebuffer_width <= 0 || framebuffer_height <= 0)
+        return;
+    glBlitNamedFramebuffer(r.targets.resolved_framebuffer(), 0, 0, 0, r.targets.width(), r.targets.height(), 0, 0,
+                           framebuffer_width, framebuffer_height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+    // What draws next (a UI) draws over the frame in the window.
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, framebuffer_width, framebuffer_height);
+}
+
 const FrameStats& Renderer::last_stats() const { return impl_->stats; }
 
 std::optional<glm::dvec3> Renderer::pick(int x, int y) const

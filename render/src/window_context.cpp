@@ -4,6 +4,9 @@
 // epoxy must come first: GLFW then skips its own GL header.
 #include <GLFW/glfw3.h>
 
+#include <cstring>
+#include <vector>
+
 #include "gl_debug.hpp"
 #include "kiri/geometry/error.hpp"
 
@@ -54,5 +57,23 @@ std::string WindowContext::description() const { return description_; }
 bool WindowContext::should_close() const { return glfwWindowShouldClose(window_); }
 void WindowContext::swap_buffers() { glfwSwapBuffers(window_); }
 void WindowContext::framebuffer_size(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
+
+Image WindowContext::read_back_buffer() const
+{
+    int w = 0, h = 0;
+    framebuffer_size(w, h);
+    Image image{w, h, std::vector<std::uint8_t>(std::size_t(w) * h * 4)};
+    std::vector<std::uint8_t> bottom_up(image.rgba.size());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+    const std::size_t row = std::size_t(w) * 4;
+    for (int y = 0; y < h; ++y)
+        std::memcpy(&image.rgba[std::size_t(y) * row], &bottom_up[std::size_t(h - 1 - y) * row], row);
+    for (std::size_t i = 3; i < image.rgba.size(); i += 4)
+        image.rgba[i] = 255;  // the window has no meaningful alpha
+    return image;
+}
 
 }  // namespace kiri::render

@@ -65,6 +65,8 @@ public:
 
     //! Renders the frame offscreen and waits for it (no read-back): what a frame costs.
     void draw(const Camera& camera, int width, int height);
+    //! Copies the last drawn frame into the window's framebuffer (0), scaled to its size.
+    void present(int framebuffer_width, int framebuffer_height) const;
     //! Renders the frame offscreen and reads it back.
     Image render(const Camera& camera, int width, int height);
     const FrameStats& last_stats() const;

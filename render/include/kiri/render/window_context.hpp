@@ -5,6 +5,7 @@
 #include <string>
 
 #include "kiri/render/gl_context.hpp"
+#include "kiri/render/image.hpp"
 
 struct GLFWwindow;
 
@@ -20,6 +21,8 @@ public:
     void swap_buffers();
     //! Framebuffer size in pixels (differs from the window size on HiDPI screens).
     void framebuffer_size(int& width, int& height) const;
+    //! The back buffer as drawn so far this frame (scene and panel), rows top to bottom.
+    Image read_back_buffer() const;
 
 private:
     friend std::unique_ptr<WindowContext> create_window_context(int, int, const std::string&, const ContextOptions&);
