@@ -7,6 +7,7 @@
 #include <fstream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <GLFW/glfw3.h>
@@ -30,7 +31,7 @@ using namespace kiri::preview;
 struct Args {
     std::string scene, screenshot, camera;
     int frames = 0, width = 1280, height = 720;
-    bool no_fog = false;
+    bool no_fog = false, wireframe = false;
 };
 
 render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
@@ -48,6 +49,7 @@ public:
         ImGui_ImplOpenGL3_Init("#version 450 core");
         renderer_ = std::make_unique<render::Renderer>();
         panel_.show_fog = !args.no_fog;
+        panel_.control_wireframe = panel_.patch_wireframe = args.wireframe;
         worker_.request(scene_, state_);
     }
     ~Preview()
@@ -81,6 +83,7 @@ public:
                 continue;
             }
             handle_input(seconds, fb_h);
+            update_wireframes();
             if (state_.terrain) {
                 renderer_->draw(camera_.camera(), fb_w, fb_h);
                 renderer_->present(fb_w, fb_h);
@@ -111,6 +114,46 @@ private:
     PanelState panel_;
     WorkStatus work_;
     bool camera_placed_ = false, p_was_down_ = false;
+    // What the wireframes were built from, to rebuild them only when it changes.
+    const void* wire_fog_ = nullptr;
+    bool wire_control_ = false, wire_patches_ = false;
+
+    void update_wireframes()
+    {
+        const void* fog = state_.fog.get();
+        if (fog == wire_fog_ && wire_control_ == panel_.control_wireframe && wire_patches_ == panel_.patch_wireframe)
+            return;
+        wire_fog_ = fog;
+        wire_control_ = panel_.control_wireframe;
+        wire_patches_ = panel_.patch_wireframe;
+        std::vector<glm::dvec3> control, patches;
+        if (state_.fog && wire_control_) {
+            const geometry::BaseSurface& s = state_.fog->authored.surface;
+            const geometry::PolyMesh& m = s.control().mesh;
+            const std::vector<double> z = s.heights();
+            for (auto e : m.edges()) {
+                for (auto v : {m.from_vertex_handle(m.halfedge_handle(e, 0)), m.to_vertex_handle(m.halfedge_handle(e, 0))}) {
+                    const auto& p = m.point(v);
+                    control.push_back({p[0], p[1], z[std::size_t(v.idx())]});
+                }
+            }
+        }
+        if (state_.fog && wire_patches_) {
+            const geometry::BaseSurface& s = state_.fog->authored.surface;
+            const int steps = 12;
+            for (int f = 0; f < s.num_patches(); ++f)
+                for (int side = 0; side < 4; ++side)
+                    for (int k = 0; k < steps; ++k)
+                        for (int end = 0; end < 2; ++end) {
+                            const double t = double(k + end) / steps;
+                            const double u = side == 0 ? t : side == 1 ? 1.0 : side == 2 ? 1.0 - t : 0.0;
+                            const double v = side == 0 ? 0.0 : side == 1 ? t : side == 2 ? 1.0 : 1.0 - t;
+                            patches.push_back(s.evaluate(f, u, v));
+                        }
+        }
+        renderer_->set_lines(0, control, {1.0f, 0.55f, 0.1f, 1.0f});
+        renderer_->set_lines(1, patches, {0.1f, 0.85f, 1.0f, 1.0f});
+    }
     int screenshots_ = 0;
 
     bool scripted() const { return args_.frames > 0 && !args_.screenshot.empty(); }
@@ -276,6 +319,7 @@ int main(int argc, char** argv)
     app.add_option("--frames", args.frames, "scripted mode: frames to render before the screenshot")->check(CLI::Range(1, 100000));
     app.add_option("--screenshot", args.screenshot, "scripted mode: PNG written after --frames frames");
     app.add_flag("--no-fog", args.no_fog, "start with the fog hidden");
+    app.add_flag("--wireframe", args.wireframe, "start with the control mesh and patch boundaries shown");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -130,6 +130,9 @@ void view_section(const geometry::Scene& scene, PanelState& state)
         if (ImGui::Button(scene.cameras[i].name.c_str()))
             state.bookmark = int(i);
     }
+    ImGui::Checkbox("control mesh", &state.control_wireframe);
+    ImGui::SameLine();
+    ImGui::Checkbox("patch boundaries", &state.patch_wireframe);
     state.focus_fog = ImGui::Button("focus on fog (F)");
     ImGui::SameLine();
     state.reset_camera = ImGui::Button("reset (R)");

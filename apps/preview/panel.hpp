@@ -10,6 +10,7 @@ namespace kiri::preview {
 
 struct PanelState {
     bool show_fog = true;
+    bool control_wireframe = false, patch_wireframe = false;
     double layer_resolution = 0.5;
     bool save_requested = false, screenshot_requested = false, reset_camera = false, focus_fog = false;
     int bookmark = -1;  // a scene camera picked this frame

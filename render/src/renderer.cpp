@@ -11,6 +11,7 @@
 #include "gl_debug.hpp"
 #include "kiri/geometry/terrain.hpp"
 #include "layers_pass.hpp"
+#include "lines_pass.hpp"
 #include "render_targets.hpp"
 #include "sky_pass.hpp"
 #include "terrain_pass.hpp"
@@ -52,6 +53,7 @@ struct Renderer::Impl {
     detail::SkyPass sky;
     detail::TerrainPass terrain;
     detail::LayersPass layers;
+    detail::LinesPass lines;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
     detail::RenderTargets targets;
@@ -81,6 +83,12 @@ void Renderer::set_layers(const geometry::LayerBase& base, const geometry::Layer
 
 void Renderer::clear_layers() { impl_->layers.clear(); }
 
+void Renderer::set_lines(int slot, const std::vector<glm::dvec3>& segment_points, const glm::vec4& color)
+{
+    if (impl_->lines.set(slot, segment_points, color))
+        ++impl_->pending_uploads;
+}
+
 void Renderer::set_layer_resolution(double scale, bool multisampled)
 {
     impl_->layer_scale = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
@@ -103,6 +111,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.sky_timer.end();
     r.terrain_timer.begin();
     r.terrain.draw(frame);
+    r.lines.draw(frame);
     r.terrain_timer.end();
     if (r.layers_multisampled) {  // layers straight into the multisampled frame
         r.layers_timer.begin();

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 
 #include "kiri/render/camera.hpp"
 #include "kiri/render/image.hpp"
@@ -62,6 +63,9 @@ public:
     //! changes: `kiri bench --stage layers`). multisampled (scale 1 only) draws them straight
     //! into the 8-bit multisampled frame instead, the plain way.
     void set_layer_resolution(double scale, bool multisampled = false);
+    //! Overlay lines (wireframes): set `slot` (0..7) holds segments as pairs of end points,
+    //! depth-tested, drawn over the terrain before the fog. An empty list removes the set.
+    void set_lines(int slot, const std::vector<glm::dvec3>& segment_points, const glm::vec4& color);
 
     //! Renders the frame offscreen and waits for it (no read-back): what a frame costs.
     void draw(const Camera& camera, int width, int height);
