@@ -1,7 +1,9 @@
 // kiri-preview SCENE.json: the interactive preview (docs/preview.md). A GLFW window with a
 // parameter panel; edits are recomputed off the render thread; `--frames N --screenshot OUT`
 // renders N frames and writes a PNG (scripted mode, for tests and documentation).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +18,7 @@
 #include <imgui.h>
 
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fog_target.hpp"
 #include "kiri/render/image.hpp"
 #include "kiri/render/renderer.hpp"
 #include "kiri/render/window_context.hpp"
@@ -31,7 +34,7 @@ using namespace kiri::preview;
 struct Args {
     std::string scene, screenshot, camera;
     int frames = 0, width = 1280, height = 720;
-    bool no_fog = false, wireframe = false;
+    bool no_fog = false, wireframe = false, deviation = false;
 };
 
 render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
@@ -50,6 +53,7 @@ public:
         renderer_ = std::make_unique<render::Renderer>();
         panel_.show_fog = !args.no_fog;
         panel_.control_wireframe = panel_.patch_wireframe = args.wireframe;
+        panel_.deviation_map = args.deviation;
         worker_.request(scene_, state_);
     }
     ~Preview()
@@ -116,14 +120,52 @@ private:
     bool camera_placed_ = false, p_was_down_ = false;
     // What the wireframes were built from, to rebuild them only when it changes.
     const void* wire_fog_ = nullptr;
-    bool wire_control_ = false, wire_patches_ = false;
+    bool wire_control_ = false, wire_patches_ = false, wire_deviation_ = false;
+
+    // The fit's deviation from its target per tessellation vertex, blue (below) to red (above).
+    void update_deviation_map()
+    {
+        std::vector<glm::dvec3> positions;
+        std::vector<glm::vec4> colors;
+        std::vector<unsigned> triangles;
+        if (state_.fog && wire_deviation_) {
+            const geometry::TriMesh& m = state_.fog->authored.tessellation.mesh;
+            const geometry::FogSpec spec = geometry::world_fog_spec(state_.scene);
+            const geometry::Heightfield& hf = state_.terrain->heightfield();
+            const geometry::Heightfield smooth = geometry::smooth_heightfield(hf, spec.fit.smoothing_length);
+            std::vector<double> deviation;
+            double scale = 1e-9;
+            for (auto v : m.vertices()) {
+                const auto& p = m.point(v);
+                double target = spec.fit.altitude;
+                if (spec.fit.mode == geometry::FitMode::blanket)
+                    target = std::max(geometry::sample_bilinear(smooth, p[0], p[1]) + spec.fit.offset,
+                                      state_.terrain->height(p[0], p[1]) + spec.fit.clearance);
+                deviation.push_back(p[2] - target);
+                scale = std::max(scale, std::abs(deviation.back()));
+                positions.push_back({p[0], p[1], p[2]});
+            }
+            for (double d : deviation) {
+                const float t = float(std::clamp(d / scale, -1.0, 1.0));
+                colors.push_back(t < 0.0f ? glm::vec4(1.0f + t, 1.0f + t, 1.0f, 0.7f) : glm::vec4(1.0f, 1.0f - t, 1.0f - t, 0.7f));
+            }
+            for (auto f : m.faces())
+                for (auto v : m.fv_range(f))
+                    triangles.push_back(unsigned(v.idx()));
+            panel_.deviation_scale = scale;
+        }
+        renderer_->set_overlay_mesh(positions, colors, triangles);
+    }
 
     void update_wireframes()
     {
         const void* fog = state_.fog.get();
-        if (fog == wire_fog_ && wire_control_ == panel_.control_wireframe && wire_patches_ == panel_.patch_wireframe)
+        if (fog == wire_fog_ && wire_control_ == panel_.control_wireframe && wire_patches_ == panel_.patch_wireframe &&
+            wire_deviation_ == panel_.deviation_map)
             return;
         wire_fog_ = fog;
+        wire_deviation_ = panel_.deviation_map;
+        update_deviation_map();
         wire_control_ = panel_.control_wireframe;
         wire_patches_ = panel_.patch_wireframe;
         std::vector<glm::dvec3> control, patches;
@@ -320,6 +362,7 @@ int main(int argc, char** argv)
     app.add_option("--screenshot", args.screenshot, "scripted mode: PNG written after --frames frames");
     app.add_flag("--no-fog", args.no_fog, "start with the fog hidden");
     app.add_flag("--wireframe", args.wireframe, "start with the control mesh and patch boundaries shown");
+    app.add_flag("--deviation", args.deviation, "start with the fit's deviation map shown");
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

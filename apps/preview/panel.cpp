@@ -133,6 +133,10 @@ void view_section(const geometry::Scene& scene, PanelState& state)
     ImGui::Checkbox("control mesh", &state.control_wireframe);
     ImGui::SameLine();
     ImGui::Checkbox("patch boundaries", &state.patch_wireframe);
+    ImGui::Checkbox("fit deviation", &state.deviation_map);
+    if (state.deviation_map)
+        ImGui::Text("surface - target: blue -%.0f m, white 0, red +%.0f m", state.deviation_scale,
+                    state.deviation_scale);
     state.focus_fog = ImGui::Button("focus on fog (F)");
     ImGui::SameLine();
     state.reset_camera = ImGui::Button("reset (R)");

@@ -10,7 +10,8 @@ namespace kiri::preview {
 
 struct PanelState {
     bool show_fog = true;
-    bool control_wireframe = false, patch_wireframe = false;
+    bool control_wireframe = false, patch_wireframe = false, deviation_map = false;
+    double deviation_scale = 0.0;  // metres at full colour, shown as the map's legend
     double layer_resolution = 0.5;
     bool save_requested = false, screenshot_requested = false, reset_camera = false, focus_fog = false;
     int bookmark = -1;  // a scene camera picked this frame

@@ -89,6 +89,13 @@ void Renderer::set_lines(int slot, const std::vector<glm::dvec3>& segment_points
         ++impl_->pending_uploads;
 }
 
+void Renderer::set_overlay_mesh(const std::vector<glm::dvec3>& positions, const std::vector<glm::vec4>& colors,
+                                const std::vector<unsigned>& triangles)
+{
+    if (impl_->lines.set_mesh(positions, colors, triangles))
+        ++impl_->pending_uploads;
+}
+
 void Renderer::set_layer_resolution(double scale, bool multisampled)
 {
     impl_->layer_scale = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;

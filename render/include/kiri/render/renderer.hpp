@@ -66,6 +66,9 @@ public:
     //! Overlay lines (wireframes): set `slot` (0..7) holds segments as pairs of end points,
     //! depth-tested, drawn over the terrain before the fog. An empty list removes the set.
     void set_lines(int slot, const std::vector<glm::dvec3>& segment_points, const glm::vec4& color);
+    //! One coloured translucent overlay mesh (e.g. a deviation map); empty lists remove it.
+    void set_overlay_mesh(const std::vector<glm::dvec3>& positions, const std::vector<glm::vec4>& colors,
+                          const std::vector<unsigned>& triangles);
 
     //! Renders the frame offscreen and waits for it (no read-back): what a frame costs.
     void draw(const Camera& camera, int width, int height);
