@@ -12,6 +12,7 @@
 #include "kiri/geometry/terrain.hpp"
 #include "layers_pass.hpp"
 #include "lines_pass.hpp"
+#include "overlay_pass.hpp"
 #include "render_targets.hpp"
 #include "sky_pass.hpp"
 #include "terrain_pass.hpp"
@@ -54,6 +55,7 @@ struct Renderer::Impl {
     detail::TerrainPass terrain;
     detail::LayersPass layers;
     detail::LinesPass lines;
+    detail::OverlayPass overlays;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
     detail::RenderTargets targets;
@@ -61,7 +63,8 @@ struct Renderer::Impl {
     FrameStats stats;
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
-    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve"};
+    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve"},
+        overlays_timer{"overlays"};
 };
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -102,6 +105,19 @@ void Renderer::set_layer_resolution(double scale, bool multisampled)
     impl_->layers_multisampled = multisampled && impl_->layer_scale == 1.0;
 }
 
+void Renderer::set_overlay(const std::string& name, const OverlayMesh& mesh)
+{
+    impl_->overlays.set(name, mesh);
+    ++impl_->pending_uploads;
+}
+
+void Renderer::set_overlay_style(const std::string& name, const OverlayStyle& style)
+{
+    impl_->overlays.set_style(name, style);
+}
+
+void Renderer::remove_overlay(const std::string& name) { impl_->overlays.remove(name); }
+
 void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
 
 void Renderer::draw(const Camera& camera, int width, int height)
@@ -111,6 +127,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.targets.ensure(width, height);
     glm::dvec3 scene_min = r.terrain.bounds_min(), scene_max = r.terrain.bounds_max();
     r.layers.extend_bounds(scene_min, scene_max);
+    r.overlays.extend_bounds(scene_min, scene_max);
     const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
     r.targets.bind_for_drawing();
     r.sky_timer.begin();
@@ -135,12 +152,22 @@ void Renderer::draw(const Camera& camera, int width, int height)
             ++r.pending_uploads;
         r.layers_timer.end();
     }
+    const bool overlays = r.overlays.has_visible();
+    if (overlays) {  // last, over the fog, into the resolved frame (its depth is the terrain's)
+        r.overlays_timer.begin();
+        glBindFramebuffer(GL_FRAMEBUFFER, r.targets.resolved_framebuffer());
+        glViewport(0, 0, width, height);
+        r.overlays.draw(frame);
+        r.overlays_timer.end();
+    }
     glFinish();
     detail::check_gl_errors("Renderer::draw");
 
     r.stats = {};
     for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer})
         r.stats.passes.push_back(t->result());
+    if (overlays)
+        r.stats.passes.push_back(r.overlays_timer.result());
     r.stats.uploads = std::exchange(r.pending_uploads, 0);
     r.stats.layers = r.layers.last_layer_count();
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

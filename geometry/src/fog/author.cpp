@@ -11,30 +11,42 @@ double since(std::chrono::steady_clock::time_point t0)
 }
 }  // namespace
 
-AuthoredSurface author_base_surface(const Terrain& terrain, const FogSpec& spec, const std::string& label)
+Footprint fog_footprint(const Terrain& terrain, const FogSpec& spec, const std::string& label)
 {
-    auto t0 = std::chrono::steady_clock::now();
-    Footprint fp = spec.footprint;
-    if (fp.polygon.empty()) {
-        const Heightfield& hf = terrain.heightfield();
-        const double m = spec.margin;
-        if (!(2.0 * m < hf.x_max() - hf.x0 && 2.0 * m < hf.y_max() - hf.y0))
-            throw InputError(label, "/fog/margin", "leaves no footprint inside the terrain");
-        fp = rectangle_footprint({hf.x0 + m, hf.y0 + m}, {hf.x_max() - m, hf.y_max() - m});
-    }
+    if (!spec.footprint.polygon.empty())
+        return spec.footprint;
+    const Heightfield& hf = terrain.heightfield();
+    const double m = spec.margin;
+    if (!(2.0 * m < hf.x_max() - hf.x0 && 2.0 * m < hf.y_max() - hf.y0))
+        throw InputError(label, "/fog/margin", "leaves no footprint inside the terrain");
+    return rectangle_footprint({hf.x0 + m, hf.y0 + m}, {hf.x_max() - m, hf.y_max() - m});
+}
+
+BaseSurface fog_control_surface(const Terrain& terrain, const FogSpec& spec, const std::string& label)
+{
     ControlMeshOptions cmo;
     cmo.patch_size = spec.patch_size;
-    ControlMesh cm = build_control_mesh(fp, terrain, cmo, label);
-    AuthoredSurface out{BaseSurface(std::move(cm), spec.surface), {}, {}};
-    out.seconds_control_mesh = since(t0);
-    t0 = std::chrono::steady_clock::now();
+    return BaseSurface(build_control_mesh(fog_footprint(terrain, spec, label), terrain, cmo, label), spec.surface);
+}
+
+FitReport fit_fog_surface(BaseSurface& surface, const Terrain& terrain, const FogSpec& spec, const std::string& label)
+{
     try {
-        out.fit = out.surface.fit(terrain, spec.fit);
+        return surface.fit(terrain, spec.fit);
     } catch (const InputError& e) {
         if (!e.file().empty())
             throw;
         throw InputError(label, e.field().empty() ? "/fog" : "/fog/" + e.field(), e.reason());
     }
+}
+
+AuthoredSurface author_base_surface(const Terrain& terrain, const FogSpec& spec, const std::string& label)
+{
+    auto t0 = std::chrono::steady_clock::now();
+    AuthoredSurface out{fog_control_surface(terrain, spec, label), {}, {}};
+    out.seconds_control_mesh = since(t0);
+    t0 = std::chrono::steady_clock::now();
+    out.fit = fit_fog_surface(out.surface, terrain, spec, label);
     out.seconds_fit = since(t0);
     t0 = std::chrono::steady_clock::now();
     out.tessellation = tessellate(out.surface, spec.tessellation);

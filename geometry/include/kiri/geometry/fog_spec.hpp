@@ -29,6 +29,18 @@ struct AuthoredSurface {
     double seconds_control_mesh = 0.0, seconds_fit = 0.0, seconds_tessellate = 0.0;
 };
 
+// The stages of author_base_surface, apart, for callers that redo only what changed (the
+// preview refits the same control mesh when only the fit options changed).
+
+//! The spec's footprint polygon, or the terrain's extent less the margin when it has none.
+//! \throw InputError(label, "/fog/margin") when the margin leaves nothing.
+Footprint fog_footprint(const Terrain& terrain, const FogSpec& spec, const std::string& label = {});
+//! Footprint -> control mesh (heights from the terrain) -> surface of spec.surface, not fitted.
+BaseSurface fog_control_surface(const Terrain& terrain, const FogSpec& spec, const std::string& label = {});
+//! surface.fit(terrain, spec.fit) with errors named "/fog/<key>" and label as the file.
+FitReport fit_fog_surface(BaseSurface& surface, const Terrain& terrain, const FogSpec& spec,
+                          const std::string& label = {});
+
 //! Footprint -> control mesh -> fit -> tessellation. label names the scene in messages.
 //! \throw InputError as the stages do, with label as the file.
 AuthoredSurface author_base_surface(const Terrain& terrain, const FogSpec& spec, const std::string& label = {});

@@ -12,6 +12,7 @@
 
 #include "kiri/render/camera.hpp"
 #include "kiri/render/image.hpp"
+#include "kiri/render/overlay_mesh.hpp"
 
 namespace kiri::geometry {
 class Terrain;
@@ -35,6 +36,7 @@ struct PassTime {
 };
 
 struct FrameStats {
+    //! sky, terrain, layers, resolve, and overlays when any overlay is visible.
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
     int uploads = 0;  //!< GPU resources (re)built during this frame
@@ -69,6 +71,12 @@ public:
     //! One coloured translucent overlay mesh (e.g. a deviation map); empty lists remove it.
     void set_overlay_mesh(const std::vector<glm::dvec3>& positions, const std::vector<glm::vec4>& colors,
                           const std::vector<unsigned>& triangles);
+
+    //! Adds or replaces the overlay mesh `name` (overlay_mesh.hpp), uploaded once here; its
+    //! style is kept. \throw kiri::Error naming it when its arrays disagree.
+    void set_overlay(const std::string& name, const OverlayMesh& mesh);
+    void set_overlay_style(const std::string& name, const OverlayStyle& style);
+    void remove_overlay(const std::string& name);
 
     //! Renders the frame offscreen and waits for it (no read-back): what a frame costs.
     void draw(const Camera& camera, int width, int height);
