@@ -11,7 +11,6 @@
 #include "gl_debug.hpp"
 #include "kiri/geometry/terrain.hpp"
 #include "layers_pass.hpp"
-#include "lines_pass.hpp"
 #include "overlay_pass.hpp"
 #include "render_targets.hpp"
 #include "sky_pass.hpp"
@@ -54,7 +53,6 @@ struct Renderer::Impl {
     detail::SkyPass sky;
     detail::TerrainPass terrain;
     detail::LayersPass layers;
-    detail::LinesPass lines;
     detail::OverlayPass overlays;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
@@ -85,19 +83,6 @@ void Renderer::set_layers(const geometry::LayerBase& base, const geometry::Layer
 }
 
 void Renderer::clear_layers() { impl_->layers.clear(); }
-
-void Renderer::set_lines(int slot, const std::vector<glm::dvec3>& segment_points, const glm::vec4& color)
-{
-    if (impl_->lines.set(slot, segment_points, color))
-        ++impl_->pending_uploads;
-}
-
-void Renderer::set_overlay_mesh(const std::vector<glm::dvec3>& positions, const std::vector<glm::vec4>& colors,
-                                const std::vector<unsigned>& triangles)
-{
-    if (impl_->lines.set_mesh(positions, colors, triangles))
-        ++impl_->pending_uploads;
-}
 
 void Renderer::set_layer_resolution(double scale, bool multisampled)
 {
@@ -135,7 +120,6 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.sky_timer.end();
     r.terrain_timer.begin();
     r.terrain.draw(frame);
-    r.lines.draw(frame);
     r.terrain_timer.end();
     if (r.layers_multisampled) {  // layers straight into the multisampled frame
         r.layers_timer.begin();

@@ -65,13 +65,6 @@ public:
     //! changes: `kiri bench --stage layers`). multisampled (scale 1 only) draws them straight
     //! into the 8-bit multisampled frame instead, the plain way.
     void set_layer_resolution(double scale, bool multisampled = false);
-    //! Overlay lines (wireframes): set `slot` (0..7) holds segments as pairs of end points,
-    //! depth-tested, drawn over the terrain before the fog. An empty list removes the set.
-    void set_lines(int slot, const std::vector<glm::dvec3>& segment_points, const glm::vec4& color);
-    //! One coloured translucent overlay mesh (e.g. a deviation map); empty lists remove it.
-    void set_overlay_mesh(const std::vector<glm::dvec3>& positions, const std::vector<glm::vec4>& colors,
-                          const std::vector<unsigned>& triangles);
-
     //! Adds or replaces the overlay mesh `name` (overlay_mesh.hpp), uploaded once here; its
     //! style is kept. \throw kiri::Error naming it when its arrays disagree.
     void set_overlay(const std::string& name, const OverlayMesh& mesh);

@@ -1,0 +1,60 @@
+#pragma once
+// The preview's panel (Dear ImGui), one file per stage so a new stage brings its own: each
+// panel edits the scene in place and returns true when it changed something; the window then
+// queues the scene for recomputation (the pipeline redoes only the stages whose inputs
+// changed) and applies the per-frame values (sun, layer look) at once.
+#include <string>
+
+#include "kiri/geometry/scene.hpp"
+#include "kiri/render/renderer.hpp"
+#include "pipeline.hpp"
+
+namespace kiri::preview {
+
+//! What is drawn (not part of the scene).
+struct ViewOptions {
+    enum class Surface { hidden, shaded, deviation, clearance };
+    bool layers = true;                     //!< the fog's layer stack
+    Surface surface = Surface::hidden;      //!< the fitted base surface as a translucent mesh
+    float surface_opacity = 0.6f;
+    bool tessellation = false;              //!< the surface's triangles as lines
+    bool patches = false;                   //!< patch borders
+    bool control_mesh = false;
+    double layer_resolution = 0.5;          //!< Renderer::set_layer_resolution
+    float render_scale = 1.0f;              //!< of the window's framebuffer
+    bool reduce_while_moving = true;        //!< render at moving_scale while the camera moves
+    float moving_scale = 0.5f;
+    bool show_panel = true, show_stats = true;
+};
+
+//! What the user asked for this frame (buttons and keys), and text fields that persist.
+struct UiState {
+    ViewOptions view;
+    bool fly_mode = false;
+    bool save = false, screenshot = false, reset_camera = false, focus_fog = false, add_camera = false;
+    int bookmark = -1;
+    std::string save_path, new_camera_name = "view";
+    std::string message;  //!< last error or file written, at the bottom of the panel
+    bool message_is_error = false;
+    void clear_actions() { save = screenshot = reset_camera = focus_fog = add_camera = false, bookmark = -1; }
+};
+
+//! Frame times measured by the window (the renderer's own are in its FrameStats).
+struct FrameTimes {
+    double loop_ms = 0.0;     //!< the last iteration of the window loop (UI included)
+    double scene_ms = 0.0;    //!< the last 3D frame (Renderer::draw)
+    int scene_width = 0, scene_height = 0;
+    long long scene_frames = 0, reused_frames = 0;  //!< drawn, and shown again unchanged
+};
+
+bool terrain_panel(geometry::Scene& scene);
+bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog);
+bool sun_panel(geometry::Scene& scene);
+bool layers_panel(geometry::Scene& scene, ViewOptions& view);
+//! Returns true when the picture changes (views, resolution).
+bool view_panel(ViewOptions& view, const FogViews* views);
+void camera_panel(const geometry::Scene& scene, UiState& ui);
+void file_panel(UiState& ui);
+void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, const PipelineStatus& pipeline);
+
+}  // namespace kiri::preview

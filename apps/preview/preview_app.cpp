@@ -1,0 +1,387 @@
+#include "preview_app.hpp"
+
+#include <epoxy/gl.h>
+// epoxy first: GLFW then skips its own GL header.
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "camera_path.hpp"
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/terrain.hpp"
+#include "kiri/render/image.hpp"
+#include "scene_file.hpp"
+
+namespace kiri::preview {
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
+
+bool same(const render::Camera& a, const render::Camera& b)
+{
+    return a.position == b.position && a.target == b.target && a.fov_y_deg == b.fov_y_deg;
+}
+
+// Overlay names: the renderer draws them by their style's order.
+constexpr const char* surface_overlay = "surface";
+constexpr const char* triangles_overlay = "triangles";
+constexpr const char* patches_overlay = "patches";
+constexpr const char* control_overlay = "control";
+
+void apply_view_args(const std::vector<std::string>& views, ViewOptions& v)
+{
+    for (const std::string& name : views) {
+        if (name == "surface")
+            v.surface = ViewOptions::Surface::shaded;
+        else if (name == "deviation")
+            v.surface = ViewOptions::Surface::deviation;
+        else if (name == "clearance")
+            v.surface = ViewOptions::Surface::clearance;
+        else if (name == "triangles")
+            v.tessellation = true;
+        else if (name == "patches")
+            v.patches = true;
+        else if (name == "control")
+            v.control_mesh = true;
+    }
+}
+
+}  // namespace
+
+PreviewApp::PreviewApp(const Args& args) : args_(args)
+{
+    // Absolute, so the terrain path resolves wherever the scene is saved to.
+    scene_ = geometry::load_scene(fs::absolute(args.scene));
+    if (!args.camera_path.empty())
+        camera_path_ = load_camera_path(args.camera_path);
+    ui_.view.layers = !args.no_fog;
+    ui_.view.show_panel = ui_.view.show_stats = !args.no_ui;
+    apply_view_args(args.views, ui_.view);
+    const fs::path scene_path(args.scene);
+    ui_.save_path = (scene_path.parent_path() / (scene_path.stem().string() + "-edited.json")).string();
+    window_ = render::create_window_context(args.width, args.height, "kiri preview - " + scene_path.filename().string());
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini beside the user's files
+    // Ours first: ImGui's back end chains to the callback installed before it.
+    glfwSetWindowUserPointer(window_->window(), this);
+    glfwSetKeyCallback(window_->window(), on_key);
+    ImGui_ImplGlfw_InitForOpenGL(window_->window(), true);
+    ImGui_ImplOpenGL3_Init("#version 450 core");
+    renderer_ = std::make_unique<render::Renderer>();
+    pipeline_.request(scene_);
+}
+
+PreviewApp::~PreviewApp()
+{
+    renderer_.reset();  // GL objects go while the context lives
+    ImGui_ImplOpenGL3_Shutdown();
+    ImGui_ImplGlfw_Shutdown();
+    ImGui::DestroyContext();
+}
+
+void PreviewApp::report(const std::string& message, bool error)
+{
+    ui_.message = message;
+    ui_.message_is_error = error;
+}
+
+void PreviewApp::apply(Products p)
+{
+    if (!p.error.empty())
+        report(p.error, true);
+    else if (ui_.message_is_error)
+        report("");
+    if (p.terrain && p.terrain != terrain_) {
+        // The renderer keeps the terrain by reference: the new one goes in before the old goes.
+        const auto old = std::exchange(terrain_, p.terrain);
+        renderer_->set_terrain(*terrain_);
+        scene_dirty_ = true;
+    }
+    if (p.fog != fog_) {
+        fog_ = p.fog;
+        apply_live_options();  // the layer pass gets the new base (it keeps it by reference)
+        update_overlays();
+        scene_dirty_ = true;
+    }
+    if (!camera_placed_ && terrain_) {
+        place_camera(args_.camera);
+        camera_placed_ = true;
+    }
+}
+
+void PreviewApp::apply_live_options()
+{
+    renderer_->set_sun(to_sun(scene_.sun));
+    renderer_->set_layer_resolution(ui_.view.layer_resolution);
+    if (!fog_ || !ui_.view.layers) {
+        renderer_->clear_layers();
+        return;
+    }
+    try {
+        geometry::LayerOptions o = geometry::world_layer_options(scene_);
+        o.base_offset = fog_->base_offset;  // the base was built with it
+        layer_options_ = o;
+    } catch (const std::exception& e) {
+        report(e.what(), true);  // the last valid options stay
+    }
+    renderer_->set_layers(*fog_->base, layer_options_);
+}
+
+void PreviewApp::update_overlays()
+{
+    const ViewOptions& v = ui_.view;
+    const FogViews* views = fog_ ? fog_->views.get() : nullptr;
+    if (!views) {
+        for (const char* name : {surface_overlay, triangles_overlay, patches_overlay, control_overlay})
+            renderer_->remove_overlay(name);
+        uploaded_views_.reset();
+        return;
+    }
+    const bool new_views = views != uploaded_views_.get();
+    if (v.surface != ViewOptions::Surface::hidden && (new_views || v.surface != uploaded_surface_)) {
+        render::OverlayMesh surface = views->surface;
+        if (v.surface == ViewOptions::Surface::deviation)
+            surface.colors = views->deviation_colors;
+        else if (v.surface == ViewOptions::Surface::clearance)
+            surface.colors = views->clearance_colors;
+        renderer_->set_overlay(surface_overlay, surface);
+        uploaded_surface_ = v.surface;
+    }
+    if (new_views) {
+        render::OverlayMesh triangles = views->surface;
+        triangles.normals.clear();  // lines read better unlit
+        renderer_->set_overlay(triangles_overlay, triangles);
+        renderer_->set_overlay(patches_overlay, views->patch_borders);
+        renderer_->set_overlay(control_overlay, views->control_mesh);
+        uploaded_views_ = fog_->views;
+    }
+    const glm::vec4 shaded = v.surface == ViewOptions::Surface::shaded ? glm::vec4(0.85f, 0.9f, 1.0f, 1.0f)
+                                                                       : glm::vec4(1.0f);
+    renderer_->set_overlay_style(surface_overlay, {.color = glm::vec4(glm::vec3(shaded), v.surface_opacity),
+                                                   .visible = v.surface != ViewOptions::Surface::hidden,
+                                                   .order = 0});
+    renderer_->set_overlay_style(triangles_overlay, {.color = {1.0f, 1.0f, 1.0f, 0.35f},
+                                                     .visible = v.tessellation, .wireframe = true,
+                                                     .lift = 1e-3f, .order = 1});
+    renderer_->set_overlay_style(patches_overlay,
+                                 {.color = {1.0f, 0.8f, 0.15f, 0.95f}, .visible = v.patches, .lift = 1.5e-3f, .order = 2});
+    renderer_->set_overlay_style(control_overlay,
+                                 {.color = {1.0f, 0.25f, 0.85f, 0.95f}, .visible = v.control_mesh, .order = 3});
+}
+
+void PreviewApp::place_camera(const std::string& name)
+{
+    const geometry::Bounds3 b = terrain_->bounds();
+    const geometry::CameraSpec c = scene_.camera(name, b.min, b.max);
+    camera_.look(c.position, c.target, c.fov_y_deg);
+}
+
+void PreviewApp::draw_panel()
+{
+    ViewOptions& view = ui_.view;
+    if (view.show_panel) {
+        const ImGuiIO& io = ImGui::GetIO();
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 430.0f, 10.0f), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(420.0f, io.DisplaySize.y - 20.0f), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowBgAlpha(0.85f);
+        ImGui::Begin("kiri");
+        ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.5f);  // room for the labels
+        // Stages that feed the pipeline, then what applies per frame.
+        bool edited = terrain_panel(scene_);
+        edited |= fog_panel(scene_, terrain_.get(), fog_.get());
+        edited |= layers_panel(scene_, view);
+        edited |= sun_panel(scene_);
+        const ViewOptions::Surface before = view.surface;
+        const bool view_changed = view_panel(view, fog_ ? fog_->views.get() : nullptr);
+        camera_panel(scene_, ui_);
+        file_panel(ui_);
+        ImGui::PopItemWidth();
+        ImGui::End();
+        if (edited)
+            pipeline_.request(scene_);  // stages whose inputs did not change are kept
+        if (edited || view_changed) {
+            apply_live_options();
+            if (view_changed || view.surface != before)
+                update_overlays();
+            scene_dirty_ = true;
+        }
+    }
+    if (view.show_stats)
+        stats_overlay(times_, renderer_->last_stats(), pipeline_.status());
+}
+
+void PreviewApp::do_actions()
+{
+    if (ui_.bookmark >= 0 && terrain_)
+        place_camera(scene_.cameras.at(std::size_t(ui_.bookmark)).name);
+    if (ui_.reset_camera && terrain_)
+        place_camera(args_.camera);
+    if (ui_.focus_fog)
+        focus_fog();
+    if (ui_.add_camera)
+        add_camera();
+}
+
+void PreviewApp::focus_fog()
+{
+    if (!fog_) {
+        report("no fog to focus on");
+        return;
+    }
+    const glm::dvec3 centre = 0.5 * (fog_->min + fog_->max);
+    const double radius = 0.5 * glm::length(fog_->max - fog_->min);
+    const render::Camera c = camera_.camera();
+    const glm::dvec3 direction = glm::normalize(c.target - c.position);
+    const double distance = radius / std::tan(c.fov_y_deg * M_PI / 360.0);
+    camera_.look(centre - distance * direction, centre, c.fov_y_deg);
+}
+
+void PreviewApp::add_camera()
+{
+    const std::string base = ui_.new_camera_name.empty() ? "view" : ui_.new_camera_name;
+    std::string name = base;
+    const auto taken = [&](const std::string& n) {
+        return std::any_of(scene_.cameras.begin(), scene_.cameras.end(), [&](const auto& c) { return c.name == n; });
+    };
+    for (int n = 2; taken(name); ++n)
+        name = base + "-" + std::to_string(n);
+    const render::Camera c = camera_.camera();
+    scene_.cameras.push_back({name, c.position, c.target, c.fov_y_deg});
+    report("camera '" + name + "' added to the scene (saved with it)");
+}
+
+bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
+{
+    if (!terrain_) {  // the first job is still running
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, fb_w, fb_h);
+        glClearColor(0.12f, 0.13f, 0.15f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        return false;
+    }
+    const ViewOptions& v = ui_.view;
+    float scale = v.render_scale;
+    // Dragging a slider redraws every frame too: reduced as well, so the panel keeps up.
+    const bool reduced = (camera_moved || ImGui::IsAnyItemActive()) && !force && v.reduce_while_moving &&
+                         v.moving_scale < scale;
+    if (reduced)
+        scale = v.moving_scale;
+    const int w = std::max(1, int(std::lround(fb_w * scale))), h = std::max(1, int(std::lround(fb_h * scale)));
+    const bool redraw = force || scene_dirty_ || camera_moved || w != last_width_ || h != last_height_ ||
+                        (last_frame_reduced_ && !reduced);
+    if (redraw) {
+        last_camera_ = camera_.camera();
+        renderer_->draw(last_camera_, w, h);
+        times_.scene_ms = renderer_->last_stats().frame_ms;
+        times_.scene_width = last_width_ = w;
+        times_.scene_height = last_height_ = h;
+        ++times_.scene_frames;
+        scene_dirty_ = false;
+        last_frame_reduced_ = reduced;
+    } else {
+        ++times_.reused_frames;
+    }
+    renderer_->present(fb_w, fb_h);
+    return redraw;
+}
+
+void PreviewApp::screenshot(const fs::path& path)
+{
+    render::write_png_atomic(path, window_->read_back_buffer());
+    std::printf("%s\n", path.string().c_str());
+    std::fflush(stdout);
+    report("wrote " + path.string());
+}
+
+int PreviewApp::run()
+{
+    if (args_.scripted()) {  // the picture shows the finished scene
+        pipeline_.wait_idle();
+        if (auto p = pipeline_.take())
+            apply(std::move(*p));
+        if (!terrain_ || ui_.message_is_error)
+            throw Error(ui_.message.empty() ? "the scene could not be prepared" : ui_.message);
+    }
+    int frame = 0;
+    std::vector<double> scene_ms;
+    auto last = Clock::now();
+    while (!window_->should_close()) {
+        const auto start = Clock::now();
+        // A long wait for events is not a long step of flight.
+        const double seconds = std::min(std::chrono::duration<double>(start - last).count(), 0.1);
+        last = start;
+        if (auto p = pipeline_.take())
+            apply(std::move(*p));
+        int fb_w = 0, fb_h = 0;
+        window_->framebuffer_size(fb_w, fb_h);
+        if (fb_w <= 0 || fb_h <= 0) {  // minimised: nothing to draw
+            glfwWaitEventsTimeout(0.1);
+            continue;
+        }
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        ui_.clear_actions();
+        handle_input(seconds);
+        if (!camera_path_.empty()) {
+            const render::Camera c =
+                camera_on_path(camera_path_, args_.frames > 1 ? double(frame) / (args_.frames - 1) : 0.0);
+            camera_.look(c.position, c.target, c.fov_y_deg);
+        }
+        draw_panel();
+        ImGui::Render();
+        do_actions();
+        const bool moved = !same(camera_.camera(), last_camera_);
+        if (draw_scene(fb_w, fb_h, moved, args_.scripted()) && args_.scripted())
+            scene_ms.push_back(times_.scene_ms);
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        try {
+            if (ui_.screenshot)
+                screenshot(next_screenshot_path(fs::current_path(), fs::path(args_.scene).stem().string()));
+            if (ui_.save) {
+                save_scene(scene_, ui_.save_path);
+                report("saved " + ui_.save_path);
+            }
+        } catch (const std::exception& e) {
+            report(e.what(), true);
+        }
+        if (args_.scripted() && ++frame >= args_.frames) {
+            screenshot(args_.screenshot);
+            if (!args_.save.empty())
+                save_scene(scene_, args_.save);
+            if (!scene_ms.empty()) {
+                const auto [lo, hi] = std::minmax_element(scene_ms.begin(), scene_ms.end());
+                double sum = 0.0;
+                for (double ms : scene_ms)
+                    sum += ms;
+                std::fprintf(stderr, "kiri-preview: %d frames of %dx%d, 3D view %.1f ms mean (%.1f..%.1f)\n", frame,
+                             times_.scene_width, times_.scene_height, sum / double(scene_ms.size()), *lo, *hi);
+            }
+            return 0;
+        }
+        window_->swap_buffers();
+        times_.loop_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        // Idle: sleep until an event (or a moment, to show the pipeline's progress).
+        const ImGuiIO& io = ImGui::GetIO();
+        const bool active = moved || ImGui::IsAnyItemActive() || io.MouseDown[0] || io.MouseDown[1] ||
+                            io.MouseDown[2] || io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f ||
+                            io.MouseWheel != 0.0f;
+        if (args_.scripted() || active)
+            glfwPollEvents();
+        else
+            glfwWaitEventsTimeout(pipeline_.status().busy ? 0.1 : 0.5);
+    }
+    return 0;
+}
+
+}  // namespace kiri::preview

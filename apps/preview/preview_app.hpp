@@ -1,0 +1,85 @@
+#pragma once
+// The preview window: a GLFW window with the 3D view and the Dear ImGui panel. The loop reads
+// input, runs the panels (which edit the scene), hands the scene to the pipeline when it
+// changed, applies what the pipeline finished, draws the 3D view only when something in it
+// changed (otherwise the last frame is shown again), then the panel on top.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kiri/geometry/scene.hpp"
+#include "kiri/render/renderer.hpp"
+#include "kiri/render/window_context.hpp"
+#include "orbit_camera.hpp"
+#include "panels/panels.hpp"
+#include "pipeline.hpp"
+
+namespace kiri::preview {
+
+struct Args {
+    std::string scene, camera, screenshot, save, camera_path;
+    std::vector<std::string> views;  //!< surface, deviation, clearance, triangles, patches, control
+    int frames = 0, width = 1280, height = 720;
+    bool no_fog = false, no_ui = false;
+    bool scripted() const { return frames > 0; }
+};
+
+class PreviewApp {
+public:
+    //! \throw kiri::Error (no display, no OpenGL 4.5), InputError (the scene).
+    explicit PreviewApp(const Args& args);
+    ~PreviewApp();
+    //! The window loop; returns the exit code. In scripted mode: --frames frames, then the
+    //! screenshot and the saved scene. \throw kiri::Error when the scene cannot be shown.
+    int run();
+
+private:
+    Args args_;
+    geometry::Scene scene_;
+    std::unique_ptr<render::WindowContext> window_;
+    std::unique_ptr<render::Renderer> renderer_;
+    Pipeline pipeline_;
+    // What the window shows, from the last finished job.
+    std::shared_ptr<const geometry::Terrain> terrain_;
+    std::shared_ptr<const FogProducts> fog_;
+    std::shared_ptr<const FogViews> uploaded_views_;
+    ViewOptions::Surface uploaded_surface_ = ViewOptions::Surface::hidden;
+    geometry::LayerOptions layer_options_;
+    OrbitCamera camera_;
+    bool camera_placed_ = false;
+    std::vector<render::Camera> camera_path_;
+    UiState ui_;
+    FrameTimes times_;
+    // The 3D frame on screen and what it showed, to draw again only on a change.
+    bool scene_dirty_ = true, last_frame_reduced_ = false;
+    render::Camera last_camera_;
+    int last_width_ = 0, last_height_ = 0;
+
+    void apply(Products products);
+    void apply_live_options();
+    void update_overlays();
+    bool handle_input(double seconds);  // true while the camera moves
+    void handle_keys();
+    void handle_key(int key, int mods);
+    //! Keys pressed since the last frame: a press and release within one slow frame (llvmpipe)
+    //! still counts, which ImGui 1.86's key state alone would miss.
+    struct KeyPress {
+        int key, mods;
+    };
+    std::vector<KeyPress> key_presses_;
+    static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
+    void place_camera(const std::string& name);
+    void focus_fog();
+    void pivot_at_cursor();
+    void add_camera();
+    void do_actions();
+    //! Draws the 3D view if needed and copies it to the window; returns whether it drew.
+    bool draw_scene(int framebuffer_width, int framebuffer_height, bool camera_moved, bool force);
+    void draw_panel();
+    void screenshot(const std::filesystem::path& path);
+    void report(const std::string& message, bool error = false);
+};
+
+}  // namespace kiri::preview
