@@ -1,37 +1,82 @@
-// kiri-preview in scripted mode under a virtual display (xvfb-run, installed by the set-up): the
-// screenshot shows terrain and fog, and the fog region is brighter and greyer than the same
-// view with the fog hidden.
+// kiri-preview as users run it, under a virtual display (xvfb-run, installed by the set-up):
+// the scripted mode's screenshots show terrain and fog, the views draw what they name, a
+// camera path ends where its last key is, and a driven session (mouse, keys, resize, save,
+// close) does what the controls say. Without xvfb-run the display tests are skipped.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <string>
 
 #include "cli/kiri_runner.hpp"
+#include "kiri/geometry/scene.hpp"
 #include "kiri/render/image.hpp"
 #include "temp_path.hpp"
 
 namespace fs = std::filesystem;
+using kiri::render::Image;
+using kiri::test::shell_quote;
 
 namespace {
+
+const std::string xvfb = "xvfb-run -a -s '-screen 0 1280x800x24' ";
+
+bool have_xvfb() { return std::system("command -v xvfb-run > /dev/null 2>&1") == 0; }
+
+std::string scene_path(const std::string& name = "jacksboro.json")
+{
+    return (fs::path(KIRI_DATA_DIR) / "scenes" / name).string();
+}
+
+struct Rgb {
+    int r, g, b;
+};
+Rgb at(const Image& im, int x, int y)
+{
+    const std::uint8_t* p = &im.rgba[(std::size_t(y) * im.width + x) * 4];
+    return {p[0], p[1], p[2]};
+}
+
+int count_pixels(const Image& im, const std::function<bool(Rgb)>& test)
+{
+    int n = 0;
+    for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x)
+            n += test(at(im, x, y));
+    return n;
+}
+
+// Mean |difference| over the channels of a region (x0, y0) - (x1, y1), same-size images.
+double mean_difference(const Image& a, const Image& b, int x0, int y0, int x1, int y1)
+{
+    double sum = 0.0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const Rgb p = at(a, x, y), q = at(b, x, y);
+            sum += std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b);
+        }
+    return sum / (3.0 * (x1 - x0) * (y1 - y0));
+}
 
 struct Tone {
     double luminance = 0.0, saturation = 0.0;
     int lo = 255, hi = 0;
 };
 
-// The lower left of a 960 x 540 window: terrain under the fog, away from the panel (right)
-// and the timings overlay (top left).
-Tone lower_left(const kiri::render::Image& image)
+// The lower half of the view: terrain (and fog) seen from the default camera.
+Tone lower_half(const Image& image)
 {
     Tone t;
     int n = 0;
-    for (int y = 300; y < image.height; ++y)
-        for (int x = 0; x < 500; ++x) {
-            const std::uint8_t* p = &image.rgba[(std::size_t(y) * image.width + x) * 4];
-            const int hi = std::max({p[0], p[1], p[2]}), lo = std::min({p[0], p[1], p[2]});
-            const double l = 0.3 * p[0] + 0.6 * p[1] + 0.1 * p[2];
+    for (int y = image.height / 2; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const Rgb p = at(image, x, y);
+            const int hi = std::max({p.r, p.g, p.b}), lo = std::min({p.r, p.g, p.b});
+            const double l = 0.3 * p.r + 0.6 * p.g + 0.1 * p.b;
             t.luminance += l;
             t.saturation += hi > 0 ? double(hi - lo) / hi : 0.0;
             t.lo = std::min(t.lo, int(l));
@@ -43,43 +88,165 @@ Tone lower_left(const kiri::render::Image& image)
     return t;
 }
 
-kiri::render::Image screenshot(const std::string& extra)
+// Scripted mode, 640 x 360, no panel: the 3D view alone.
+Image screenshot(const std::string& extra, const std::string& scene = scene_path())
 {
-    const fs::path png = kiri::test::temp_path("preview_test" + extra + ".png");
+    const fs::path png = kiri::test::temp_path("preview_test.png");
     fs::remove(png);
-    const std::string scene = (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string();
-    const std::string command = "xvfb-run -a -s '-screen 0 1280x720x24' " + kiri::test::shell_quote(KIRI_PREVIEW) +
-                                " " + scene + " --frames 3 --width 960 --height 540 --screenshot " + png.string() +
-                                " " + extra + " > /dev/null 2>&1";
+    const std::string command = xvfb + shell_quote(KIRI_PREVIEW) + " " + shell_quote(scene) +
+                                " --frames 2 --width 640 --height 360 --no-ui --screenshot " + png.string() + " " +
+                                extra + " > /dev/null 2>&1";
     EXPECT_EQ(std::system(command.c_str()), 0) << command;
-    kiri::render::Image image = kiri::render::read_png(png);
+    Image image = kiri::render::read_png(png);
     fs::remove(png);
     return image;
 }
 
+bool magenta(Rgb p) { return p.r > 170 && p.b > 140 && p.g < 110; }
+bool map_colour(Rgb p)  // the deviation map's saturated ends: red or blue
+{
+    return (p.r > 150 && p.g < 90 && p.b < 90) || (p.b > 150 && p.r < 90 && p.g < 120);
+}
+
+class PreviewXvfb : public ::testing::Test {
+protected:
+    void SetUp() override
+    {
+        if (!have_xvfb())
+            GTEST_SKIP() << "xvfb-run is not installed (scripts/setup.sh installs it)";
+    }
+};
+
 }  // namespace
 
-TEST(KiriPreview, ScriptedScreenshotShowsTerrainAndFog)
+TEST_F(PreviewXvfb, ScriptedScreenshotShowsTerrainAndFog)
 {
-    const kiri::render::Image fog = screenshot("");
-    ASSERT_EQ(fog.width, 960);
-    ASSERT_EQ(fog.height, 540);
-    const kiri::render::Image bare = screenshot("--no-fog");
-    const Tone with = lower_left(fog), without = lower_left(bare);
+    const Image fog = screenshot("");
+    ASSERT_EQ(fog.width, 640);
+    ASSERT_EQ(fog.height, 360);
+    const Image bare = screenshot("--no-fog");
+    const Tone with = lower_half(fog), without = lower_half(bare);
     EXPECT_GT(without.hi - without.lo, 60) << "the terrain view is uniform";
     EXPECT_GT(with.hi - with.lo, 30) << "the fog view is uniform";
     EXPECT_GT(with.luminance, without.luminance + 25.0) << without.luminance << " -> " << with.luminance;
     EXPECT_LT(with.saturation, 0.7 * without.saturation) << without.saturation << " -> " << with.saturation;
 }
 
-TEST(KiriPreview, BadSceneGivesOneLineAndExitTwo)
+TEST_F(PreviewXvfb, ViewsDrawTheControlMeshAndTheDeviationMap)
 {
-    const fs::path err = kiri::test::temp_path("preview_test_err.txt");
-    const std::string command = kiri::test::shell_quote(KIRI_PREVIEW) + " /no/such/scene.json > /dev/null 2> " +
-                                err.string();
+    const Image bare = screenshot("--no-fog");
+    const Image control = screenshot("--no-fog --view control");
+    const Image deviation = screenshot("--no-fog --view deviation");
+    // Terrain, sky and haze have no magenta and no saturated red or blue.
+    EXPECT_LT(count_pixels(bare, magenta), 20);
+    EXPECT_LT(count_pixels(bare, map_colour), 20);
+    // ~840 quads' edges at ~20 km: thousands of line pixels.
+    EXPECT_GT(count_pixels(control, magenta), 3000) << "control mesh lines";
+    // The map saturates beyond the 98th percentile of |deviation| at each end: a few % of the
+    // surface's pixels, which cover most of the lower half.
+    EXPECT_GT(count_pixels(deviation, map_colour), 1000) << "deviation map";
+}
+
+TEST_F(PreviewXvfb, CameraPathEndsAtItsLastKey)
+{
+    kiri::geometry::Scene scene = kiri::geometry::load_scene(scene_path());
+    const auto& top = scene.cameras.at(2);
+    ASSERT_EQ(top.name, "top");
+    const auto& first = scene.cameras.at(0);
+    const fs::path path = kiri::test::temp_path("camera_path.txt");
+    {
+        std::ofstream out(path);
+        out << "# eye, target, fov\n"
+            << first.position.x << " " << first.position.y << " " << first.position.z << "  " << first.target.x
+            << " " << first.target.y << " " << first.target.z << " " << first.fov_y_deg << "\n\n"
+            << top.position.x << " " << top.position.y << " " << top.position.z << "  " << top.target.x << " "
+            << top.target.y << " " << top.target.z << " " << top.fov_y_deg << "\n";
+    }
+    const Image along = screenshot("--no-fog --camera-path " + path.string());
+    const Image at_top = screenshot("--no-fog --camera top");
+    const Image at_first = screenshot("--no-fog");
+    fs::remove(path);
+    EXPECT_LT(mean_difference(along, at_top, 0, 0, 640, 360), 1.0);
+    EXPECT_GT(mean_difference(along, at_first, 0, 0, 640, 360), 10.0);
+}
+
+TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSavesAndCloses)
+{
+    const fs::path work = kiri::test::temp_path("preview_session");
+    fs::remove_all(work);
+    fs::create_directories(work);
+    // The scene with an absolute terrain path, so that it can live in the work folder.
+    kiri::geometry::Scene scene = kiri::geometry::load_scene(scene_path());
+    scene.terrain.path = fs::absolute(scene.terrain.path);
+    {
+        std::ofstream out(work / "scene.json");
+        out << kiri::geometry::scene_to_json(scene);
+    }
+    const std::string command = xvfb + shell_quote(KIRI_PREVIEW_DRIVER) + " " + work.string() + " " +
+                                shell_quote(KIRI_PREVIEW) + " scene.json --width 900 --height 520 > " +
+                                (work / "driver.txt").string() + " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << kiri::test::read_all(work / "driver.txt");
+    Image shot[7];
+    for (int i = 1; i <= 6; ++i)
+        shot[i] = kiri::render::read_png(work / ("scene-preview-" + std::to_string(i) + ".png"));
+    for (int i = 1; i <= 5; ++i) {
+        EXPECT_EQ(shot[i].width, 900) << i;
+        EXPECT_EQ(shot[i].height, 520) << i;
+    }
+    // The 3D view left of the panel and below the timings changes with each camera move...
+    const auto view_change = [&](int a, int b) { return mean_difference(shot[a], shot[b], 0, 320, 460, 520); };
+    EXPECT_GT(view_change(1, 2), 3.0) << "orbit";
+    EXPECT_GT(view_change(2, 3), 3.0) << "pan";
+    EXPECT_GT(view_change(3, 4), 3.0) << "bookmark 3 (top)";
+    // ...hiding the panel changes where it was, and nothing else moves.
+    EXPECT_GT(mean_difference(shot[4], shot[5], 480, 40, 880, 500), 10.0) << "panel hidden";
+    EXPECT_LT(view_change(4, 5), 0.5);
+    // The window was resized; the framebuffer followed.
+    EXPECT_EQ(shot[6].width, 700);
+    EXPECT_EQ(shot[6].height, 420);
+    // Ctrl+S wrote the scene next to it, and it loads back equal (the terrain path relative).
+    const kiri::geometry::Scene saved = kiri::geometry::load_scene(work / "scene-edited.json");
+    EXPECT_EQ(fs::weakly_canonical(saved.terrain.path), fs::weakly_canonical(scene.terrain.path));
+    kiri::geometry::Scene a = saved, b = kiri::geometry::load_scene(work / "scene.json");
+    a.file = b.file = fs::path();
+    a.terrain.path = b.terrain.path = fs::path();
+    EXPECT_EQ(kiri::geometry::scene_to_json(a), kiri::geometry::scene_to_json(b));
+    fs::remove_all(work);
+}
+
+TEST(KiriPreview, NoDisplayGivesOneLineAndExitTwo)
+{
+    const fs::path err = kiri::test::temp_path("preview_test_nodisplay.txt");
+    const std::string command = "env -u DISPLAY -u WAYLAND_DISPLAY " + shell_quote(KIRI_PREVIEW) + " " +
+                                shell_quote(scene_path()) + " > /dev/null 2> " + err.string();
     const int status = std::system(command.c_str());
     EXPECT_EQ(WEXITSTATUS(status), 2);
     const std::string text = kiri::test::read_all(err);
+    fs::remove(err);
+    EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
+    EXPECT_NE(text.find("display"), std::string::npos) << text;
+}
+
+TEST(KiriPreview, BadSceneGivesOneLineAndExitTwo)
+{
+    const fs::path err = kiri::test::temp_path("preview_test_err.txt");
+    const std::string command = shell_quote(KIRI_PREVIEW) + " /no/such/scene.json > /dev/null 2> " + err.string();
+    const int status = std::system(command.c_str());
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+    const std::string text = kiri::test::read_all(err);
+    fs::remove(err);
     EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1) << text;
     EXPECT_NE(text.find("/no/such/scene.json"), std::string::npos) << text;
+}
+
+TEST(KiriPreview, ScriptedOptionsAreCheckedBeforeAnyWindow)
+{
+    const auto exit_code = [](const std::string& args) {
+        const std::string command = "env -u DISPLAY " + shell_quote(KIRI_PREVIEW) + " " + args + " > /dev/null 2>&1";
+        return WEXITSTATUS(std::system(command.c_str()));
+    };
+    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --frames 3"), 2);           // no --screenshot
+    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --save x.json"), 2);        // not scripted
+    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --view sideways"), 2);      // unknown view
+    EXPECT_EQ(exit_code("--help"), 0);
 }
