@@ -136,7 +136,8 @@ std::shared_ptr<const FogViews> make_fog_views(const geometry::BaseSurface& surf
     const glm::vec4 nodata(0.5f, 0.5f, 0.5f, 1.0f);
     views->deviation_colors.resize(n);
     views->clearance_colors.resize(n);
-    const double dr = std::max(views->deviation_range, 1e-6), cr = std::max(views->clearance_range, 1e-6);
+    // Below a centimetre a deviation is rounding: such a surface maps to white, not to noise.
+    const double dr = std::max(views->deviation_range, 0.01), cr = std::max(views->clearance_range, 0.01);
     for (std::size_t i = 0; i < n; ++i) {
         views->deviation_colors[i] = data[i] ? diverging_color(deviation[i] / dr) : nodata;
         // Below the terrain (a lake under a ridge) is the bottom of the map.

@@ -77,6 +77,7 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     glfwSetKeyCallback(window_->window(), on_key);
     ImGui_ImplGlfw_InitForOpenGL(window_->window(), true);
     ImGui_ImplOpenGL3_Init("#version 450 core");
+    scale_ui_to_monitor();
     renderer_ = std::make_unique<render::Renderer>();
     pipeline_.request(scene_);
 }
@@ -87,6 +88,24 @@ PreviewApp::~PreviewApp()
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
+}
+
+void PreviewApp::scale_ui_to_monitor()
+{
+    // On HiDPI screens whose framebuffer is already larger than the window (macOS, Wayland)
+    // ImGui scales up by itself; where window units are pixels (X11) the content scale has to
+    // enlarge the text and widgets instead.
+    float xscale = 1.0f, yscale = 1.0f;
+    glfwGetWindowContentScale(window_->window(), &xscale, &yscale);
+    int fb_w = 0, fb_h = 0, win_w = 0, win_h = 0;
+    window_->framebuffer_size(fb_w, fb_h);
+    glfwGetWindowSize(window_->window(), &win_w, &win_h);
+    const float framebuffer_scale = win_w > 0 ? float(fb_w) / float(win_w) : 1.0f;
+    ui_scale_ = std::clamp(xscale / std::max(framebuffer_scale, 1.0f), 1.0f, 4.0f);
+    if (ui_scale_ > 1.0f) {
+        ImGui::GetIO().FontGlobalScale = ui_scale_;
+        ImGui::GetStyle().ScaleAllSizes(ui_scale_);
+    }
 }
 
 void PreviewApp::report(const std::string& message, bool error)
@@ -191,8 +210,9 @@ void PreviewApp::draw_panel()
     ViewOptions& view = ui_.view;
     if (view.show_panel) {
         const ImGuiIO& io = ImGui::GetIO();
-        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - 430.0f, 10.0f), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(420.0f, io.DisplaySize.y - 20.0f), ImGuiCond_FirstUseEver);
+        const float width = 420.0f * ui_scale_;
+        ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x - width - 10.0f, 10.0f), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(width, io.DisplaySize.y - 20.0f), ImGuiCond_FirstUseEver);
         ImGui::SetNextWindowBgAlpha(0.85f);
         ImGui::Begin("kiri");
         ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.5f);  // room for the labels
@@ -333,6 +353,11 @@ int PreviewApp::run()
         ImGui::NewFrame();
         ui_.clear_actions();
         handle_input(seconds);
+        if (ui_.view.play_time) {  // wind and dissipation run in real time
+            scene_.layers.time += seconds;
+            apply_live_options();
+            scene_dirty_ = true;
+        }
         if (!camera_path_.empty()) {
             const render::Camera c =
                 camera_on_path(camera_path_, args_.frames > 1 ? double(frame) / (args_.frames - 1) : 0.0);
@@ -373,7 +398,7 @@ int PreviewApp::run()
         times_.loop_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         // Idle: sleep until an event (or a moment, to show the pipeline's progress).
         const ImGuiIO& io = ImGui::GetIO();
-        const bool active = moved || ImGui::IsAnyItemActive() || io.MouseDown[0] || io.MouseDown[1] ||
+        const bool active = moved || ui_.view.play_time || ImGui::IsAnyItemActive() || io.MouseDown[0] || io.MouseDown[1] ||
                             io.MouseDown[2] || io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f ||
                             io.MouseWheel != 0.0f;
         if (args_.scripted() || active)

@@ -57,6 +57,8 @@ private:
     render::Camera last_camera_;
     int last_width_ = 0, last_height_ = 0;
 
+    float ui_scale_ = 1.0f;
+    void scale_ui_to_monitor();
     void apply(Products products);
     void apply_live_options();
     void update_overlays();

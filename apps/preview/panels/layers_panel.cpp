@@ -32,6 +32,8 @@ bool layers_panel(geometry::Scene& scene, ViewOptions& view)
     }
     changed |= slider("dissipation half-life (s)", o.dissipation_half_life, 0.0, 3600.0, "%.0f");
     changed |= slider("time (s)", o.time, 0.0, 3600.0, "%.0f");
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("play", &view.play_time);
     if (ImGui::TreeNode("more")) {
         changed |= slider("spacing divisor (2.6)", o.spacing_divisor, 20.0, 2000.0, "%.0f", true);
         changed |= slider("most layers", o.max_count, o.count, 400);

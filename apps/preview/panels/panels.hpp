@@ -21,6 +21,7 @@ struct ViewOptions {
     bool patches = false;                   //!< patch borders
     bool control_mesh = false;
     double layer_resolution = 0.5;          //!< Renderer::set_layer_resolution
+    bool play_time = false;                 //!< advance the layers' time (wind, dissipation) in real time
     float render_scale = 1.0f;              //!< of the window's framebuffer
     bool reduce_while_moving = true;        //!< render at moving_scale while the camera moves
     float moving_scale = 0.5f;
