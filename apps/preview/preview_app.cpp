@@ -124,6 +124,7 @@ void PreviewApp::apply(Products p)
         // The renderer keeps the terrain by reference: the new one goes in before the old goes.
         const auto old = std::exchange(terrain_, p.terrain);
         renderer_->set_terrain(*terrain_);
+        apply_live_options();  // the sun, also for a scene without fog
         scene_dirty_ = true;
     }
     if (p.fog != fog_) {

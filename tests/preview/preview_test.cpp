@@ -132,6 +132,22 @@ TEST_F(PreviewXvfb, ScriptedScreenshotShowsTerrainAndFog)
     EXPECT_LT(with.saturation, 0.7 * without.saturation) << without.saturation << " -> " << with.saturation;
 }
 
+TEST_F(PreviewXvfb, TheViewIsWhatKiriRenderDraws)
+{
+    // The window shows the scene as the headless renderer draws it (both on llvmpipe here:
+    // the same pixels; a GPU on one side only would differ by rounding).
+    const Image preview = screenshot("");
+    const fs::path png = kiri::test::temp_path("preview_test_render.png");
+    const kiri::test::RunResult r =
+        kiri::test::run_kiri("render " + shell_quote(scene_path()) + " --width 640 --height 360 -o " + png.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Image rendered = kiri::render::read_png(png);
+    fs::remove(png);
+    ASSERT_EQ(rendered.width, preview.width);
+    ASSERT_EQ(rendered.height, preview.height);
+    EXPECT_LT(mean_difference(preview, rendered, 0, 0, 640, 360), 1.0);
+}
+
 TEST_F(PreviewXvfb, ViewsDrawTheControlMeshAndTheDeviationMap)
 {
     const Image bare = screenshot("--no-fog");
