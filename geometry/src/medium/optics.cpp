@@ -1,0 +1,49 @@
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "kiri/geometry/medium.hpp"
+
+namespace kiri::geometry {
+namespace {
+constexpr double koschmieder = 3.912;  // -ln(0.02): the 2 % contrast threshold
+constexpr double water_density_g_per_m3 = 1e6;
+constexpr double droplet_extinction_efficiency = 2.0;  // large-particle limit of Mie theory
+
+void require_positive(double v, const char* what)
+{
+    if (!(v > 0.0) || !std::isfinite(v))
+        throw std::invalid_argument(std::string(what) + " must be a finite number > 0");
+}
+}  // namespace
+
+double visibility_from_extinction(double sigma)
+{
+    require_positive(sigma, "extinction");
+    return koschmieder / sigma;
+}
+
+double extinction_from_visibility(double visibility)
+{
+    require_positive(visibility, "visibility");
+    return koschmieder / visibility;
+}
+
+double extinction_from_liquid_water(double lwc_g_per_m3, double droplet_radius_um)
+{
+    require_positive(lwc_g_per_m3, "liquid water content");
+    require_positive(droplet_radius_um, "droplet radius");
+    return 3.0 * droplet_extinction_efficiency * lwc_g_per_m3 /
+           (4.0 * water_density_g_per_m3 * droplet_radius_um * 1e-6);
+}
+
+double henyey_greenstein(double cos_theta, double g)
+{
+    g = std::isfinite(g) ? std::clamp(g, -0.999, 0.999) : 0.0;
+    const double c = std::isfinite(cos_theta) ? std::clamp(cos_theta, -1.0, 1.0) : 0.0;
+    const double denom = 1.0 + g * g - 2.0 * g * c;  // >= (1 - |g|)^2 > 0
+    return (1.0 - g * g) / (4.0 * std::numbers::pi * denom * std::sqrt(denom));
+}
+
+}  // namespace kiri::geometry

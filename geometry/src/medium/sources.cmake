@@ -1,0 +1,8 @@
+# Sources of geometry/src/medium (paths relative to geometry/)
+list(APPEND KIRI_GEOMETRY_SOURCES
+  src/medium/optics.cpp
+  src/medium/fog_noise.cpp
+  src/medium/medium.cpp
+  src/medium/make_medium.cpp
+  src/medium/medium_options_json.cpp
+)
