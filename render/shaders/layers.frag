@@ -25,10 +25,7 @@ uniform vec3 u_sun_radiance;
 uniform vec3 u_ambient;
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
-uniform float u_exposure;
-out vec4 o_color;
-
-vec3 tonemap(vec3 radiance) { return pow(vec3(1.0) - exp(-radiance * u_exposure), vec3(1.0 / 2.2)); }
+out vec4 o_color;  // premultiplied linear radiance
 
 // Detail: a tileable noise texture, shifted per layer so neighbouring layers differ.
 float detail_noise(vec2 xy, float layer)
@@ -59,5 +56,5 @@ void main()
     vec3 radiance = tex.rgb * (u_sun_radiance * sun_up * phase * 0.6 + u_ambient * 1.6);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
-    o_color = vec4(tonemap(radiance) * a, a);
+    o_color = vec4(radiance * a, a);
 }

@@ -7,14 +7,7 @@ uniform vec3 u_sun_direction;  // towards the sun, unit
 uniform vec3 u_sun_radiance;
 uniform vec3 u_sky_zenith;
 uniform vec3 u_sky_horizon;
-uniform float u_exposure;
-out vec4 o_color;
-
-vec3 tonemap(vec3 radiance)
-{
-    // Exponential exposure, then the sRGB transfer curve (approximated by gamma 2.2).
-    return pow(vec3(1.0) - exp(-radiance * u_exposure), vec3(1.0 / 2.2));
-}
+out vec4 o_color;  // linear radiance
 
 void main()
 {
@@ -26,5 +19,5 @@ void main()
         sky = u_sky_horizon * (1.0 + 0.3 * elevation);
     float sun = max(dot(direction, u_sun_direction), 0.0);
     sky += u_sun_radiance * (0.02 * pow(sun, 8.0) + 0.25 * pow(sun, 400.0));
-    o_color = vec4(tonemap(sky), 1.0);
+    o_color = vec4(sky, 1.0);
 }

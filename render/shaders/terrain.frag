@@ -11,13 +11,7 @@ uniform vec3 u_sky_horizon;
 uniform float u_z_min;
 uniform float u_z_max;
 uniform float u_haze_density;  // 1/m
-uniform float u_exposure;
-out vec4 o_color;
-
-vec3 tonemap(vec3 radiance)
-{
-    return pow(vec3(1.0) - exp(-radiance * u_exposure), vec3(1.0 / 2.2));
-}
+out vec4 o_color;  // linear radiance (tonemap.frag makes it a colour)
 
 vec3 albedo(float height01, float steepness)
 {
@@ -39,5 +33,5 @@ void main()
     vec3 radiance = base * (u_sun_radiance * direct + sky);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
-    o_color = vec4(tonemap(radiance), 1.0);
+    o_color = vec4(radiance, 1.0);
 }

@@ -258,7 +258,6 @@ void LayersPass::draw_stack(const FrameContext& frame)
     program_.set("u_ambient", frame.ambient);
     program_.set("u_sky_horizon", frame.sky_horizon);
     program_.set("u_haze_density", frame.haze_density);
-    program_.set("u_exposure", frame.exposure);
     program_.use();
     glBindTextureUnit(0, atlas_.get());
     glBindTextureUnit(1, heights_.get());

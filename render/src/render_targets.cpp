@@ -27,22 +27,31 @@ void RenderTargets::ensure(int width, int height)
                     " is outside what this OpenGL supports (1.." + std::to_string(max_size) + ")");
     msaa_color_ = make_renderbuffer();
     msaa_depth_ = make_renderbuffer();
-    resolved_color_ = make_renderbuffer();
+    display_color_ = make_renderbuffer();
+    resolved_color_ = make_texture(GL_TEXTURE_2D);
     resolved_depth_ = make_texture(GL_TEXTURE_2D);
-    glNamedRenderbufferStorageMultisample(msaa_color_.get(), samples, GL_RGBA8, width, height);
+    glNamedRenderbufferStorageMultisample(msaa_color_.get(), samples, GL_RGBA16F, width, height);
     glNamedRenderbufferStorageMultisample(msaa_depth_.get(), samples, GL_DEPTH_COMPONENT32F, width, height);
-    glNamedRenderbufferStorage(resolved_color_.get(), GL_RGBA8, width, height);
-    glTextureStorage2D(resolved_depth_.get(), 1, GL_DEPTH_COMPONENT32F, width, height);
-    glTextureParameteri(resolved_depth_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(resolved_depth_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glNamedRenderbufferStorage(display_color_.get(), GL_RGBA8, width, height);
+    for (const Texture* t : {&resolved_color_, &resolved_depth_}) {
+        glTextureStorage2D(t->get(), 1, t == &resolved_color_ ? GL_RGBA16F : GL_DEPTH_COMPONENT32F, width, height);
+        glTextureParameteri(t->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t->get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glTextureParameteri(t->get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(t->get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    }
     msaa_ = make_framebuffer();
     resolved_ = make_framebuffer();
+    display_ = make_framebuffer();
     glNamedFramebufferRenderbuffer(msaa_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_.get());
     glNamedFramebufferRenderbuffer(msaa_.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
-    glNamedFramebufferRenderbuffer(resolved_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolved_color_.get());
+    glNamedFramebufferTexture(resolved_.get(), GL_COLOR_ATTACHMENT0, resolved_color_.get(), 0);
     glNamedFramebufferTexture(resolved_.get(), GL_DEPTH_ATTACHMENT, resolved_depth_.get(), 0);
+    glNamedFramebufferRenderbuffer(display_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, display_color_.get());
+    glNamedFramebufferTexture(display_.get(), GL_DEPTH_ATTACHMENT, resolved_depth_.get(), 0);
     check_complete(msaa_.get(), "multisampled");
     check_complete(resolved_.get(), "resolve");
+    check_complete(display_.get(), "display");
     width_ = width;
     height_ = height;
 }
@@ -66,7 +75,7 @@ std::vector<std::uint8_t> RenderTargets::read_rgba() const
 {
     const std::size_t row = std::size_t(width_) * 4;
     std::vector<std::uint8_t> bottom_up(row * height_), top_down(row * height_);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, resolved_.get());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, display_.get());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
     glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
     for (int y = 0; y < height_; ++y)

@@ -6,8 +6,11 @@
 
 namespace kiri::render::detail {
 
-//! The offscreen framebuffers of a frame: 4x multisampled colour (RGBA8) and depth (32F),
-//! resolved into single-sampled copies that are read back.
+//! The offscreen framebuffers of a frame. Passes draw linear radiance into a 4x multisampled
+//! half-float target (colour RGBA16F, depth 32F), resolved into single-sampled copies ("hdr")
+//! that later passes blend into (layers, fog); one tone-mapping pass turns it into the 8-bit
+//! "display" image that is read back or shown, which shares the resolved depth so overlays
+//! drawn on it are depth-tested against the scene.
 class RenderTargets {
 public:
     static constexpr int samples = 4;
@@ -19,16 +22,20 @@ public:
     std::vector<std::uint8_t> read_rgba() const;
     //! Depth in [0, 1] of pixel (x, y), origin top-left.
     float read_depth(int x, int y) const;
-    GLuint resolved_framebuffer() const { return resolved_.get(); }
+    //! Resolved linear radiance (+ depth): where passes after the resolve blend.
+    GLuint hdr_framebuffer() const { return resolved_.get(); }
+    GLuint hdr_color() const { return resolved_color_.get(); }
     GLuint resolved_depth() const { return resolved_depth_.get(); }
+    //! The tone-mapped 8-bit image (+ the resolved depth).
+    GLuint display_framebuffer() const { return display_.get(); }
     int width() const { return width_; }
     int height() const { return height_; }
 
 private:
     int width_ = 0, height_ = 0;
-    Framebuffer msaa_, resolved_;
-    Renderbuffer msaa_color_, msaa_depth_, resolved_color_;
-    Texture resolved_depth_;  // sampled by passes drawn after the resolve
+    Framebuffer msaa_, resolved_, display_;
+    Renderbuffer msaa_color_, msaa_depth_, display_color_;
+    Texture resolved_color_, resolved_depth_;  // sampled by passes drawn after the resolve
 };
 
 }  // namespace kiri::render::detail

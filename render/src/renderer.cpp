@@ -15,6 +15,7 @@
 #include "render_targets.hpp"
 #include "sky_pass.hpp"
 #include "terrain_pass.hpp"
+#include "tonemap_pass.hpp"
 
 namespace kiri::render {
 
@@ -54,6 +55,7 @@ struct Renderer::Impl {
     detail::TerrainPass terrain;
     detail::LayersPass layers;
     detail::OverlayPass overlays;
+    detail::ToneMapPass tonemap;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
     detail::RenderTargets targets;
@@ -62,7 +64,7 @@ struct Renderer::Impl {
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
     PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve"},
-        overlays_timer{"overlays"};
+        overlays_timer{"overlays"}, tonemap_timer{"tonemap"};
 };
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -132,15 +134,18 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.resolve_timer.end();
     if (!r.layers_multisampled) {  // layers in their own target, composited after the resolve
         r.layers_timer.begin();
-        if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.resolved_framebuffer(), r.targets.resolved_depth()))
+        if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.hdr_framebuffer(), r.targets.resolved_depth()))
             ++r.pending_uploads;
         r.layers_timer.end();
     }
+    r.tonemap_timer.begin();
+    glBindFramebuffer(GL_FRAMEBUFFER, r.targets.display_framebuffer());
+    glViewport(0, 0, width, height);
+    r.tonemap.draw(frame, r.targets.hdr_color());
+    r.tonemap_timer.end();
     const bool overlays = r.overlays.has_visible();
-    if (overlays) {  // last, over the fog, into the resolved frame (its depth is the terrain's)
+    if (overlays) {  // last, over the fog, into the display image (its depth is the terrain's)
         r.overlays_timer.begin();
-        glBindFramebuffer(GL_FRAMEBUFFER, r.targets.resolved_framebuffer());
-        glViewport(0, 0, width, height);
         r.overlays.draw(frame);
         r.overlays_timer.end();
     }
@@ -148,7 +153,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     detail::check_gl_errors("Renderer::draw");
 
     r.stats = {};
-    for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer})
+    for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer, &r.tonemap_timer})
         r.stats.passes.push_back(t->result());
     if (overlays)
         r.stats.passes.push_back(r.overlays_timer.result());
@@ -173,7 +178,7 @@ void Renderer::present(int framebuffer_width, int framebuffer_height) const
     const Impl& r = *impl_;
     if (r.targets.width() <= 0 || framebuffer_width <= 0 || framebuffer_height <= 0)
         return;
-    glBlitNamedFramebuffer(r.targets.resolved_framebuffer(), 0, 0, 0, r.targets.width(), r.targets.height(), 0, 0,
+    glBlitNamedFramebuffer(r.targets.display_framebuffer(), 0, 0, 0, r.targets.width(), r.targets.height(), 0, 0,
                            framebuffer_width, framebuffer_height, GL_COLOR_BUFFER_BIT, GL_LINEAR);
     // What draws next (a UI) draws over the frame in the window.
     glBindFramebuffer(GL_FRAMEBUFFER, 0);

@@ -12,7 +12,6 @@ void SkyPass::draw(const FrameContext& frame) const
     program_.set("u_sun_radiance", frame.sun_radiance);
     program_.set("u_sky_zenith", frame.sky_zenith);
     program_.set("u_sky_horizon", frame.sky_horizon);
-    program_.set("u_exposure", frame.exposure);
     program_.use();
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);

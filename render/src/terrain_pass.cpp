@@ -105,7 +105,6 @@ void TerrainPass::draw(const FrameContext& frame) const
     program_.set("u_z_min", float(min_.z));
     program_.set("u_z_max", float(max_.z));
     program_.set("u_haze_density", frame.haze_density);
-    program_.set("u_exposure", frame.exposure);
     program_.use();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);

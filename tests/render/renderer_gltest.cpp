@@ -93,9 +93,10 @@ TEST_F(RendererGl, StaticSceneUploadsOnce)
     renderer.set_terrain(hill, 2.0);
     renderer.render(oblique_camera(), 64, 48);
     EXPECT_EQ(renderer.last_stats().uploads, 1);
-    ASSERT_EQ(renderer.last_stats().passes.size(), 4u);
+    ASSERT_EQ(renderer.last_stats().passes.size(), 5u);
     EXPECT_EQ(renderer.last_stats().passes[1].pass, "terrain");
     EXPECT_EQ(renderer.last_stats().passes[2].pass, "layers");
+    EXPECT_EQ(renderer.last_stats().passes[4].pass, "tonemap");
     EXPECT_EQ(renderer.last_stats().layers, 0);  // no fog: the layer pass draws nothing
 }
 
