@@ -1,16 +1,23 @@
 #version 450 core
-// A fog layer: the atlas alpha (border fade), the layer's alpha with the spacing correction
-// 1 - (1 - a)^(r / r0) (thinner layers when more are added, so the stack keeps its optical
-// thickness), world-space detail noise drifting with the wind, and a soft fade where the
-// layer meets the ground (terrain height read per fragment). Output is premultiplied.
+// A fog layer, in one of two shadings (geometry::LayerShading):
+// - source: the atlas alpha (border fade) times the layer's alpha with the spacing correction
+//   1 - (1 - a)^(r / r0), gray, lit by an ad hoc sun and sky term;
+// - medium: the slab of fog the layer stands for (docs/medium.md): density = the layer's
+//   profile x border fade x detail, optical depth sigma_t density r / |cos(view, normal)|,
+//   single scattering albedo (sun HG(g) T_sun + ambient), T_sun through the fog above it.
+// Both: world-space detail noise drifting with the wind and a soft fade where the layer meets
+// the ground. Output is premultiplied linear radiance.
 in vec3 v_world;
 in vec2 v_uv;
 in float v_alpha;
 in float v_exponent;
+in float v_spacing;
+in float v_height;
+in vec3 v_normal;
 flat in int v_layer;
 
 uniform sampler2D u_atlas;
-uniform sampler2D u_noise;       // tileable value noise (noise_texture.cpp)
+uniform sampler2D u_noise;       // tileable value noise (geometry::fog_noise_tile)
 uniform sampler2D u_heights;     // terrain heights (world metres), R32F
 uniform vec4 u_height_rect;      // x0, y0, 1 / extent x, 1 / extent y
 uniform vec2 u_height_texels;    // nx, ny
@@ -25,7 +32,16 @@ uniform vec3 u_sun_radiance;
 uniform vec3 u_ambient;
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
-out vec4 o_color;  // premultiplied linear radiance
+uniform int u_medium;            // 1: LayerShading::medium
+uniform float u_extinction;      // sigma_t (1/m) at density 1
+uniform float u_albedo;
+uniform float u_anisotropy;      // g, clamped inside (-1, 1) on the CPU
+uniform float u_top_loss;        // 1 - top_density
+uniform float u_thickness;       // T0 (m)
+uniform int u_octaves;           // multiple-scattering octaves (geometry::fog_source)
+out vec4 o_color;
+
+const float pi = 3.14159265358979;
 
 // Detail: a tileable noise texture, shifted per layer so neighbouring layers differ.
 float detail_noise(vec2 xy, float layer)
@@ -35,25 +51,56 @@ float detail_noise(vec2 xy, float layer)
     return texture(u_noise, q).r;
 }
 
+float henyey_greenstein(float cos_theta, float g)
+{
+    float d = 1.0 + g * g - 2.0 * g * cos_theta;
+    return (1.0 - g * g) / (4.0 * pi * d * sqrt(d));
+}
+
+// geometry::fog_source (fog_lighting.hpp): the source per unit extinction towards the eye.
+vec3 fog_source(float cos_theta, float tau_sun, float visibility)
+{
+    float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
+    for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
+        sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(-b * tau_sun);
+    return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient);
+}
+
 void main()
 {
     vec4 tex = texture(u_atlas, v_uv);
-    float a = v_alpha * u_opacity * tex.a;
+    float detail = 1.0;
     if (u_detail > 0.0)
-        a *= 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, float(v_layer)));
-    a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);
+        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, float(v_layer)));
     vec2 h_uv = (v_world.xy - u_height_rect.xy) * u_height_rect.zw;
     h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
     float clearance = v_world.z - texture(u_heights, h_uv).r;
-    a *= u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
-    if (a <= 1e-6)  // nothing to add; a larger threshold would bias stacks of many thin layers
-        discard;
-    // Gray, lit by the sun (forward scattering brightens it towards the sun) and the sky.
+    float ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
     vec3 view = normalize(v_world - u_eye);
     float cos_sun = dot(view, u_sun_direction);
-    float phase = 0.55 + 0.45 * (1.0 + cos_sun * cos_sun) * 0.5 + 0.5 * pow(max(cos_sun, 0.0), 8.0);
-    float sun_up = clamp(u_sun_direction.z * 2.0 + 0.2, 0.0, 1.0);
-    vec3 radiance = tex.rgb * (u_sun_radiance * sun_up * phase * 0.6 + u_ambient * 1.6);
+    float a;
+    vec3 radiance;
+    if (u_medium != 0) {
+        float density = v_alpha * tex.a * detail * ground;
+        float cos_view = max(abs(dot(normalize(v_normal), view)), 0.02);
+        a = 1.0 - exp(-u_extinction * density * v_spacing / cos_view);
+        // Fog above this layer towards the sun: the profile integrated from h to the top,
+        // (1 - h) - k (1 - h^2) / 2 of the thickness, along the slant of the sun.
+        float h = v_height;
+        float above = u_extinction * tex.a * u_thickness * ((1.0 - h) - 0.5 * u_top_loss * (1.0 - h * h));
+        float sun_up = u_sun_direction.z > 0.0 ? 1.0 : 0.0;
+        radiance = fog_source(cos_sun, above / max(u_sun_direction.z, 0.02), sun_up);
+    } else {
+        a = v_alpha * u_opacity * tex.a * detail;
+        a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);
+        a *= ground;
+        // Gray, lit by the sun (forward scattering brightens it towards the sun) and the sky.
+        float phase = 0.55 + 0.45 * (1.0 + cos_sun * cos_sun) * 0.5 + 0.5 * pow(max(cos_sun, 0.0), 8.0);
+        float sun_up = clamp(u_sun_direction.z * 2.0 + 0.2, 0.0, 1.0);
+        radiance = tex.rgb * (u_sun_radiance * sun_up * phase * 0.6 + u_ambient * 1.6);
+    }
+    if (a <= 1e-6)  // nothing to add; a larger threshold would bias stacks of many thin layers
+        discard;
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
     o_color = vec4(radiance * a, a);

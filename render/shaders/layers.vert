@@ -22,11 +22,15 @@ uniform int u_top;           // layers above the base drawn this frame
 uniform int u_bottom_first;
 uniform float u_time;
 uniform float u_half_life;   // 0: no dissipation
+uniform float u_top_loss;    // 0.9 of (2.7); 1 - top_density of the medium
 
 out vec3 v_world;
 out vec2 v_uv;
 out float v_alpha;
 out float v_exponent;
+out float v_spacing;        // r (m): the slab this layer stands for
+out float v_height;         // h = i / n in [0, 1]: where in the fog's thickness
+out vec3 v_normal;
 flat out int v_layer;
 
 void main()
@@ -39,6 +43,9 @@ void main()
         v_world = p;
         v_alpha = i == 0 ? 1.0 : 0.0;
         v_exponent = 1.0;
+        v_spacing = u_thickness;
+        v_height = 0.0;
+        v_normal = a_normal;
         gl_Position = u_view_projection * vec4(p, 1.0);
         return;
     }
@@ -55,10 +62,13 @@ void main()
     float sin_theta = (u_enlargement != 0 && L > 0.0) ? min(abs(dot(a_normal, d)) / L, 1.0) : 0.0;
     float fi = float(i);
     float fade_in = clamp(n + 1.0 - fi, 0.0, 1.0);
-    v_alpha = fade_in * (1.0 - 0.9 * min(fi, n) / n);
+    v_height = min(fi, n) / n;
+    v_alpha = fade_in * (1.0 - u_top_loss * v_height);
     if (u_half_life > 0.0 && u_time > 0.0)
         v_alpha *= exp2(-u_time / u_half_life * (1.0 + min(fi / n, 1.0)));
     v_exponent = r / r0;
+    v_spacing = r;
+    v_normal = a_normal;
     float scale = 1.0 + fi * u_rate * sin_theta;
     vec2 xy = u_centre + scale * (p.xy - u_centre);
     v_world = vec3(xy, p.z + fi * r);

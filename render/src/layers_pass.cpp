@@ -258,6 +258,13 @@ void LayersPass::draw_stack(const FrameContext& frame)
     program_.set("u_ambient", frame.ambient);
     program_.set("u_sky_horizon", frame.sky_horizon);
     program_.set("u_haze_density", frame.haze_density);
+    const bool medium = o.shading == geometry::LayerShading::medium;
+    program_.set("u_medium", int(medium));
+    program_.set("u_top_loss", float(medium ? 1.0 - o.optics.top_density : 0.9));
+    program_.set("u_extinction", float(o.optics.extinction));
+    program_.set("u_albedo", float(o.optics.albedo));
+    program_.set("u_octaves", std::clamp(o.optics.scattering_octaves, 1, 8));
+    program_.set("u_anisotropy", float(std::clamp(o.optics.anisotropy, -0.999, 0.999)));
     program_.use();
     glBindTextureUnit(0, atlas_.get());
     glBindTextureUnit(1, heights_.get());

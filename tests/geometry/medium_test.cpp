@@ -8,6 +8,7 @@
 
 #include "fog_test_terrains.hpp"
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fog_lighting.hpp"
 #include "kiri/geometry/medium.hpp"
 #include "kiri/geometry/scene.hpp"
 
@@ -294,4 +295,33 @@ TEST(MediumJson, UnitsAndRefusals)
     refused(R"({"extinction": 1e9})", "/medium");
     refused(R"({"fog_colour": 1})", "/medium/fog_colour");
     refused(R"([1, 2])", "/medium");
+}
+
+// ---- The lighting model ------------------------------------------------------------------------
+
+TEST(FogLighting, OctavesOfScattering)
+{
+    const FogLight light{{3.0, 2.0, 1.0}, {0.2, 0.3, 0.4}};
+    MediumOptions o;
+    o.albedo = 0.9;
+    o.anisotropy = 0.8;
+    o.scattering_octaves = 1;  // plain single scattering
+    const double pi = std::numbers::pi;
+    const glm::dvec3 single = fog_source(light, o, 0.3, 2.0);
+    const double s1 = pi * henyey_greenstein(0.3, 0.8) * std::exp(-2.0);
+    EXPECT_NEAR(single.x, 0.9 * (3.0 * s1 + 0.2), 1e-15);
+    EXPECT_NEAR(single.z, 0.9 * (1.0 * s1 + 0.4), 1e-15);
+    o.scattering_octaves = 3;
+    const double s3 = pi * (henyey_greenstein(0.3, 0.8) * std::exp(-2.0) + 0.5 * henyey_greenstein(0.3, 0.4) * std::exp(-1.0) +
+                            0.25 * henyey_greenstein(0.3, 0.2) * std::exp(-0.5));
+    EXPECT_NEAR(fog_source(light, o, 0.3, 2.0).y, 0.9 * (2.0 * s3 + 0.3), 1e-15);
+    // In the terrain's shadow only the sky lights the fog; non-finite inputs stay finite.
+    EXPECT_NEAR(fog_source(light, o, 0.3, 2.0, 0.0).x, 0.9 * 0.2, 1e-15);
+    for (const glm::dvec3 j : {fog_source(light, o, std::nan(""), 1.0), fog_source(light, o, 0.5, HUGE_VAL),
+                               fog_source(light, o, 0.5, std::nan("")), fog_source(light, o, 1.0, -5.0, 2.0)})
+        EXPECT_TRUE(std::isfinite(j.x) && std::isfinite(j.y) && std::isfinite(j.z) && j.x >= 0.0);
+    // Deep in the fog (tau_sun large) the octaves carry the light further than single scattering.
+    MediumOptions one = o;
+    one.scattering_octaves = 1;
+    EXPECT_GT(fog_source(light, o, -0.5, 6.0).x - 0.9 * 0.2, 10.0 * (fog_source(light, one, -0.5, 6.0).x - 0.9 * 0.2));
 }

@@ -128,7 +128,7 @@ TEST_F(PreviewXvfb, ScriptedScreenshotShowsTerrainAndFog)
     const Tone with = lower_half(fog), without = lower_half(bare);
     EXPECT_GT(without.hi - without.lo, 60) << "the terrain view is uniform";
     EXPECT_GT(with.hi - with.lo, 30) << "the fog view is uniform";
-    EXPECT_GT(with.luminance, without.luminance + 25.0) << without.luminance << " -> " << with.luminance;
+    EXPECT_GT(with.luminance, without.luminance + 12.0) << without.luminance << " -> " << with.luminance;
     EXPECT_LT(with.saturation, 0.7 * without.saturation) << without.saturation << " -> " << with.saturation;
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "kiri/geometry/fog_lighting.hpp"
 #include "kiri/geometry/fog_spec.hpp"
 #include "kiri/geometry/layer_stack.hpp"
 #include "kiri/render/camera.hpp"
@@ -54,6 +55,7 @@ protected:
         o.count = 10;
         o.thickness = 100.0;
         o.base_offset = base_offset;
+        o.shading = g::LayerShading::source;  // the medium's shading has its own test below
         o.opacity = 0.3;
         o.detail = 0.0;
         o.ground_fade = 5.0;
@@ -95,6 +97,55 @@ TEST_F(LayersGl, FogCoversTheLowGroundNotTheSummit)
         ASSERT_LT(z, 80.0);
         const glm::dvec2 p = kiri::render::project_to_pixel(above(), {xy.x, xy.y, z}, w, h);
         EXPECT_GT(luminance(pixel(fog, p)), luminance(pixel(bare, p)) + 20.0) << xy.x << ", " << xy.y;
+    }
+}
+
+// Seen straight down over flat fog, the medium-shaded stack is a pile of slabs: layer i has
+// alpha 1 - exp(-sigma rho_i r) and source J_i = geometry::fog_source(sun through the fog
+// above it), composited over the ground: L = J_i alpha_i + (1 - alpha_i) L, bottom to top.
+TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
+{
+    const int w = 64, h = 64;
+    const glm::dvec2 xy(380.0, 380.0);  // ground 30 m, under the whole stack (50..150 m), coverage 1
+    ASSERT_LT(hill()->height(xy.x, xy.y), 40.0);
+    Camera down;
+    down.position = {xy.x, xy.y - 1.0, 400.0};
+    down.target = {xy.x, xy.y, 0.0};
+    down.fov_y_deg = 20.0;
+    Renderer renderer;
+    renderer.set_terrain(*hill());
+    const kiri::render::SunLight sun;  // the renderer's default light
+    const Image bare = renderer.render(down, w, h);
+    const std::uint8_t* ground_px = pixel(bare, {w / 2, h / 2});
+    auto radiance_of = [](double c) { return -std::log(1.0 - std::pow(c / 255.0, 2.2)) / 0.7; };
+    auto display_of = [](double l) { return 255.0 * std::pow(1.0 - std::exp(-l * 0.7), 1.0 / 2.2); };
+    for (const double sigma : {0.004, 0.03}) {
+        g::LayerOptions o = options();
+        o.shading = g::LayerShading::medium;
+        o.narrowing = false;
+        o.enlargement = false;
+        o.optics.extinction = sigma;
+        const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
+        renderer.set_layers(base, o);
+        const Image fog = renderer.render(down, w, h);
+        ASSERT_EQ(renderer.last_stats().layers, 10);
+        const glm::dvec3 s = glm::normalize(sun.direction);
+        const glm::dvec3 view = glm::normalize(glm::dvec3(xy, 100.0) - down.position);
+        const g::FogLight light{sun.color * sun.intensity, sun.ambient};
+        glm::dvec3 expected(radiance_of(ground_px[0]), radiance_of(ground_px[1]), radiance_of(ground_px[2]));
+        for (int i = 0; i <= 10; ++i) {
+            const double hi = i / 10.0, rho = 1.0 - 0.9 * hi;
+            const double alpha = 1.0 - std::exp(-sigma * rho * 10.0 / std::abs(view.z));
+            const double tau_sun = sigma * 100.0 * ((1.0 - hi) - 0.45 * (1.0 - hi * hi)) / s.z;
+            const glm::dvec3 j = g::fog_source(light, o.optics, glm::dot(view, s), tau_sun);
+            expected = j * alpha + (1.0 - alpha) * expected;
+        }
+        const std::uint8_t* got = pixel(fog, {w / 2, h / 2});
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(got[c], display_of(expected[c]), 2.5) << "sigma " << sigma << " channel " << c;
+        if (sigma > 0.01) {
+            EXPECT_GT(std::abs(got[1] - ground_px[1]), 8) << "the fog shows";
+        }
     }
 }
 

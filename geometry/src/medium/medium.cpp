@@ -46,6 +46,8 @@ void validate_medium_options(const MediumOptions& o, const std::string& label)
         throw InputError(label, p + "grid_spacing", "must be a finite number >= 0 (0: the terrain's spacing)");
     if (o.max_grid_side < 2 || o.max_grid_side > 8192)
         throw InputError(label, p + "max_grid_side", "must be in [2, 8192]");
+    if (o.scattering_octaves < 1 || o.scattering_octaves > 8)
+        throw InputError(label, p + "scattering_octaves", "must be in [1, 8]");
 }
 
 Medium::Medium(MediumGrid grid, const MediumOptions& options, const MediumDetail& detail)

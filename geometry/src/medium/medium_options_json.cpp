@@ -11,7 +11,7 @@ MediumOptions parse_medium_options(const json& j, const std::string& file)
     const JsonReader r{file};
     const std::string p = "/medium";
     r.only(j, p, {"extinction", "visibility", "liquid_water_content", "droplet_radius", "albedo", "anisotropy",
-                  "top_density", "grid_spacing", "max_grid_side"});
+                  "top_density", "grid_spacing", "max_grid_side", "scattering_octaves"});
     const int given = int(j.contains("extinction")) + int(j.contains("visibility")) + int(j.contains("liquid_water_content"));
     if (given > 1)
         r.fail(p, "give only one of extinction, visibility and liquid_water_content (each sets the extinction)");
@@ -39,6 +39,8 @@ MediumOptions parse_medium_options(const json& j, const std::string& file)
         o.grid_spacing = r.non_negative(j["grid_spacing"], p + "/grid_spacing");
     if (j.contains("max_grid_side"))
         o.max_grid_side = r.integer(j["max_grid_side"], p + "/max_grid_side", 2, 8192);
+    if (j.contains("scattering_octaves"))
+        o.scattering_octaves = r.integer(j["scattering_octaves"], p + "/scattering_octaves", 1, 8);
     return o;
 }
 
@@ -46,7 +48,8 @@ json medium_options_to_json(const MediumOptions& o)
 {
     return {{"extinction", o.extinction},     {"albedo", o.albedo},
             {"anisotropy", o.anisotropy},     {"top_density", o.top_density},
-            {"grid_spacing", o.grid_spacing}, {"max_grid_side", o.max_grid_side}};
+            {"grid_spacing", o.grid_spacing}, {"max_grid_side", o.max_grid_side},
+            {"scattering_octaves", o.scattering_octaves}};
 }
 
 }  // namespace kiri::geometry

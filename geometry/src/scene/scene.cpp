@@ -269,6 +269,7 @@ LayerOptions world_layer_options(const Scene& scene)
     const double e = scene.terrain.exaggeration;
     options.thickness = (scene.fog ? scene.fog->fit.thickness : FitOptions{}.thickness) * e;
     options.ground_fade *= e;
+    options.optics = scene.medium;
     validate_layer_options(options, scene.file.string());
     return options;
 }

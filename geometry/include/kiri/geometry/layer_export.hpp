@@ -21,7 +21,8 @@ void write_layers_obj(const std::filesystem::path& path, const LayerBase& base, 
 //! Binary PLY: vertices with x y z, nx ny nz, u v (atlas), alpha and layer; faces per layer.
 void write_layers_ply(const std::filesystem::path& path, const LayerBase& base, const std::vector<LayerMesh>& layers,
                       const LayerOptions& options);
-//! The alpha of a layer vertex at full texture alpha: 1 - (1 - alpha opacity)^exponent.
+//! The alpha of a layer vertex at full texture alpha, seen from above: 1 - exp(-sigma_t alpha r)
+//! for LayerShading::medium, 1 - (1 - alpha opacity)^exponent for LayerShading::source.
 double exported_alpha(const LayerVertex& v, const LayerOptions& options);
 
 }  // namespace kiri::geometry

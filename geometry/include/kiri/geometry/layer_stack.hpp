@@ -18,6 +18,7 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/layer_texture.hpp"
+#include "kiri/geometry/medium_options.hpp"
 #include "kiri/geometry/tessellate.hpp"
 
 namespace kiri::geometry {
@@ -44,6 +45,18 @@ double elevation_angle(const glm::dvec3& eye, const glm::dvec3& point, const glm
 
 // ---- The stack ------------------------------------------------------------------------------
 
+//! How a layer is lit and how opaque it is.
+enum class LayerShading {
+    //! The source's: a gray texture, alpha = opacity a_i per layer (corrected for the spacing),
+    //! lit by an ad hoc sun and sky term.
+    source,
+    //! From the medium (medium.hpp, docs/medium.md): each layer is the slab of fog it stands for,
+    //! of optical depth sigma_t r / |cos(view, normal)|, scattering albedo (sun HG(g) T_sun +
+    //! ambient), T_sun through the fog above it. The layers then converge to the same fog the
+    //! volume renderers draw as layers are added.
+    medium,
+};
+
 struct LayerOptions {
     int count = 15;                  //!< l0: layers above the base at the reference view (source: 15)
     double thickness = 200.0;        //!< T0 = r0 l0 (world metres); the scene takes fog.thickness
@@ -63,6 +76,9 @@ struct LayerOptions {
     double dissipation_half_life = 0.0;  //!< seconds; 0: no dissipation (top layers thin faster)
     glm::dvec2 wind{0.0};            //!< m/s: drift of the detail texture
     double time = 0.0;               //!< seconds since the scene's start
+    LayerShading shading = LayerShading::medium;
+    //! The fog's optics for LayerShading::medium (world_layer_options copies the scene's medium).
+    MediumOptions optics;
 };
 
 //! What a layer vertex needs, evaluated per vertex for one eye (the GPU mirrors this in

@@ -24,6 +24,7 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/layer_stack.hpp"
+#include "kiri/geometry/medium_options.hpp"
 #include "kiri/geometry/terrain.hpp"
 
 namespace kiri::geometry {
@@ -45,16 +46,7 @@ double extinction_from_liquid_water(double lwc_g_per_m3, double droplet_radius_u
 //! and the direction scattered into; g is clamped to [-0.999, 0.999] so it stays finite.
 double henyey_greenstein(double cos_theta, double g);
 
-// ---- Options -----------------------------------------------------------------------------------
-
-struct MediumOptions {
-    double extinction = 0.02;     //!< sigma_t (1/m) at density 1 (visibility 196 m: dense fog), > 0
-    double albedo = 0.99;         //!< scattering / extinction, [0, 1]; fog hardly absorbs
-    double anisotropy = 0.8;      //!< Henyey-Greenstein g, (-1, 1); water droplets ~0.8
-    double top_density = 0.1;     //!< profile at the shell's top relative to its bottom, [0, 1] (2.7: 0.1)
-    double grid_spacing = 0.0;    //!< metres between grid samples; 0 = the terrain's spacing
-    int max_grid_side = 1024;     //!< the grid is coarsened to at most this many samples per side
-};
+// ---- Options: medium_options.hpp ------------------------------------------------------------
 
 //! The parts of the layer options that shape the medium too (so both draw the same fog).
 struct MediumDetail {
