@@ -221,6 +221,7 @@ void PreviewApp::draw_panel()
         bool edited = terrain_panel(scene_);
         edited |= fog_panel(scene_, terrain_.get(), fog_.get());
         edited |= layers_panel(scene_, view);
+        edited |= medium_panel(scene_);
         edited |= sun_panel(scene_);
         const ViewOptions::Surface before = view.surface;
         const bool view_changed = view_panel(view, fog_ ? fog_->views.get() : nullptr);

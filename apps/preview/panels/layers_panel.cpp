@@ -21,7 +21,8 @@ bool layers_panel(geometry::Scene& scene, ViewOptions& view)
     changed |= ImGui::Checkbox("spacing rule (2.8, 2.9)", &o.narrowing);
     ImGui::SameLine();
     changed |= ImGui::Checkbox("scale rule (2.10)", &o.enlargement);
-    changed |= slider("opacity", o.opacity, 0.0, 0.9, "%.3f");
+    if (o.shading == geometry::LayerShading::source)  // the medium's shading takes the medium's optics
+        changed |= slider("opacity", o.opacity, 0.0, 0.9, "%.3f");
     changed |= slider("detail", o.detail, 0.0, 1.0, "%.2f");
     changed |= slider("detail scale (m)", o.detail_scale, 100.0, 10000.0, "%.0f", true);
     changed |= slider("ground fade (m)", o.ground_fade, 0.0, 200.0, "%.0f");

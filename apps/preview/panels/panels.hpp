@@ -52,6 +52,7 @@ bool terrain_panel(geometry::Scene& scene);
 bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog);
 bool sun_panel(geometry::Scene& scene);
 bool layers_panel(geometry::Scene& scene, ViewOptions& view);
+bool medium_panel(geometry::Scene& scene);
 //! Returns true when the picture changes (views, resolution).
 bool view_panel(ViewOptions& view, const FogViews* views);
 void camera_panel(const geometry::Scene& scene, UiState& ui);
