@@ -10,6 +10,7 @@
 #include "fog/fog_spec_json.hpp"
 #include "layers/layer_options_json.hpp"
 #include "medium/medium_options_json.hpp"
+#include "particles/particle_options_json.hpp"
 #include "scene/json_reader.hpp"
 #include "kiri/geometry/dem.hpp"
 #include "kiri/geometry/error.hpp"
@@ -138,7 +139,7 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         throw InputError(file_label, "", "malformed JSON: " + strip_exception_id(e.what()) + " (not a finite number)");
     }
     const Reader r{file_label};
-    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers", "medium"});
+    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers", "medium", "particles"});
     if (!root.contains("terrain"))
         r.fail("/terrain", "missing (every scene needs a terrain)");
     Scene scene;
@@ -161,6 +162,8 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         scene.layers = parse_layer_options(root["layers"], file_label);
     if (root.contains("medium"))
         scene.medium = parse_medium_options(root["medium"], file_label);
+    if (root.contains("particles"))
+        scene.particles = parse_particle_options(root["particles"], file_label);
     return scene;
 }
 
@@ -207,6 +210,7 @@ std::string scene_to_json(const Scene& scene)
         root["fog"] = fog_spec_to_json(*scene.fog);
     root["layers"] = layer_options_to_json(scene.layers);
     root["medium"] = medium_options_to_json(scene.medium);
+    root["particles"] = particle_options_to_json(scene.particles);
     return root.dump(2) + "\n";
 }
 

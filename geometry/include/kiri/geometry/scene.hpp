@@ -13,6 +13,7 @@
 #include "kiri/geometry/fog_spec.hpp"
 #include "kiri/geometry/layer_stack.hpp"
 #include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/particles.hpp"
 
 namespace kiri::geometry {
 
@@ -51,6 +52,7 @@ struct Scene {
     std::optional<FogSpec> fog;       //!< the "fog" section (docs/scene.md), if any
     LayerOptions layers;              //!< the "layers" section (defaults when absent)
     MediumOptions medium;             //!< the "medium" section (defaults when absent)
+    ParticleOptions particles;        //!< the "particles" section (defaults when absent)
 
     //! The camera called name; the first when name is empty; a view framing `terrain_bounds`
     //! (min, max) from the south-west when the scene has no camera and name is empty.

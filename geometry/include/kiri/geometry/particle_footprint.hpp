@@ -1,0 +1,38 @@
+#pragma once
+//! \file particle_footprint.hpp
+//! What one particle does to the light that passes it (Shimada (7), REFERENCE 2.3), written once
+//! here for the exact reference, the CPU attenuation buffer and the tests; the GPU's copy is
+//! render/shaders/particle_footprint.glsl (checked against this file by a GL test).
+//!
+//! Footprint: a ray passing at distance rho from the centre of particle k (radius r) crosses the
+//! optical depth tau_k f(rho / r) with the Gaussian
+//!
+//!   f(x) = (exp(-x^2 / (2 s^2)) - e0) / (1 - e0),  s = 0.4,  e0 = exp(-1 / (2 s^2)),  x < 1;  f = 0 beyond,
+//!
+//! shifted so it reaches 0 at the rim (no step where the billboard ends).
+//! Transmittance T = exp(-tau f). Light gain G = T + a c (1 - T) with c = p(l,l)/4pi: the part of
+//! the removed light that the particle scatters forward stays in the beam. Shimada (7) writes
+//! G = a tau c + T, the optically thin limit of this (a tau ~ a (1 - T)); the saturating form keeps
+//! G <= 1 for every tau (a particle never adds light) and gives an opaque particle G = a c.
+//! log G is clamped at min_log_gain, so an opaque black particle gives a finite value, never -inf.
+#include <cmath>
+
+namespace kiri::geometry {
+
+//! A particle passes at least e^-16 (1.1e-7) of the light: opaque for every purpose.
+constexpr double min_log_gain = -16.0;
+//! The Gaussian's standard deviation in units of the radius.
+constexpr double footprint_sigma = 0.4;
+
+//! f(x) above, x = rho / r >= 0; 1 at the centre, 0 for x >= 1.
+double footprint_profile(double x);
+//! Integral of f(rho / r) over the plane, in units of r^2 (0.861): tau_k r^2 times it is the
+//! particle's extinction cross-section integral (m^2).
+double footprint_area();
+//! log G at distance rho from the axis of a particle (radius r, optical depth tau, albedo a) with
+//! forward-scattering fraction c; 0 for rho >= r; in [min_log_gain, 0]; tau may be +inf.
+double footprint_log_gain(double rho, double radius, double optical_depth, double albedo, double forward);
+//! Transmittance exp(-tau f(rho / r)) of the billboard (what it hides of what lies behind it).
+double footprint_transmittance(double rho, double radius, double optical_depth);
+
+}  // namespace kiri::geometry

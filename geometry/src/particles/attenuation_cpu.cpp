@@ -1,0 +1,91 @@
+#include "kiri/geometry/attenuation_cpu.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace kiri::geometry {
+namespace {
+
+// GL_LINEAR with GL_CLAMP_TO_EDGE along one axis: the two texels and the weight of the second.
+struct Taps {
+    int a, b;
+    double t;
+};
+Taps taps(double g, int n)
+{
+    const double x = g - 0.5;
+    const double f = std::floor(x);
+    const int i = int(std::clamp(f, -1.0, double(n)));
+    return {std::clamp(i, 0, n - 1), std::clamp(i + 1, 0, n - 1), std::isfinite(x) ? x - f : 0.0};
+}
+
+}  // namespace
+
+AttenuationVolume build_attenuation_cpu(const ParticleCloud& cloud, const LightGrid& grid)
+{
+    AttenuationVolume v{grid, {}};
+    const int nx = grid.size[0], ny = grid.size[1], nz = grid.size[2];
+    std::vector<double> sum(grid.voxel_count(), 0.0);
+    const auto at = [&](int i, int j, int k) { return (std::size_t(k) * ny + j) * nx + i; };
+    for (const Particle& p : cloud.particles)
+        for_each_deposit(grid, p, cloud.forward_scattering, [&](int i, int j, int k, double log_g) { sum[at(i, j, k)] += log_g; });
+    v.log_gamma.resize(sum.size());
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            double column = 0.0;
+            for (int k = 0; k < nz; ++k) {
+                column += sum[at(i, j, k)];
+                v.log_gamma[at(i, j, k)] = float(std::max(column, min_log_gamma));
+            }
+        }
+    return v;
+}
+
+double sample_log_gamma(const AttenuationVolume& v, const glm::dvec3& p)
+{
+    const LightGrid& g = v.grid;
+    const glm::dvec3 c = g.to_grid(p);
+    const Taps x = taps(c.x, g.size[0]), y = taps(c.y, g.size[1]), z = taps(c.z, g.size[2]);
+    const auto at = [&](int i, int j, int k) {
+        return double(v.log_gamma[(std::size_t(k) * g.size[1] + j) * g.size[0] + i]);
+    };
+    double sum = 0.0;
+    for (int dk = 0; dk < 2; ++dk)
+        for (int dj = 0; dj < 2; ++dj)
+            for (int di = 0; di < 2; ++di) {
+                const double w = (di ? x.t : 1.0 - x.t) * (dj ? y.t : 1.0 - y.t) * (dk ? z.t : 1.0 - z.t);
+                sum += w * at(di ? x.b : x.a, dj ? y.b : y.a, dk ? z.b : z.a);
+            }
+    return sum;
+}
+
+double self_log_gamma(const LightGrid& g, const Particle& self, double forward, const glm::dvec3& q)
+{
+    const glm::dvec3 c = g.to_grid(q);
+    const glm::dvec3 s = g.light_coordinates(self.position);
+    const Taps x = taps(c.x, g.size[0]), y = taps(c.y, g.size[1]), z = taps(c.z, g.size[2]);
+    double sum = 0.0;
+    for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+            const int i = di ? x.b : x.a, j = dj ? y.b : y.a;
+            const double du = g.column_u(i) - s.x, dv = g.column_v(j) - s.y;
+            const double rho = std::sqrt(du * du + dv * dv);
+            if (!(rho < self.radius))
+                continue;
+            const int start = std::max(g.shadow_start(s.z, i, j), 0);
+            // Depth taps at or beyond the start hold the particle (the prefix sum).
+            const double depth = (z.a >= start ? 1.0 - z.t : 0.0) + (z.b >= start ? z.t : 0.0);
+            sum += (di ? x.t : 1.0 - x.t) * (dj ? y.t : 1.0 - y.t) * depth *
+                   footprint_log_gain(rho, self.radius, self.optical_depth, self.albedo, forward);
+        }
+    return sum;
+}
+
+double particle_gamma(const AttenuationVolume& v, const ParticleCloud& cloud, std::size_t k)
+{
+    const Particle& p = cloud.particles[k];
+    const double log_gamma = sample_log_gamma(v, p.position) - self_log_gamma(v.grid, p, cloud.forward_scattering, p.position);
+    return std::exp(std::clamp(log_gamma, min_log_gamma, 0.0));
+}
+
+}  // namespace kiri::geometry

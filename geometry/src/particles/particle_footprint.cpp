@@ -1,0 +1,71 @@
+#include "kiri/geometry/particle_footprint.hpp"
+
+#include <algorithm>
+#include <numbers>
+
+#include "kiri/geometry/particles.hpp"
+
+namespace kiri::geometry {
+namespace {
+
+const double e0 = std::exp(-1.0 / (2.0 * footprint_sigma * footprint_sigma));
+
+}  // namespace
+
+double footprint_profile(double x)
+{
+    if (!(x < 1.0))  // also NaN
+        return 0.0;
+    x = std::max(x, 0.0);
+    return (std::exp(-x * x / (2.0 * footprint_sigma * footprint_sigma)) - e0) / (1.0 - e0);
+}
+
+double footprint_area()
+{
+    // 2 pi int_0^1 f(x) x dx with int_0^1 exp(-x^2 / 2s^2) x dx = s^2 (1 - e0), int_0^1 e0 x dx = e0 / 2.
+    const double s2 = footprint_sigma * footprint_sigma;
+    return 2.0 * std::numbers::pi * (s2 * (1.0 - e0) - 0.5 * e0) / (1.0 - e0);
+}
+
+double footprint_log_gain(double rho, double radius, double optical_depth, double albedo, double forward)
+{
+    if (!(radius > 0.0) || !(optical_depth > 0.0))
+        return 0.0;
+    const double f = footprint_profile(rho / radius);
+    if (f <= 0.0)
+        return 0.0;  // outside the disc: 0, never 0 * inf
+    const double t = optical_depth * f;
+    const double ac = std::clamp(albedo, 0.0, 1.0) * std::clamp(forward, 0.0, 1.0);
+    // log(T + ac (1 - T)) = -t + log(1 + ac (e^t - 1)); written with expm1 / log1p so a thin
+    // particle keeps its digits and a thick one does not overflow.
+    double g;
+    if (ac <= 0.0)
+        g = -t;
+    else if (t > 700.0)
+        g = std::log(ac);
+    else
+        g = -t + std::log1p(ac * std::expm1(t));
+    return std::clamp(std::isnan(g) ? min_log_gain : g, min_log_gain, 0.0);
+}
+
+double footprint_transmittance(double rho, double radius, double optical_depth)
+{
+    if (!(radius > 0.0) || !(optical_depth > 0.0))
+        return 1.0;
+    const double f = footprint_profile(rho / radius);
+    return f <= 0.0 ? 1.0 : std::exp(-optical_depth * f);
+}
+
+double forward_scattering_fraction(double g, double solid_angle)
+{
+    const double omega = std::clamp(std::isfinite(solid_angle) ? solid_angle : 0.0, 0.0, 4.0 * std::numbers::pi);
+    g = std::isfinite(g) ? std::clamp(g, -0.999, 0.999) : 0.0;
+    if (std::abs(g) < 1e-6)
+        return omega / (4.0 * std::numbers::pi);
+    const double mu0 = 1.0 - omega / (2.0 * std::numbers::pi);
+    const double fraction =
+        (1.0 - g * g) / (2.0 * g) * (1.0 / (1.0 - g) - 1.0 / std::sqrt(1.0 + g * g - 2.0 * g * mu0));
+    return std::clamp(fraction, 0.0, 1.0);
+}
+
+}  // namespace kiri::geometry

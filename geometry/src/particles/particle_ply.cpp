@@ -1,0 +1,62 @@
+#include <bit>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/particles.hpp"
+
+namespace kiri::geometry {
+namespace {
+
+template <typename T>
+void put(std::ofstream& out, T value)
+{
+    static_assert(std::endian::native == std::endian::little, "the PLY writer assumes a little-endian host");
+    out.write(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+}  // namespace
+
+void write_particles_ply(const std::string& path, const ParticleCloud& cloud)
+{
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        if (!out)
+            throw IoError(path, "", "cannot be created");
+        std::ostringstream header;
+        header.precision(17);
+        header << "ply\nformat binary_little_endian 1.0\n"
+               << "comment kiri particles: Gaussian footprints (docs/particles.md)\n"
+               << "comment forward_scattering " << cloud.forward_scattering << "\n"
+               << "comment anisotropy " << cloud.anisotropy << "\n"
+               << "element vertex " << cloud.particles.size() << "\n"
+               << "property float x\nproperty float y\nproperty float z\n"
+               << "property float radius\nproperty float optical_depth\nproperty float albedo\n"
+               << "end_header\n";
+        out << header.str();
+        for (const Particle& p : cloud.particles) {
+            put(out, float(p.position.x));
+            put(out, float(p.position.y));
+            put(out, float(p.position.z));
+            put(out, float(p.radius));
+            put(out, float(p.optical_depth));
+            put(out, float(p.albedo));
+        }
+        out.close();
+        if (!out) {
+            std::remove(tmp.c_str());
+            throw IoError(path, "", "cannot write");
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::remove(tmp.c_str());
+        throw IoError(path, "", "cannot move into place: " + ec.message());
+    }
+}
+
+}  // namespace kiri::geometry

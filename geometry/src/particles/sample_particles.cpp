@@ -1,0 +1,132 @@
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/particles.hpp"
+#include "particles/sample_elimination.hpp"
+
+namespace kiri::geometry {
+namespace {
+
+constexpr double max_particles = 2e6, max_candidates = 2e7;
+// Below 1/64 of the full density the local spacing stops growing (4x the spacing at full
+// density): the thin rims of the fog get a few large particles, not a handful of huge ones.
+constexpr double min_relative_density = 1.0 / 64.0;
+
+// Uniform in [0, 1) from the top 53 bits: the same numbers on every platform (the standard
+// distributions are implementation-defined).
+double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
+
+}  // namespace
+
+void validate_particle_options(const ParticleOptions& o, const std::string& label)
+{
+    const std::string p = "/particles/";
+    if (o.count < 1 || double(o.count) > max_particles)
+        throw InputError(label, p + "count", "must be in [1, 2000000]");
+    if (!(o.spacing >= 0.0) || !std::isfinite(o.spacing))
+        throw InputError(label, p + "spacing", "must be a finite number >= 0 (metres; 0: use count)");
+    if (!(o.radius_scale > 0.0) || !(o.radius_scale <= 100.0))
+        throw InputError(label, p + "radius_scale", "must be in (0, 100]");
+    if (!(o.radius_min >= 0.0) || !std::isfinite(o.radius_min) || !(o.radius_max >= 0.0) || !std::isfinite(o.radius_max))
+        throw InputError(label, p + "radius", "must be finite numbers >= 0 (metres; 0: automatic)");
+    if (o.radius_min > 0.0 && o.radius_max > 0.0 && o.radius_min > o.radius_max)
+        throw InputError(label, p + "radius", "the minimum is above the maximum");
+    if (!(o.albedo <= 1.0) || std::isnan(o.albedo))
+        throw InputError(label, p + "albedo", "must be in [0, 1] (or absent: the medium's)");
+    if (!(o.extinction >= 0.0) || !std::isfinite(o.extinction) || o.extinction > 1e3)
+        throw InputError(label, p + "extinction", "must be in [0, 1000] (1/m; 0: the medium's)");
+    if (!(o.forward_scattering <= 1.0) || std::isnan(o.forward_scattering))
+        throw InputError(label, p + "forward_scattering", "must be in [0, 1] (or absent: from the medium's anisotropy)");
+    if (!(o.candidates >= 1.0 && o.candidates <= 50.0))
+        throw InputError(label, p + "candidates", "must be in [1, 50]");
+    if (o.resolution < 16 || o.resolution > 512)
+        throw InputError(label, p + "resolution", "must be in [16, 512]");
+    if (!(o.soft_edge >= 0.0) || !std::isfinite(o.soft_edge))
+        throw InputError(label, p + "soft_edge", "must be a finite number >= 0 (metres)");
+}
+
+ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label)
+{
+    validate_particle_options(options, label);
+    const Bounds3& box = medium.bounds();
+    const glm::dvec3 extent = box.max - box.min;
+    const double d_max = medium.max_extinction() / medium.options().extinction;
+    if (!(d_max > 0.0) || !(extent.x > 0.0) || !(extent.y > 0.0) || !(extent.z > 0.0))
+        throw InputError(label, "/particles", "the medium holds no fog to sample particles in");
+
+    // The count: given, or from the spacing at full density and a first estimate of the density
+    // integral (a pilot run of the same sampler).
+    std::mt19937_64 rng(options.seed);
+    const double box_volume = extent.x * extent.y * extent.z;
+    std::size_t trials = 0, hits = 0;
+    std::vector<glm::dvec3> candidates;
+    std::vector<double> density;
+    const auto draw = [&](std::size_t wanted) {
+        // Rejection: uniform in the box, kept with probability d(p) / d_max.
+        const std::size_t give_up = std::max<std::size_t>(wanted, 1000) * 2000;
+        for (std::size_t t = 0; candidates.size() < wanted; ++t) {
+            if (t > give_up)
+                throw InputError(label, "/particles", "the medium's fog is too thin to sample (almost every point is empty)");
+            const glm::dvec3 p = box.min + extent * glm::dvec3(uniform(rng), uniform(rng), uniform(rng));
+            const double d = medium.density(p);
+            ++trials;
+            if (uniform(rng) * d_max < d) {
+                ++hits;
+                candidates.push_back(p);
+                density.push_back(d);
+            }
+        }
+    };
+    std::size_t count = std::size_t(options.count);
+    if (options.spacing > 0.0) {
+        draw(20000);
+        const double integral = box_volume * d_max * double(hits) / double(trials);
+        const double n = std::round(integral / std::pow(options.spacing, 3.0));
+        if (n > max_particles)
+            throw LimitError(label, "/particles/spacing", "gives " + std::to_string(std::llround(n)) +
+                                                              " particles, above the limit of 2000000");
+        count = std::size_t(std::max(n, 1.0));
+    }
+    const double wanted = std::ceil(double(count) * options.candidates);
+    if (wanted > max_candidates)
+        throw LimitError(label, "/particles/candidates", "count * candidates is above the limit of 2e7 points");
+    draw(std::size_t(wanted));
+    const double integral = box_volume * d_max * double(hits) / double(trials);
+
+    // Local spacing where each candidate lies: the distance between particles at that density.
+    const double spacing_full = std::cbrt(integral / double(count));
+    std::vector<double> spacing(candidates.size());
+    for (std::size_t i = 0; i < candidates.size(); ++i)
+        spacing[i] = std::cbrt(integral / (double(count) * std::max(density[i], min_relative_density)));
+    const std::vector<std::size_t> kept = detail::eliminate_samples(candidates, spacing, spacing_full, count);
+
+    ParticleCloud cloud;
+    cloud.anisotropy = medium.options().anisotropy;
+    cloud.forward_scattering = options.forward_scattering >= 0.0 ? options.forward_scattering
+                                                                 : forward_scattering_fraction(cloud.anisotropy);
+    cloud.density_integral = integral;
+    cloud.spacing = spacing_full;
+    cloud.candidate_count = candidates.size();
+    const double albedo = options.albedo >= 0.0 ? options.albedo : medium.options().albedo;
+    const double extinction = options.extinction > 0.0 ? options.extinction : medium.options().extinction;
+    const double r_min = options.radius_min > 0.0 ? options.radius_min : options.radius_scale * spacing_full;
+    const double r_max = options.radius_max > 0.0 ? options.radius_max : 2.0 * options.radius_scale * spacing_full;
+    // Every particle carries the same share of the extinction integral (the candidates were
+    // drawn in proportion to the density): tau r^2 footprint_area = extinction * integral / count.
+    const double share = extinction * integral / double(kept.size());
+    cloud.particles.reserve(kept.size());
+    for (std::size_t i : kept) {
+        Particle p;
+        p.position = candidates[i];
+        p.radius = std::clamp(options.radius_scale * spacing[i], r_min, std::max(r_min, r_max));
+        p.optical_depth = share / (footprint_area() * p.radius * p.radius);
+        p.albedo = albedo;
+        cloud.particles.push_back(p);
+    }
+    return cloud;
+}
+
+}  // namespace kiri::geometry

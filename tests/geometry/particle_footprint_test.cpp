@@ -1,0 +1,97 @@
+// One particle's effect on the light (particle_footprint.hpp): the profile, its area, the light
+// gain of Shimada (7) in its saturating form, the clamp for opaque particles, and the forward
+// fraction of Henyey-Greenstein scattering.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/particles.hpp"
+
+using namespace kiri::geometry;
+
+TEST(ParticleFootprint, ProfileIsAGaussianReachingZeroAtTheRim)
+{
+    EXPECT_DOUBLE_EQ(footprint_profile(0.0), 1.0);
+    EXPECT_NEAR(footprint_profile(1.0 - 1e-12), 0.0, 1e-11);
+    EXPECT_EQ(footprint_profile(1.0), 0.0);
+    EXPECT_EQ(footprint_profile(7.0), 0.0);
+    EXPECT_EQ(footprint_profile(std::nan("")), 0.0);
+    // Shape: (g(x) - g(1)) / (1 - g(1)) with g the Gaussian of sigma 0.4.
+    const auto g = [](double x) { return std::exp(-x * x / (2.0 * 0.16)); };
+    for (double x : {0.1, 0.4, 0.75})
+        EXPECT_NEAR(footprint_profile(x), (g(x) - g(1.0)) / (1.0 - g(1.0)), 1e-15);
+    for (double x = 0.0; x < 1.0; x += 0.01)
+        EXPECT_GT(footprint_profile(x), footprint_profile(x + 0.01));
+}
+
+TEST(ParticleFootprint, AreaIsTheIntegralOfTheProfile)
+{
+    // 2 pi int_0^1 f(x) x dx by Simpson's rule.
+    const int n = 20000;
+    double sum = 0.0;
+    for (int k = 0; k <= n; ++k) {
+        const double x = double(k) / n * (1.0 - 1e-15);
+        sum += (k == 0 || k == n ? 1.0 : k % 2 ? 4.0 : 2.0) * footprint_profile(x) * x;
+    }
+    EXPECT_NEAR(2.0 * std::numbers::pi * sum / (3.0 * n), footprint_area(), 1e-9);
+    EXPECT_NEAR(footprint_area(), 0.861, 1e-3);
+}
+
+TEST(ParticleFootprint, LogGainIsShimadasGainSaturated)
+{
+    const double r = 10.0, tau = 0.7, a = 0.9, c = 0.25;
+    for (double rho : {0.0, 3.0, 8.0}) {
+        const double t = std::exp(-tau * footprint_profile(rho / r));
+        EXPECT_NEAR(footprint_log_gain(rho, r, tau, a, c), std::log(t + a * c * (1.0 - t)), 1e-14);
+        EXPECT_NEAR(footprint_transmittance(rho, r, tau), t, 1e-15);
+    }
+    // Optically thin: G -> 1 - tau f (1 - a c), Shimada's a tau c + T to first order.
+    const double thin = 1e-6;
+    EXPECT_NEAR(footprint_log_gain(0.0, r, thin, a, c), -thin * (1.0 - a * c), 1e-12);
+    // Outside the disc and for empty particles: no effect.
+    EXPECT_EQ(footprint_log_gain(r, r, tau, a, c), 0.0);
+    EXPECT_EQ(footprint_log_gain(1.0, r, 0.0, a, c), 0.0);
+    EXPECT_EQ(footprint_log_gain(1.0, 0.0, tau, a, c), 0.0);
+    // Never above 1: a particle does not add light, even very thick and white.
+    for (double t : {0.1, 1.0, 5.0, 50.0, 1e6})
+        EXPECT_LE(footprint_log_gain(0.0, r, t, 1.0, 0.5), 0.0);
+}
+
+TEST(ParticleFootprint, OpaqueParticlesGiveFiniteLogGains)
+{
+    const double inf = std::numeric_limits<double>::infinity();
+    // Black and opaque: G = 0, clamped.
+    EXPECT_EQ(footprint_log_gain(0.0, 5.0, inf, 0.0, 0.3), min_log_gain);
+    EXPECT_EQ(footprint_log_gain(2.0, 5.0, 1e300, 0.0, 0.3), min_log_gain);
+    // White and opaque: G = a c, what it scatters forward.
+    EXPECT_NEAR(footprint_log_gain(0.0, 5.0, inf, 1.0, 0.3), std::log(0.3), 1e-15);
+    EXPECT_NEAR(footprint_log_gain(1.0, 5.0, 1e5, 0.8, 0.3), std::log(0.24), 1e-15);
+    EXPECT_EQ(footprint_transmittance(0.0, 5.0, inf), 0.0);
+    // At the rim an infinite optical depth is still nothing (0 * inf must not be NaN).
+    EXPECT_EQ(footprint_log_gain(5.0, 5.0, inf, 0.0, 0.3), 0.0);
+    EXPECT_EQ(footprint_transmittance(5.0, 5.0, inf), 1.0);
+}
+
+TEST(ParticleFootprint, ForwardFractionIsHenyeyGreensteinOverTheCone)
+{
+    // Isotropic: the cone's share of the sphere.
+    EXPECT_NEAR(forward_scattering_fraction(0.0, 0.09), 0.09 / (4.0 * std::numbers::pi), 1e-15);
+    EXPECT_NEAR(forward_scattering_fraction(0.0, 4.0 * std::numbers::pi), 1.0, 1e-15);
+    for (double g : {-0.5, 0.3, 0.8, 0.95}) {
+        // 2 pi int_mu0^1 p(mu) dmu by Simpson's rule.
+        const double omega = 0.09, mu0 = 1.0 - omega / (2.0 * std::numbers::pi);
+        const int n = 2000;
+        double sum = 0.0;
+        for (int k = 0; k <= n; ++k)
+            sum += (k == 0 || k == n ? 1.0 : k % 2 ? 4.0 : 2.0) * henyey_greenstein(mu0 + (1.0 - mu0) * k / n, g);
+        EXPECT_NEAR(forward_scattering_fraction(g, omega), 2.0 * std::numbers::pi * sum * (1.0 - mu0) / (3.0 * n), 1e-9)
+            << g;
+    }
+    EXPECT_NEAR(forward_scattering_fraction(0.8), 0.228, 1e-3);
+    // The whole sphere holds all of it, whatever g.
+    EXPECT_NEAR(forward_scattering_fraction(0.8, 4.0 * std::numbers::pi), 1.0, 1e-12);
+}

@@ -1,0 +1,248 @@
+// Sampling particles in a Medium (particles.hpp): deterministic, inside the fog and above its
+// floor, density-weighted, blue noise, carrying the Medium's extinction; options and PLY export.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <cstring>
+#include <random>
+
+#include <glm/geometric.hpp>
+
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/scene.hpp"
+#include "particle_test_clouds.hpp"
+#include "temp_path.hpp"
+
+using namespace kiri::geometry;
+using kiri::test::slab_medium;
+
+namespace {
+
+ParticleOptions options(int count, std::uint64_t seed = 3)
+{
+    ParticleOptions o;
+    o.count = count;
+    o.seed = seed;
+    return o;
+}
+
+// Smallest distance to another particle, in units of the particle's local spacing, averaged.
+double mean_nearest(const ParticleCloud& c)
+{
+    double sum = 0.0;
+    for (std::size_t i = 0; i < c.particles.size(); ++i) {
+        double best = 1e300;
+        for (std::size_t j = 0; j < c.particles.size(); ++j)
+            if (j != i)
+                best = std::min(best, glm::distance(c.particles[i].position, c.particles[j].position));
+        sum += best;
+    }
+    return sum / double(c.particles.size());
+}
+
+}  // namespace
+
+TEST(ParticleSampling, DeterministicForASeed)
+{
+    const Medium m = slab_medium();
+    const ParticleCloud a = sample_particles(m, options(500, 11)), b = sample_particles(m, options(500, 11));
+    const ParticleCloud c = sample_particles(m, options(500, 12));
+    ASSERT_EQ(a.particles.size(), 500u);
+    ASSERT_EQ(b.particles.size(), 500u);
+    bool differs = false;
+    for (std::size_t i = 0; i < 500; ++i) {
+        EXPECT_EQ(a.particles[i].position, b.particles[i].position);
+        EXPECT_EQ(a.particles[i].radius, b.particles[i].radius);
+        EXPECT_EQ(a.particles[i].optical_depth, b.particles[i].optical_depth);
+        differs = differs || a.particles[i].position != c.particles[i].position;
+    }
+    EXPECT_TRUE(differs);
+}
+
+TEST(ParticleSampling, InsideTheFogAboveItsFloor)
+{
+    // Ground at 180 m cuts the shell (100..300): nothing below 180.
+    MediumGrid g;
+    g.nx = g.ny = 2;
+    g.x0 = g.y0 = 0.0;
+    g.dx = g.dy = 500.0;
+    g.bottom.assign(4, 100.0);
+    g.top.assign(4, 300.0);
+    g.floor.assign(4, 180.0);
+    g.coverage.assign(4, 1.0);
+    MediumDetail d;
+    d.detail = 0.0;
+    const Medium m(g, MediumOptions{}, d);
+    const ParticleCloud c = sample_particles(m, options(800));
+    for (const Particle& p : c.particles) {
+        EXPECT_GE(p.position.z, 180.0);
+        EXPECT_LE(p.position.z, 300.0);
+        EXPECT_GT(m.density(p.position), 0.0);
+    }
+}
+
+TEST(ParticleSampling, DensityWeighted)
+{
+    // The layers' profile: density 1 at the bottom, 0.1 at the top, linear. Expected share of the
+    // lower half: int_0^0.5 (1 - 0.9 h) dh / int_0^1 (1 - 0.9 h) dh = 0.3875 / 0.55.
+    const Medium m = slab_medium(1000.0, 100.0, 300.0);
+    const ParticleCloud c = sample_particles(m, options(4000));
+    double lower = 0.0;
+    for (const Particle& p : c.particles)
+        lower += p.position.z < 200.0 ? 1.0 : 0.0;
+    EXPECT_NEAR(lower / 4000.0, 0.3875 / 0.55, 0.02);
+    // Sparser particles are larger: radius follows the local spacing d^(-1/3).
+    double r_low = 0.0, r_high = 0.0;
+    int n_low = 0, n_high = 0;
+    for (const Particle& p : c.particles) {
+        if (p.position.z < 130.0) {
+            r_low += p.radius;
+            ++n_low;
+        } else if (p.position.z > 270.0) {
+            r_high += p.radius;
+            ++n_high;
+        }
+    }
+    EXPECT_GT(r_high / n_high, 1.5 * r_low / n_low);
+}
+
+TEST(ParticleSampling, BlueNoise)
+{
+    // Uniform shell: sample elimination spreads the particles; independent random points of the
+    // same density have a mean nearest-neighbour distance of ~0.554 spacing (Poisson, 3D).
+    const Medium m = slab_medium(1000.0, 0.0, 400.0, true);
+    const ParticleCloud c = sample_particles(m, options(1500));
+    const double spacing = c.spacing;
+    EXPECT_NEAR(spacing, std::cbrt(1000.0 * 1000.0 * 400.0 / 1500.0), 0.02 * spacing);
+    EXPECT_GT(mean_nearest(c) / spacing, 0.75);
+    // The same number of plain random points (1 candidate each: nothing eliminated).
+    ParticleOptions plain = options(1500);
+    plain.candidates = 1.0;
+    EXPECT_LT(mean_nearest(sample_particles(m, plain)) / spacing, 0.62);
+}
+
+TEST(ParticleSampling, CarriesTheMediumsExtinction)
+{
+    const Medium m = slab_medium(1000.0, 100.0, 300.0, false, 0.03);
+    const ParticleCloud c = sample_particles(m, options(3000));
+    // Density integral of the slab: area * thickness * mean profile 0.55.
+    EXPECT_NEAR(c.density_integral, 1000.0 * 1000.0 * 200.0 * 0.55, 0.01 * 1.1e8);
+    double carried = 0.0;
+    for (const Particle& p : c.particles) {
+        carried += p.optical_depth * footprint_area() * p.radius * p.radius;
+        EXPECT_EQ(p.albedo, m.options().albedo);
+    }
+    EXPECT_NEAR(carried, 0.03 * c.density_integral, 1e-9 * carried);
+    EXPECT_NEAR(c.forward_scattering, forward_scattering_fraction(0.8), 1e-15);
+    // Overrides.
+    ParticleOptions o = options(300);
+    o.extinction = 0.06;
+    o.albedo = 0.5;
+    o.forward_scattering = 0.1;
+    o.radius_min = 7.0;
+    o.radius_max = 9.0;
+    const ParticleCloud d = sample_particles(m, o);
+    carried = 0.0;
+    for (const Particle& p : d.particles) {
+        carried += p.optical_depth * footprint_area() * p.radius * p.radius;
+        EXPECT_EQ(p.albedo, 0.5);
+        EXPECT_GE(p.radius, 7.0);
+        EXPECT_LE(p.radius, 9.0);
+    }
+    EXPECT_NEAR(carried, 0.06 * d.density_integral, 1e-9 * carried);
+    EXPECT_EQ(d.forward_scattering, 0.1);
+}
+
+TEST(ParticleSampling, SpacingGivesTheCount)
+{
+    const Medium m = slab_medium(1000.0, 0.0, 200.0, true);
+    ParticleOptions o;
+    o.spacing = 40.0;  // 2e8 m^3 / 40^3 = 3125
+    const ParticleCloud c = sample_particles(m, o);
+    EXPECT_NEAR(double(c.particles.size()), 3125.0, 60.0);
+}
+
+TEST(ParticleSampling, BadOptionsNameTheirKey)
+{
+    const Medium m = slab_medium();
+    const auto message = [&](ParticleOptions o) {
+        try {
+            sample_particles(m, o, "s.json");
+        } catch (const kiri::InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    ParticleOptions o;
+    o.count = 0;
+    EXPECT_EQ(message(o), "s.json: /particles/count: must be in [1, 2000000]");
+    o = {};
+    o.resolution = 600;
+    EXPECT_EQ(message(o), "s.json: /particles/resolution: must be in [16, 512]");
+    o = {};
+    o.count = 1000000;
+    o.candidates = 30.0;
+    EXPECT_EQ(message(o), "s.json: /particles/candidates: count * candidates is above the limit of 2e7 points");
+}
+
+TEST(ParticleSampling, SceneSection)
+{
+    const auto parse = [](const std::string& particles) {
+        return parse_scene(R"({"terrain": {"path": "t.tif"}, "sun": {"direction": [0, 0, 1]}, "particles": )" + particles + "}",
+                           "s.json", "/");
+    };
+    const Scene s = parse(R"({"count": 900, "radius": [5, 20], "albedo": 0.7, "format": "r32f", "frame": "light",
+                              "resolution": 256, "seed": 5})");
+    EXPECT_EQ(s.particles.count, 900);
+    EXPECT_EQ(s.particles.radius_min, 5.0);
+    EXPECT_EQ(s.particles.radius_max, 20.0);
+    EXPECT_EQ(s.particles.albedo, 0.7);
+    EXPECT_FALSE(s.particles.half_float);
+    EXPECT_EQ(s.particles.frame, LightFrame::light);
+    EXPECT_EQ(s.particles.resolution, 256);
+    EXPECT_EQ(scene_to_json(parse_scene(scene_to_json(s), "again.json", "/")), scene_to_json(s));
+    const auto error = [&](const std::string& particles) {
+        try {
+            parse(particles);
+        } catch (const kiri::InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    EXPECT_EQ(error(R"({"cuont": 3})").rfind("s.json: /particles/cuont: unknown key (expected one of: albedo, ", 0), 0u);
+    EXPECT_EQ(error(R"({"count": 3, "spacing": 4})"),
+              "s.json: /particles: give count or spacing, not both (each sets the number of particles)");
+    EXPECT_EQ(error(R"({"radius": [5, 2]})"), "s.json: /particles/radius: the minimum is above the maximum");
+    EXPECT_EQ(error(R"({"radius": 5})"), "s.json: /particles/radius: expected [min, max] in metres");
+    EXPECT_EQ(error(R"({"format": "rgba8"})"), "s.json: /particles/format: expected \"r16f\" or \"r32f\", got \"rgba8\"");
+    EXPECT_EQ(error(R"({"resolution": 8})"), "s.json: /particles/resolution: must be in [16, 512], got 8");
+    EXPECT_EQ(error(R"({"albedo": 2})"), "s.json: /particles/albedo: must be in [0, 1], got 2");
+}
+
+TEST(ParticleSampling, PlyExport)
+{
+    const ParticleCloud c = sample_particles(slab_medium(), options(50));
+    const std::filesystem::path path = kiri::test::temp_path("particles_test.ply");
+    write_particles_ply(path.string(), c);
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::size_t end = text.find("end_header\n");
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_NE(text.find("element vertex 50\n"), std::string::npos);
+    EXPECT_NE(text.find("property float optical_depth\n"), std::string::npos);
+    ASSERT_EQ(text.size(), end + 11 + 50 * 6 * sizeof(float));
+    float v[6];
+    std::memcpy(v, text.data() + end + 11 + 6 * sizeof(float), sizeof v);  // the second particle
+    EXPECT_EQ(v[0], float(c.particles[1].position.x));
+    EXPECT_EQ(v[2], float(c.particles[1].position.z));
+    EXPECT_EQ(v[3], float(c.particles[1].radius));
+    EXPECT_EQ(v[4], float(c.particles[1].optical_depth));
+    EXPECT_FALSE(std::filesystem::exists(path.string() + ".tmp"));
+    std::filesystem::remove(path);
+    EXPECT_THROW(write_particles_ply("/nonexistent/dir/p.ply", c), kiri::IoError);
+}
