@@ -12,6 +12,7 @@
 #include "kiri/geometry/terrain.hpp"
 #include "layers_pass.hpp"
 #include "overlay_pass.hpp"
+#include "particles_pass.hpp"
 #include "render_targets.hpp"
 #include "sky_pass.hpp"
 #include "terrain_pass.hpp"
@@ -56,6 +57,7 @@ struct Renderer::Impl {
     detail::LayersPass layers;
     detail::OverlayPass overlays;
     detail::ToneMapPass tonemap;
+    detail::ParticlesPass particles;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
     detail::RenderTargets targets;
@@ -64,7 +66,7 @@ struct Renderer::Impl {
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
     PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve"},
-        overlays_timer{"overlays"}, tonemap_timer{"tonemap"};
+        overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"};
 };
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
@@ -107,6 +109,16 @@ void Renderer::remove_overlay(const std::string& name) { impl_->overlays.remove(
 
 void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
 
+void Renderer::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
+{
+    if (impl_->particles.set_particles(cloud, style))
+        ++impl_->pending_uploads;
+}
+
+void Renderer::clear_particles() { impl_->particles.clear(); }
+
+const AttenuationBuffer& Renderer::attenuation() const { return impl_->particles.buffer(); }
+
 void Renderer::draw(const Camera& camera, int width, int height)
 {
     Impl& r = *impl_;
@@ -115,6 +127,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     glm::dvec3 scene_min = r.terrain.bounds_min(), scene_max = r.terrain.bounds_max();
     r.layers.extend_bounds(scene_min, scene_max);
     r.overlays.extend_bounds(scene_min, scene_max);
+    r.particles.extend_bounds(scene_min, scene_max);
     const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
     r.targets.bind_for_drawing();
     r.sky_timer.begin();
@@ -138,6 +151,13 @@ void Renderer::draw(const Camera& camera, int width, int height)
             ++r.pending_uploads;
         r.layers_timer.end();
     }
+    const bool particles = r.particles.has_particles();
+    bool rebuilt = false;
+    if (particles) {  // over the terrain and the layers, soft where they meet the terrain
+        r.particles_timer.begin();
+        rebuilt = r.particles.draw(frame, r.targets.hdr_framebuffer(), r.targets.resolved_depth());
+        r.particles_timer.end();
+    }
     r.tonemap_timer.begin();
     glBindFramebuffer(GL_FRAMEBUFFER, r.targets.display_framebuffer());
     glViewport(0, 0, width, height);
@@ -155,6 +175,14 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.stats = {};
     for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer, &r.tonemap_timer})
         r.stats.passes.push_back(t->result());
+    if (particles) {
+        // The buffer's build is part of the particles' pass; reported apart when it ran.
+        if (rebuilt)
+            r.stats.passes.push_back({"attenuation", r.particles.buffer().last_build_ms(), r.particles.buffer().last_build_ms()});
+        r.stats.passes.push_back(r.particles_timer.result());
+        r.stats.particles = int(r.particles.count());
+        r.stats.attenuation_rebuilds = rebuilt ? 1 : 0;
+    }
     if (overlays)
         r.stats.passes.push_back(r.overlays_timer.result());
     r.stats.uploads = std::exchange(r.pending_uploads, 0);

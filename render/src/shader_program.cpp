@@ -39,16 +39,25 @@ std::string info_log(GLuint object, bool is_program)
 
 }  // namespace
 
-ShaderProgram::ShaderProgram(std::initializer_list<std::string_view> files) : program_(glCreateProgram())
+ShaderProgram::ShaderProgram(std::initializer_list<std::string_view> files, std::string_view preamble)
+    : program_(glCreateProgram())
 {
     std::vector<GLuint> shaders;
     std::string names;
+    std::string libraries(preamble);
     for (std::string_view file : files) {
         const std::string_view text = shader_source(file);
+        if (file.size() > 5 && file.substr(file.size() - 5) == ".glsl") {
+            libraries += text;
+            libraries += '\n';
+            continue;
+        }
         const GLuint shader = glCreateShader(stage_of(file));
-        const GLchar* source = text.data();
-        const GLint length = GLint(text.size());
-        glShaderSource(shader, 1, &source, &length);
+        // The #version line first, then the libraries (line numbers in messages shift by their length).
+        const std::size_t first_line = text.rfind("#version", 0) == 0 ? text.find('\n') + 1 : 0;
+        const GLchar* sources[3] = {text.data(), libraries.data(), text.data() + first_line};
+        const GLint lengths[3] = {GLint(first_line), GLint(libraries.size()), GLint(text.size() - first_line)};
+        glShaderSource(shader, 3, sources, lengths);
         glCompileShader(shader);
         GLint ok = 0;
         glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);

@@ -21,8 +21,10 @@ std::string_view shader_source(std::string_view file_name);
 class ShaderProgram {
 public:
     //! Compiles and links the named files; the stage comes from the extension
-    //! (.vert, .frag, .comp, .geom). Throws kiri::Error naming the file on failure.
-    explicit ShaderProgram(std::initializer_list<std::string_view> files);
+    //! (.vert, .frag, .comp, .geom). A .glsl file is a library: its text (and `preamble`, e.g.
+    //! "#define X 1\n") goes after the #version line of every stage file that follows it.
+    //! Throws kiri::Error naming the file on failure.
+    explicit ShaderProgram(std::initializer_list<std::string_view> files, std::string_view preamble = {});
     GLuint id() const { return program_.get(); }
     void use() const { glUseProgram(program_.get()); }
     GLint location(const char* uniform) const { return glGetUniformLocation(program_.get(), uniform); }

@@ -10,6 +10,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "kiri/render/attenuation.hpp"
 #include "kiri/render/camera.hpp"
 #include "kiri/render/image.hpp"
 #include "kiri/render/overlay_mesh.hpp"
@@ -29,6 +30,12 @@ struct SunLight {
     glm::dvec3 ambient{0.25, 0.3, 0.38};
 };
 
+//! How particle clouds are drawn (docs/particles.md).
+struct ParticleStyle {
+    AttenuationOptions buffer;  //!< the attenuation buffer's resolution, format and frame
+    double soft_edge = 40.0;    //!< metres over which a billboard fades out in front of the terrain
+};
+
 struct PassTime {
     std::string pass;
     double gpu_ms = 0.0;  //!< GL timer query
@@ -41,6 +48,8 @@ struct FrameStats {
     double frame_ms = 0.0;
     int uploads = 0;  //!< GPU resources (re)built during this frame
     int layers = 0;   //!< fog layers above the base drawn (0: none, or culled off-screen)
+    int particles = 0;              //!< particle billboards drawn
+    int attenuation_rebuilds = 0;   //!< attenuation buffer builds during this frame (0 when nothing changed)
 };
 
 class Renderer {
@@ -65,6 +74,14 @@ public:
     //! changes: `kiri bench --stage layers`). multisampled (scale 1 only) draws them straight
     //! into the 8-bit multisampled frame instead, the plain way.
     void set_layer_resolution(double scale, bool multisampled = false);
+    //! A particle cloud lit through the 3D attenuation buffer, drawn as billboards over the
+    //! terrain and the layers (kept by reference: it must outlive the renderer's use of it).
+    //! Uploads only when the particles changed; the buffer is rebuilt on the next frame only when
+    //! the particles, the sun or style.buffer changed.
+    void set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style = {});
+    void clear_particles();
+    //! The particles' attenuation buffer (its grid, memory, build count and time).
+    const AttenuationBuffer& attenuation() const;
     //! Adds or replaces the overlay mesh `name` (overlay_mesh.hpp), uploaded once here; its
     //! style is kept. \throw kiri::Error naming it when its arrays disagree.
     void set_overlay(const std::string& name, const OverlayMesh& mesh);

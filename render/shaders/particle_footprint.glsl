@@ -1,0 +1,89 @@
+// Library (inserted after #version): one particle's footprint and the attenuation buffer's
+// lookup, the GPU copy of geometry/include/kiri/geometry/particle_footprint.hpp and of
+// sample_log_gamma / self_log_gamma in attenuation_cpu.hpp (a GL test checks they agree).
+
+const float kFootprintSigma = 0.4;
+const float kMinLogGain = -16.0;
+const float kMinLogGamma = -80.0;
+
+// f(x) = (exp(-x^2 / 2s^2) - e0) / (1 - e0) for x < 1, else 0.
+float footprint_profile(float x)
+{
+    if (!(x < 1.0))
+        return 0.0;
+    float e0 = exp(-1.0 / (2.0 * kFootprintSigma * kFootprintSigma));
+    return (exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma)) - e0) / (1.0 - e0);
+}
+
+// log G, G = T + a c (1 - T), T = exp(-tau f(rho / r)), clamped to [kMinLogGain, 0].
+float footprint_log_gain(float rho, float radius, float tau, float albedo, float forward)
+{
+    if (!(radius > 0.0) || !(tau > 0.0))
+        return 0.0;
+    float f = footprint_profile(rho / radius);
+    if (f <= 0.0)
+        return 0.0;
+    float t = tau * f;
+    float ac = clamp(albedo, 0.0, 1.0) * clamp(forward, 0.0, 1.0);
+    float g;
+    if (ac <= 0.0)
+        g = -t;
+    else if (t > 80.0)
+        g = log(ac);
+    else  // -t + log1p(ac (e^t - 1)), written for float: small t keeps its digits through ac t
+        g = t < 1e-3 ? -t + log(1.0 + ac * t * (1.0 + 0.5 * t)) : -t + log(1.0 + ac * (exp(t) - 1.0));
+    return clamp(g, kMinLogGain, 0.0);
+}
+
+// The attenuation buffer's grid (light_grid.hpp) in voxel units.
+uniform ivec3 u_grid_size;
+uniform vec3 u_grid_voxel;        // du, dv, dw (metres)
+uniform vec2 u_grid_shear_cells;  // a du / dw, b dv / dw
+uniform float u_forward;          // p(l,l) / 4pi
+
+// GL_LINEAR + GL_CLAMP_TO_EDGE along one axis: texels (x, y) and the weight of the second (z).
+vec3 linear_taps(float g, int n)
+{
+    float x = g - 0.5;
+    float f = floor(x);
+    int i = int(clamp(f, -1.0, float(n)));
+    return vec3(float(clamp(i, 0, n - 1)), float(clamp(i + 1, 0, n - 1)), x - f);
+}
+
+// What the trilinear read at grid point g holds of a particle's own cylinder: the particle at
+// grid coordinates (gx, gy) with shadow-start depth gw0 (before the shear), radius, tau, albedo.
+float self_log_gamma(vec3 g, vec3 self_grid, vec3 self_optics)
+{
+    vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y), tz = linear_taps(g.z, u_grid_size.z);
+    float sum = 0.0;
+    for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+            float ci = di == 0 ? tx.x : tx.y, cj = dj == 0 ? ty.x : ty.y;
+            vec2 d = (vec2(ci, cj) + 0.5 - self_grid.xy) * u_grid_voxel.xy;
+            float rho = length(d);
+            if (!(rho < self_optics.x))
+                continue;
+            float s = self_grid.z - u_grid_shear_cells.x * (ci + 0.5) - u_grid_shear_cells.y * (cj + 0.5);
+            float start = max(ceil(s - 0.5), 0.0);
+            float depth = (tz.x >= start ? 1.0 - tz.z : 0.0) + (tz.y >= start ? tz.z : 0.0);
+            sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * depth *
+                   footprint_log_gain(rho, self_optics.x, self_optics.y, self_optics.z, u_forward);
+        }
+    return sum;
+}
+
+// Gamma at grid point g for the particle described by self_grid / self_optics (it does not
+// shade itself): exp(trilinear log Gamma - its own part).
+float particle_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, vec3 self_optics)
+{
+    float raw = texture(log_gamma, g / vec3(u_grid_size)).r;
+    return exp(clamp(raw - self_log_gamma(g, self_grid, self_optics), kMinLogGamma, 0.0));
+}
+
+// Henyey-Greenstein (1/sr), g clamped to [-0.999, 0.999].
+float henyey_greenstein(float cos_theta, float g)
+{
+    g = clamp(g, -0.999, 0.999);
+    float denom = 1.0 + g * g - 2.0 * g * clamp(cos_theta, -1.0, 1.0);
+    return (1.0 - g * g) / (4.0 * 3.14159265358979 * denom * sqrt(denom));
+}

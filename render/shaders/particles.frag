@@ -1,0 +1,65 @@
+#version 450 core
+// A particle billboard: opacity 1 - T from its Gaussian footprint, light from the attenuation
+// buffer (Gamma at this fragment, the particle's own cylinder removed) times the sun,
+// Henyey-Greenstein towards the eye plus the sky's ambient, hazed with distance like the
+// terrain, faded out where it meets the terrain (soft edge). Blended back to front,
+// premultiplied: E_k = S_k + T_k E_(k-1) (REFERENCE (5)), S_k = a (1 - T) (p(w,l) Gamma E_sun + L_sky).
+struct WorldParticle {
+    vec4 position_radius;
+    vec4 optics;  // tau, albedo
+};
+struct GridParticle {
+    vec4 grid;    // gx, gy, gz, gw0
+    vec4 optics;  // radius, tau, albedo
+};
+layout(std430, binding = 0) readonly buffer World { WorldParticle world[]; };
+layout(std430, binding = 1) readonly buffer Grid { GridParticle grid_particles[]; };
+in vec3 v_world;
+in vec2 v_offset;
+flat in uint v_id;
+uniform sampler3D u_log_gamma;
+uniform sampler2D u_depth;       // the terrain's depth, full resolution
+uniform mat4 u_world_to_grid;    // world -> grid coordinates (voxels)
+uniform int u_lit;               // 0: no buffer (every particle fully lit)
+uniform float u_near;
+uniform float u_far;
+uniform float u_soft_edge;       // metres
+uniform float u_anisotropy;
+uniform vec3 u_eye;
+uniform vec3 u_sun_direction;
+uniform vec3 u_sun_radiance;
+uniform vec3 u_ambient;
+uniform vec3 u_sky_horizon;
+uniform float u_haze_density;
+out vec4 o_color;
+
+float linear_depth(float d)
+{
+    float z = d * 2.0 - 1.0;
+    return 2.0 * u_near * u_far / (u_far + u_near - z * (u_far - u_near));
+}
+
+void main()
+{
+    float x = length(v_offset);
+    if (x >= 1.0)
+        discard;
+    WorldParticle p = world[v_id];
+    float alpha = 1.0 - exp(-p.optics.x * footprint_profile(x));
+    float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r);
+    float here = linear_depth(gl_FragCoord.z);
+    alpha *= u_soft_edge > 0.0 ? clamp((scene - here) / u_soft_edge, 0.0, 1.0) : step(here, scene);
+    if (alpha < 1e-5)
+        discard;
+    float gamma = 1.0;
+    if (u_lit != 0) {
+        GridParticle g = grid_particles[v_id];
+        gamma = particle_gamma(u_log_gamma, (u_world_to_grid * vec4(v_world, 1.0)).xyz, g.grid.xyw, g.optics.xyz);
+    }
+    vec3 view = normalize(v_world - u_eye);
+    float phase = henyey_greenstein(dot(u_sun_direction, view), u_anisotropy);
+    vec3 radiance = p.optics.y * (phase * gamma * u_sun_radiance + u_ambient);
+    float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
+    radiance = mix(radiance, u_sky_horizon, haze);
+    o_color = vec4(radiance * alpha, alpha);
+}

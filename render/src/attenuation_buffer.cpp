@@ -1,0 +1,227 @@
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "gl_objects.hpp"
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/render/attenuation.hpp"
+#include "particle_gpu.hpp"
+#include "shader_program.hpp"
+
+namespace kiri::render {
+
+using namespace detail;
+
+struct AttenuationBuffer::Impl {
+    // Parentheses, not braces: {"a", "b"} in braces would be one string_view(first, last).
+    ShaderProgram deposit = ShaderProgram({"particle_footprint.glsl", "attenuation_deposit.comp"});
+    ShaderProgram scan = ShaderProgram({"attenuation_scan.comp"});
+    ShaderProgram scan_half = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_HALF 1\n");
+    ShaderProgram sample = ShaderProgram({"particle_footprint.glsl", "attenuation_sample.comp"});
+    const geometry::ParticleCloud* cloud = nullptr;
+    std::uint64_t hash = 0, built_hash = 0;
+    bool built = false;
+    glm::dvec3 built_light{0.0};
+    AttenuationOptions built_options;
+    geometry::LightGrid grid;
+    Buffer particles;  // GridParticle per particle in the cloud's order, rewritten per build
+    Buffer deposits;   // the same sorted by footprint size, for the deposit
+    std::size_t particle_capacity = 0;
+    Buffer sums, scanned;  // fixed-point deposits, then float log Gamma, voxel order
+    Texture log_gamma;
+    std::array<int, 3> texture_size{0, 0, 0};
+    bool texture_half = true;
+    double scale = 1.0;
+    int rebuilds = 0;
+    double build_ms = 0.0;
+    AttenuationBuildTimes times;
+    Query stage_queries[4] = {make_query(GL_TIMESTAMP), make_query(GL_TIMESTAMP), make_query(GL_TIMESTAMP),
+                              make_query(GL_TIMESTAMP)};
+
+    void ensure_textures(const std::array<int, 3>& size, bool half);
+    void build(const glm::dvec3& light, const AttenuationOptions& options);
+};
+
+void AttenuationBuffer::Impl::ensure_textures(const std::array<int, 3>& size, bool half)
+{
+    if (size == texture_size && half == texture_half && sums)
+        return;
+    const GLsizeiptr bytes = GLsizeiptr(std::size_t(size[0]) * size[1] * size[2] * 4);
+    sums = make_buffer();
+    glNamedBufferStorage(sums.get(), bytes, nullptr, 0);
+    scanned = make_buffer();
+    glNamedBufferStorage(scanned.get(), bytes, nullptr, 0);
+    log_gamma = make_texture(GL_TEXTURE_3D);
+    glTextureStorage3D(log_gamma.get(), 1, half ? GL_R16F : GL_R32F, size[0], size[1], size[2]);
+    glTextureParameteri(log_gamma.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(log_gamma.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(log_gamma.get(), wrap, GL_CLAMP_TO_EDGE);
+    texture_size = size;
+    texture_half = half;
+}
+
+void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOptions& options)
+{
+    const auto start = std::chrono::steady_clock::now();
+    const geometry::ParticleCloud& c = *cloud;
+    grid = geometry::make_light_grid(c, light, {options.resolution, options.frame, options.depth_resolution});
+    // Particles in grid units (double here, float on the GPU), and the fixed-point scale: the
+    // largest power of two for which the sum of every particle's strongest log G fits an int.
+    const std::vector<GridParticle> gp = detail::grid_particles(c, grid);
+    double total = 0.0;
+    for (const geometry::Particle& p : c.particles)
+        total -= geometry::footprint_log_gain(0.0, p.radius, p.optical_depth, p.albedo, c.forward_scattering);
+    scale = std::exp2(std::clamp(std::floor(std::log2(0.9 * 2147483647.0 / std::max(total, 1e-30))), 4.0, 24.0));
+    const GLsizeiptr bytes = GLsizeiptr(std::max<std::size_t>(gp.size(), 1) * sizeof(GridParticle));
+    if (std::size_t(bytes) > particle_capacity || !particles) {
+        particles = make_buffer();
+        glNamedBufferStorage(particles.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+        deposits = make_buffer();
+        glNamedBufferStorage(deposits.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+        particle_capacity = std::size_t(bytes);
+    }
+    glNamedBufferSubData(particles.get(), 0, GLsizeiptr(gp.size() * sizeof(GridParticle)), gp.data());
+    const std::vector<GridParticle> sorted = sort_by_footprint(gp);
+    glNamedBufferSubData(deposits.get(), 0, GLsizeiptr(sorted.size() * sizeof(GridParticle)), sorted.data());
+    ensure_textures(grid.size, options.half_float);
+    const GLint zero = 0;
+    const auto setup_done = std::chrono::steady_clock::now();
+    glQueryCounter(stage_queries[0].get(), GL_TIMESTAMP);
+    glClearNamedBufferData(sums.get(), GL_R32I, GL_RED_INTEGER, GL_INT, &zero);
+
+    set_grid_uniforms(deposit, grid, c.forward_scattering);
+    deposit.set("u_scale", float(scale));
+    glProgramUniform1ui(deposit.id(), deposit.location("u_count"), GLuint(gp.size()));
+    deposit.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, deposits.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums.get());
+    glDispatchCompute(GLuint((gp.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glQueryCounter(stage_queries[1].get(), GL_TIMESTAMP);
+
+    // Half floats are packed by the scan two columns to a word (even widths); the GL's own
+    // float -> half conversion of the upload costs more than the whole build on llvmpipe.
+    const bool packed = options.half_float && grid.size[0] % 2 == 0;
+    const ShaderProgram& s = packed ? scan_half : scan;
+    const int columns = grid.size[0] * grid.size[1] / (packed ? 2 : 1);
+    glProgramUniform3i(s.id(), s.location("u_size"), grid.size[0], grid.size[1], grid.size[2]);
+    s.set("u_inverse_scale", float(1.0 / scale));
+    s.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, scanned.get());
+    glDispatchCompute(GLuint((columns + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_PIXEL_BUFFER_BARRIER_BIT);
+    glQueryCounter(stage_queries[2].get(), GL_TIMESTAMP);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, scanned.get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+    glTextureSubImage3D(log_gamma.get(), 0, 0, 0, 0, grid.size[0], grid.size[1], grid.size[2], GL_RED,
+                        packed ? GL_HALF_FLOAT : GL_FLOAT, nullptr);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glQueryCounter(stage_queries[3].get(), GL_TIMESTAMP);
+    glFinish();
+    build_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    GLuint64 stamp[4] = {0, 0, 0, 0};
+    for (int q = 0; q < 4; ++q)
+        glGetQueryObjectui64v(stage_queries[q].get(), GL_QUERY_RESULT, &stamp[q]);
+    times.setup_ms = std::chrono::duration<double, std::milli>(setup_done - start).count();
+    times.deposit_ms = double(stamp[1] - stamp[0]) * 1e-6;
+    times.scan_ms = double(stamp[2] - stamp[1]) * 1e-6;
+    times.upload_ms = double(stamp[3] - stamp[2]) * 1e-6;
+    built = true;
+    built_hash = hash;
+    built_light = light;
+    built_options = options;
+    ++rebuilds;
+}
+
+AttenuationBuffer::AttenuationBuffer() : impl_(std::make_unique<Impl>()) {}
+AttenuationBuffer::~AttenuationBuffer() = default;
+
+void AttenuationBuffer::set_particles(const geometry::ParticleCloud& cloud)
+{
+    impl_->cloud = &cloud;
+    impl_->hash = hash_particles(cloud);
+}
+
+void AttenuationBuffer::clear()
+{
+    impl_->cloud = nullptr;
+    impl_->built = false;
+}
+
+bool AttenuationBuffer::has_particles() const { return impl_->cloud && !impl_->cloud->particles.empty(); }
+
+bool AttenuationBuffer::update(const glm::dvec3& light, const AttenuationOptions& options)
+{
+    Impl& m = *impl_;
+    if (!has_particles())
+        return false;
+    if (m.built && m.built_hash == m.hash && m.built_light == light && m.built_options == options)
+        return false;
+    m.build(light, options);
+    return true;
+}
+
+void AttenuationBuffer::rebuild(const glm::dvec3& light, const AttenuationOptions& options)
+{
+    if (!has_particles())
+        throw Error("AttenuationBuffer::rebuild: no particles");
+    impl_->build(light, options);
+}
+
+int AttenuationBuffer::rebuild_count() const { return impl_->rebuilds; }
+double AttenuationBuffer::last_build_ms() const { return impl_->build_ms; }
+const AttenuationBuildTimes& AttenuationBuffer::last_build_times() const { return impl_->times; }
+const geometry::LightGrid& AttenuationBuffer::grid() const { return impl_->grid; }
+std::size_t AttenuationBuffer::texture_bytes() const
+{
+    const auto& s = impl_->texture_size;
+    return std::size_t(s[0]) * s[1] * s[2] * (impl_->texture_half ? 2 : 4);
+}
+std::size_t AttenuationBuffer::scratch_bytes() const
+{
+    const auto& s = impl_->texture_size;
+    return std::size_t(s[0]) * s[1] * s[2] * 8;
+}
+double AttenuationBuffer::fixed_point_scale() const { return impl_->scale; }
+unsigned AttenuationBuffer::texture() const { return impl_->log_gamma.get(); }
+unsigned AttenuationBuffer::grid_particles() const { return impl_->particles.get(); }
+
+std::vector<float> AttenuationBuffer::gamma_at_particles() const
+{
+    const Impl& m = *impl_;
+    if (!m.built || !m.cloud)
+        return {};
+    const std::size_t n = m.cloud->particles.size();
+    Buffer out = make_buffer();
+    glNamedBufferStorage(out.get(), GLsizeiptr(std::max<std::size_t>(n, 1) * sizeof(float)), nullptr, 0);
+    set_grid_uniforms(m.sample, m.grid, m.cloud->forward_scattering);
+    glProgramUniform1ui(m.sample.id(), m.sample.location("u_count"), GLuint(n));
+    m.sample.set("u_log_gamma", 0);
+    m.sample.use();
+    glBindTextureUnit(0, m.log_gamma.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, m.particles.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.get());
+    glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<float> gamma(n);
+    glGetNamedBufferSubData(out.get(), 0, GLsizeiptr(n * sizeof(float)), gamma.data());
+    return gamma;
+}
+
+std::vector<float> AttenuationBuffer::read_log_gamma() const
+{
+    const Impl& m = *impl_;
+    if (!m.built)
+        return {};
+    std::vector<float> v(m.grid.voxel_count());
+    glGetTextureImage(m.log_gamma.get(), 0, GL_RED, GL_FLOAT, GLsizei(v.size() * sizeof(float)), v.data());
+    return v;
+}
+
+}  // namespace kiri::render

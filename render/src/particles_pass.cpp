@@ -1,0 +1,157 @@
+#include "particles_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+
+#include "particle_gpu.hpp"
+
+namespace kiri::render::detail {
+
+ParticlesPass::ParticlesPass()
+    : program_({"particle_footprint.glsl", "particles.vert", "particles.frag"}),
+      composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
+{
+}
+
+bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
+{
+    cloud_ = &cloud;
+    style_ = style;
+    buffer_.set_particles(cloud);
+    const std::uint64_t hash = hash_particles(cloud);
+    if (hash == uploaded_hash_ && count_ == cloud.particles.size() && world_)
+        return false;
+    const std::vector<WorldParticle> w = world_particles(cloud);
+    count_ = w.size();
+    world_ = make_buffer();
+    order_ = make_buffer();
+    if (count_ > 0) {
+        glNamedBufferStorage(world_.get(), GLsizeiptr(w.size() * sizeof(WorldParticle)), w.data(), 0);
+        glNamedBufferStorage(order_.get(), GLsizeiptr(count_ * sizeof(std::uint32_t)), nullptr, GL_DYNAMIC_STORAGE_BIT);
+    }
+    lo_ = glm::dvec3(1e300);
+    hi_ = glm::dvec3(-1e300);
+    for (const geometry::Particle& p : cloud.particles) {
+        lo_ = glm::min(lo_, p.position - glm::dvec3(p.radius));
+        hi_ = glm::max(hi_, p.position + glm::dvec3(p.radius));
+    }
+    uploaded_hash_ = hash;
+    sorted_eye_ = glm::vec3(1e30f);
+    return true;
+}
+
+void ParticlesPass::clear()
+{
+    cloud_ = nullptr;
+    count_ = 0;
+    buffer_.clear();
+}
+
+void ParticlesPass::extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const
+{
+    if (!has_particles())
+        return;
+    lo = glm::min(lo, lo_);
+    hi = glm::max(hi, hi_);
+}
+
+void ParticlesPass::ensure_target(int width, int height)
+{
+    if (width == width_ && height == height_ && fbo_)
+        return;
+    color_ = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(color_.get(), 1, GL_RGBA16F, width, height);
+    fbo_ = make_framebuffer();
+    glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, color_.get(), 0);
+    width_ = width;
+    height_ = height;
+}
+
+void ParticlesPass::sort(const FrameContext& frame)
+{
+    const glm::dmat4 inverse_view = glm::inverse(frame.view);
+    const glm::vec3 forward = -glm::vec3(inverse_view[2]);
+    if (frame.eye == sorted_eye_ && forward == sorted_forward_)
+        return;  // the same view: the order stands
+    const std::vector<geometry::Particle>& P = cloud_->particles;
+    order_cpu_.resize(P.size());
+    keys_.resize(P.size());
+    const glm::dvec3 eye(frame.eye), f(forward);
+    for (std::size_t k = 0; k < P.size(); ++k)
+        keys_[k] = float(glm::dot(P[k].position - eye, f));
+    std::iota(order_cpu_.begin(), order_cpu_.end(), 0u);
+    std::sort(order_cpu_.begin(), order_cpu_.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return keys_[a] > keys_[b] || (keys_[a] == keys_[b] && a < b);  // far first
+    });
+    glNamedBufferSubData(order_.get(), 0, GLsizeiptr(order_cpu_.size() * sizeof(std::uint32_t)), order_cpu_.data());
+    sorted_eye_ = frame.eye;
+    sorted_forward_ = forward;
+}
+
+bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth)
+{
+    if (!has_particles())
+        return false;
+    const bool rebuilt = buffer_.update(glm::dvec3(frame.sun_direction), style_.buffer);
+    sort(frame);
+    ensure_target(frame.width, frame.height);
+    const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, clear);
+
+    const geometry::LightGrid& g = buffer_.grid();
+    glm::dmat4 to_grid = g.world_to_texture();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r)
+            to_grid[c][r] *= g.size[r];
+    const glm::dmat4 inverse_view = glm::inverse(frame.view);
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    set_grid_uniforms(program_, g, cloud_->forward_scattering);
+    program_.set("u_view_projection", frame.view_projection);
+    program_.set("u_camera_right", glm::vec3(inverse_view[0]));
+    program_.set("u_camera_up", glm::vec3(inverse_view[1]));
+    program_.set("u_world_to_grid", glm::mat4(to_grid));
+    program_.set("u_lit", 1);
+    program_.set("u_log_gamma", 0);
+    program_.set("u_depth", 1);
+    program_.set("u_near", float(p32 / (p22 - 1.0)));
+    program_.set("u_far", float(p32 / (p22 + 1.0)));
+    program_.set("u_soft_edge", float(style_.soft_edge));
+    program_.set("u_anisotropy", float(cloud_->anisotropy));
+    program_.set("u_eye", frame.eye);
+    program_.set("u_sun_direction", frame.sun_direction);
+    program_.set("u_sun_radiance", frame.sun_radiance);
+    program_.set("u_ambient", frame.ambient);
+    program_.set("u_sky_horizon", frame.sky_horizon);
+    program_.set("u_haze_density", frame.haze_density);
+    program_.use();
+    glBindTextureUnit(0, buffer_.texture());
+    glBindTextureUnit(1, resolved_depth);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, world_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffer_.grid_particles());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, order_.get());
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+    glViewport(0, 0, frame.width, frame.height);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    glBindVertexArray(vao_.get());
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count_));
+
+    composite_.set("u_particles", 0);
+    composite_.set("u_exposure", frame.exposure);
+    composite_.use();
+    glBindTextureUnit(0, color_.get());
+    glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDisable(GL_BLEND);
+    glDepthMask(GL_TRUE);
+    return rebuilt;
+}
+
+}  // namespace kiri::render::detail

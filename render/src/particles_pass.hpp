@@ -1,0 +1,52 @@
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "frame_context.hpp"
+#include "kiri/geometry/particles.hpp"
+#include "kiri/render/attenuation.hpp"
+#include "kiri/render/renderer.hpp"
+#include "shader_program.hpp"
+
+namespace kiri::render::detail {
+
+//! Particle clouds: the attenuation buffer (rebuilt only when the sun, the particles or the
+//! buffer's options change) and the billboards, sorted back to front on the CPU when the eye
+//! moves, drawn into their own float target with the terrain's depth for soft edges, then
+//! composited over the resolved frame.
+class ParticlesPass {
+public:
+    ParticlesPass();
+    //! Keeps the cloud by reference; uploads it when its contents changed. Returns true if it did.
+    bool set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style);
+    void clear();
+    bool has_particles() const { return cloud_ != nullptr && count_ > 0; }
+    void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
+    //! Draws over `resolved_fbo`. Returns whether the attenuation buffer was rebuilt.
+    bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth);
+    const AttenuationBuffer& buffer() const { return buffer_; }
+    std::size_t count() const { return has_particles() ? count_ : 0; }
+
+private:
+    ShaderProgram program_, composite_;
+    VertexArray vao_;
+    AttenuationBuffer buffer_;
+    const geometry::ParticleCloud* cloud_ = nullptr;
+    std::uint64_t uploaded_hash_ = 0;
+    std::size_t count_ = 0;
+    ParticleStyle style_;
+    Buffer world_, order_;
+    std::vector<std::uint32_t> order_cpu_;
+    std::vector<float> keys_;
+    glm::vec3 sorted_eye_{1e30f}, sorted_forward_{0.0f};
+    glm::dvec3 lo_{0.0}, hi_{0.0};
+    Framebuffer fbo_;
+    Texture color_;
+    int width_ = 0, height_ = 0;
+    void ensure_target(int width, int height);
+    void sort(const FrameContext& frame);
+};
+
+}  // namespace kiri::render::detail
