@@ -7,6 +7,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "kiri/geometry/particles.hpp"
 #include "kiri/geometry/scene.hpp"
 #include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/terrain.hpp"
@@ -32,6 +33,16 @@ render::Camera to_camera(const geometry::CameraSpec& c)
 
 render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
 
+render::ParticleStyle to_style(const geometry::ParticleOptions& o)
+{
+    render::ParticleStyle s;
+    s.buffer.resolution = o.resolution;
+    s.buffer.half_float = o.half_float;
+    s.buffer.frame = o.frame;
+    s.soft_edge = o.soft_edge;
+    return s;
+}
+
 void run(const RenderArgs& a)
 {
     const auto start = std::chrono::steady_clock::now();
@@ -50,15 +61,28 @@ void run(const RenderArgs& a)
     // "auto" draws what the scene has: its fog as layers when it has a fog section.
     const std::string mode = a.mode != "auto" ? a.mode : scene.fog ? "layers" : "terrain";
     std::optional<geometry::SceneFog> fog;
+    std::optional<geometry::ParticleCloud> particles;
     if (mode == "layers") {
         fog = geometry::author_scene_fog(scene, terrain);
         renderer.set_layers(fog->base, fog->layers);
+    }
+    if (mode == "particles") {  // the fog's medium sampled into particles (docs/particles.md)
+        fog = geometry::author_scene_fog(scene, terrain);
+        particles = geometry::sample_particles(fog->medium, scene.particles, scene.file.string());
+        renderer.set_particles(*particles, to_style(scene.particles));
     }
     const render::Image image = renderer.render(camera, width, height);
     render::write_png_atomic(a.out, image);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n", a.out.c_str());
     std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, mode.c_str(), seconds);
+    if (particles) {
+        const render::AttenuationBuffer& b = renderer.attenuation();
+        const auto& size = b.grid().size;
+        std::fprintf(stderr, "kiri render: %zu particles, attenuation buffer %dx%dx%d %s (%.1f MiB), built in %.1f ms\n",
+                     particles->particles.size(), size[0], size[1], size[2], scene.particles.half_float ? "R16F" : "R32F",
+                     double(b.texture_bytes()) / 1048576.0, b.last_build_ms());
+    }
 }
 
 }  // namespace
@@ -72,8 +96,10 @@ void add_render_command(CLI::App& app)
     sub->add_option("--width", a->width, "image width in pixels (default: the scene's)")->check(CLI::Range(1, 16384));
     sub->add_option("--height", a->height, "image height in pixels (default: the scene's)")->check(CLI::Range(1, 16384));
     sub->add_option("--camera", a->camera, "camera name from the scene (default: its first)");
-    sub->add_option("--mode", a->mode, "what to draw: terrain, layers (the fog's layer stack), auto (layers when the scene has fog)")
-        ->check(CLI::IsMember({"auto", "terrain", "layers"}));
+    sub->add_option("--mode", a->mode,
+                    "what to draw: terrain, layers (the fog's layer stack), particles (the fog as lit particles), "
+                    "auto (layers when the scene has fog)")
+        ->check(CLI::IsMember({"auto", "terrain", "layers", "particles"}));
     sub->callback([a] { run(*a); });
 }
 
