@@ -16,6 +16,7 @@
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/fog_spec.hpp"
 #include "kiri/geometry/layer_export.hpp"
+#include "kiri/geometry/particles.hpp"
 #include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/scene.hpp"
 #include "kiri/geometry/terrain.hpp"
@@ -65,6 +66,8 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     const Bounds3 bounds = terrain.bounds();
     const glm::dvec3 eye = scene.camera("", bounds.min, bounds.max).position;
     const std::vector<LayerMesh> layers = build_layers(fog.base, fog.layers, eye);
+    // The same fog as particles (the scene's "particles" section, docs/particles.md).
+    const ParticleCloud particles = sample_particles(fog.medium, scene.particles, scene_path.string());
 
     std::error_code ec;
     fs::create_directories(out_dir, ec);
@@ -76,7 +79,8 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
                                                    {out_dir / (stem + "json"), out_dir / "report.json"},
                                                    {out_dir / (stem + "glb"), out_dir / "layers.glb"},
                                                    {out_dir / (stem + "layers.obj"), out_dir / "layers.obj"},
-                                                   {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"}};
+                                                   {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"},
+                                                   {out_dir / (stem + "particles.ply"), out_dir / "particles.ply"}};
     try {
         write_mesh_file(a.tessellation.mesh, files[0].first, false);
         write_mesh_file(a.tessellation.mesh, files[1].first, true);
@@ -87,6 +91,7 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
         write_layers_glb(files[3].first, fog.base, layers, fog.layers, &terrain.mesh());
         write_layers_obj(files[4].first, fog.base, layers);
         write_layers_ply(files[5].first, fog.base, layers, fog.layers);
+        write_particles_ply(files[6].first.string(), particles);
         for (const auto& [tmp, final_path] : files) {
             fs::rename(tmp, final_path, ec);
             if (ec)
@@ -98,9 +103,10 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
         throw;
     }
     std::printf("%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
-                "%zu layers -> %s\n",
+                "%zu layers, %zu particles -> %s\n",
                 scene_path.filename().string().c_str(), a.surface.num_patches(), a.tessellation.mesh.n_faces(),
-                a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, layers.size(), out_dir.string().c_str());
+                a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, layers.size(), particles.particles.size(),
+                out_dir.string().c_str());
     return 0;
 }
 }  // namespace
@@ -108,7 +114,7 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
 //! Registers `kiri author`.
 void add_author_command(CLI::App& app)
 {
-    auto* sub = app.add_subcommand("author", "Fit the scene's fog; write its base surface and layers (OBJ, PLY, glTF) and report.json");
+    auto* sub = app.add_subcommand("author", "Fit the scene's fog; write its base surface, layers (OBJ, PLY, glTF), particles (PLY) and report.json");
     auto scene = std::make_shared<std::string>();
     auto out = std::make_shared<std::string>();
     sub->add_option("scene", *scene, "scene file (JSON) with a fog section")->required();
