@@ -19,7 +19,8 @@ struct AttenuationBuffer::Impl {
     // Parentheses, not braces: {"a", "b"} in braces would be one string_view(first, last).
     ShaderProgram deposit = ShaderProgram({"particle_footprint.glsl", "attenuation_deposit.comp"});
     ShaderProgram scan = ShaderProgram({"attenuation_scan.comp"});
-    ShaderProgram scan_half = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_HALF 1\n");
+    ShaderProgram scan_quad = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n");
+    ShaderProgram scan_half = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_HALF 1\n");
     ShaderProgram sample = ShaderProgram({"particle_footprint.glsl", "attenuation_sample.comp"});
     const geometry::ParticleCloud* cloud = nullptr;
     std::uint64_t hash = 0, built_hash = 0;
@@ -72,9 +73,10 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     // Particles in grid units (double here, float on the GPU), and the fixed-point scale: the
     // largest power of two for which the sum of every particle's strongest log G fits an int.
     const std::vector<GridParticle> gp = detail::grid_particles(c, grid);
+    // |log G| <= min(tau, 16): G = ac + (1 - ac) T >= T.
     double total = 0.0;
     for (const geometry::Particle& p : c.particles)
-        total -= geometry::footprint_log_gain(0.0, p.radius, p.optical_depth, p.albedo, c.forward_scattering);
+        total += std::min(std::isfinite(p.optical_depth) ? p.optical_depth : 1e300, -geometry::min_log_gain);
     scale = std::exp2(std::clamp(std::floor(std::log2(0.9 * 2147483647.0 / std::max(total, 1e-30))), 4.0, 24.0));
     const GLsizeiptr bytes = GLsizeiptr(std::max<std::size_t>(gp.size(), 1) * sizeof(GridParticle));
     if (std::size_t(bytes) > particle_capacity || !particles) {
@@ -103,11 +105,11 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glQueryCounter(stage_queries[1].get(), GL_TIMESTAMP);
 
-    // Half floats are packed by the scan two columns to a word (even widths); the GL's own
-    // float -> half conversion of the upload costs more than the whole build on llvmpipe.
-    const bool packed = options.half_float && grid.size[0] % 2 == 0;
-    const ShaderProgram& s = packed ? scan_half : scan;
-    const int columns = grid.size[0] * grid.size[1] / (packed ? 2 : 1);
+    // Four columns per invocation where the width allows; half floats packed by the scan (the
+    // GL's own float -> half conversion of the upload costs more than the whole build on llvmpipe).
+    const bool quad = grid.size[0] % 4 == 0, packed = quad && options.half_float;
+    const ShaderProgram& s = packed ? scan_half : quad ? scan_quad : scan;
+    const int columns = grid.size[0] * grid.size[1] / (quad ? 4 : 1);
     glProgramUniform3i(s.id(), s.location("u_size"), grid.size[0], grid.size[1], grid.size[2]);
     s.set("u_inverse_scale", float(1.0 / scale));
     s.use();

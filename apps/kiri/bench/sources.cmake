@@ -4,6 +4,9 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/fit_bench.cpp
   bench/layers_bench.cpp
   bench/layers_scene.cpp
+  bench/particles_bench.cpp
+  bench/particles_error_bench.cpp
+  bench/particles_scene.cpp
   bench/surface_bench.cpp
   bench/terrain_bench.cpp
   bench/tessellation_bench.cpp

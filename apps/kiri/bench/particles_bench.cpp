@@ -1,0 +1,197 @@
+// Particle clouds (issue 6): Shimada's Table 1 reproduced on this machine (precompute time of
+// Harris's light pass and of the 3D attenuation buffer at 128^3 / 256^3 / 384^3 for 9,382 /
+// 32,914 / 60,134 particles, with each one's per-particle error against the exact Harris pass),
+// the goal at 60,134 particles and 128^3, the resolution against error and time, the error
+// against the optical depth per voxel, and the figures.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <string>
+
+#include "bench/bench.hpp"
+#include "bench/particles_scene.hpp"
+#include "bench/report.hpp"
+#include "kiri/geometry/harris_reference.hpp"
+#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/terrain.hpp"
+#include "kiri/render/attenuation.hpp"
+#include "kiri/render/renderer.hpp"
+
+namespace kiri::bench {
+namespace {
+
+// Table 1 of Shimada et al. 2008 (GeForce 8800 GTX, Core 2 Duo 1.83 GHz), seconds.
+const std::map<std::size_t, double> paper_harris = {{9382, 0.721}, {32914, 3.164}, {60134, 5.934}};
+const std::map<int, std::map<std::size_t, double>> paper_buffer = {
+    {384, {{9382, 0.038}, {32914, 0.154}, {60134, 0.161}}},
+    {256, {{9382, 0.015}, {32914, 0.044}, {60134, 0.055}}},
+    {128, {{9382, 0.007}, {32914, 0.015}, {60134, 0.016}}}};
+
+constexpr int harris_buffer = 512;  // Harris's light buffer, pixels a side
+
+double seconds_since(std::chrono::steady_clock::time_point t)
+{
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+std::string fixed(double v, int digits)
+{
+    char s[64];
+    std::snprintf(s, sizeof s, "%.*f", digits, v);
+    return s;
+}
+
+void figures(Context& c, ParticleBenchScene& s)
+{
+    const geometry::Terrain terrain = geometry::load_scene_terrain(s.scene);
+    render::Renderer r;
+    r.set_terrain(terrain);
+    render::SunLight sun{s.scene.sun.direction, s.scene.sun.color, s.scene.sun.intensity, s.scene.sun.ambient};
+    r.set_sun(sun);
+    render::Camera cam;
+    // From the east, looking towards the low western sun past the cloud: its sunlit rim and top
+    // bright, its body and underside in its own shadow.
+    cam.position = {8500.0, -2500.0, 2700.0};
+    cam.target = {0.0, 0.0, 2350.0};
+    cam.fov_y_deg = 40.0;
+    const geometry::Medium m = ParticleBenchScene::cumulus();
+    for (std::size_t n : shimada_counts) {
+        if (c.quick() && n > 9382)
+            break;
+        const geometry::ParticleCloud cloud = ParticleBenchScene::sample(m, n);
+        r.set_particles(cloud);
+        render::write_png_atomic(c.out_dir() / ("particles_cumulus_" + std::to_string(n) + ".png"), r.render(cam, 960, 540));
+    }
+    // The default scene's fog as particles, from its camera and towards the sun.
+    const geometry::SceneFog fog = geometry::author_scene_fog(s.scene, terrain);
+    const geometry::ParticleCloud cloud = geometry::sample_particles(fog.medium, s.scene.particles);
+    r.set_particles(cloud);
+    const geometry::CameraSpec spec = s.scene.camera("", terrain.bounds().min, terrain.bounds().max);
+    render::Camera view;
+    view.position = spec.position;
+    view.target = spec.target;
+    view.fov_y_deg = spec.fov_y_deg;
+    render::write_png_atomic(c.out_dir() / "particles_jacksboro.png", r.render(view, 960, 540));
+    view.position = {9000.0, -6000.0, 2500.0};
+    view.target = {-2000.0, 1000.0, 700.0};
+    view.fov_y_deg = 50.0;
+    render::write_png_atomic(c.out_dir() / "particles_jacksboro_sunward.png", r.render(view, 960, 540));
+    std::printf("  figures: %s/particles_*.png\n", c.out_dir().string().c_str());
+}
+
+void table(Context& c)
+{
+    ParticleBenchScene s(c.data_dir());
+    figures(c, s);
+    const geometry::Medium m = ParticleBenchScene::cumulus();
+    const int repeats = c.quick() ? 3 : 7;
+    std::vector<std::size_t> counts(std::begin(shimada_counts), std::end(shimada_counts));
+    if (c.quick())
+        counts.resize(2);
+    std::ofstream md(c.out_dir() / "particles_table.md");
+    md << "Precompute (light pass) times in seconds, this machine beside Shimada's Table 1 (GeForce 8800 GTX); "
+          "error = mean relative error of Gamma per particle against the exact Harris pass (max in brackets). "
+          "Buffer: R16F, best of " << repeats << " builds (median in brackets).\n\n"
+       << "| method | 9,382 | 32,914 | 60,134 |\n|---|---|---|---|\n";
+    std::map<std::string, std::map<std::size_t, std::string>> cells;
+    std::map<std::size_t, double> harris_s, harris_error;
+    std::map<std::pair<int, std::size_t>, BufferBuild> builds;
+    for (std::size_t n : counts) {
+        auto t0 = std::chrono::steady_clock::now();
+        const geometry::ParticleCloud cloud = ParticleBenchScene::sample(m, n);
+        const double sample_s = seconds_since(t0);
+        t0 = std::chrono::steady_clock::now();
+        geometry::HarrisStats stats;
+        const std::vector<double> exact = geometry::harris_light_pass(cloud, s.sun, &stats);
+        const double exact_s = seconds_since(t0);
+        double mean_log = 0.0;
+        for (double g : exact)
+            mean_log += std::log(g);
+        std::printf("  %zu particles: sampled in %.2f s (spacing %.1f m), exact pass %.2f s (%zu occluders, mean log Gamma %.2f)\n",
+                    n, sample_s, cloud.spacing, exact_s, stats.occluders, mean_log / double(n));
+        c.add({"exact Harris, CPU double (this machine)", "N=" + std::to_string(n), double(n), exact_s, "", 0.0,
+               double(n) / exact_s, 0.0});
+        cells["exact Harris pass, CPU, double, light-plane index (this machine)"][n] = fixed(exact_s, 3);
+        // Harris on the GPU, the paper's "Harris" row: a 512^2 light buffer (as accurate as the
+        // attenuation buffer at 128^3), best of two runs (one in quick mode); and one with pixels
+        // of a quarter of the smallest radius (faster, coarser).
+        render::HarrisGlStats hs;
+        std::vector<float> gl;
+        double gl_s = 1e300;
+        for (int k = 0; k < (c.quick() ? 1 : 2); ++k) {
+            gl = render::harris_light_pass_gl(cloud, s.sun, harris_buffer, &hs);
+            gl_s = std::min(gl_s, hs.seconds);
+        }
+        harris_s[n] = gl_s;
+        harris_error[n] = relative_error(gl, exact).mean;
+        const GammaError ge = relative_error(gl, exact);
+        c.add({"Harris GL light pass, 512^2 (this machine)", "N=" + std::to_string(n), double(n), gl_s,
+               "mean relative error", ge.mean, double(n) / gl_s, 0.0});
+        c.add({"Harris (paper, 8800 GTX)", "N=" + std::to_string(n), double(n), paper_harris.at(n), "", 0.0, 0.0, 0.0});
+        cells["Harris, GL 512^2 light buffer + one read-back per particle (this machine)"][n] =
+            fixed(gl_s, 3) + " (error " + fixed(ge.mean * 100, 2) + " %)";
+        render::HarrisGlStats coarse_stats;
+        const GammaError coarse = relative_error(render::harris_light_pass_gl(cloud, s.sun, 0, &coarse_stats), exact);
+        cells["Harris, GL light buffer of r_min / 4 pixels (this machine)"][n] =
+            fixed(coarse_stats.seconds, 3) + " (" + std::to_string(coarse_stats.buffer_size) + "^2, error " +
+            fixed(coarse.mean * 100, 2) + " %)";
+        cells["Harris (paper)"][n] = fixed(paper_harris.at(n), 3);
+        render::AttenuationBuffer b;
+        b.set_particles(cloud);
+        for (int res : {384, 256, 128}) {
+            if (c.quick() && res == 384)
+                continue;
+            render::AttenuationOptions o;
+            o.resolution = res;
+            const BufferBuild r = time_buffer(b, s.sun, o, repeats, exact);
+            builds[{res, n}] = r;
+            const std::string rs = std::to_string(res);
+            c.add({"buffer " + rs + "^3 (this machine)", "N=" + std::to_string(n) + " mib=" + fixed(r.bytes / 1048576.0, 0),
+                   double(n), r.best_s, "mean relative error", r.error.mean, double(n) / r.best_s, 0.0});
+            c.add({"buffer " + rs + "^3 (paper)", "N=" + std::to_string(n), double(n), paper_buffer.at(res).at(n), "", 0.0,
+                   0.0, 0.0});
+            cells["attenuation buffer " + rs + "^3 (this machine)"][n] = fixed(r.best_s, 4) + " [" + fixed(r.median_s, 4) +
+                                                                         "] (error " + fixed(r.error.mean * 100, 2) +
+                                                                         " % [" + fixed(r.error.max * 100, 1) + " %])";
+            cells["proposed " + rs + "^3 (paper)"][n] = fixed(paper_buffer.at(res).at(n), 3);
+            std::printf("  %zu particles, %d^3: %.1f ms (setup %.1f, deposit %.1f, scan %.1f, upload %.1f), error %.3f %% (max %.1f %%), %.0f MiB\n",
+                        n, res, r.best_s * 1e3, r.times.setup_ms, r.times.deposit_ms, r.times.scan_ms, r.times.upload_ms,
+                        r.error.mean * 100, r.error.max * 100, r.bytes / 1048576.0);
+        }
+    }
+    for (const std::string& row :
+         {std::string("Harris (paper)"), std::string("Harris, GL 512^2 light buffer + one read-back per particle (this machine)"),
+          std::string("Harris, GL light buffer of r_min / 4 pixels (this machine)"),
+          std::string("exact Harris pass, CPU, double, light-plane index (this machine)"), std::string("proposed 384^3 (paper)"),
+          std::string("attenuation buffer 384^3 (this machine)"), std::string("proposed 256^3 (paper)"),
+          std::string("attenuation buffer 256^3 (this machine)"), std::string("proposed 128^3 (paper)"),
+          std::string("attenuation buffer 128^3 (this machine)")}) {
+        md << "| " << row;
+        for (std::size_t n : shimada_counts)
+            md << " | " << (cells[row].count(n) ? cells[row][n] : "");
+        md << " |\n";
+    }
+    const std::size_t goal_n = counts.back();
+    if (builds.count({128, goal_n})) {
+        const BufferBuild& g = builds[{128, goal_n}];
+        const double speedup = harris_s[goal_n] / g.best_s;
+        md << "\nGoal at " << goal_n << " particles and 128^3: " << fixed(speedup, 0) << "x faster than Harris's GL light pass ("
+           << fixed(harris_s[goal_n], 3) << " s against " << fixed(g.best_s * 1e3, 1) << " ms), mean relative error "
+           << fixed(g.error.mean * 100, 2) << " % (Harris's own error: " << fixed(harris_error[goal_n] * 100, 2)
+           << " %; goal: >= 100x, <= 1 %): "
+           << (speedup >= 100.0 && g.error.mean <= 0.01 ? "met" : "NOT met") << ".\n";
+        std::printf("  goal (%zu particles, 128^3): %.0fx faster than Harris GL, mean error %.2f %%\n", goal_n, speedup,
+                    g.error.mean * 100);
+    }
+    std::printf("  table: %s\n", (c.out_dir() / "particles_table.md").string().c_str());
+}
+
+}  // namespace
+
+KIRI_BENCH_STAGE({"particles", "Particle light pass: precompute time vs particles (Shimada Table 1)",
+                  {"particles", "time_s", "precompute time (s)", true, true}, table});
+
+}  // namespace kiri::bench
