@@ -35,11 +35,24 @@ float footprint_log_gain(float rho, float radius, float tau, float albedo, float
     return clamp(g, kMinLogGain, 0.0);
 }
 
+// A particle as the GPU holds it (render/src/particle_gpu.hpp): position relative to the cloud's
+// centre and radius; optical depth and albedo.
+struct GpuParticle {
+    vec4 position_radius;
+    vec4 optics;  // tau, albedo, 0, 0
+};
+
 // The attenuation buffer's grid (light_grid.hpp) in voxel units.
+uniform mat4 u_to_grid;           // position relative to the cloud's centre -> grid coordinates
 uniform ivec3 u_grid_size;
 uniform vec3 u_grid_voxel;        // du, dv, dw (metres)
 uniform vec2 u_grid_shear_cells;  // a du / dw, b dv / dw
 uniform float u_forward;          // p(l,l) / 4pi
+
+vec3 grid_of(vec3 relative) { return (u_to_grid * vec4(relative, 1.0)).xyz; }
+// A particle's (gx, gy, gw0): gw0 is its depth before the shear, where its shadow starts in
+// column (i, j) at gw0 - a' (i + 0.5) - b' (j + 0.5) (LightGrid::shadow_start).
+vec3 shadow_grid(vec3 g) { return vec3(g.xy, g.z + u_grid_shear_cells.x * g.x + u_grid_shear_cells.y * g.y); }
 
 // GL_LINEAR + GL_CLAMP_TO_EDGE along one axis: texels (x, y) and the weight of the second (z).
 vec3 linear_taps(float g, int n)

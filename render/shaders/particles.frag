@@ -4,22 +4,13 @@
 // Henyey-Greenstein towards the eye plus the sky's ambient, hazed with distance like the
 // terrain, faded out where it meets the terrain (soft edge). Blended back to front,
 // premultiplied: E_k = S_k + T_k E_(k-1) (REFERENCE (5)), S_k = a (1 - T) (p(w,l) Gamma E_sun + L_sky).
-struct WorldParticle {
-    vec4 position_radius;
-    vec4 optics;  // tau, albedo
-};
-struct GridParticle {
-    vec4 grid;    // gx, gy, gz, gw0
-    vec4 optics;  // radius, tau, albedo
-};
-layout(std430, binding = 0) readonly buffer World { WorldParticle world[]; };
-layout(std430, binding = 1) readonly buffer Grid { GridParticle grid_particles[]; };
+layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
+in vec3 v_relative;
 in vec3 v_world;
 in vec2 v_offset;
 flat in uint v_id;
 uniform sampler3D u_log_gamma;
 uniform sampler2D u_depth;       // the terrain's depth, full resolution
-uniform mat4 u_world_to_grid;    // world -> grid coordinates (voxels)
 uniform int u_lit;               // 0: no buffer (every particle fully lit)
 uniform float u_near;
 uniform float u_far;
@@ -44,7 +35,7 @@ void main()
     float x = length(v_offset);
     if (x >= 1.0)
         discard;
-    WorldParticle p = world[v_id];
+    GpuParticle p = particles[v_id];
     float alpha = 1.0 - exp(-p.optics.x * footprint_profile(x));
     float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r);
     float here = linear_depth(gl_FragCoord.z);
@@ -53,8 +44,8 @@ void main()
         discard;
     float gamma = 1.0;
     if (u_lit != 0) {
-        GridParticle g = grid_particles[v_id];
-        gamma = particle_gamma(u_log_gamma, (u_world_to_grid * vec4(v_world, 1.0)).xyz, g.grid.xyw, g.optics.xyz);
+        vec3 self_grid = shadow_grid(grid_of(p.position_radius.xyz));
+        gamma = particle_gamma(u_log_gamma, grid_of(v_relative), self_grid, vec3(p.position_radius.w, p.optics.xy));
     }
     vec3 view = normalize(v_world - u_eye);
     float phase = henyey_greenstein(dot(u_sun_direction, view), u_anisotropy);

@@ -1,25 +1,24 @@
 #version 450 core
 // Particle billboards (Harris's render pass, REFERENCE 2.2): a camera-facing square of the
 // particle's radius, drawn back to front in the order the CPU sorted (u_order).
-struct WorldParticle {
-    vec4 position_radius;
-    vec4 optics;  // tau, albedo
-};
-layout(std430, binding = 0) readonly buffer World { WorldParticle world[]; };
+layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 layout(std430, binding = 2) readonly buffer Order { uint order[]; };
 uniform mat4 u_view_projection;
+uniform vec3 u_centre;  // the cloud's centre (positions are relative to it)
 uniform vec3 u_camera_right;
 uniform vec3 u_camera_up;
+out vec3 v_relative;  // relative to the cloud's centre
 out vec3 v_world;
-out vec2 v_offset;  // in radii, (0, 0) at the centre
+out vec2 v_offset;    // in radii, (0, 0) at the centre
 flat out uint v_id;
 
 void main()
 {
     uint id = order[gl_InstanceID];
-    vec4 p = world[id].position_radius;
+    vec4 p = particles[id].position_radius;
     vec2 corner = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
-    v_world = p.xyz + (corner.x * u_camera_right + corner.y * u_camera_up) * p.w;
+    v_relative = p.xyz + (corner.x * u_camera_right + corner.y * u_camera_up) * p.w;
+    v_world = v_relative + u_centre;
     v_offset = corner;
     v_id = id;
     gl_Position = u_view_projection * vec4(v_world, 1.0);

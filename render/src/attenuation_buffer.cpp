@@ -23,14 +23,13 @@ struct AttenuationBuffer::Impl {
     ShaderProgram scan_half = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_HALF 1\n");
     ShaderProgram sample = ShaderProgram({"particle_footprint.glsl", "attenuation_sample.comp"});
     const geometry::ParticleCloud* cloud = nullptr;
-    std::uint64_t hash = 0, built_hash = 0;
+    std::uint64_t hash = 0, built_hash = 0, uploaded_hash = 0;
+    GpuParticles gpu;  // the particles as uploaded (sorted by radius; positions relative to the centre)
     bool built = false;
     glm::dvec3 built_light{0.0};
     AttenuationOptions built_options;
     geometry::LightGrid grid;
-    Buffer particles;  // GridParticle per particle in the cloud's order, rewritten per build
-    Buffer deposits;   // the same sorted by footprint size, for the deposit
-    std::size_t particle_capacity = 0;
+    Buffer particles;  // GpuParticle per particle, uploaded when the particles change
     Buffer sums, scanned;  // fixed-point deposits, then float log Gamma, voxel order
     Texture log_gamma;
     std::array<int, 3> texture_size{0, 0, 0};
@@ -70,38 +69,24 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     const auto start = std::chrono::steady_clock::now();
     const geometry::ParticleCloud& c = *cloud;
     grid = geometry::make_light_grid(c, light, {options.resolution, options.frame, options.depth_resolution});
-    // Particles in grid units (double here, float on the GPU), and the fixed-point scale: the
-    // largest power of two for which the sum of every particle's strongest log G fits an int.
-    const std::vector<GridParticle> gp = detail::grid_particles(c, grid);
-    // |log G| <= min(tau, 16): G = ac + (1 - ac) T >= T.
-    double total = 0.0;
-    for (const geometry::Particle& p : c.particles)
-        total += std::min(std::isfinite(p.optical_depth) ? p.optical_depth : 1e300, -geometry::min_log_gain);
-    scale = std::exp2(std::clamp(std::floor(std::log2(0.9 * 2147483647.0 / std::max(total, 1e-30))), 4.0, 24.0));
-    const GLsizeiptr bytes = GLsizeiptr(std::max<std::size_t>(gp.size(), 1) * sizeof(GridParticle));
-    if (std::size_t(bytes) > particle_capacity || !particles) {
-        particles = make_buffer();
-        glNamedBufferStorage(particles.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
-        deposits = make_buffer();
-        glNamedBufferStorage(deposits.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
-        particle_capacity = std::size_t(bytes);
-    }
-    glNamedBufferSubData(particles.get(), 0, GLsizeiptr(gp.size() * sizeof(GridParticle)), gp.data());
-    const std::vector<GridParticle> sorted = sort_by_footprint(gp);
-    glNamedBufferSubData(deposits.get(), 0, GLsizeiptr(sorted.size() * sizeof(GridParticle)), sorted.data());
+    // The fixed-point scale: the largest power of two for which every column's sum of log G
+    // (at most the sum of every particle's strongest |log G| <= min(tau, 16)) fits an int.
+    scale = std::exp2(std::clamp(std::floor(std::log2(0.9 * 2147483647.0 / std::max(gpu.strongest_log_gain_sum, 1e-30))),
+                                 4.0, 24.0));
     ensure_textures(grid.size, options.half_float);
     const GLint zero = 0;
     const auto setup_done = std::chrono::steady_clock::now();
     glQueryCounter(stage_queries[0].get(), GL_TIMESTAMP);
     glClearNamedBufferData(sums.get(), GL_R32I, GL_RED_INTEGER, GL_INT, &zero);
 
-    set_grid_uniforms(deposit, grid, c.forward_scattering);
+    const std::size_t n = gpu.particles.size();
+    set_grid_uniforms(deposit, grid, c.forward_scattering, gpu.centre);
     deposit.set("u_scale", float(scale));
-    glProgramUniform1ui(deposit.id(), deposit.location("u_count"), GLuint(gp.size()));
+    glProgramUniform1ui(deposit.id(), deposit.location("u_count"), GLuint(n));
     deposit.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, deposits.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particles.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums.get());
-    glDispatchCompute(GLuint((gp.size() + 63) / 64), 1, 1);
+    glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     glQueryCounter(stage_queries[1].get(), GL_TIMESTAMP);
 
@@ -146,8 +131,16 @@ AttenuationBuffer::~AttenuationBuffer() = default;
 
 void AttenuationBuffer::set_particles(const geometry::ParticleCloud& cloud)
 {
-    impl_->cloud = &cloud;
-    impl_->hash = hash_particles(cloud);
+    Impl& m = *impl_;
+    m.cloud = &cloud;
+    m.hash = hash_particles(cloud);
+    if (m.hash == m.uploaded_hash && m.particles)
+        return;
+    m.gpu = gpu_particles(cloud);
+    m.particles = make_buffer();
+    glNamedBufferStorage(m.particles.get(), GLsizeiptr(std::max<std::size_t>(m.gpu.particles.size(), 1) * sizeof(GpuParticle)),
+                         m.gpu.particles.empty() ? nullptr : m.gpu.particles.data(), 0);
+    m.uploaded_hash = m.hash;
 }
 
 void AttenuationBuffer::clear()
@@ -192,17 +185,19 @@ std::size_t AttenuationBuffer::scratch_bytes() const
 }
 double AttenuationBuffer::fixed_point_scale() const { return impl_->scale; }
 unsigned AttenuationBuffer::texture() const { return impl_->log_gamma.get(); }
-unsigned AttenuationBuffer::grid_particles() const { return impl_->particles.get(); }
+unsigned AttenuationBuffer::particle_buffer() const { return impl_->particles.get(); }
+const glm::dvec3& AttenuationBuffer::particle_centre() const { return impl_->gpu.centre; }
+const std::vector<std::uint32_t>& AttenuationBuffer::particle_order() const { return impl_->gpu.index; }
 
 std::vector<float> AttenuationBuffer::gamma_at_particles() const
 {
     const Impl& m = *impl_;
     if (!m.built || !m.cloud)
         return {};
-    const std::size_t n = m.cloud->particles.size();
+    const std::size_t n = m.gpu.particles.size();
     Buffer out = make_buffer();
     glNamedBufferStorage(out.get(), GLsizeiptr(std::max<std::size_t>(n, 1) * sizeof(float)), nullptr, 0);
-    set_grid_uniforms(m.sample, m.grid, m.cloud->forward_scattering);
+    set_grid_uniforms(m.sample, m.grid, m.cloud->forward_scattering, m.gpu.centre);
     glProgramUniform1ui(m.sample.id(), m.sample.location("u_count"), GLuint(n));
     m.sample.set("u_log_gamma", 0);
     m.sample.use();
@@ -211,8 +206,10 @@ std::vector<float> AttenuationBuffer::gamma_at_particles() const
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.get());
     glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<float> gamma(n);
-    glGetNamedBufferSubData(out.get(), 0, GLsizeiptr(n * sizeof(float)), gamma.data());
+    std::vector<float> sorted(n), gamma(n);
+    glGetNamedBufferSubData(out.get(), 0, GLsizeiptr(n * sizeof(float)), sorted.data());
+    for (std::size_t k = 0; k < n; ++k)  // back to the cloud's order
+        gamma[m.gpu.index[k]] = sorted[k];
     return gamma;
 }
 

@@ -4,52 +4,46 @@
 #include <cmath>
 #include <cstring>
 
+#include "kiri/geometry/particle_footprint.hpp"
+
 namespace kiri::render::detail {
 
-std::vector<GridParticle> grid_particles(const geometry::ParticleCloud& cloud, const geometry::LightGrid& g)
+GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
 {
-    std::vector<GridParticle> out(cloud.particles.size());
-    for (std::size_t k = 0; k < out.size(); ++k) {
-        const geometry::Particle& p = cloud.particles[k];
-        const glm::dvec3 q = g.light_coordinates(p.position);
-        const glm::dvec3 c = g.to_grid(p.position);
-        // Shadow start in column (i, j): gw0 - a' (i + 0.5) - b' (j + 0.5) (LightGrid::shadow_start).
-        const double gw0 = (q.z - g.shear_u * g.origin.x - g.shear_v * g.origin.y - g.origin.z) / g.voxel.z;
-        const double tau = std::isfinite(p.optical_depth) ? p.optical_depth : 1e30;
-        out[k] = {{float(c.x), float(c.y), float(c.z), float(gw0)}, {float(p.radius), float(tau), float(p.albedo), 0.0f}};
+    GpuParticles out;
+    const auto& P = cloud.particles;
+    if (P.empty())
+        return out;
+    glm::dvec3 lo = P.front().position, hi = lo;
+    double r_max = 0.0;
+    for (const geometry::Particle& p : P) {
+        lo = glm::min(lo, p.position);
+        hi = glm::max(hi, p.position);
+        if (std::isfinite(p.radius))
+            r_max = std::max(r_max, p.radius);
+        out.strongest_log_gain_sum +=
+            std::min(std::isfinite(p.optical_depth) ? std::max(p.optical_depth, 0.0) : 1e300, -geometry::min_log_gain);
     }
-    return out;
-}
-
-std::vector<GridParticle> sort_by_footprint(const std::vector<GridParticle>& particles)
-{
+    out.centre = 0.5 * (lo + hi);
     constexpr int buckets = 64;
-    float r_max = 0.0f;
-    for (const GridParticle& p : particles)
-        r_max = std::max(r_max, std::isfinite(p.optics[0]) ? p.optics[0] : 0.0f);
-    const auto bucket = [&](const GridParticle& p) {
-        const float x = r_max > 0.0f && std::isfinite(p.optics[0]) ? p.optics[0] / r_max : 0.0f;
+    const auto bucket = [&](const geometry::Particle& p) {
+        const double x = r_max > 0.0 && std::isfinite(p.radius) ? p.radius / r_max : 0.0;
         return std::clamp(int(x * buckets), 0, buckets - 1);
     };
     std::vector<std::size_t> start(buckets + 1, 0);
-    for (const GridParticle& p : particles)
+    for (const geometry::Particle& p : P)
         ++start[std::size_t(bucket(p)) + 1];
     for (int b = 0; b < buckets; ++b)
         start[std::size_t(b) + 1] += start[std::size_t(b)];
-    std::vector<GridParticle> out(particles.size());
-    for (const GridParticle& p : particles)
-        out[start[std::size_t(bucket(p))]++] = p;
-    return out;
-}
-
-std::vector<WorldParticle> world_particles(const geometry::ParticleCloud& cloud)
-{
-    std::vector<WorldParticle> out(cloud.particles.size());
-    for (std::size_t k = 0; k < out.size(); ++k) {
-        const geometry::Particle& p = cloud.particles[k];
+    out.particles.resize(P.size());
+    out.index.resize(P.size());
+    for (std::size_t k = 0; k < P.size(); ++k) {
+        const geometry::Particle& p = P[k];
+        const std::size_t slot = start[std::size_t(bucket(p))]++;
+        const glm::dvec3 q = p.position - out.centre;
         const double tau = std::isfinite(p.optical_depth) ? p.optical_depth : 1e30;
-        out[k] = {{float(p.position.x), float(p.position.y), float(p.position.z), float(p.radius)},
-                  {float(tau), float(p.albedo), 0.0f, 0.0f}};
+        out.particles[slot] = {{float(q.x), float(q.y), float(q.z), float(p.radius)}, {float(tau), float(p.albedo), 0.0f, 0.0f}};
+        out.index[slot] = std::uint32_t(k);
     }
     return out;
 }
@@ -77,12 +71,24 @@ std::uint64_t hash_particles(const geometry::ParticleCloud& cloud)
     return h;
 }
 
-void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& g, double forward)
+glm::dmat4 relative_to_grid(const geometry::LightGrid& g, const glm::dvec3& centre)
+{
+    // to_grid(q + centre) = (world_to_texture (q + centre)) * size.
+    glm::dmat4 m = g.world_to_texture();
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r)
+            m[c][r] *= g.size[r];
+    m[3] = m * glm::dvec4(centre, 1.0);
+    return m;
+}
+
+void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& g, double forward, const glm::dvec3& centre)
 {
     glProgramUniform3i(program.id(), program.location("u_grid_size"), g.size[0], g.size[1], g.size[2]);
     program.set("u_grid_voxel", glm::vec3(g.voxel));
     program.set("u_grid_shear_cells", glm::vec2(float(g.shear_u * g.voxel.x / g.voxel.z), float(g.shear_v * g.voxel.y / g.voxel.z)));
     program.set("u_forward", float(forward));
+    program.set("u_to_grid", glm::mat4(relative_to_grid(g, centre)));
 }
 
 }  // namespace kiri::render::detail

@@ -1,8 +1,11 @@
 #pragma once
-// Internal: the particles as the GPU passes read them (std430 layouts shared by
+// Internal: the particles as the GPU passes read them (one std430 buffer shared by
 // attenuation_buffer.cpp, particles_pass.cpp and the shaders) and the grid's uniforms.
 #include <cstdint>
 #include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
 
 #include "kiri/geometry/light_grid.hpp"
 #include "kiri/geometry/particles.hpp"
@@ -10,28 +13,29 @@
 
 namespace kiri::render::detail {
 
-//! particle_footprint.glsl / attenuation_*.comp: a particle in grid units.
-struct GridParticle {
-    float grid[4];    // gx, gy, gz (centre), gw0 (shadow-start depth before the shear)
-    float optics[4];  // radius (m), tau, albedo, 0
+//! A particle on the GPU (particle_footprint.glsl's GpuParticle). Positions are relative to the
+//! cloud's centre (float keeps millimetres over 100 km).
+struct GpuParticle {
+    float position_radius[4];  // x, y, z - centre, radius (m)
+    float optics[4];           // tau (opaque: 1e30), albedo, 0, 0
 };
-static_assert(sizeof(GridParticle) == 32);
+static_assert(sizeof(GpuParticle) == 32);
 
-//! particles.vert: a particle in the world.
-struct WorldParticle {
-    float position_radius[4];
-    float optics[4];  // tau, albedo, 0, 0
+//! The particles sorted into 64 buckets of radius (counting sort, O(N)): the lanes of the
+//! deposit's SIMD batches then loop over footprints of about the same size.
+struct GpuParticles {
+    glm::dvec3 centre{0.0};
+    std::vector<GpuParticle> particles;  //!< in the sorted order
+    std::vector<std::uint32_t> index;    //!< cloud index of each
+    double strongest_log_gain_sum = 0.0; //!< sum of min(tau, 16): bounds every column's |sum of log G|
 };
-static_assert(sizeof(WorldParticle) == 32);
-
-std::vector<GridParticle> grid_particles(const geometry::ParticleCloud& cloud, const geometry::LightGrid& grid);
-//! The same particles in 64 buckets of radius (counting sort, O(N)): neighbours in the deposit's
-//! SIMD batches then loop over footprints of about the same size.
-std::vector<GridParticle> sort_by_footprint(const std::vector<GridParticle>& particles);
-std::vector<WorldParticle> world_particles(const geometry::ParticleCloud& cloud);
+GpuParticles gpu_particles(const geometry::ParticleCloud& cloud);
 //! A 64-bit hash of every particle's data and the cloud's constants: equal clouds, equal hash.
 std::uint64_t hash_particles(const geometry::ParticleCloud& cloud);
-//! u_grid_size, u_grid_voxel, u_grid_shear_cells, u_forward of particle_footprint.glsl.
-void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& grid, double forward);
+//! World (relative to `centre`) -> grid coordinates in voxels, in double.
+glm::dmat4 relative_to_grid(const geometry::LightGrid& grid, const glm::dvec3& centre);
+//! u_grid_size, u_grid_voxel, u_grid_shear_cells, u_forward and u_to_grid of particle_footprint.glsl.
+void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& grid, double forward,
+                       const glm::dvec3& centre);
 
 }  // namespace kiri::render::detail

@@ -21,18 +21,15 @@ bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const Pa
 {
     cloud_ = &cloud;
     style_ = style;
+    // The buffer uploads the particles (when they changed); the billboards read the same SSBO.
     buffer_.set_particles(cloud);
     const std::uint64_t hash = hash_particles(cloud);
-    if (hash == uploaded_hash_ && count_ == cloud.particles.size() && world_)
+    if (hash == uploaded_hash_ && count_ == cloud.particles.size() && order_)
         return false;
-    const std::vector<WorldParticle> w = world_particles(cloud);
-    count_ = w.size();
-    world_ = make_buffer();
+    count_ = cloud.particles.size();
     order_ = make_buffer();
-    if (count_ > 0) {
-        glNamedBufferStorage(world_.get(), GLsizeiptr(w.size() * sizeof(WorldParticle)), w.data(), 0);
+    if (count_ > 0)
         glNamedBufferStorage(order_.get(), GLsizeiptr(count_ * sizeof(std::uint32_t)), nullptr, GL_DYNAMIC_STORAGE_BIT);
-    }
     lo_ = glm::dvec3(1e300);
     hi_ = glm::dvec3(-1e300);
     for (const geometry::Particle& p : cloud.particles) {
@@ -77,12 +74,14 @@ void ParticlesPass::sort(const FrameContext& frame)
     const glm::vec3 forward = -glm::vec3(inverse_view[2]);
     if (frame.eye == sorted_eye_ && forward == sorted_forward_)
         return;  // the same view: the order stands
+    // Slots of the buffer's particle SSBO (sorted by radius), keyed by depth along the view.
     const std::vector<geometry::Particle>& P = cloud_->particles;
-    order_cpu_.resize(P.size());
-    keys_.resize(P.size());
+    const std::vector<std::uint32_t>& cloud_index = buffer_.particle_order();
+    order_cpu_.resize(cloud_index.size());
+    keys_.resize(cloud_index.size());
     const glm::dvec3 eye(frame.eye), f(forward);
-    for (std::size_t k = 0; k < P.size(); ++k)
-        keys_[k] = float(glm::dot(P[k].position - eye, f));
+    for (std::size_t k = 0; k < cloud_index.size(); ++k)
+        keys_[k] = float(glm::dot(P[cloud_index[k]].position - eye, f));
     std::iota(order_cpu_.begin(), order_cpu_.end(), 0u);
     std::sort(order_cpu_.begin(), order_cpu_.end(), [&](std::uint32_t a, std::uint32_t b) {
         return keys_[a] > keys_[b] || (keys_[a] == keys_[b] && a < b);  // far first
@@ -103,17 +102,13 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, clear);
 
     const geometry::LightGrid& g = buffer_.grid();
-    glm::dmat4 to_grid = g.world_to_texture();
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 3; ++r)
-            to_grid[c][r] *= g.size[r];
     const glm::dmat4 inverse_view = glm::inverse(frame.view);
     const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
-    set_grid_uniforms(program_, g, cloud_->forward_scattering);
+    set_grid_uniforms(program_, g, cloud_->forward_scattering, buffer_.particle_centre());
+    program_.set("u_centre", glm::vec3(buffer_.particle_centre()));
     program_.set("u_view_projection", frame.view_projection);
     program_.set("u_camera_right", glm::vec3(inverse_view[0]));
     program_.set("u_camera_up", glm::vec3(inverse_view[1]));
-    program_.set("u_world_to_grid", glm::mat4(to_grid));
     program_.set("u_lit", 1);
     program_.set("u_log_gamma", 0);
     program_.set("u_depth", 1);
@@ -130,8 +125,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     program_.use();
     glBindTextureUnit(0, buffer_.texture());
     glBindTextureUnit(1, resolved_depth);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, world_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffer_.grid_particles());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_.particle_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, order_.get());
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
     glViewport(0, 0, frame.width, frame.height);

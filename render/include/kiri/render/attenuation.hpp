@@ -4,6 +4,7 @@
 //! and, as the speed anchor it is measured against, Harris's light pass as he ran it (one
 //! read-back per particle). docs/particles.md describes both.
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -61,7 +62,12 @@ public:
     std::size_t scratch_bytes() const;   //!< the fixed-point sums and the scanned floats (8 bytes a voxel)
     double fixed_point_scale() const;    //!< units per 1.0 of log G in the accumulator
     unsigned texture() const;            //!< GL name of the 3D texture (GL_LINEAR, clamp to edge)
-    unsigned grid_particles() const;     //!< GL name of the SSBO of the particles in grid units
+    //! The particles on the GPU: an SSBO of (x, y, z relative to particle_centre(), radius,
+    //! tau, albedo, 0, 0) floats per particle, sorted by radius; particle_order()[k] is the
+    //! cloud index of entry k. Uploaded when the particles change, not per build.
+    unsigned particle_buffer() const;
+    const glm::dvec3& particle_centre() const;
+    const std::vector<std::uint32_t>& particle_order() const;
 
     //! Gamma at every particle's centre as the billboards read it (trilinear, minus the
     //! particle's own cylinder), computed on the GPU and read back.
