@@ -18,9 +18,14 @@ using namespace detail;
 struct AttenuationBuffer::Impl {
     // Parentheses, not braces: {"a", "b"} in braces would be one string_view(first, last).
     ShaderProgram deposit = ShaderProgram({"particle_footprint.glsl", "attenuation_deposit.comp"});
+    ShaderProgram deposit_packed =
+        ShaderProgram({"particle_footprint.glsl", "attenuation_deposit.comp"}, "#define KIRI_PACKED 1\n");
     ShaderProgram scan = ShaderProgram({"attenuation_scan.comp"});
     ShaderProgram scan_quad = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n");
     ShaderProgram scan_half = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_HALF 1\n");
+    ShaderProgram scan_packed = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_PACKED 1\n");
+    ShaderProgram scan_packed_half =
+        ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_PACKED 1\n#define KIRI_HALF 1\n");
     ShaderProgram sample = ShaderProgram({"particle_footprint.glsl", "attenuation_sample.comp"});
     const geometry::ParticleCloud* cloud = nullptr;
     std::uint64_t hash = 0, built_hash = 0, uploaded_hash = 0;
@@ -35,6 +40,7 @@ struct AttenuationBuffer::Impl {
     std::array<int, 3> texture_size{0, 0, 0};
     bool texture_half = true;
     double scale = 1.0;
+    bool packed = false;
     int rebuilds = 0;
     double build_ms = 0.0;
     AttenuationBuildTimes times;
@@ -69,10 +75,17 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     const auto start = std::chrono::steady_clock::now();
     const geometry::ParticleCloud& c = *cloud;
     grid = geometry::make_light_grid(c, light, {options.resolution, options.frame, options.depth_resolution});
-    // The fixed-point scale: the largest power of two for which every column's sum of log G
-    // (at most the sum of every particle's strongest |log G| <= min(tau, 16)) fits an int.
+    // The fixed point. 32 bits a voxel: the largest power of two for which every column's sum of
+    // log G (at most the sum of every particle's strongest |log G| <= min(tau, 16)) fits an int.
+    // Two columns a word (16 bits each, half the atomics) when the scale that keeps every voxel's
+    // sum below 2^16 still resolves log G to 1.2e-4 (a receiver behind 140 occluders then carries
+    // a rounding noise of ~4e-4 in log Gamma).
     scale = std::exp2(std::clamp(std::floor(std::log2(0.9 * 2147483647.0 / std::max(gpu.strongest_log_gain_sum, 1e-30))),
                                  4.0, 24.0));
+    const double packed_scale = grid.size[0] % 4 == 0 ? packed_fixed_point_scale(c, grid) : 0.0;
+    packed = packed_scale >= 8192.0 && packed_scale * gpu.strongest_log_gain_sum < 2e9;
+    if (packed)
+        scale = packed_scale;
     ensure_textures(grid.size, options.half_float);
     const GLint zero = 0;
     const auto setup_done = std::chrono::steady_clock::now();
@@ -80,10 +93,11 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     glClearNamedBufferData(sums.get(), GL_R32I, GL_RED_INTEGER, GL_INT, &zero);
 
     const std::size_t n = gpu.particles.size();
-    set_grid_uniforms(deposit, grid, c.forward_scattering, gpu.centre);
-    deposit.set("u_scale", float(scale));
-    glProgramUniform1ui(deposit.id(), deposit.location("u_count"), GLuint(n));
-    deposit.use();
+    const ShaderProgram& d = packed ? deposit_packed : deposit;
+    set_grid_uniforms(d, grid, c.forward_scattering, gpu.centre);
+    d.set("u_scale", float(scale));
+    glProgramUniform1ui(d.id(), d.location("u_count"), GLuint(n));
+    d.use();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, particles.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums.get());
     glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
@@ -92,11 +106,11 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
 
     // Four columns per invocation where the width allows; half floats packed by the scan (the
     // GL's own float -> half conversion of the upload costs more than the whole build on llvmpipe).
-    const bool quad = grid.size[0] % 4 == 0, packed = quad && options.half_float;
-    const ShaderProgram& s = packed ? scan_half : quad ? scan_quad : scan;
+    const bool quad = grid.size[0] % 4 == 0, half = quad && options.half_float;
+    const ShaderProgram& s = packed ? (half ? scan_packed_half : scan_packed) : half ? scan_half : quad ? scan_quad : scan;
     const int columns = grid.size[0] * grid.size[1] / (quad ? 4 : 1);
     glProgramUniform3i(s.id(), s.location("u_size"), grid.size[0], grid.size[1], grid.size[2]);
-    s.set("u_inverse_scale", float(1.0 / scale));
+    s.set("u_inverse_scale", float((packed ? -1.0 : 1.0) / scale));
     s.use();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sums.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, scanned.get());
@@ -106,7 +120,7 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, scanned.get());
     glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
     glTextureSubImage3D(log_gamma.get(), 0, 0, 0, 0, grid.size[0], grid.size[1], grid.size[2], GL_RED,
-                        packed ? GL_HALF_FLOAT : GL_FLOAT, nullptr);
+                        half ? GL_HALF_FLOAT : GL_FLOAT, nullptr);
     glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glQueryCounter(stage_queries[3].get(), GL_TIMESTAMP);

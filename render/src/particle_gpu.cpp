@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "kiri/geometry/particle_footprint.hpp"
 
@@ -46,6 +47,44 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
         out.index[slot] = std::uint32_t(k);
     }
     return out;
+}
+
+double packed_fixed_point_scale(const geometry::ParticleCloud& cloud, const geometry::LightGrid& g)
+{
+    // Bounds per slice and block of 8 x 8 columns: the particles whose shadow can start in that
+    // slice inside that block, each at most min(tau, 16) and half a unit of rounding per voxel.
+    constexpr int block = 8;
+    const int nz = g.size[2], bx = (g.size[0] + block - 1) / block, by = (g.size[1] + block - 1) / block;
+    std::vector<double> bound(std::size_t(nz) * bx * by, 0.0), count(bound.size(), 0.0);
+    const double sa = std::abs(g.shear_u * g.voxel.x / g.voxel.z), sb = std::abs(g.shear_v * g.voxel.y / g.voxel.z);
+    for (const geometry::Particle& p : cloud.particles) {
+        if (!(p.radius > 0.0) || !(p.optical_depth > 0.0))
+            continue;
+        const glm::dvec3 q = g.to_grid(p.position);
+        // Shadow starts over the footprint: gz + a' (gx - i - 0.5) + b' (gy - j - 0.5), with slack
+        // for the GPU's float rounding (~1e-4 of a voxel).
+        const double ru = p.radius / g.voxel.x, rv = p.radius / g.voxel.y;
+        const double spread = sa * ru + sb * rv + 1e-2;
+        const int k0 = int(std::clamp(std::ceil(q.z - spread - 0.5), 0.0, double(nz - 1)));
+        const int k1 = int(std::clamp(std::ceil(q.z + spread - 0.5), 0.0, double(nz - 1)));
+        const int i0 = int(std::clamp(std::floor((q.x - ru - 1.0) / block), 0.0, double(bx - 1)));
+        const int i1 = int(std::clamp(std::floor((q.x + ru + 1.0) / block), 0.0, double(bx - 1)));
+        const int j0 = int(std::clamp(std::floor((q.y - rv - 1.0) / block), 0.0, double(by - 1)));
+        const int j1 = int(std::clamp(std::floor((q.y + rv + 1.0) / block), 0.0, double(by - 1)));
+        const double strongest = std::min(std::isfinite(p.optical_depth) ? p.optical_depth : 1e300, -geometry::min_log_gain);
+        for (int k = k0; k <= k1; ++k)
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i) {
+                    const std::size_t b = (std::size_t(k) * by + j) * bx + i;
+                    bound[b] += strongest;
+                    count[b] += 1.0;
+                }
+    }
+    double scale = std::numeric_limits<double>::infinity();
+    for (std::size_t b = 0; b < bound.size(); ++b)
+        if (bound[b] > 0.0)
+            scale = std::min(scale, (65535.0 - 0.5 * count[b] - 1.0) / bound[b]);
+    return std::isfinite(scale) && scale > 0.0 ? scale : 0.0;
 }
 
 std::uint64_t hash_particles(const geometry::ParticleCloud& cloud)

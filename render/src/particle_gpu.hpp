@@ -30,6 +30,11 @@ struct GpuParticles {
     double strongest_log_gain_sum = 0.0; //!< sum of min(tau, 16): bounds every column's |sum of log G|
 };
 GpuParticles gpu_particles(const geometry::ParticleCloud& cloud);
+//! The fixed-point scale (units per 1.0 of |log G|) of the packed deposit, two columns to a
+//! 32-bit word: the largest for which no voxel's sum of rounded magnitudes can pass 65535 (per
+//! slice, the particles whose shadow can start there, each adding at most min(tau, 16) and half a
+//! unit of rounding). 0 when none works.
+double packed_fixed_point_scale(const geometry::ParticleCloud& cloud, const geometry::LightGrid& grid);
 //! A 64-bit hash of every particle's data and the cloud's constants: equal clouds, equal hash.
 std::uint64_t hash_particles(const geometry::ParticleCloud& cloud);
 //! World (relative to `centre`) -> grid coordinates in voxels, in double.

@@ -60,9 +60,10 @@ TEST_F(ParticlesGl, BufferEqualsItsCpuTwin)
     for (std::size_t i = 0; i < gpu.size(); ++i)
         worst = std::max(worst, double(std::abs(gpu[i] - cpu.log_gamma[i])));
     EXPECT_LT(worst, tolerance);
+    // A particle's light sums a few dozen rounded deposits.
     const std::vector<float> gamma = b.gamma_at_particles();
     for (std::size_t k = 0; k < c.particles.size(); ++k)
-        ASSERT_NEAR(gamma[k], g::particle_gamma(cpu, c, k), 1e-4) << k;
+        ASSERT_NEAR(gamma[k], g::particle_gamma(cpu, c, k), 30.0 / b.fixed_point_scale() + 1e-5) << k;
     // Half floats: log Gamma to 11 bits.
     ASSERT_TRUE(b.update(light, options(32, true)));
     const std::vector<float> half = b.read_log_gamma();
