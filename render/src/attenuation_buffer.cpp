@@ -198,6 +198,7 @@ std::size_t AttenuationBuffer::scratch_bytes() const
     return std::size_t(s[0]) * s[1] * s[2] * 8;
 }
 double AttenuationBuffer::fixed_point_scale() const { return impl_->scale; }
+bool AttenuationBuffer::packed_deposit() const { return impl_->packed; }
 unsigned AttenuationBuffer::texture() const { return impl_->log_gamma.get(); }
 unsigned AttenuationBuffer::particle_buffer() const { return impl_->particles.get(); }
 const glm::dvec3& AttenuationBuffer::particle_centre() const { return impl_->gpu.centre; }

@@ -84,7 +84,11 @@ double packed_fixed_point_scale(const geometry::ParticleCloud& cloud, const geom
     for (std::size_t b = 0; b < bound.size(); ++b)
         if (bound[b] > 0.0)
             scale = std::min(scale, (65535.0 - 0.5 * count[b] - 1.0) / bound[b]);
-    return std::isfinite(scale) && scale > 0.0 ? scale : 0.0;
+    if (!std::isfinite(scale) || !(scale > 1.0))
+        return 0.0;
+    // Down to a step of 2^(1/8): the sums above depend on the particles' order in their last bits,
+    // the scale must not (shuffled particles give the same buffer bit for bit).
+    return std::exp2(std::floor(8.0 * std::log2(scale) - 1e-6) / 8.0);
 }
 
 std::uint64_t hash_particles(const geometry::ParticleCloud& cloud)

@@ -72,6 +72,32 @@ TEST_F(ParticlesGl, BufferEqualsItsCpuTwin)
     EXPECT_EQ(b.texture_bytes(), 32u * 32u * 32u * 2u);
 }
 
+TEST_F(ParticlesGl, PackedDepositEqualsTheCpuTwinAndTheOrderDoesNotMatter)
+{
+    // Many thin particles: the deposit packs two columns to a word.
+    g::ParticleCloud c = kiri::test::ball_cloud(3000, 300.0, 40.0, 0.05);
+    const glm::dvec3 light(0.3, -0.5, 0.8);
+    AttenuationBuffer b;
+    b.set_particles(c);
+    b.update(light, options(48));
+    ASSERT_TRUE(b.packed_deposit());
+    EXPECT_GE(b.fixed_point_scale(), 8192.0);
+    const g::AttenuationVolume cpu = g::build_attenuation_cpu(c, b.grid());
+    const std::vector<float> gpu = b.read_log_gamma();
+    double worst = 0.0;
+    for (std::size_t i = 0; i < gpu.size(); ++i)
+        worst = std::max(worst, double(std::abs(gpu[i] - cpu.log_gamma[i])));
+    EXPECT_LT(worst, 400.0 / b.fixed_point_scale() + 1e-5);
+    const std::vector<float> gamma = b.gamma_at_particles();
+    for (std::size_t k = 0; k < c.particles.size(); ++k)
+        ASSERT_NEAR(gamma[k], g::particle_gamma(cpu, c, k), 30.0 / b.fixed_point_scale() + 1e-5) << k;
+    std::mt19937 rng(5);
+    std::shuffle(c.particles.begin(), c.particles.end(), rng);
+    b.set_particles(c);
+    ASSERT_TRUE(b.update(light, options(48)));
+    EXPECT_EQ(b.read_log_gamma(), gpu);
+}
+
 TEST_F(ParticlesGl, BufferAgreesWithTheExactHarrisPass)
 {
     const g::ParticleCloud c = kiri::test::ball_cloud(1500, 300.0, 45.0, 0.25);

@@ -61,6 +61,9 @@ public:
     std::size_t texture_bytes() const;   //!< the log Gamma texture
     std::size_t scratch_bytes() const;   //!< the fixed-point sums and the scanned floats (8 bytes a voxel)
     double fixed_point_scale() const;    //!< units per 1.0 of log G in the accumulator
+    //! Whether the last build packed two columns to a 32-bit word (16-bit magnitudes, half the
+    //! atomics), chosen when its scale still resolves log G to 1.2e-4.
+    bool packed_deposit() const;
     unsigned texture() const;            //!< GL name of the 3D texture (GL_LINEAR, clamp to edge)
     //! The particles on the GPU: an SSBO of (x, y, z relative to particle_centre(), radius,
     //! tau, albedo, 0, 0) floats per particle, sorted by radius; particle_order()[k] is the
