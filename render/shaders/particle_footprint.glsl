@@ -85,12 +85,16 @@ float self_log_gamma(vec3 g, vec3 self_grid, vec3 self_optics)
     return sum;
 }
 
-// Gamma at grid point g for the particle described by self_grid / self_optics (it does not
-// shade itself): exp(trilinear log Gamma - its own part).
-float particle_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, vec3 self_optics)
+// log Gamma at grid point g for the particle described by self_grid / self_optics (it does not
+// shade itself): trilinear log Gamma - its own part.
+float particle_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, vec3 self_optics)
 {
     float raw = texture(log_gamma, g / vec3(u_grid_size)).r;
-    return exp(clamp(raw - self_log_gamma(g, self_grid, self_optics), kMinLogGamma, 0.0));
+    return clamp(raw - self_log_gamma(g, self_grid, self_optics), kMinLogGamma, 0.0);
+}
+float particle_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, vec3 self_optics)
+{
+    return exp(particle_log_gamma(log_gamma, g, self_grid, self_optics));
 }
 
 // Henyey-Greenstein (1/sr), g clamped to [-0.999, 0.999].

@@ -1,9 +1,10 @@
 #version 450 core
-// A particle billboard: opacity 1 - T from its Gaussian footprint, light from the attenuation
-// buffer (Gamma at this fragment, the particle's own cylinder removed) times the sun,
-// Henyey-Greenstein towards the eye plus the sky's ambient, hazed with distance like the
-// terrain, faded out where it meets the terrain (soft edge). Blended back to front,
-// premultiplied: E_k = S_k + T_k E_(k-1) (REFERENCE (5)), S_k = a (1 - T) (p(w,l) Gamma E_sun + L_sky).
+// A particle billboard: opacity 1 - T from its Gaussian footprint, lit by the fog's shared model
+// (geometry::fog_source, fog_lighting.hpp) with the sun seen through the attenuation buffer:
+// Gamma at this fragment (the particle's own cylinder removed) stands for exp(-tau_sun), so
+// octave i sees Gamma^(b^i); hazed with distance like the terrain, faded out where it meets the
+// terrain (soft edge). Blended back to front, premultiplied linear radiance:
+// E_k = S_k + T_k E_(k-1) (REFERENCE (5)), S_k = (1 - T) J.
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 in vec3 v_relative;
 in vec3 v_world;
@@ -22,7 +23,10 @@ uniform vec3 u_sun_radiance;
 uniform vec3 u_ambient;
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
+uniform int u_octaves;
 out vec4 o_color;
+
+const float pi = 3.14159265358979;
 
 float linear_depth(float d)
 {
@@ -42,14 +46,19 @@ void main()
     alpha *= u_soft_edge > 0.0 ? clamp((scene - here) / u_soft_edge, 0.0, 1.0) : step(here, scene);
     if (alpha < 1e-5)
         discard;
-    float gamma = 1.0;
+    float log_gamma = 0.0;
     if (u_lit != 0) {
         vec3 self_grid = shadow_grid(grid_of(p.position_radius.xyz));
-        gamma = particle_gamma(u_log_gamma, grid_of(v_relative), self_grid, vec3(p.position_radius.w, p.optics.xy));
+        log_gamma = particle_log_gamma(u_log_gamma, grid_of(v_relative), self_grid, vec3(p.position_radius.w, p.optics.xy));
     }
+    // geometry::fog_source: octave i scatters a^i, sees b^i of the optical depth, has c^i g.
     vec3 view = normalize(v_world - u_eye);
-    float phase = henyey_greenstein(dot(u_sun_direction, view), u_anisotropy);
-    vec3 radiance = p.optics.y * (phase * gamma * u_sun_radiance + u_ambient);
+    float cos_theta = dot(view, u_sun_direction);
+    float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
+    for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
+        sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(b * log_gamma);
+    float sun_up = u_sun_direction.z > 0.0 ? 1.0 : 0.0;
+    vec3 radiance = clamp(p.optics.y, 0.0, 1.0) * (pi * sun_up * sun * u_sun_radiance + u_ambient);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
     o_color = vec4(radiance * alpha, alpha);

@@ -122,6 +122,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     program_.set("u_ambient", frame.ambient);
     program_.set("u_sky_horizon", frame.sky_horizon);
     program_.set("u_haze_density", frame.haze_density);
+    program_.set("u_octaves", std::clamp(cloud_->scattering_octaves, 1, 8));
     program_.use();
     glBindTextureUnit(0, buffer_.texture());
     glBindTextureUnit(1, resolved_depth);
@@ -138,7 +139,6 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count_));
 
     composite_.set("u_particles", 0);
-    composite_.set("u_exposure", frame.exposure);
     composite_.use();
     glBindTextureUnit(0, color_.get());
     glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);

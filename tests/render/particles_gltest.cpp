@@ -256,7 +256,7 @@ TEST_F(ParticlesGl, BillboardsAreSelfShadowed)
     r.set_particles(c);
     kiri::render::SunLight sun;
     sun.direction = {0.0, 0.0, 1.0};
-    sun.intensity = 40.0;
+    sun.intensity = 4.0;
     sun.ambient = glm::dvec3(0.0);
     r.set_sun(sun);
     kiri::render::Camera cam;

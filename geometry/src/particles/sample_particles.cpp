@@ -105,6 +105,7 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
 
     ParticleCloud cloud;
     cloud.anisotropy = medium.options().anisotropy;
+    cloud.scattering_octaves = medium.options().scattering_octaves;
     cloud.forward_scattering = options.forward_scattering >= 0.0 ? options.forward_scattering
                                                                  : forward_scattering_fraction(cloud.anisotropy);
     cloud.density_integral = integral;

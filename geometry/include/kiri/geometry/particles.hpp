@@ -57,6 +57,7 @@ struct ParticleCloud {
     //! beam (Harris's forward-scattering term), in [0, 1].
     double forward_scattering = 0.2;
     double anisotropy = 0.8;  //!< Henyey-Greenstein g towards the eye (the Medium's)
+    int scattering_octaves = 3;  //!< the Medium's multiple-scattering octaves (fog_lighting.hpp)
     //! What the sampler found (for reports): the Medium's integral of density (m^3), the mean
     //! spacing at full density and the number of candidates drawn.
     double density_integral = 0.0, spacing = 0.0;
