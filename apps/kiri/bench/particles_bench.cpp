@@ -82,6 +82,47 @@ void figures(Context& c, ParticleBenchScene& s)
     std::printf("  figures: %s/particles_*.png\n", c.out_dir().string().c_str());
 }
 
+// The goal, measured in pairs: Harris's pass and the buffer's builds one after the other, so both
+// meet the same load on this shared machine (the read-back latency Harris pays swings with it);
+// the median of the rounds' ratios decides.
+void goal(Context& c, ParticleBenchScene& s, const geometry::Medium& m, std::size_t n, std::ofstream& md)
+{
+    const geometry::ParticleCloud cloud = ParticleBenchScene::sample(m, n);
+    const std::vector<double> exact = geometry::harris_light_pass(cloud, s.sun);
+    render::AttenuationBuffer b;
+    b.set_particles(cloud);
+    render::AttenuationOptions o;  // 128^3, R16F
+    std::vector<double> ratios, harris, buffer;
+    GammaError error;
+    double harris_error = 0.0;
+    for (int round = 0; round < (c.quick() ? 1 : 5); ++round) {
+        render::HarrisGlStats hs;
+        harris_error = relative_error(render::harris_light_pass_gl(cloud, s.sun, harris_buffer, &hs), exact).mean;
+        const BufferBuild r = time_buffer(b, s.sun, o, 5, exact);
+        error = r.error;
+        harris.push_back(hs.seconds);
+        buffer.push_back(r.best_s);
+        ratios.push_back(hs.seconds / r.best_s);
+        c.add({"goal rounds: Harris GL 512^2 / buffer 128^3", "round=" + std::to_string(round), double(n), r.best_s,
+               "speed-up over Harris GL", ratios.back(), 0.0, 0.0});
+    }
+    std::vector<double> sorted = ratios;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    md << "\nGoal at " << n << " particles and 128^3, " << ratios.size()
+       << " rounds of Harris's GL pass (512^2) then 5 builds of the buffer:\n\n"
+       << "| round | Harris (s) | buffer, best of 5 (ms) | speed-up |\n|---|---|---|---|\n";
+    for (std::size_t k = 0; k < ratios.size(); ++k)
+        md << "| " << k + 1 << " | " << fixed(harris[k], 3) << " | " << fixed(buffer[k] * 1e3, 1) << " | "
+           << fixed(ratios[k], 0) << "x |\n";
+    md << "\nMedian speed-up " << fixed(median, 0) << "x (range " << fixed(sorted.front(), 0) << "x .. "
+       << fixed(sorted.back(), 0) << "x), mean relative error " << fixed(error.mean * 100, 2) << " % (Harris's own: "
+       << fixed(harris_error * 100, 2) << " %); goal >= 100x and <= 1 %: "
+       << (median >= 100.0 && error.mean <= 0.01 ? "met" : "NOT met") << ".\n";
+    std::printf("  goal (%zu particles, 128^3): median %.0fx faster than Harris GL (%.0fx .. %.0fx), mean error %.2f %%\n",
+                n, median, sorted.front(), sorted.back(), error.mean * 100);
+}
+
 void table(Context& c)
 {
     ParticleBenchScene s(c.data_dir());
@@ -174,18 +215,7 @@ void table(Context& c)
             md << " | " << (cells[row].count(n) ? cells[row][n] : "");
         md << " |\n";
     }
-    const std::size_t goal_n = counts.back();
-    if (builds.count({128, goal_n})) {
-        const BufferBuild& g = builds[{128, goal_n}];
-        const double speedup = harris_s[goal_n] / g.best_s;
-        md << "\nGoal at " << goal_n << " particles and 128^3: " << fixed(speedup, 0) << "x faster than Harris's GL light pass ("
-           << fixed(harris_s[goal_n], 3) << " s against " << fixed(g.best_s * 1e3, 1) << " ms), mean relative error "
-           << fixed(g.error.mean * 100, 2) << " % (Harris's own error: " << fixed(harris_error[goal_n] * 100, 2)
-           << " %; goal: >= 100x, <= 1 %): "
-           << (speedup >= 100.0 && g.error.mean <= 0.01 ? "met" : "NOT met") << ".\n";
-        std::printf("  goal (%zu particles, 128^3): %.0fx faster than Harris GL, mean error %.2f %%\n", goal_n, speedup,
-                    g.error.mean * 100);
-    }
+    goal(c, s, m, counts.back(), md);
     std::printf("  table: %s\n", (c.out_dir() / "particles_table.md").string().c_str());
 }
 
