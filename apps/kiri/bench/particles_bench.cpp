@@ -65,6 +65,13 @@ void figures(Context& c, ParticleBenchScene& s)
         r.set_particles(cloud);
         render::write_png_atomic(c.out_dir() / ("particles_cumulus_" + std::to_string(n) + ".png"), r.render(cam, 960, 540));
     }
+    // The last cloud from the south-south-west, across the light: the sun (west-north-west, 19
+    // degrees up) from the left, so its top and left are lit and its right and underside lie in
+    // its own shadow.
+    render::Camera side = cam;
+    side.position = {-3800.0, -8150.0, 2300.0};
+    side.target = {0.0, 0.0, 2300.0};
+    render::write_png_atomic(c.out_dir() / "particles_cumulus_side.png", r.render(side, 960, 540));
     // The default scene's fog as particles, from its camera and towards the sun.
     const geometry::SceneFog fog = geometry::author_scene_fog(s.scene, terrain);
     const geometry::ParticleCloud cloud = geometry::sample_particles(fog.medium, s.scene.particles);
