@@ -66,18 +66,20 @@ bool inside(const std::vector<glm::dvec2>& p, glm::dvec2 q)
     return in;
 }
 
-glm::dvec2 closest_on_border(const std::vector<glm::dvec2>& p, glm::dvec2 q)
+glm::dvec2 closest_on_border(const std::vector<std::vector<glm::dvec2>>& polys, glm::dvec2 q)
 {
-    glm::dvec2 best = p[0];
+    glm::dvec2 best = polys[0][0];
     double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0, n = p.size(); i < n; ++i) {
-        const glm::dvec2 a = p[i], b = p[(i + 1) % n], ab = b - a;
-        const double t = std::clamp(glm::dot(q - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
-        const glm::dvec2 c = a + t * ab;
-        const double d = glm::dot(q - c, q - c);
-        if (d < best_d) {
-            best_d = d;
-            best = c;
+    for (const auto& p : polys) {
+        for (std::size_t i = 0, n = p.size(); i < n; ++i) {
+            const glm::dvec2 a = p[i], b = p[(i + 1) % n], ab = b - a;
+            const double t = std::clamp(glm::dot(q - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+            const glm::dvec2 c = a + t * ab;
+            const double d = glm::dot(q - c, q - c);
+            if (d < best_d) {
+                best_d = d;
+                best = c;
+            }
         }
     }
     return best;
@@ -90,26 +92,27 @@ Footprint rectangle_footprint(glm::dvec2 min, glm::dvec2 max)
     return {{{min.x, min.y}, {max.x, min.y}, {max.x, max.y}, {min.x, max.y}}};
 }
 
-void validate_footprint(const Footprint& footprint, const std::string& label)
+namespace {
+
+void validate_polygon(const std::vector<glm::dvec2>& p, const std::string& label, const std::string& which)
 {
-    const auto& p = footprint.polygon;
     const std::size_t n = p.size();
     if (n < 3)
-        throw InputError(label, "footprint", "a polygon needs at least 3 vertices, got " + std::to_string(n));
+        throw InputError(label, "footprint", which + "a polygon needs at least 3 vertices, got " + std::to_string(n));
     double extent = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         if (!std::isfinite(p[i].x) || !std::isfinite(p[i].y))
-            throw InputError(label, "footprint", "vertex " + std::to_string(i) + " is not finite");
+            throw InputError(label, "footprint", which + "vertex " + std::to_string(i) + " is not finite");
         extent = std::max({extent, std::abs(p[i].x - p[0].x), std::abs(p[i].y - p[0].y)});
     }
     for (std::size_t i = 0; i < n; ++i)
         if (p[i] == p[(i + 1) % n])
             throw InputError(label, "footprint",
-                             "vertices " + std::to_string(i) + " and " + std::to_string((i + 1) % n) +
+                             which + "vertices " + std::to_string(i) + " and " + std::to_string((i + 1) % n) +
                                  " coincide at " + fmt(p[i]));
     const double area = std::abs(signed_area(p));
     if (!(area > 1e-12 * extent * extent) || extent == 0.0)
-        throw InputError(label, "footprint", "the polygon has no area (degenerate)");
+        throw InputError(label, "footprint", which + "the polygon has no area (degenerate)");
     const double eps = 1e-12 * extent * extent;
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t j = i + 1; j < n; ++j) {
@@ -121,15 +124,81 @@ void validate_footprint(const Footprint& footprint, const std::string& label)
                 const glm::dvec2 u = (j == i + 1 ? a : b) - shared, v = (j == i + 1 ? d : c) - shared;
                 if (std::abs(cross(u, v)) <= eps && glm::dot(u, v) > 0.0)
                     throw InputError(label, "footprint",
-                                     "edges " + std::to_string(i) + " and " + std::to_string(j) +
+                                     which + "edges " + std::to_string(i) + " and " + std::to_string(j) +
                                          " overlap (the polygon folds back at " + fmt(shared) + ")");
                 continue;
             }
+            // Far apart in y: cannot meet (cheap test first; long traced outlines are common).
+            if (std::max(a.y, b.y) < std::min(c.y, d.y) || std::max(c.y, d.y) < std::min(a.y, b.y))
+                continue;
             if (segments_meet(a, b, c, d, eps))
                 throw InputError(label, "footprint",
-                                 "edges " + std::to_string(i) + " and " + std::to_string(j) +
+                                 which + "edges " + std::to_string(i) + " and " + std::to_string(j) +
                                      " intersect: the polygon must be simple");
         }
+}
+
+struct Box {
+    glm::dvec2 lo, hi;
+};
+Box box_of(const std::vector<glm::dvec2>& p)
+{
+    Box b{p[0], p[0]};
+    for (const auto& q : p) {
+        b.lo = glm::min(b.lo, q);
+        b.hi = glm::max(b.hi, q);
+    }
+    return b;
+}
+
+// Two simple polygons must neither cross, touch nor nest.
+void check_apart(const std::vector<glm::dvec2>& p, const std::vector<glm::dvec2>& q, std::size_t ip, std::size_t iq,
+                 const std::string& label)
+{
+    const Box a = box_of(p), b = box_of(q);
+    if (a.hi.x < b.lo.x || b.hi.x < a.lo.x || a.hi.y < b.lo.y || b.hi.y < a.lo.y)
+        return;
+    const double extent = std::max({a.hi.x - a.lo.x, a.hi.y - a.lo.y, b.hi.x - b.lo.x, b.hi.y - b.lo.y});
+    const double eps = 1e-12 * extent * extent;
+    const std::string which = "polygons " + std::to_string(ip) + " and " + std::to_string(iq);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const glm::dvec2 s0 = p[i], s1 = p[(i + 1) % p.size()];
+        if (std::max(s0.x, s1.x) < b.lo.x || std::min(s0.x, s1.x) > b.hi.x || std::max(s0.y, s1.y) < b.lo.y ||
+            std::min(s0.y, s1.y) > b.hi.y)
+            continue;
+        for (std::size_t j = 0; j < q.size(); ++j)
+            if (segments_meet(s0, s1, q[j], q[(j + 1) % q.size()], eps))
+                throw InputError(label, "footprint",
+                                 which + " meet (edges " + std::to_string(i) + " and " + std::to_string(j) +
+                                     "): the polygons must be apart");
+    }
+    if (inside(p, q[0]) || inside(q, p[0]))
+        throw InputError(label, "footprint", which + ": one lies inside the other");
+}
+
+}  // namespace
+
+std::vector<std::vector<glm::dvec2>> footprint_polygons(const Footprint& footprint)
+{
+    std::vector<std::vector<glm::dvec2>> all;
+    if (!footprint.polygon.empty())
+        all.push_back(footprint.polygon);
+    for (const auto& p : footprint.more)
+        if (!p.empty())
+            all.push_back(p);
+    return all;
+}
+
+void validate_footprint(const Footprint& footprint, const std::string& label)
+{
+    const auto polys = footprint_polygons(footprint);
+    if (polys.empty())
+        validate_polygon(footprint.polygon, label, "");
+    for (std::size_t k = 0; k < polys.size(); ++k)
+        validate_polygon(polys[k], label, polys.size() > 1 ? "polygon " + std::to_string(k) + ": " : "");
+    for (std::size_t a = 0; a < polys.size(); ++a)
+        for (std::size_t b = a + 1; b < polys.size(); ++b)
+            check_apart(polys[a], polys[b], a, b, label);
 }
 
 ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrain,
@@ -139,28 +208,37 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
     const double h = options.patch_size;
     if (!(h > 0.0) || !std::isfinite(h))
         throw InputError(label, "patch_size", "must be a positive number of metres");
-    std::vector<glm::dvec2> poly = footprint.polygon;
-    if (signed_area(poly) < 0.0)
-        std::reverse(poly.begin(), poly.end());
+    std::vector<std::vector<glm::dvec2>> polys = footprint_polygons(footprint);
+    for (auto& poly : polys)
+        if (signed_area(poly) < 0.0)
+            std::reverse(poly.begin(), poly.end());
 
     const Heightfield& hf = terrain.heightfield();
-    glm::dvec2 lo = poly[0], hi = poly[0];
-    for (const auto& q : poly) {
-        lo = glm::min(lo, q);
-        hi = glm::max(hi, q);
-    }
-    const double tol = 1e-9 * std::max({1.0, std::abs(hf.x0), std::abs(hf.y0), hi.x - lo.x, hi.y - lo.y});
-    for (std::size_t i = 0; i < footprint.polygon.size(); ++i) {
-        const glm::dvec2 q = footprint.polygon[i];
-        if (q.x < hf.x0 - tol || q.x > hf.x_max() + tol || q.y < hf.y0 - tol || q.y > hf.y_max() + tol) {
-            std::ostringstream s;
-            s.precision(10);
-            s << "vertex " << i << " " << fmt(q) << " lies outside the terrain [" << hf.x0 << ", "
-              << hf.x_max() << "] x [" << hf.y0 << ", " << hf.y_max()
-              << "] (footprints are not clipped)";
-            throw InputError(label, "footprint", s.str());
+    glm::dvec2 lo = polys[0][0], hi = polys[0][0];
+    for (const auto& poly : polys)
+        for (const auto& q : poly) {
+            lo = glm::min(lo, q);
+            hi = glm::max(hi, q);
         }
-    }
+    const double tol = 1e-9 * std::max({1.0, std::abs(hf.x0), std::abs(hf.y0), hi.x - lo.x, hi.y - lo.y});
+    for (std::size_t k = 0; k < polys.size(); ++k)
+        for (std::size_t i = 0; i < polys[k].size(); ++i) {
+            const glm::dvec2 q = polys[k][i];
+            if (q.x < hf.x0 - tol || q.x > hf.x_max() + tol || q.y < hf.y0 - tol || q.y > hf.y_max() + tol) {
+                std::ostringstream s;
+                s.precision(10);
+                s << (polys.size() > 1 ? "polygon " + std::to_string(k) + ": " : "") << "vertex " << i << " "
+                  << fmt(q) << " lies outside the terrain [" << hf.x0 << ", " << hf.x_max() << "] x [" << hf.y0
+                  << ", " << hf.y_max() << "] (footprints are not clipped)";
+                throw InputError(label, "footprint", s.str());
+            }
+        }
+    auto inside_any = [&](glm::dvec2 q) {
+        for (const auto& poly : polys)
+            if (inside(poly, q))
+                return true;
+        return false;
+    };
 
     const glm::dvec2 centre = 0.5 * (lo + hi);
     const double cells_x = std::max(1.0, std::ceil((hi.x - lo.x) / h - 1e-9));
@@ -178,7 +256,7 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
     bool any = false;
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i)
-            if (inside(poly, corner(i, j) + glm::dvec2(0.5 * h))) {
+            if (inside_any(corner(i, j) + glm::dvec2(0.5 * h))) {
                 keep[std::size_t(j) * nx + i] = 1;
                 any = true;
             }
@@ -231,23 +309,25 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
     }
     if (options.conform_to_border) {
         // Polygon corners first (they carry the shape), each to the nearest free boundary vertex.
-        for (const auto& c : poly) {
-            int best = -1;
-            double best_d = 1.5 * h;
-            for (int v = 0; v < nv; ++v)
-                if (boundary[v] && !moved[v] && glm::length(rest[v] - c) < best_d) {
-                    best_d = glm::length(rest[v] - c);
-                    best = v;
+        for (const auto& poly : polys) {
+            for (const auto& c : poly) {
+                int best = -1;
+                double best_d = 1.5 * h;
+                for (int v = 0; v < nv; ++v)
+                    if (boundary[v] && !moved[v] && glm::length(rest[v] - c) < best_d) {
+                        best_d = glm::length(rest[v] - c);
+                        best = v;
+                    }
+                if (best >= 0) {
+                    target[best] = c;
+                    moved[best] = 1;
+                    corner_of[best] = 1;
                 }
-            if (best >= 0) {
-                target[best] = c;
-                moved[best] = 1;
-                corner_of[best] = 1;
             }
         }
         for (int v = 0; v < nv; ++v)
             if (boundary[v] && !moved[v]) {
-                target[v] = closest_on_border(poly, rest[v]);
+                target[v] = closest_on_border(polys, rest[v]);
                 moved[v] = 1;
             }
         // Back off where a quad would fold or collapse: halve the moves of its vertices.

@@ -13,17 +13,26 @@
 namespace kiri::geometry {
 
 //! A simple polygon in local metres (x east, y north); either orientation, not closed
-//! (the last vertex joins the first).
+//! (the last vertex joins the first). Fog in several places at once (a fill from several seeds
+//! or basins, fog_placement.hpp) adds further polygons in `more`.
 struct Footprint {
     std::vector<glm::dvec2> polygon;
+    //! Further simple polygons; no two polygons touch or lie inside one another. The control
+    //! mesh covers their union.
+    std::vector<std::vector<glm::dvec2>> more;
 };
+
+//! polygon followed by more (the non-empty ones).
+std::vector<std::vector<glm::dvec2>> footprint_polygons(const Footprint& footprint);
 
 //! The axis-aligned rectangle [min, max] as a footprint.
 Footprint rectangle_footprint(glm::dvec2 min, glm::dvec2 max);
 
 //! Checks a footprint: at least 3 finite vertices, no repeated consecutive vertex, positive
-//! area and no two edges crossing or touching except neighbours at their shared vertex.
-//! \throw InputError(label, "footprint", reason) naming the offending vertex or edges.
+//! area and no two edges crossing or touching except neighbours at their shared vertex; with
+//! several polygons, also that no two of them touch or nest.
+//! \throw InputError(label, "footprint", reason) naming the offending vertex or edges (and
+//!        the polygon, counting `polygon` as 0, when there are several).
 void validate_footprint(const Footprint& footprint, const std::string& label = {});
 
 //! Quad control mesh over a footprint. Connectivity comes from a square grid of cell size
