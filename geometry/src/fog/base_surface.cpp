@@ -124,7 +124,9 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     auto t0 = std::chrono::steady_clock::now();
     const Heightfield smooth = o.mode == FitMode::blanket ? smooth_heightfield(hf, o.smoothing_length) : Heightfield{};
     auto target_at = [&](double x, double y) {
-        return o.mode == FitMode::blanket ? sample_bilinear(smooth, x, y) + o.offset : o.altitude;
+        if (o.mode == FitMode::blanket)
+            return sample_bilinear(smooth, x, y) + o.offset;
+        return o.altitude_grid ? sample_bilinear(*o.altitude_grid, x, y) : o.altitude;
     };
     rep.seconds_target = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
@@ -240,11 +242,12 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     if (o.mode == FitMode::lake) {
         long long below = 0;
         for (std::size_t id = 0; id < sample_state.size(); ++id)
-            below += (sample_state[id] & 1) && sample_terrain[id] < o.altitude;
+            below += (sample_state[id] & 1) && sample_terrain[id] < sample_target[id];
         if (below == 0)
             throw InputError("", "altitude",
-                             "the lake altitude " + num(o.altitude) +
-                                 " m is below the terrain everywhere in the footprint: no fog");
+                             (o.altitude_grid ? std::string("the fog top")
+                                              : "the lake altitude " + num(o.altitude) + " m") +
+                                 " is below the terrain everywhere in the footprint: no fog");
     }
 
     // A faint pull of each control height towards the target under it keeps the system

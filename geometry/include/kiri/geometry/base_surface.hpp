@@ -27,6 +27,10 @@ struct FitOptions {
     double offset = 60.0;            //!< blanket: metres above the smoothed terrain
     double smoothing_length = 400.0; //!< blanket: sigma (m) of the target's Gaussian (fog_target.hpp)
     double altitude = 0.0;           //!< lake: altitude of the fog top (m)
+    //! Lake: when set, the fog top at each point is this grid's bilinear height (m) instead of
+    //! the flat altitude: fog placed by the terrain whose top is not flat (wind-blown, or
+    //! regions with different tops; fog_placement.hpp). Must be finite everywhere.
+    std::shared_ptr<const Heightfield> altitude_grid;
     double clearance = 10.0;         //!< blanket: hard minimum height above the terrain (m), >= 0
     double thickness = 200.0;        //!< fog thickness (m); a clearance above it is refused
     //! Weight of the thin-plate energy against the data term: E = sum_faces [ mean_samples

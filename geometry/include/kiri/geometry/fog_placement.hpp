@@ -1,0 +1,78 @@
+#pragma once
+//! \file fog_placement.hpp
+//! Fog placed by the terrain (issue 10), the scene's side: fill regions (seeds + fog top),
+//! automatic seeding, burn-off and flow, and the one call that turns them into fog columns, a
+//! footprint and a lake target for the existing fit and layers.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kiri/geometry/burn_off.hpp"
+#include "kiri/geometry/fog_columns.hpp"
+#include "kiri/geometry/fog_fill.hpp"
+#include "kiri/geometry/fog_flow.hpp"
+#include "kiri/geometry/mask_outline.hpp"
+#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/valley_analysis.hpp"
+
+namespace kiri::geometry {
+
+enum class SeedKind {
+    points,   //!< FillRegionSpec::points
+    all,      //!< every basin below the top
+    valleys,  //!< the valley analysis' mask (automatic seeding)
+    mask,     //!< a mask raster the user gave (FillRegionSpec::mask_path)
+};
+
+//! One fill region of the scene ("fog": {"fill": {...}} or an array of them; regions may
+//! overlap). Heights in the heightfield's units (world metres once world_fog_spec scaled them).
+struct FillRegionSpec {
+    double top = 0.0;
+    SeedKind seeds = SeedKind::points;
+    std::vector<glm::dvec2> points;
+    std::filesystem::path mask_path;
+    ValleyOptions valleys;
+    double min_thickness = 0.0;
+    double max_thickness = 0.0;  //!< 0 = no limit
+};
+
+struct PlacementSpec {
+    std::vector<FillRegionSpec> regions;  //!< at least one
+    //! Footprint outline (mask_outline.hpp); margin < 0 = one patch size, tolerance 0 = a
+    //! quarter of the patch size.
+    double margin = -1.0;
+    double tolerance = 0.0;
+    double min_area = 0.0;
+    std::optional<FlowOptions> flow;       //!< applied first (the night's wind)
+    std::optional<BurnOffOptions> burn_off;  //!< then the morning's sun
+    bool latitude_given = false;           //!< burn_off.latitude from the scene, not the DEM
+};
+
+//! What place_fog computed, kept for the maps and the report.
+struct PlacedFog {
+    FogColumns columns;              //!< the fog after flow and burn-off
+    ColumnFigures figures;
+    std::vector<FogFill> fills;      //!< per region, as filled
+    std::optional<ValleyMap> valleys;  //!< of the first region seeded by valleys
+    std::optional<FloodLevels> flood;  //!< of the first region seeded by points
+    std::optional<FlowReport> flow;
+    std::optional<BurnOffReport> burn_off;
+    double latitude = 0.0;           //!< used by the burn-off
+    MaskOutline outline;
+    //! The top is one flat altitude (fit: lake at `top`); otherwise `top_grid` is the lake
+    //! target: the fog's top where there is fog, just under the ground elsewhere.
+    bool flat = true;
+    double top = 0.0;
+    std::shared_ptr<const Heightfield> top_grid;
+    double seconds_fill = 0.0, seconds_valleys = 0.0, seconds_flood_levels = 0.0, seconds_flow = 0.0,
+           seconds_burn_off = 0.0, seconds_outline = 0.0;
+};
+
+//! Fills every region, merges them, lets the flow and the burn-off act, and outlines the fog.
+//! `patch_size` sets the outline's defaults. Errors name "/fog/fill[/K]/<key>",
+//! "/fog/flow/<key>", "/fog/burn_off/<key>" with label as the file.
+PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double patch_size, const std::string& label = {});
+
+}  // namespace kiri::geometry
