@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include "author_maps.hpp"
 #include "commands.hpp"
 #include "kiri/geometry/author_estimate.hpp"
 #include "kiri/geometry/dem.hpp"
@@ -74,24 +75,26 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     if (ec)
         throw IoError(out_dir.string(), "", "cannot create the output folder: " + ec.message());
     const std::string stem = ".kiri-author.tmp.";
-    const std::pair<fs::path, fs::path> files[] = {{out_dir / (stem + "obj"), out_dir / "base_surface.obj"},
-                                                   {out_dir / (stem + "ply"), out_dir / "base_surface.ply"},
-                                                   {out_dir / (stem + "json"), out_dir / "report.json"},
-                                                   {out_dir / (stem + "glb"), out_dir / "layers.glb"},
-                                                   {out_dir / (stem + "layers.obj"), out_dir / "layers.obj"},
-                                                   {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"},
-                                                   {out_dir / (stem + "particles.ply"), out_dir / "particles.ply"}};
+    std::vector<std::pair<fs::path, fs::path>> files = {{out_dir / (stem + "obj"), out_dir / "base_surface.obj"},
+                                                        {out_dir / (stem + "ply"), out_dir / "base_surface.ply"},
+                                                        {out_dir / (stem + "json"), out_dir / "report.json"},
+                                                        {out_dir / (stem + "glb"), out_dir / "layers.glb"},
+                                                        {out_dir / (stem + "layers.obj"), out_dir / "layers.obj"},
+                                                        {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"},
+                                                        {out_dir / (stem + "particles.ply"), out_dir / "particles.ply"}};
+    const std::vector<MapFile> maps = placement_maps(scene, terrain, fog);
+    for (const MapFile& m : maps)
+        files.push_back({out_dir / (stem + m.name), out_dir / m.name});
     try {
         write_mesh_file(a.tessellation.mesh, files[0].first, false);
         write_mesh_file(a.tessellation.mesh, files[1].first, true);
-        std::string report = author_report_json(*scene.fog, a);
-        // The terrain's load time sits with the other stages' timings.
-        report.insert(report.find("\"timings_s\": {") + 14, "\n    \"load_terrain\": " + std::to_string(load_s) + ",");
-        write_text(report, files[2].first);
+        write_text(scene_fog_report_json(scene, fog, load_s), files[2].first);
         write_layers_glb(files[3].first, fog.base, layers, fog.layers, &terrain.mesh());
         write_layers_obj(files[4].first, fog.base, layers);
         write_layers_ply(files[5].first, fog.base, layers, fog.layers);
         write_particles_ply(files[6].first.string(), particles);
+        for (std::size_t m = 0; m < maps.size(); ++m)
+            maps[m].write(files[7 + m].first);
         for (const auto& [tmp, final_path] : files) {
             fs::rename(tmp, final_path, ec);
             if (ec)
@@ -101,6 +104,14 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
         for (const auto& [tmp, final_path] : files)
             fs::remove(tmp, ec);
         throw;
+    }
+    if (fog.placed) {
+        const ColumnFigures& c = fog.placed->figures;
+        const double e = scene.terrain.exaggeration;
+        std::printf("fog placed by the terrain: %.2f km^2, %.3g m^3, thickness up to %.0f m (mean %.0f m), top %.0f..%.0f m, "
+                    "%d polygon(s), %zu map(s)\n",
+                    c.area_m2 * 1e-6, c.volume_m3 / e, c.max_thickness / e, c.mean_thickness / e, c.top_min / e,
+                    c.top_max / e, fog.placed->outline.components, maps.size());
     }
     std::printf("%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
                 "%zu layers, %zu particles -> %s\n",

@@ -38,10 +38,11 @@ AuthorEstimate estimate_author(const FogSpec& spec, const Heightfield& hf, int l
     double w = hf.x_max() - hf.x0, h = hf.y_max() - hf.y0;
     if (!spec.footprint.polygon.empty()) {
         glm::dvec2 lo = spec.footprint.polygon.front(), hi = lo;
-        for (const glm::dvec2& p : spec.footprint.polygon) {
-            lo = glm::min(lo, p);
-            hi = glm::max(hi, p);
-        }
+        for (const auto& poly : footprint_polygons(spec.footprint))  // every polygon's box
+            for (const glm::dvec2& p : poly) {
+                lo = glm::min(lo, p);
+                hi = glm::max(hi, p);
+            }
         w = hi.x - lo.x;
         h = hi.y - lo.y;
     } else {

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "kiri/geometry/error.hpp"
+#include "placement/placement_json.hpp"
 #include "scene/json_reader.hpp"
 
 namespace kiri::geometry {
@@ -16,12 +17,17 @@ using Reader = JsonReader;
 
 }  // namespace
 
-FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string& p)
+FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string& p,
+                       const std::filesystem::path& base_dir)
 {
     const Reader r{file};
     r.only(j, p, {"footprint", "surface", "patch_size", "mode", "offset", "smoothing", "altitude", "clearance",
-                  "thickness", "smoothness", "samples_per_patch", "tessellation"});
+                  "thickness", "smoothness", "samples_per_patch", "tessellation", "fill", "outline", "flow",
+                  "burn_off"});
     FogSpec s;
+    s.placement = parse_placement(j, r, p, base_dir);
+    if (s.placement)
+        s.fit.mode = FitMode::lake;  // a flat top (or the placed top) over the terrain
     if (j.contains("footprint")) {
         const json& f = j["footprint"];
         const std::string fp = p + "/footprint";
@@ -81,7 +87,7 @@ FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string
         s.fit.smoothing_length = r.non_negative(j["smoothing"], p + "/smoothing");
     if (j.contains("altitude"))
         s.fit.altitude = r.number(j["altitude"], p + "/altitude");
-    else if (s.fit.mode == FitMode::lake)
+    else if (s.fit.mode == FitMode::lake && !s.placement)
         r.fail(p + "/altitude", "lake mode needs the altitude of the fog top (metres)");
     if (j.contains("clearance"))
         s.fit.clearance = r.non_negative(j["clearance"], p + "/clearance");
@@ -111,6 +117,19 @@ FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string
 json fog_spec_to_json(const FogSpec& s)
 {
     json j;
+    if (s.placement) {
+        // The footprint, mode and lake target come from the terrain.
+        placement_to_json(*s.placement, j);
+        j["surface"] = to_string(s.surface);
+        j["patch_size"] = s.patch_size;
+        j["smoothness"] = s.fit.smoothness;
+        if (s.fit.samples_per_patch > 0)
+            j["samples_per_patch"] = s.fit.samples_per_patch;
+        j["tessellation"] = {{"level", s.tessellation.level}, {"max_level", s.tessellation.max_level}};
+        if (s.tessellation.tolerance > 0.0)
+            j["tessellation"]["tolerance"] = s.tessellation.tolerance;
+        return j;
+    }
     if (s.footprint.polygon.empty()) {
         j["footprint"] = {{"type", "terrain"}, {"margin", s.margin}};
     } else {

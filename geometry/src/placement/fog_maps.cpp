@@ -10,8 +10,10 @@
 #include <cpl_conv.h>
 #include <cpl_error.h>
 #include <gdal_priv.h>
+#include <ogr_spatialref.h>
 
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fog_placement.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -89,7 +91,8 @@ std::size_t source_index(const Placement& p, const Heightfield& g, int i, int j)
 }  // namespace
 
 void write_geotiff_map(const std::filesystem::path& path, const Heightfield& g, const std::vector<double>& values,
-                       const std::vector<std::uint8_t>& defined, double scale, const std::string& description)
+                       const std::vector<std::uint8_t>& defined, double scale, const std::string& description,
+                       const std::vector<std::pair<std::string, std::string>>& metadata)
 {
     if (values.size() != g.size() || (!defined.empty() && defined.size() != g.size()))
         throw IoError(path.string(), "map", "values do not match the grid");
@@ -119,13 +122,16 @@ void write_geotiff_map(const std::filesystem::path& path, const Heightfield& g, 
     ds->SetGeoTransform(gt);
     if (!p.wkt.empty())
         ds->SetProjection(p.wkt.c_str());
+    for (const auto& [name, value] : metadata)
+        ds->SetMetadataItem(name.c_str(), value.c_str());
     GDALRasterBand* band = ds->GetRasterBand(1);
     band->SetNoDataValue(kMapNodata);
     band->SetDescription(description.c_str());
     band->SetUnitType("m");
     if (band->RasterIO(GF_Write, 0, 0, g.nx, g.ny, data.data(), g.nx, g.ny, GDT_Float32, 0, 0, nullptr) != CE_None)
         throw IoError(path.string(), "map", "cannot write the values" + QuietGdal::last());
-    if (ds->FlushCache() != CE_None)
+    ds.reset();  // closing writes the file
+    if (CPLGetLastErrorType() >= CE_Failure)
         throw IoError(path.string(), "map", "cannot write the GeoTIFF" + QuietGdal::last());
 }
 
@@ -186,6 +192,25 @@ std::vector<std::uint8_t> read_mask(const std::filesystem::path& path, const Hei
             mask[std::size_t(j) * g.nx + i] = raw[src] != 0.0 && std::isfinite(raw[src]);
         }
     return mask;
+}
+
+double terrain_latitude(const Heightfield& g, double fallback)
+{
+    const GeoReference& r = g.georef;
+    if (r.crs_wkt.empty())
+        return fallback;
+    register_gdal();
+    const QuietGdal quiet;
+    OGRSpatialReference source, wgs84;
+    if (source.importFromWkt(r.crs_wkt.c_str()) != OGRERR_NONE || wgs84.SetWellKnownGeogCS("WGS84") != OGRERR_NONE)
+        return fallback;
+    source.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+    std::unique_ptr<OGRCoordinateTransformation> t(OGRCreateCoordinateTransformation(&source, &wgs84));
+    double x = r.origin_x, y = r.origin_y;
+    if (!t || !t->Transform(1, &x, &y) || !(std::abs(y) <= 90.0))
+        return fallback;
+    return y;
 }
 
 }  // namespace kiri::geometry

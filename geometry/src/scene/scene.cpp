@@ -1,5 +1,6 @@
 #include "kiri/geometry/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -153,7 +154,7 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
     if (root.contains("fog")) {
         // The fog reader throws InputError itself; a stray nlohmann exception still names the file.
         try {
-            scene.fog = parse_fog_spec(root["fog"], file_label, "/fog");
+            scene.fog = parse_fog_spec(root["fog"], file_label, "/fog", base_dir);
         } catch (const json::exception& e) {
             r.fail("/fog", strip_exception_id(e.what()));
         }
@@ -264,6 +265,28 @@ FogSpec world_fog_spec(const Scene& scene)
     spec.fit.offset *= e;
     spec.fit.clearance *= e;
     spec.fit.thickness *= e;
+    if (spec.placement) {
+        for (FillRegionSpec& r : spec.placement->regions) {
+            r.top *= e;
+            r.min_thickness *= e;
+            r.max_thickness *= e;
+        }
+        if (spec.placement->flow) {
+            // Without its own depth, the flow evaporates as the scene's medium holds water.
+            if (!spec.placement->evaporation_given)
+                spec.placement->flow->evaporation_depth = evaporation_depth_for(scene.medium.extinction);
+            spec.placement->flow->evaporation_depth *= e;
+            spec.placement->flow->min_thickness *= e;
+        }
+        if (spec.placement->burn_off) {
+            spec.placement->burn_off->burn_rate *= e;
+            spec.placement->burn_off->lift_rate *= e;
+            spec.placement->burn_off->min_thickness *= e;
+            // The optics of the scene's medium, per world metre (heights are stretched by e).
+            spec.placement->burn_off->extinction = scene.medium.extinction / e;
+            spec.placement->burn_off->anisotropy = std::clamp(scene.medium.anisotropy, 0.0, 0.99);
+        }
+    }
     return spec;
 }
 

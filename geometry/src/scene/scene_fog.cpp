@@ -4,6 +4,7 @@
 
 #include "kiri/geometry/author_estimate.hpp"
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fill_medium.hpp"
 
 namespace kiri::geometry {
 
@@ -13,7 +14,17 @@ SceneFog author_scene_fog(const Scene& scene, const Terrain& terrain)
     if (!scene.fog)
         throw InputError(label, "/fog", "the scene has no fog section");
     LayerOptions layers = world_layer_options(scene);
-    const FogSpec spec = world_fog_spec(scene);
+    FogSpec spec = world_fog_spec(scene);
+    std::optional<PlacedFog> placed;
+    if (spec.placement) {
+        // Fog placed by the terrain: its footprint and lake target, and a stack as deep as the
+        // deepest fog, hanging from the top like a lake's.
+        check_author_estimate(estimate_author(spec, terrain.heightfield(), layers.count), label);
+        placed = place_fog(terrain, *spec.placement, spec.patch_size, label);
+        spec = placed_fog_spec(spec, *placed);
+        layers.thickness = spec.fit.thickness;
+        validate_layer_options(layers, label);
+    }
     if (spec.fit.mode == FitMode::lake)
         layers.base_offset = -layers.thickness;
     check_author_estimate(estimate_author(spec, terrain.heightfield(), layers.count), label);
@@ -22,7 +33,9 @@ SceneFog author_scene_fog(const Scene& scene, const Terrain& terrain)
     fog.base = make_layer_base(fog.authored.surface, fog.authored.tessellation, fog.layers, label);
     const auto made_base = std::chrono::steady_clock::now();
     fog.seconds_layer_base = std::chrono::duration<double>(made_base - start).count();
-    fog.medium = make_medium(fog.base, fog.layers, terrain, scene.medium, label);
+    fog.medium = placed ? fill_medium(terrain, *placed, scene.medium, medium_detail(fog.layers), label)
+                        : make_medium(fog.base, fog.layers, terrain, scene.medium, label);
+    fog.placed = std::move(placed);
     fog.seconds_medium = std::chrono::duration<double>(std::chrono::steady_clock::now() - made_base).count();
     return fog;
 }

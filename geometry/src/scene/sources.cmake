@@ -3,4 +3,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/scene/error.cpp
   src/scene/scene.cpp
   src/scene/scene_fog.cpp
+  src/scene/scene_fog_report.cpp
 )

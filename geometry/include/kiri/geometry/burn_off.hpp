@@ -27,8 +27,8 @@ struct BurnOffOptions {
     //! Metres per hour the lifted base (a flat level, from the lowest fog bottom) rises per hour
     //! of full sun on level ground (>= 0): the heated, mixed air under the fog.
     double lift_rate = 60.0;
-    double extinction = 3.912 / 200.0;  //!< sigma (1/m) of the fog, > 0 (default: visibility 200 m)
-    double anisotropy = 0.8;            //!< Henyey-Greenstein g of the droplets, [0, 1)
+    double extinction = 0.02;   //!< sigma (1/m) of the fog, > 0 (a scene takes its medium's)
+    double anisotropy = 0.8;    //!< Henyey-Greenstein g of the droplets, [0, 1) (the medium's)
     double min_thickness = 1.0;         //!< metres: thinner fog counts as gone
     double step_minutes = 10.0;         //!< integration step (minutes, > 0)
 };

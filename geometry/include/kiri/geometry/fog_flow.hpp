@@ -23,9 +23,11 @@ struct FlowOptions {
     double spread = 400.0;
     double max_speed = 3.0;      //!< m/s, > 0
     //! Metres of descent that evaporate all but 1/e of the fog (it warms as it sinks, so its
-    //! liquid water evaporates: about LWC / (9.8 K/km * 0.45 g/m^3/K), 45 m for 0.2 g/m^3);
+    //! liquid water evaporates: about LWC / (9.8 K/km * 0.45 g/m^3/K), 45 m for 0.2 g/m^3;
+    //! fog_placement.hpp derives it from the medium's extinction);
     //! 0 = no evaporation (the volume is then conserved exactly).
     double evaporation_depth = 45.0;
+    double min_thickness = 1.0;  //!< metres: thinner fog counts as gone in the result
 };
 
 struct FlowReport {

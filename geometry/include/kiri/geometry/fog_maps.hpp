@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "kiri/geometry/heightfield.hpp"
@@ -20,8 +21,10 @@ inline constexpr double kMapNodata = -9999.0;
 //! gets a local-metres transform and no CRS). value * scale is written where `defined` is
 //! nonzero (empty = everywhere), kMapNodata elsewhere. `description` names the band. The same
 //! input gives the same bytes. \throw IoError when GDAL cannot write the file.
+//! `metadata` goes into the file's GDAL metadata (name, value), e.g. the fog's optics.
 void write_geotiff_map(const std::filesystem::path& path, const Heightfield& grid, const std::vector<double>& values,
-                       const std::vector<std::uint8_t>& defined, double scale, const std::string& description);
+                       const std::vector<std::uint8_t>& defined, double scale, const std::string& description,
+                       const std::vector<std::pair<std::string, std::string>>& metadata = {});
 
 //! Writes a mask as an 8-bit grey PNG, north up (row 0 is the grid's northern row): 255 where
 //! nonzero, 0 elsewhere. \throw IoError.

@@ -36,6 +36,10 @@ struct FillRegionSpec {
     ValleyOptions valleys;
     double min_thickness = 0.0;
     double max_thickness = 0.0;  //!< 0 = no limit
+    //! The medium's density profile over this region's fog, from 0 (blanket: relative to each
+    //! column, densest at the column's own bottom) to 1 (fill: by absolute altitude, densest at
+    //! the region's lowest bottom, the same at a given altitude across the region).
+    double profile = 1.0;
 };
 
 struct PlacementSpec {
@@ -46,9 +50,16 @@ struct PlacementSpec {
     double tolerance = 0.0;
     double min_area = 0.0;
     std::optional<FlowOptions> flow;       //!< applied first (the night's wind)
+    bool evaporation_given = false;        //!< flow.evaporation_depth from the scene, not the medium
     std::optional<BurnOffOptions> burn_off;  //!< then the morning's sun
     bool latitude_given = false;           //!< burn_off.latitude from the scene, not the DEM
 };
+
+//! Metres of descent that evaporate all but 1/e of fog of extinction sigma (1/m): its liquid
+//! water content, LWC = sigma 4 rho_w r / (3 Q) with r = 7 um and Q = 2 (medium.hpp), divided by
+//! what warming at the dry adiabatic 9.8 K/km evaporates, 0.45 g/m^3 per K near 5 C (the slope
+//! of the saturation vapour density): 21 m for sigma = 0.02 1/m.
+double evaporation_depth_for(double extinction);
 
 //! What place_fog computed, kept for the maps and the report.
 struct PlacedFog {
@@ -66,6 +77,9 @@ struct PlacedFog {
     bool flat = true;
     double top = 0.0;
     std::shared_ptr<const Heightfield> top_grid;
+    //! The medium's bottom per cell (blend of each region's profile, see FillRegionSpec::profile);
+    //! the ground where there is no fog.
+    std::vector<double> medium_bottom;
     double seconds_fill = 0.0, seconds_valleys = 0.0, seconds_flood_levels = 0.0, seconds_flow = 0.0,
            seconds_burn_off = 0.0, seconds_outline = 0.0;
 };
@@ -74,5 +88,9 @@ struct PlacedFog {
 //! `patch_size` sets the outline's defaults. Errors name "/fog/fill[/K]/<key>",
 //! "/fog/flow/<key>", "/fog/burn_off/<key>" with label as the file.
 PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double patch_size, const std::string& label = {});
+
+//! The latitude (degrees) of the terrain's centre when its source raster has a CRS GDAL can
+//! transform to WGS 84; `fallback` otherwise.
+double terrain_latitude(const Heightfield& terrain, double fallback);
 
 }  // namespace kiri::geometry

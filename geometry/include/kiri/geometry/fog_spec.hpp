@@ -6,6 +6,7 @@
 #include <string>
 
 #include "kiri/geometry/base_surface.hpp"
+#include "kiri/geometry/fog_placement.hpp"
 #include "kiri/geometry/footprint.hpp"
 #include "kiri/geometry/tessellate.hpp"
 
@@ -19,7 +20,15 @@ struct FogSpec {
     double patch_size = 1000.0;
     FitOptions fit;
     TessellationOptions tessellation;
+    //! Fog placed by the terrain ("fill", "outline", "flow", "burn_off"; fog_placement.hpp):
+    //! the footprint and the lake target come from place_fog (placed_fog_spec). The stages
+    //! below place it themselves while `footprint` is empty.
+    std::optional<PlacementSpec> placement;
 };
+
+//! spec with the placed fog's footprint and lake target: mode lake at the flat top (or over
+//! placed.top_grid), thickness the fog's greatest (at least 1 m).
+FogSpec placed_fog_spec(const FogSpec& spec, const PlacedFog& placed);
 
 //! Everything `kiri author` computes, with the time of each stage.
 struct AuthoredSurface {

@@ -1,0 +1,25 @@
+#pragma once
+// The 2D maps `kiri author` writes for fog placed by the terrain (issue 10).
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/terrain.hpp"
+
+namespace kiri::cli {
+
+struct MapFile {
+    std::string name;                                   //!< file name in the output folder
+    std::function<void(const std::filesystem::path&)> write;  //!< writes it at the given (temporary) path
+};
+
+//! fog_top.tif, fog_bottom.tif, fog_thickness.tif (GeoTIFF, DEM metres, the DEM's
+//! georeferencing, the optics in their metadata), fog_mask.png, and flood_level.tif for seed
+//! points or valleys.png + valley_index.tif for automatic seeding; none without a placement.
+std::vector<MapFile> placement_maps(const geometry::Scene& scene, const geometry::Terrain& terrain,
+                                    const geometry::SceneFog& fog);
+
+}  // namespace kiri::cli

@@ -1,0 +1,143 @@
+// report.json of `kiri author` for a scene: the fit's report plus the optics and the placement.
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include "kiri/geometry/fill_medium.hpp"
+#include "kiri/geometry/scene_fog.hpp"
+
+namespace kiri::geometry {
+namespace {
+
+using json = nlohmann::json;
+
+const char* seed_kind(SeedKind k)
+{
+    switch (k) {
+    case SeedKind::points: return "points";
+    case SeedKind::all: return "all";
+    case SeedKind::valleys: return "valleys";
+    case SeedKind::mask: return "mask";
+    }
+    return "points";
+}
+
+json optics(const MediumOptions& m)
+{
+    const EngineFog e = engine_fog(m.extinction);
+    // LWC for 7 um droplets (medium.hpp: sigma = 3 Q LWC / (4 rho_w r), Q = 2).
+    const double lwc = m.extinction * 4.0 * 1e6 * 7e-6 / 6.0;
+    return {{"extinction_per_m", m.extinction},
+            {"visibility_m", visibility_from_extinction(m.extinction)},
+            {"liquid_water_content_g_per_m3_at_7um", lwc},
+            {"albedo", m.albedo},
+            {"anisotropy_g", m.anisotropy},
+            {"engines",
+             {{"hdrp_fog_attenuation_distance_m", e.hdrp_attenuation_distance_m},
+              {"unreal_exponential_height_fog_density", e.unreal_fog_density},
+              {"godot_fog_density", e.godot_density}}}};
+}
+
+json placement(const Scene& scene, const SceneFog& fog)
+{
+    const PlacedFog& p = *fog.placed;
+    const double e = scene.terrain.exaggeration;
+    const PlacementSpec& spec = *scene.fog->placement;
+    json regions = json::array();
+    for (std::size_t r = 0; r < p.fills.size(); ++r) {
+        const FogFill& f = p.fills[r];
+        json j = {{"top_m", f.top / e},
+                  {"seeds", seed_kind(spec.regions[r].seeds)},
+                  {"seed_cells", f.seed_cells},
+                  {"cells", f.cells},
+                  {"area_km2", f.area_m2 * 1e-6},
+                  {"volume_m3", f.volume_m3 / e},
+                  {"max_thickness_m", f.max_thickness / e},
+                  {"mean_thickness_m", f.mean_thickness / e},
+                  {"touches_border", f.touches_border},
+                  {"spills", f.spills}};
+        if (f.spills) {
+            j["spill_level_m"] = f.spill_level / e;
+            j["spill_point"] = {f.spill_point.x, f.spill_point.y};
+        }
+        regions.push_back(j);
+    }
+    const ColumnFigures& c = p.figures;
+    json out = {{"regions", regions},
+                {"fog",
+                 {{"cells", c.cells},
+                  {"area_km2", c.area_m2 * 1e-6},
+                  {"volume_m3", c.volume_m3 / e},
+                  {"max_thickness_m", c.max_thickness / e},
+                  {"mean_thickness_m", c.mean_thickness / e},
+                  {"top_min_m", c.top_min / e},
+                  {"top_max_m", c.top_max / e},
+                  {"bottom_min_m", c.bottom_min / e},
+                  {"flat_top", p.flat}}},
+                {"outline",
+                 {{"polygons", p.outline.components},
+                  {"vertices", p.outline.vertices},
+                  {"tolerance_m", p.outline.tolerance},
+                  {"dropped_components", p.outline.dropped}}}};
+    if (p.valleys)
+        out["valleys"] = {{"radii_m", p.valleys->radii}, {"cells", p.valleys->cells}};
+    if (p.flow) {
+        const FlowReport& f = *p.flow;
+        out["flow"] = {{"steps", f.steps},
+                       {"volume_before_m3", f.volume_before_m3 / e},
+                       {"volume_after_m3", f.volume_after_m3 / e},
+                       {"outflow_m3", f.outflow_m3 / e},
+                       {"evaporated_m3", f.evaporated_m3 / e},
+                       {"spilled_m3", f.moved_out_m3 / e},
+                       {"max_speed_m_per_s", f.max_speed_ms},
+                       {"evaporation_depth_m", spec.flow->evaporation_depth}};
+    }
+    if (p.burn_off) {
+        const BurnOffReport& b = *p.burn_off;
+        out["burn_off"] = {{"latitude_deg", p.latitude},
+                           {"sunrise_h", b.sunrise_hour},
+                           {"sun_elevation_deg", b.sun_elevation_deg},
+                           {"sun_hours_level", b.sun_hours_level},
+                           {"lifted_base_m", b.lifted_base / e},
+                           {"cells_before", b.cells_before},
+                           {"cells_after", b.cells_after},
+                           {"volume_before_m3", b.volume_before_m3 / e},
+                           {"volume_after_m3", b.volume_after_m3 / e}};
+    }
+    out["timings_s"] = {{"valleys", p.seconds_valleys},      {"fill", p.seconds_fill},
+                        {"flood_levels", p.seconds_flood_levels}, {"flow", p.seconds_flow},
+                        {"burn_off", p.seconds_burn_off},    {"outline", p.seconds_outline}};
+    return out;
+}
+
+}  // namespace
+
+std::string scene_fog_report_json(const Scene& scene, const SceneFog& fog, double seconds_load_terrain)
+{
+    json j = json::parse(author_report_json(*scene.fog, fog.authored));
+    if (seconds_load_terrain >= 0.0)
+        j["timings_s"]["load_terrain"] = seconds_load_terrain;
+    j["optics"] = optics(scene.medium);
+    if (fog.placed && scene.fog && scene.fog->placement)
+        j["placement"] = placement(scene, fog);
+    return j.dump(2) + "\n";
+}
+
+std::vector<std::pair<std::string, std::string>> optics_metadata(const MediumOptions& m)
+{
+    const EngineFog e = engine_fog(m.extinction);
+    auto num = [](double v) {
+        char s[64];
+        std::snprintf(s, sizeof s, "%.6g", v);
+        return std::string(s);
+    };
+    return {{"KIRI_EXTINCTION_PER_M", num(m.extinction)},
+            {"KIRI_VISIBILITY_M", num(visibility_from_extinction(m.extinction))},
+            {"KIRI_ALBEDO", num(m.albedo)},
+            {"KIRI_ANISOTROPY_G", num(m.anisotropy)},
+            {"HDRP_FOG_ATTENUATION_DISTANCE_M", num(e.hdrp_attenuation_distance_m)},
+            {"UNREAL_EXPONENTIAL_HEIGHT_FOG_DENSITY", num(e.unreal_fog_density)},
+            {"GODOT_FOG_DENSITY", num(e.godot_density)}};
+}
+
+}  // namespace kiri::geometry
