@@ -141,17 +141,8 @@ PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double pa
 
     if (spec.flow) {
         const auto t0 = std::chrono::steady_clock::now();
-        std::vector<double> h(hf.size(), 0.0);
-        for (std::size_t k = 0; k < h.size(); ++k)
-            h[k] = out.columns.thickness(k);
         FlowReport rep;
-        h = scoped(label, "/fog", [&] { return flow_fog(hf, std::move(h), *spec.flow, &rep); });
-        FogColumns& c = out.columns;
-        for (std::size_t k = 0; k < h.size(); ++k) {
-            c.mask[k] = h[k] > spec.flow->min_thickness;
-            c.bottom[k] = hf.z[k];
-            c.top[k] = hf.z[k] + (c.mask[k] ? h[k] : 0.0);
-        }
+        out.columns = scoped(label, "/fog", [&] { return flow_fog(hf, out.columns, *spec.flow, &rep); });
         out.flow = rep;
         out.flat = false;
         out.seconds_flow = since(t0);

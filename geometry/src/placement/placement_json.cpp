@@ -67,7 +67,8 @@ FillRegionSpec read_region(const json& j, const JsonReader& r, const std::string
 
 FlowOptions read_flow(const json& j, const JsonReader& r, const std::string& p, bool& evaporation_given)
 {
-    r.only(j, p, {"wind", "duration", "time_step", "coupling", "spread", "max_speed", "evaporation_depth", "min_thickness"});
+    r.only(j, p, {"wind", "duration", "time_step", "coupling", "inversion_strength", "spread", "max_speed",
+                  "evaporation_depth", "min_thickness"});
     FlowOptions o;
     if (!j.contains("wind"))
         r.fail(p + "/wind", "missing: the wind [east, north] in m/s");
@@ -84,6 +85,8 @@ FlowOptions read_flow(const json& j, const JsonReader& r, const std::string& p, 
         r.fail(p + "/time_step", "more than a million steps: take a longer time step (any is stable)");
     if (j.contains("coupling"))
         o.coupling = r.in_range(j["coupling"], p + "/coupling", 0.0, 1.0, false);
+    if (j.contains("inversion_strength"))
+        o.inversion_strength = r.in_range(j["inversion_strength"], p + "/inversion_strength", 0.0, 50.0, true);
     if (j.contains("spread"))
         o.spread = r.in_range(j["spread"], p + "/spread", 0.0, 1e6, false);
     if (j.contains("max_speed"))
@@ -214,7 +217,8 @@ void placement_to_json(const PlacementSpec& s, json& fog)
     if (s.flow) {
         const FlowOptions& o = *s.flow;
         fog["flow"] = {{"wind", {o.wind.x, o.wind.y}}, {"duration", o.duration}, {"time_step", o.time_step},
-                       {"coupling", o.coupling},       {"spread", o.spread},     {"max_speed", o.max_speed},
+                       {"coupling", o.coupling},       {"inversion_strength", o.inversion_strength},
+                       {"spread", o.spread},           {"max_speed", o.max_speed},
                        {"min_thickness", o.min_thickness}};
         if (s.evaporation_given)
             fog["flow"]["evaporation_depth"] = o.evaporation_depth;

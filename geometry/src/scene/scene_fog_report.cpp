@@ -84,13 +84,15 @@ json placement(const Scene& scene, const SceneFog& fog)
     if (p.flow) {
         const FlowReport& f = *p.flow;
         out["flow"] = {{"steps", f.steps},
+                       {"pools", f.pools},
                        {"volume_before_m3", f.volume_before_m3 / e},
                        {"volume_after_m3", f.volume_after_m3 / e},
+                       {"spilled_m3", f.spilled_m3 / e},
+                       {"stream_m3", f.stream_m3 / e},
                        {"outflow_m3", f.outflow_m3 / e},
                        {"evaporated_m3", f.evaporated_m3 / e},
-                       {"spilled_m3", f.moved_out_m3 / e},
-                       {"max_speed_m_per_s", f.max_speed_ms},
-                       {"evaporation_depth_m", spec.flow->evaporation_depth}};
+                       {"max_set_up_m", f.max_tilt_m / e},
+                       {"evaporation_depth_m", f.evaporation_depth_m / e}};
     }
     if (p.burn_off) {
         const BurnOffReport& b = *p.burn_off;
