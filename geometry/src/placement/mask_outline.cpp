@@ -223,6 +223,49 @@ bool inside(const Ring& p, glm::dvec2 q)
     return in;
 }
 
+// Whether the polygons hold every required cell centre and no forbidden one (scanline fill of
+// the cell centres; cells on the grid's border are left out: the clamped outline runs through
+// them). Simplifying may cut a corner or take in a little ground on either side.
+bool respects(const Footprint& f, const Heightfield& g, const std::vector<std::uint8_t>& required,
+              const std::vector<std::uint8_t>& allowed)
+{
+    const int nx = g.nx, ny = g.ny;
+    std::vector<std::vector<double>> cross(static_cast<std::size_t>(ny));
+    for (const Ring& r : footprint_polygons(f))
+        for (std::size_t e = 0; e < r.size(); ++e) {
+            const glm::dvec2 a = r[e], b = r[(e + 1) % r.size()];
+            if (a.y == b.y)
+                continue;
+            const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
+            const int j0 = std::max(0, int(std::ceil((lo - g.y0) / g.dy))), j1 = std::min(ny - 1, int(std::floor((hi - g.y0) / g.dy)));
+            for (int j = j0; j <= j1; ++j) {
+                const double y = g.y_of(j);
+                if (y < lo || y >= hi)  // half-open: a vertex on the line counts once
+                    continue;
+                cross[std::size_t(j)].push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
+            }
+        }
+    for (int j = 1; j + 1 < ny; ++j) {
+        auto& xs = cross[std::size_t(j)];
+        std::sort(xs.begin(), xs.end());
+        std::size_t next = 0;
+        bool in = false;
+        for (int i = 0; i < nx; ++i) {
+            const double x = g.x_of(i);
+            while (next < xs.size() && xs[next] < x) {
+                in = !in;
+                ++next;
+            }
+            if (i == 0 || i == nx - 1)
+                continue;
+            const std::size_t k = std::size_t(j) * nx + i;
+            if (in ? !allowed[k] : required[k] != 0)
+                return false;
+        }
+    }
+    return true;
+}
+
 }  // namespace
 
 MaskOutline mask_outline(const Heightfield& g, std::vector<std::uint8_t> mask, const std::vector<std::uint8_t>& growable,
@@ -234,9 +277,13 @@ MaskOutline mask_outline(const Heightfield& g, std::vector<std::uint8_t> mask, c
                                             std::to_string(ny) + " cells");
     if (!(o.margin >= 0.0) || !(o.tolerance >= 0.0) || !(o.min_area >= 0.0) || !std::isfinite(o.margin + o.tolerance + o.min_area))
         throw InputError(label, "mask", "margin, tolerance and min_area must be finite and >= 0");
+    const std::vector<std::uint8_t> required = mask;
     if (o.margin > 0.0 && !growable.empty())
         grow(mask, growable, nx, ny, int(std::ceil(o.margin / std::min(g.dx, g.dy) - 1e-9)));
     close_diagonals(mask, nx, ny);
+    std::vector<std::uint8_t> allowed = mask;
+    for (std::size_t k = 0; k < allowed.size() && !growable.empty(); ++k)
+        allowed[k] = allowed[k] || growable[k];
     const Components comps = label_components(mask, nx, ny);
     if (comps.first.empty())
         throw InputError(label, "mask", "no cell to outline");
@@ -280,16 +327,21 @@ MaskOutline mask_outline(const Heightfield& g, std::vector<std::uint8_t> mask, c
                 s = r;
             (f.polygon.empty() ? f.polygon : f.more.emplace_back()) = std::move(s);
         }
+        bool ok = tol == 0.0;  // the raw outline is simple and exact by construction
         try {
             validate_footprint(f, label);
-            out.footprint = std::move(f);
-            out.tolerance = tol;
-            break;
+            ok = ok || respects(f, g, required, allowed);
         } catch (const InputError&) {
             if (tol == 0.0)
                 throw;
-            tol = tol * 0.5 < floor ? 0.0 : tol * 0.5;  // down to the raw outline, simple by construction
+            ok = false;
         }
+        if (ok) {
+            out.footprint = std::move(f);
+            out.tolerance = tol;
+            break;
+        }
+        tol = tol * 0.5 < floor ? 0.0 : tol * 0.5;
     }
     for (const Ring& r : footprint_polygons(out.footprint))
         out.vertices += r.size();

@@ -17,7 +17,8 @@ struct OutlineOptions {
     //! nothing and keeps narrow valleys wider than a patch). 0 = no growth.
     double margin = 0.0;
     //! Douglas-Peucker tolerance (metres) of the outlines; 0 = half the smaller cell side.
-    //! Halved, down to the raw outline, where simplifying would make polygons touch.
+    //! Halved, down to the raw outline, where simplifying would make polygons touch, leave a
+    //! cell of the mask out or take in a cell neither in the mask nor growable.
     double tolerance = 0.0;
     //! Components (4-connected, after growing) of less area (m^2) are dropped.
     double min_area = 0.0;
