@@ -7,6 +7,7 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/particles_bench.cpp
   bench/particles_error_bench.cpp
   bench/particles_scene.cpp
+  bench/placement_bench.cpp
   bench/surface_bench.cpp
   bench/terrain_bench.cpp
   bench/tessellation_bench.cpp

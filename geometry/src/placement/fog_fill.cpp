@@ -38,12 +38,26 @@ void flood(const Heightfield& hf, const std::vector<std::uint32_t>& seeds, doubl
     const int nx = hf.nx, ny = hf.ny;
     std::vector<std::uint8_t> queued(hf.size(), 0);
     RadixHeap heap;
+    // Cells reached at the current level without climbing (pits and plateaus under it) skip the
+    // heap: their key is the smallest one, so a plain queue keeps the order (Barnes et al. 2014,
+    // "Priority-Flood+epsilon" / improved priority-flood).
+    std::vector<FloodItem> pit;
+    std::size_t pit_head = 0;
     for (std::uint32_t s : seeds) {
         queued[s] = 1;
         heap.push({order_key(hf.z[s] + lift), s, s});
     }
-    while (!heap.empty()) {
-        const FloodItem it = heap.pop();
+    while (pit_head < pit.size() || !heap.empty()) {
+        FloodItem it;
+        if (pit_head < pit.size()) {
+            it = pit[pit_head++];
+            if (pit_head == pit.size()) {
+                pit.clear();
+                pit_head = 0;
+            }
+        } else {
+            it = heap.pop();
+        }
         if (!visit(it))
             return;
         const int i = int(it.cell % std::uint32_t(nx)), j = int(it.cell / std::uint32_t(nx));
@@ -56,7 +70,10 @@ void flood(const Heightfield& hf, const std::vector<std::uint32_t>& seeds, doubl
                 continue;
             queued[n] = 1;
             const std::uint64_t own = order_key(hf.z[n] + lift);
-            heap.push(own > it.key ? FloodItem{own, n, n} : FloodItem{it.key, n, it.saddle});
+            if (own > it.key)
+                heap.push({own, n, n});
+            else
+                pit.push_back({it.key, n, it.saddle});
         }
     }
 }
