@@ -29,24 +29,37 @@ bool valid_cell(const Heightfield& hf, std::size_t k) { return !has_mask(hf) || 
 constexpr int kDi[8] = {1, -1, 0, 0, 1, -1, 1, -1};
 constexpr int kDj[8] = {0, 0, 1, -1, 1, 1, -1, -1};
 
-// The priority-flood itself. Every seed enters with its own level; a popped cell hands its
-// level (or its neighbour's ground, if higher) to each unvisited valid neighbour. `visit` sees
-// the cells in non-decreasing level order and returns false to stop.
+// Cells handed to the flood before it starts: each is queued and enters the heap at its own
+// level (ground + lift), as the saddle of its own path.
+struct FloodStart {
+    std::vector<std::uint8_t> queued;
+    RadixHeap heap;
+};
+
+FloodStart start_at(const Heightfield& hf, const std::vector<std::uint32_t>& seeds, double lift)
+{
+    FloodStart s{std::vector<std::uint8_t>(hf.size(), 0), {}};
+    for (std::uint32_t c : seeds) {
+        s.queued[c] = 1;
+        s.heap.push({order_key(hf.z[c] + lift), c, c});
+    }
+    return s;
+}
+
+// The priority-flood itself. Every queued cell has its own level; a popped cell hands its level
+// (or its neighbour's ground, if higher) to each unqueued valid neighbour. `visit` sees the
+// cells in non-decreasing level order and returns false to stop.
 template <class Visit>
-void flood(const Heightfield& hf, const std::vector<std::uint32_t>& seeds, double lift, Visit&& visit)
+void flood(const Heightfield& hf, FloodStart& start, double lift, Visit&& visit)
 {
     const int nx = hf.nx, ny = hf.ny;
-    std::vector<std::uint8_t> queued(hf.size(), 0);
-    RadixHeap heap;
+    std::vector<std::uint8_t>& queued = start.queued;
+    RadixHeap& heap = start.heap;
     // Cells reached at the current level without climbing (pits and plateaus under it) skip the
     // heap: their key is the smallest one, so a plain queue keeps the order (Barnes et al. 2014,
     // "Priority-Flood+epsilon" / improved priority-flood).
     std::vector<FloodItem> pit;
     std::size_t pit_head = 0;
-    for (std::uint32_t s : seeds) {
-        queued[s] = 1;
-        heap.push({order_key(hf.z[s] + lift), s, s});
-    }
     while (pit_head < pit.size() || !heap.empty()) {
         FloodItem it;
         if (pit_head < pit.size()) {
@@ -172,34 +185,52 @@ FogFill fill_fog(const Heightfield& hf, const FillOptions& o, const std::string&
     f.seed_cells = int(seeds.size());
     const double cell_area = hf.dx * hf.dy;
     double sum = 0.0;
-    bool region_done = false;
-    flood(hf, seeds, lift, [&](const FloodItem& it) {
-        if (!region_done && it.key < top_key) {
-            const std::uint32_t k = it.cell;
-            f.mask[k] = 1;
-            const double t = o.max_thickness > 0.0 ? std::min(o.top - hf.z[k], o.max_thickness) : o.top - hf.z[k];
-            f.thickness[k] = t;
-            sum += t;
-            f.max_thickness = std::max(f.max_thickness, t);
-            ++f.cells;
-            const int i = int(k % std::uint32_t(hf.nx)), j = int(k / std::uint32_t(hf.nx));
-            f.touches_border = f.touches_border || i == 0 || j == 0 || i == hf.nx - 1 || j == hf.ny - 1;
-            return true;
+    // The region: cells joined to a seed through cells whose ground + lift is below the top.
+    // Those are exactly the cells the priority-flood would reach at a level below the top (a
+    // level is the highest ground on the path), so a breadth-first search finds them in linear
+    // time; only the search for the spill needs the flood's order. Its start is the region's
+    // rim: the valid cells next to the region, all at or above the top.
+    FloodStart rim{std::vector<std::uint8_t>(hf.size(), 0), {}};
+    std::vector<std::uint32_t> queue = seeds;
+    for (std::uint32_t s : seeds)
+        rim.queued[s] = 1;
+    const int nx = hf.nx, ny = hf.ny;
+    for (std::size_t head = 0; head < queue.size(); ++head) {
+        const std::uint32_t k = queue[head];
+        f.mask[k] = 1;
+        const double t = o.max_thickness > 0.0 ? std::min(o.top - hf.z[k], o.max_thickness) : o.top - hf.z[k];
+        f.thickness[k] = t;
+        sum += t;
+        f.max_thickness = std::max(f.max_thickness, t);
+        const int i = int(k % std::uint32_t(nx)), j = int(k / std::uint32_t(nx));
+        f.touches_border = f.touches_border || i == 0 || j == 0 || i == nx - 1 || j == ny - 1;
+        for (int d = 0; d < 8; ++d) {
+            const int a = i + kDi[d], b = j + kDj[d];
+            if (a < 0 || b < 0 || a >= nx || b >= ny)
+                continue;
+            const std::uint32_t n = std::uint32_t(b) * std::uint32_t(nx) + std::uint32_t(a);
+            if (rim.queued[n] || !valid_cell(hf, n))
+                continue;
+            rim.queued[n] = 1;
+            const std::uint64_t own = order_key(hf.z[n] + lift);
+            if (own < top_key)
+                queue.push_back(n);
+            else if (!o.seeds.all_basins)
+                rim.heap.push({own, n, n});
         }
-        region_done = true;
-        if (o.seeds.all_basins)
-            return false;
-        // Past the top: the flood climbs over the lowest saddle; the first cell it meets whose
-        // own ground is below the top lies in another basin, reached at this level.
-        if (order_key(hf.z[it.cell] + lift) < top_key) {
+    }
+    f.cells = queue.size();
+    // Past the top: the flood climbs over the lowest saddle; the first cell it meets whose own
+    // ground is below the top lies in another basin, reached at this level.
+    if (!o.seeds.all_basins)
+        flood(hf, rim, lift, [&](const FloodItem& it) {
+            if (order_key(hf.z[it.cell] + lift) >= top_key)
+                return true;
             f.spills = true;
             f.spill_level = key_value(it.key);
-            f.spill_point = {hf.x_of(int(it.saddle % std::uint32_t(hf.nx))),
-                             hf.y_of(int(it.saddle / std::uint32_t(hf.nx)))};
+            f.spill_point = {hf.x_of(int(it.saddle % std::uint32_t(nx))), hf.y_of(int(it.saddle / std::uint32_t(nx)))};
             return false;
-        }
-        return true;
-    });
+        });
     f.area_m2 = double(f.cells) * cell_area;
     f.volume_m3 = sum * cell_area;
     f.mean_thickness = f.cells ? sum / double(f.cells) : 0.0;
@@ -212,7 +243,8 @@ FloodLevels flood_levels(const Heightfield& hf, const FillSeeds& seeds, const st
     FloodLevels out;
     out.level.assign(hf.size(), 0.0);
     out.reached.assign(hf.size(), 0);
-    flood(hf, s, 0.0, [&](const FloodItem& it) {
+    FloodStart start = start_at(hf, s, 0.0);
+    flood(hf, start, 0.0, [&](const FloodItem& it) {
         out.level[it.cell] = key_value(it.key);
         out.reached[it.cell] = 1;
         return true;

@@ -60,8 +60,10 @@ struct FogFill {
 
 //! Cells below `top` connected to a seed through cells below `top` (8-neighbours), with the
 //! thickness per cell = top - max(ground, top - max_thickness). A top above a saddle spills into
-//! the next basin, a top at or below it does not. O(n log n) worst case (a radix heap keyed by
-//! the flood level: each cell enters and leaves it once; n = the cells visited).
+//! the next basin, a top at or below it does not. The region is a linear-time breadth-first
+//! search; the spill search beyond it is a priority-flood over the cells above the top up to the
+//! spill level, O(n log n) worst case (a radix heap keyed by the flood level: each cell enters
+//! and leaves it once; n = the cells visited).
 //! \throw InputError(label, field, reason): "seeds/K" outside the terrain or on nodata, "top"
 //!        below every seed, "min_thickness" / "max_thickness" out of range, "seeds/mask" of the
 //!        wrong size; fields are relative (the scene reader prefixes its JSON pointer).
