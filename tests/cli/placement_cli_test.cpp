@@ -46,13 +46,13 @@ TEST(PlacementCli, FillSceneWritesIdenticalMapsTwice)
     }
     const auto report = nlohmann::json::parse(read_all(a / "report.json"));
     const auto& region = report["placement"]["regions"][0];
-    EXPECT_EQ(region["top_m"].get<double>(), 460.0);
+    EXPECT_EQ(region["top_m"].get<double>(), 580.0);
     EXPECT_EQ(region["seeds"], "points");
-    EXPECT_EQ(region["max_thickness_m"].get<double>(), 460.0 - 236.0);  // the DEM's lowest cell is in the valley
+    EXPECT_EQ(region["max_thickness_m"].get<double>(), 580.0 - 236.0);  // the DEM's lowest cell is in the valley
     EXPECT_TRUE(region["spills"].get<bool>());
     EXPECT_NEAR(report["optics"]["visibility_m"].get<double>(), 3.912 / 0.02, 1e-9);
     EXPECT_NEAR(report["optics"]["engines"]["hdrp_fog_attenuation_distance_m"].get<double>(), 50.0, 1e-9);
-    EXPECT_EQ(report["fog"]["fill"]["top"].get<double>(), 460.0);
+    EXPECT_EQ(report["fog"]["fill"]["top"].get<double>(), 580.0);
     fs::remove_all(a);
     fs::remove_all(b);
 }
@@ -101,7 +101,7 @@ TEST(PlacementCli, BadPlacementIsOneLineAndNoOutput)
     const fs::path out = kiri::test::temp_path("bad_fill");
     for (const auto& [fog, expected] :
          {std::pair<std::string, std::string>{R"({"fill": {"top": 200, "seeds": [[11100, 6600]]}})",
-                                              ": /fog/fill/top: the fog top 300 m is at or below every seed"},
+                                              ": /fog/fill/top: the fog top 200 m is at or below every seed (the lowest seed's ground is 340 m)"},
           {R"({"fill": {"top": 460, "seeds": [[-40000, 0]]}})", ": /fog/fill/seeds/0: seed (-40000, 0) lies outside the terrain"},
           {R"({"fill": {"top": 460, "seeds": "all"}, "flow": {"wind": [1, 0], "time_step": -1}})",
            ": /fog/flow/time_step: must be in [0, 86400], got -1"}}) {

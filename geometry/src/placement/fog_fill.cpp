@@ -150,6 +150,7 @@ std::vector<std::uint32_t> seed_cells(const Heightfield& hf, const FillSeeds& se
 
 FogFill fill_fog(const Heightfield& hf, const FillOptions& o, const std::string& label)
 {
+    const double unit = o.message_scale > 0.0 && std::isfinite(o.message_scale) ? o.message_scale : 1.0;
     if (!std::isfinite(o.top))
         throw InputError(label, "top", "must be a finite altitude (metres)");
     if (!(o.min_thickness >= 0.0) || !std::isfinite(o.min_thickness))
@@ -157,8 +158,8 @@ FogFill fill_fog(const Heightfield& hf, const FillOptions& o, const std::string&
     if (!std::isfinite(o.max_thickness) || o.max_thickness < 0.0 ||
         (o.max_thickness > 0.0 && o.max_thickness <= o.min_thickness))
         throw InputError(label, "max_thickness",
-                         "must be 0 (no limit) or larger than min_thickness (" + num(o.min_thickness) + " m), got " +
-                             num(o.max_thickness));
+                         "must be 0 (no limit) or larger than min_thickness (" + num(o.min_thickness / unit) +
+                             " m), got " + num(o.max_thickness / unit));
     const std::vector<std::uint32_t> all = seed_cells(hf, o.seeds, label);
     // The flood runs on ground + min_thickness: a cell carries fog when that is below the top.
     const double lift = o.min_thickness;
@@ -172,8 +173,8 @@ FogFill fill_fog(const Heightfield& hf, const FillOptions& o, const std::string&
     }
     if (seeds.empty())
         throw InputError(label, "top",
-                         "the fog top " + num(o.top) + " m is at or below every seed (the lowest seed's ground is " +
-                             num(lowest) + " m" + (lift > 0.0 ? ", plus min_thickness " + num(lift) + " m" : "") +
+                         "the fog top " + num(o.top / unit) + " m is at or below every seed (the lowest seed's ground is " +
+                             num(lowest / unit) + " m" + (lift > 0.0 ? ", plus min_thickness " + num(lift / unit) + " m" : "") +
                              "): no fog");
 
     FogFill f;

@@ -81,6 +81,7 @@ PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double pa
         fo.top = region.top;
         fo.min_thickness = region.min_thickness;
         fo.max_thickness = region.max_thickness;
+        fo.message_scale = spec.exaggeration;
         switch (region.seeds) {
         case SeedKind::points:
             fo.seeds.points = region.points;

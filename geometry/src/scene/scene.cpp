@@ -266,6 +266,7 @@ FogSpec world_fog_spec(const Scene& scene)
     spec.fit.clearance *= e;
     spec.fit.thickness *= e;
     if (spec.placement) {
+        spec.placement->exaggeration = e;
         for (FillRegionSpec& r : spec.placement->regions) {
             r.top *= e;
             r.min_thickness *= e;

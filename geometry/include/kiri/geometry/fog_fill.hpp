@@ -34,6 +34,9 @@ struct FillOptions {
     //! The fog's bottom is max(ground, top - max_thickness): over deeper ground the fog hangs
     //! as a layer of this thickness (metres; 0 = no limit, always down to the ground).
     double max_thickness = 0.0;
+    //! Heights in error messages are divided by this (a scene's vertical exaggeration, by which
+    //! its heights were stretched), so they read in the metres the user wrote.
+    double message_scale = 1.0;
 };
 
 //! The fog of a fill. Cell k = j * nx + i is fog when mask[k] = 1; its column spans

@@ -53,6 +53,7 @@ struct PlacementSpec {
     bool evaporation_given = false;        //!< flow.evaporation_depth from the scene, not the medium
     std::optional<BurnOffOptions> burn_off;  //!< then the morning's sun
     bool latitude_given = false;           //!< burn_off.latitude from the scene, not the DEM
+    double exaggeration = 1.0;             //!< heights are stretched by this (for messages)
 };
 
 //! Metres of descent that evaporate all but 1/e of fog of extinction sigma (1/m): its liquid
