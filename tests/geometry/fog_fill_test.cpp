@@ -241,6 +241,16 @@ TEST(FogFill, FloodLevelsEqualTheMinimaxOracle)
             const FogFill f = fill_fog(hf, o);
             for (std::size_t k = 0; k < hf.size(); ++k)
                 EXPECT_EQ(f.mask[k], fl.reached[k] && fl.level[k] < top ? 1 : 0);
+            // The spill level: the lowest flood level of a reachable cell below the top that
+            // the fog did not reach (another basin).
+            double spill = INFINITY;
+            for (std::size_t k = 0; k < hf.size(); ++k)
+                if (fl.reached[k] && !f.mask[k] && hf.z[k] < top)
+                    spill = std::min(spill, fl.level[k]);
+            EXPECT_EQ(f.spills, std::isfinite(spill)) << top;
+            if (f.spills) {
+                EXPECT_EQ(f.spill_level, spill) << top;
+            }
         } catch (const kiri::InputError&) {
             EXPECT_GE(std::min(hf.z[seed_cells(hf, seeds)[0]], hf.z[seed_cells(hf, seeds)[1]]), top);
         }
