@@ -2,6 +2,9 @@
 // determinism, the valley mask a user can accept and feed back, one-line errors.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -53,6 +56,19 @@ TEST(PlacementCli, FillSceneWritesIdenticalMapsTwice)
     EXPECT_NEAR(report["optics"]["visibility_m"].get<double>(), 3.912 / 0.02, 1e-9);
     EXPECT_NEAR(report["optics"]["engines"]["hdrp_fog_attenuation_distance_m"].get<double>(), 50.0, 1e-9);
     EXPECT_EQ(report["fog"]["fill"]["top"].get<double>(), 580.0);
+    // The glTF export carries the optics and the engines' equivalents too (asset.extras).
+    const std::string glb = read_all(a / "layers.glb");
+    ASSERT_GT(glb.size(), 20u);
+    std::uint32_t json_bytes = 0;
+    std::memcpy(&json_bytes, glb.data() + 12, 4);
+    ASSERT_LE(20u + json_bytes, glb.size());
+    const auto gltf = nlohmann::json::parse(glb.substr(20, json_bytes));
+    const auto& optics = gltf["asset"]["extras"]["kiri_fog_optics"];
+    EXPECT_EQ(optics["extinction_per_m"].get<double>(), 0.02);
+    EXPECT_NEAR(optics["hdrp_fog_attenuation_distance_m"].get<double>(), 50.0, 1e-12);
+    EXPECT_NEAR(optics["godot_fog_density"].get<double>(), 0.02, 1e-15);
+    EXPECT_NEAR(optics["unreal_exponential_height_fog_density"].get<double>(), 0.02 / (0.1 * std::log(2.0) * std::log(2.0)), 1e-12);
+    EXPECT_NEAR(optics["visibility_m"].get<double>(), 195.6, 1e-9);
     fs::remove_all(a);
     fs::remove_all(b);
 }

@@ -11,6 +11,7 @@
 #include <stb_image_write.h>
 
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/medium.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -181,7 +182,18 @@ void write_layers_glb(const std::filesystem::path& path, const LayerBase& base, 
     while (b.bin.size() % 4)
         b.bin.push_back(0);
 
-    json gltf = {{"asset", {{"version", "2.0"}, {"generator", "kiri"}}},
+    // The fog's optics and their equivalents in the engines the file is taken to (medium.hpp).
+    const double sigma = options.optics.extinction;
+    const EngineFog engines = engine_fog(sigma);
+    json fog_optics = {{"extinction_per_m", sigma},
+                       {"albedo", options.optics.albedo},
+                       {"anisotropy_g", options.optics.anisotropy},
+                       {"hdrp_fog_attenuation_distance_m", engines.hdrp_attenuation_distance_m},
+                       {"unreal_exponential_height_fog_density", engines.unreal_fog_density},
+                       {"godot_fog_density", engines.godot_density}};
+    if (sigma > 0.0 && std::isfinite(sigma))
+        fog_optics["visibility_m"] = visibility_from_extinction(sigma);
+    json gltf = {{"asset", {{"version", "2.0"}, {"generator", "kiri"}, {"extras", {{"kiri_fog_optics", fog_optics}}}}},
                  {"scene", 0},
                  {"scenes", json::array({{{"nodes", json::array({int(nodes.size()) - 1})}}})},
                  {"nodes", nodes},

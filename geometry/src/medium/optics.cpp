@@ -67,4 +67,15 @@ glm::dvec3 fog_source(const FogLight& light, const MediumOptions& optics, double
             std::isfinite(j.z) ? std::max(j.z, 0.0) : 0.0};
 }
 
+EngineFog engine_fog(double sigma)
+{
+    EngineFog e;
+    if (!(sigma > 0.0) || !std::isfinite(sigma))
+        return e;
+    e.hdrp_attenuation_distance_m = 1.0 / sigma;
+    e.unreal_fog_density = sigma / (0.1 * std::log(2.0) * std::log(2.0));
+    e.godot_density = sigma;
+    return e;
+}
+
 }  // namespace kiri::geometry

@@ -50,15 +50,4 @@ Medium fill_medium(const Terrain& terrain, const PlacedFog& placed, const Medium
     return Medium(std::move(g), options, detail);
 }
 
-EngineFog engine_fog(double sigma)
-{
-    EngineFog e;
-    if (!(sigma > 0.0) || !std::isfinite(sigma))
-        return e;
-    e.hdrp_attenuation_distance_m = 1.0 / sigma;
-    e.unreal_fog_density = sigma / (0.1 * std::log(2.0) * std::log(2.0));
-    e.godot_density = sigma;
-    return e;
-}
-
 }  // namespace kiri::geometry

@@ -18,16 +18,4 @@ namespace kiri::geometry {
 Medium fill_medium(const Terrain& terrain, const PlacedFog& placed, const MediumOptions& options,
                    const MediumDetail& detail, const std::string& label = {});
 
-//! Parameters of the same fog in the engines users take it to (docs/placement.md): HDRP's fog
-//! attenuation distance (the mean free path 1 / sigma, metres), Unreal's Exponential Height
-//! Fog density (it divides by 1000, works in centimetres and integrates with exp2, so
-//! FogDensity = sigma / (0.1 (ln 2)^2) at zero height falloff), Godot's fog and volumetric fog
-//! density (an extinction per metre: sigma).
-struct EngineFog {
-    double hdrp_attenuation_distance_m = 0.0;
-    double unreal_fog_density = 0.0;
-    double godot_density = 0.0;
-};
-EngineFog engine_fog(double extinction);
-
 }  // namespace kiri::geometry

@@ -42,6 +42,18 @@ double extinction_from_visibility(double visibility);
 //! 7 um droplets gives 0.043 1/m (visibility 91 m). \throw std::invalid_argument unless both > 0.
 double extinction_from_liquid_water(double lwc_g_per_m3, double droplet_radius_um);
 
+//! Parameters of the same fog in the engines users take it to (docs/placement.md): HDRP's fog
+//! attenuation distance (the mean free path 1 / sigma, metres), Unreal's Exponential Height
+//! Fog density (it divides by 1000, works in centimetres and integrates with exp2, so
+//! FogDensity = sigma / (0.1 (ln 2)^2) at zero height falloff), Godot's fog and volumetric fog
+//! density (an extinction per metre: sigma). Zeros unless sigma > 0 and finite.
+struct EngineFog {
+    double hdrp_attenuation_distance_m = 0.0;
+    double unreal_fog_density = 0.0;
+    double godot_density = 0.0;
+};
+EngineFog engine_fog(double extinction);
+
 //! Henyey-Greenstein phase function (1/sr) for cos(theta) between the propagation direction
 //! and the direction scattered into; g is clamped to [-0.999, 0.999] so it stays finite.
 double henyey_greenstein(double cos_theta, double g);

@@ -31,7 +31,7 @@ SceneFog author_scene_fog(const Scene& scene, const Terrain& terrain);
 
 //! report.json of `kiri author`: author_report_json's sections, then "optics" (the medium's
 //! extinction, visibility, liquid water content, albedo, g, and the engines' equivalents,
-//! engine_fog in fill_medium.hpp) and, for fog placed by the terrain, "placement" (per
+//! engine_fog in medium.hpp) and, for fog placed by the terrain, "placement" (per
 //! region, the fog, the valleys, the outline, flow, burn-off, timings). Heights and
 //! thicknesses there are metres of the DEM (the exaggeration taken out).
 //! seconds_load_terrain, when >= 0, joins the other stages' timings.
