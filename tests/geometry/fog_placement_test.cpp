@@ -84,7 +84,7 @@ TEST(FogPlacement, BadKeysGiveOneLineNamingThem)
               "s.json: /fog/fill/seeds: missing: seed points [[x, y], ...] (local metres), \"all\", \"valleys\" or "
               "{\"mask\": FILE}");
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": [[90000, 0]]}})").rfind("s.json: /fog/fill/seeds/0: seed (90000, 0) lies outside the terrain", 0), 0u);
-    EXPECT_EQ(error_of(R"({"fill": {"top": 200, "seeds": [[11100, 6600]]}})").rfind("s.json: /fog/fill/top: the fog top 300 m is at or below every seed", 0), 0u);
+    EXPECT_EQ(error_of(R"({"fill": {"top": 200, "seeds": [[11100, 6600]]}})").rfind("s.json: /fog/fill/top: the fog top 200 m is at or below every seed (the lowest seed's ground is 340 m)", 0), 0u);
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all", "valleys": {}}})"),
               "s.json: /fog/fill/valleys: only used with \"seeds\": \"valleys\"");
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all"}, "mode": "blanket"})").rfind("s.json: /fog/mode: a fill sets this itself", 0), 0u);
