@@ -7,3 +7,5 @@ kiri_test(fog_spec_test SOURCES fog_spec_test.cpp LIBS kiri_geometry nlohmann_js
 kiri_test(author_test SOURCES author_test.cpp LIBS kiri_geometry nlohmann_json::nlohmann_json LABELS unit)
 kiri_test(layer_stack_test SOURCES layer_stack_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(medium_test SOURCES medium_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(reference_fog_test SOURCES reference_fog_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(froxel_options_test SOURCES froxel_options_test.cpp LIBS kiri_geometry LABELS unit)

@@ -66,7 +66,10 @@ double sample_fog_noise(double s, double t, int size)
 {
     if (!std::isfinite(s) || !std::isfinite(t))
         return 0.5;
-    const std::vector<float>& tile = fog_noise_tile(size);
+    // The default tile without the cache's lock: the reference ray marcher samples it from
+    // every thread millions of times.
+    static const std::vector<float>& default_tile = fog_noise_tile(256);
+    const std::vector<float>& tile = size == 256 ? default_tile : fog_noise_tile(size);
     // GL_LINEAR with GL_REPEAT: texel centres at (i + 0.5) / size.
     const double x = s * size - 0.5, y = t * size - 0.5;
     const double fx0 = std::floor(x), fy0 = std::floor(y);

@@ -12,6 +12,7 @@
 #include "layers/layer_options_json.hpp"
 #include "medium/medium_options_json.hpp"
 #include "particles/particle_options_json.hpp"
+#include "volume/froxel_options_json.hpp"
 #include "scene/json_reader.hpp"
 #include "kiri/geometry/dem.hpp"
 #include "kiri/geometry/error.hpp"
@@ -140,7 +141,7 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         throw InputError(file_label, "", "malformed JSON: " + strip_exception_id(e.what()) + " (not a finite number)");
     }
     const Reader r{file_label};
-    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers", "medium", "particles"});
+    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers", "medium", "particles", "froxel"});
     if (!root.contains("terrain"))
         r.fail("/terrain", "missing (every scene needs a terrain)");
     Scene scene;
@@ -165,6 +166,8 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         scene.medium = parse_medium_options(root["medium"], file_label);
     if (root.contains("particles"))
         scene.particles = parse_particle_options(root["particles"], file_label);
+    if (root.contains("froxel"))
+        scene.froxel = parse_froxel_options(root["froxel"], file_label);
     return scene;
 }
 
@@ -212,6 +215,7 @@ std::string scene_to_json(const Scene& scene)
     root["layers"] = layer_options_to_json(scene.layers);
     root["medium"] = medium_options_to_json(scene.medium);
     root["particles"] = particle_options_to_json(scene.particles);
+    root["froxel"] = froxel_options_to_json(scene.froxel);
     return root.dump(2) + "\n";
 }
 
@@ -299,6 +303,16 @@ LayerOptions world_layer_options(const Scene& scene)
     options.ground_fade *= e;
     options.optics = scene.medium;
     validate_layer_options(options, scene.file.string());
+    return options;
+}
+
+FroxelOptions world_froxel_options(const Scene& scene)
+{
+    FroxelOptions options = scene.froxel;
+    const double e = scene.terrain.exaggeration;
+    options.height_fog.base *= e;
+    options.height_fog.scale_height *= e;
+    validate_froxel_options(options, scene.file.string());
     return options;
 }
 

@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/fog_spec.hpp"
+#include "kiri/geometry/froxel_options.hpp"
 #include "kiri/geometry/layer_stack.hpp"
 #include "kiri/geometry/medium.hpp"
 #include "kiri/geometry/particles.hpp"
@@ -53,6 +54,7 @@ struct Scene {
     LayerOptions layers;              //!< the "layers" section (defaults when absent)
     MediumOptions medium;             //!< the "medium" section (defaults when absent)
     ParticleOptions particles;        //!< the "particles" section (defaults when absent)
+    FroxelOptions froxel;             //!< the "froxel" section (defaults when absent)
 
     //! The camera called name; the first when name is empty; a view framing `terrain_bounds`
     //! (min, max) from the south-west when the scene has no camera and name is empty.
@@ -80,5 +82,8 @@ FogSpec world_fog_spec(const Scene& scene);
 //! The scene's layer options in world units: thickness = fog.thickness and ground_fade
 //! stretched by the exaggeration. \throw InputError naming /layers on options out of range.
 LayerOptions world_layer_options(const Scene& scene);
+//! The scene's froxel options in world units: the height fog's base and scale height stretched
+//! by the exaggeration. \throw InputError naming /froxel on options out of range.
+FroxelOptions world_froxel_options(const Scene& scene);
 
 }  // namespace kiri::geometry

@@ -1,0 +1,31 @@
+#pragma once
+//! \file height_fog.hpp
+//! Global exponential height fog, the optional haze every volume renderer can add to the
+//! Medium: sigma_t(z) = extinction exp(-(z - base) / scale_height) above `base` and
+//! `extinction` below it (so it stays bounded under the base). Its optical depth along a
+//! straight segment has a closed form, which the froxel pass and the reference both use.
+#include <string>
+
+#include <glm/vec3.hpp>
+
+namespace kiri::geometry {
+
+struct HeightFog {
+    double extinction = 0.0;      //!< sigma_t (1/m) at and below `base`; 0: no height fog
+    double base = 0.0;            //!< world z (m) where the falloff starts
+    double scale_height = 100.0;  //!< m, > 0: the density falls by e every scale_height
+    double albedo = 0.99;         //!< [0, 1]
+    double anisotropy = 0.6;      //!< Henyey-Greenstein g, (-1, 1)
+
+    bool enabled() const { return extinction > 0.0; }
+    //! sigma_t (1/m) at altitude z.
+    double sigma(double z) const;
+    //! The integral of sigma_t along origin + t dir for t in [t0, t1] (dir need not be unit;
+    //! t1 may be +inf when dir.z > 0). Exact, no cancellation for nearly level segments.
+    double optical_depth(const glm::dvec3& origin, const glm::dvec3& dir, double t0, double t1) const;
+};
+
+//! \throw InputError(label, "/froxel/height_fog/<key>", reason) for values out of range.
+void validate_height_fog(const HeightFog& fog, const std::string& label = {});
+
+}  // namespace kiri::geometry

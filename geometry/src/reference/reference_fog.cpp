@@ -1,0 +1,97 @@
+#include "kiri/geometry/reference_fog.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <thread>
+
+#include <glm/geometric.hpp>
+
+#include "reference/fog_marcher.hpp"
+
+namespace kiri::geometry {
+
+glm::dvec3 ReferenceView::forward() const
+{
+    const glm::dvec3 f = target - eye;
+    const double len = glm::length(f);
+    return len > 0.0 ? f / len : glm::dvec3(0.0, 1.0, 0.0);
+}
+
+glm::dvec3 ReferenceView::ray(int x, int y) const
+{
+    // glm::lookAt's frame and glm::perspective's pixel mapping (render::Camera).
+    const glm::dvec3 f = forward();
+    glm::dvec3 r = glm::cross(f, up);
+    r = glm::length(r) > 0.0 ? glm::normalize(r) : glm::dvec3(1.0, 0.0, 0.0);
+    const glm::dvec3 u = glm::cross(r, f);
+    const double tan_half = std::tan(0.5 * fov_y_deg * 3.14159265358979323846 / 180.0);
+    const double aspect = double(width) / double(std::max(height, 1));
+    const double nx = (x + 0.5) / width * 2.0 - 1.0, ny = 1.0 - (y + 0.5) / height * 2.0;
+    return glm::normalize(f + r * (nx * tan_half * aspect) + u * (ny * tan_half));
+}
+
+double luminance(const glm::dvec3& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+RayFog reference_ray(const FogVolume& fog, const Heightfield* terrain, const glm::dvec3& origin, const glm::dvec3& dir,
+                     double t_max, const FogLighting& light, const ReferenceOptions& options)
+{
+    const detail::FogMarcher marcher(fog, terrain, light, options);
+    detail::MarchScratch scratch;
+    return marcher.trace(origin, dir, t_max, scratch);
+}
+
+ReferenceImage render_reference_fog(const FogVolume& fog, const Heightfield* terrain, const ReferenceView& view,
+                                    const FogLighting& light, const ReferenceOptions& options)
+{
+    const auto start = std::chrono::steady_clock::now();
+    ReferenceImage out;
+    out.width = std::max(view.width, 0);
+    out.height = std::max(view.height, 0);
+    const std::size_t n = std::size_t(out.width) * out.height;
+    out.inscatter.assign(n, glm::dvec3(0.0));
+    out.transmittance.assign(n, 1.0);
+    out.background.assign(n, glm::dvec3(0.0));
+    out.depth.assign(n, std::numeric_limits<double>::infinity());
+    const detail::FogMarcher marcher(fog, terrain, light, options);
+    const glm::dvec3 forward = view.forward();
+    std::atomic<int> next_row{0};
+    std::atomic<long long> steps{0}, knots{0};
+    auto work = [&] {
+        detail::MarchScratch scratch;
+        long long my_steps = 0, my_knots = 0;
+        for (int y = next_row++; y < out.height; y = next_row++)
+            for (int x = 0; x < out.width; ++x) {
+                const glm::dvec3 w = view.ray(x, y);
+                const double cos_axis = glm::dot(w, forward);
+                const double t_max = view.max_depth > 0.0 && cos_axis > 0.0 ? view.max_depth / cos_axis : 1e6;
+                const RayFog r = marcher.trace(view.eye, w, t_max, scratch);
+                const std::size_t k = std::size_t(y) * out.width + x;
+                out.inscatter[k] = r.inscatter;
+                out.transmittance[k] = r.transmittance;
+                out.background[k] = r.surface;
+                if (r.hit_terrain)
+                    out.depth[k] = r.distance * cos_axis;
+                my_steps += r.steps;
+                my_knots += r.sun_knots;
+            }
+        steps += my_steps;
+        knots += my_knots;
+    };
+    int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
+    threads = std::clamp(threads, 1, std::max(1, out.height));
+    std::vector<std::thread> pool;
+    for (int k = 1; k < threads; ++k)
+        pool.emplace_back(work);
+    work();
+    for (std::thread& t : pool)
+        t.join();
+    out.steps = steps;
+    out.sun_knots = knots;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+}
+
+}  // namespace kiri::geometry

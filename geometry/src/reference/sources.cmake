@@ -1,0 +1,7 @@
+# Sources of geometry/src/reference: the CPU reference ray marcher (paths relative to geometry/)
+list(APPEND KIRI_GEOMETRY_SOURCES
+  src/reference/heightfield_ray.cpp
+  src/reference/shell_intervals.cpp
+  src/reference/fog_marcher.cpp
+  src/reference/reference_fog.cpp
+)
