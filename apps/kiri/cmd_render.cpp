@@ -1,6 +1,7 @@
 // `kiri render SCENE.json -o OUT.png`: renders a scene headless (EGL) and writes the PNG
 // atomically. The output folder is checked before any loading or rendering.
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -8,6 +9,8 @@
 
 #include "commands.hpp"
 #include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/reference_fog.hpp"
 #include "kiri/geometry/scene.hpp"
 #include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/terrain.hpp"
@@ -43,6 +46,41 @@ render::ParticleStyle to_style(const geometry::ParticleOptions& o)
     return s;
 }
 
+// The scene's fog (Medium and height fog) by the CPU reference ray marcher, tone mapped like the
+// shaders (exposure 0.7, gamma 2.2) over the reference's own terrain and sky.
+void render_reference(const geometry::Scene& scene, const geometry::Terrain& terrain, const render::Camera& camera,
+                      int width, int height, const std::string& out)
+{
+    const geometry::FroxelOptions options = geometry::world_froxel_options(scene);
+    std::optional<geometry::SceneFog> fog;
+    if (scene.fog)
+        fog = geometry::author_scene_fog(scene, terrain);
+    geometry::ReferenceView view;
+    view.eye = camera.position;
+    view.target = camera.target;
+    view.fov_y_deg = camera.fov_y_deg;
+    view.width = width;
+    view.height = height;
+    view.max_depth = options.far;
+    geometry::FogLighting light;
+    light.sun_direction = scene.sun.direction;
+    light.sun_radiance = scene.sun.color * scene.sun.intensity;
+    light.ambient = scene.sun.ambient;
+    light.terrain_shadows = options.terrain_shadows;
+    light.fog_shadows = options.fog_shadows;
+    light.scattering_octaves = options.scattering_octaves;
+    const geometry::ReferenceImage r = geometry::render_reference_fog({fog ? &fog->medium : nullptr, options.height_fog},
+                                                                      &terrain.heightfield(), view, light);
+    render::Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4, 255)};
+    for (std::size_t k = 0; k < r.inscatter.size(); ++k) {
+        const glm::dvec3 c = r.composed(k);
+        for (int ch = 0; ch < 3; ++ch)
+            image.rgba[4 * k + std::size_t(ch)] =
+                std::uint8_t(std::lround(255.0 * std::pow(1.0 - std::exp(-c[ch] * 0.7), 1.0 / 2.2)));
+    }
+    render::write_png_atomic(out, image);
+}
+
 void run(const RenderArgs& a)
 {
     const auto start = std::chrono::steady_clock::now();
@@ -54,6 +92,13 @@ void run(const RenderArgs& a)
     const int width = a.width > 0 ? a.width : scene.image.width;
     const int height = a.height > 0 ? a.height : scene.image.height;
 
+    if (a.mode == "reference") {  // the CPU judge: slow, no GL
+        render_reference(scene, terrain, camera, width, height, a.out);
+        std::printf("%s\n", a.out.c_str());
+        std::fprintf(stderr, "kiri render: %dx%d, mode reference, %.2f s\n", width, height,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        return;
+    }
     const auto context = render::create_headless_context();
     render::Renderer renderer;
     renderer.set_terrain(terrain);
@@ -70,6 +115,14 @@ void run(const RenderArgs& a)
         fog = geometry::author_scene_fog(scene, terrain);
         particles = geometry::sample_particles(fog->medium, scene.particles, scene.file.string());
         renderer.set_particles(*particles, to_style(scene.particles));
+    }
+    if (mode == "froxel") {  // the fog as a volume (docs/froxel.md): the Medium and the height fog
+        const geometry::FroxelOptions options = geometry::world_froxel_options(scene);
+        if (!scene.fog && !options.height_fog.enabled())
+            throw InputError(a.scene, "/fog", "--mode froxel needs a fog section or a froxel height fog");
+        if (scene.fog)
+            fog = geometry::author_scene_fog(scene, terrain);
+        renderer.set_froxel_fog(fog ? &fog->medium : nullptr, options);
     }
     const render::Image image = renderer.render(camera, width, height);
     render::write_png_atomic(a.out, image);
@@ -98,8 +151,9 @@ void add_render_command(CLI::App& app)
     sub->add_option("--camera", a->camera, "camera name from the scene (default: its first)");
     sub->add_option("--mode", a->mode,
                     "what to draw: terrain, layers (the fog's layer stack), particles (the fog as lit particles), "
+                    "froxel (the fog as a volume), reference (the CPU reference ray marcher of that volume: slow), "
                     "auto (layers when the scene has fog)")
-        ->check(CLI::IsMember({"auto", "terrain", "layers", "particles"}));
+        ->check(CLI::IsMember({"auto", "terrain", "layers", "particles", "froxel", "reference"}));
     sub->callback([a] { run(*a); });
 }
 

@@ -8,11 +8,14 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "frame_context.hpp"
+#include "froxel_pass.hpp"
 #include "gl_debug.hpp"
+#include "kiri/geometry/froxel_options.hpp"
 #include "kiri/geometry/terrain.hpp"
 #include "layers_pass.hpp"
 #include "overlay_pass.hpp"
 #include "particles_pass.hpp"
+#include "pass_timer.hpp"
 #include "render_targets.hpp"
 #include "sky_pass.hpp"
 #include "terrain_pass.hpp"
@@ -22,34 +25,7 @@ namespace kiri::render {
 
 using detail::FrameContext;
 
-// A GL_TIME_ELAPSED query around one pass; results are read after the frame's readback,
-// when the GPU has finished anyway.
-class PassTimer {
-public:
-    explicit PassTimer(std::string name) : name_(std::move(name)), query_(detail::make_query(GL_TIME_ELAPSED)) {}
-    void begin()
-    {
-        cpu_start_ = std::chrono::steady_clock::now();
-        glBeginQuery(GL_TIME_ELAPSED, query_.get());
-    }
-    void end()
-    {
-        glEndQuery(GL_TIME_ELAPSED);
-        cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start_).count();
-    }
-    PassTime result() const
-    {
-        GLuint64 ns = 0;
-        glGetQueryObjectui64v(query_.get(), GL_QUERY_RESULT, &ns);
-        return {name_, double(ns) * 1e-6, cpu_ms_};
-    }
-
-private:
-    std::string name_;
-    detail::Query query_;
-    std::chrono::steady_clock::time_point cpu_start_;
-    double cpu_ms_ = 0.0;
-};
+using detail::PassTimer;
 
 struct Renderer::Impl {
     detail::SkyPass sky;
@@ -58,6 +34,7 @@ struct Renderer::Impl {
     detail::OverlayPass overlays;
     detail::ToneMapPass tonemap;
     detail::ParticlesPass particles;
+    std::unique_ptr<detail::FroxelPass> froxel;  // built on first use
     double layer_scale = 0.5;
     bool layers_multisampled = false;
     detail::RenderTargets targets;
@@ -118,6 +95,26 @@ void Renderer::set_particles(const geometry::ParticleCloud& cloud, const Particl
 void Renderer::clear_particles() { impl_->particles.clear(); }
 
 const AttenuationBuffer& Renderer::attenuation() const { return impl_->particles.buffer(); }
+void Renderer::set_froxel_fog(const geometry::Medium* medium, const geometry::FroxelOptions& options)
+{
+    if (!impl_->froxel)
+        impl_->froxel = std::make_unique<detail::FroxelPass>();
+    impl_->froxel->set_fog(medium, options);
+}
+
+void Renderer::clear_froxel_fog()
+{
+    if (impl_->froxel)
+        impl_->froxel->clear();
+}
+
+FogBuffer Renderer::read_froxel_fog()
+{
+    Impl& r = *impl_;
+    if (!r.froxel || !r.froxel->enabled() || !r.last_frame)
+        return {};
+    return r.froxel->read_fog(*r.last_frame, r.terrain);
+}
 
 void Renderer::draw(const Camera& camera, int width, int height)
 {
@@ -128,13 +125,18 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.layers.extend_bounds(scene_min, scene_max);
     r.overlays.extend_bounds(scene_min, scene_max);
     r.particles.extend_bounds(scene_min, scene_max);
+    const detail::FroxelPass* fog = r.froxel && r.froxel->enabled() ? r.froxel.get() : nullptr;
+    if (fog)
+        r.froxel->extend_bounds(scene_min, scene_max);
     const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
+    if (fog)  // before the scene: terrain and sky read the volume
+        r.froxel->update(frame, r.terrain);
     r.targets.bind_for_drawing();
     r.sky_timer.begin();
-    r.sky.draw(frame);
+    r.sky.draw(frame, fog);
     r.sky_timer.end();
     r.terrain_timer.begin();
-    r.terrain.draw(frame);
+    r.terrain.draw(frame, fog);
     r.terrain_timer.end();
     if (r.layers_multisampled) {  // layers straight into the multisampled frame
         r.layers_timer.begin();
@@ -185,6 +187,10 @@ void Renderer::draw(const Camera& camera, int width, int height)
     }
     if (overlays)
         r.stats.passes.push_back(r.overlays_timer.result());
+    if (fog) {
+        fog->append_timings(r.stats.passes);
+        r.stats.froxel = fog->stats();
+    }
     r.stats.uploads = std::exchange(r.pending_uploads, 0);
     r.stats.layers = r.layers.last_layer_count();
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -8,7 +8,8 @@ namespace kiri::render::detail {
 class SkyPass {
 public:
     SkyPass();
-    void draw(const FrameContext& frame) const;
+    //! `fog` (may be null): the froxel fog seen against the sky (froxel_apply.glsl).
+    void draw(const FrameContext& frame, const class FroxelPass* fog = nullptr) const;
 
 private:
     ShaderProgram program_;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "froxel_pass.hpp"
 #include "kiri/geometry/terrain.hpp"
 
 namespace kiri::render::detail {
@@ -55,7 +56,10 @@ std::vector<std::uint32_t> grid_indices(int nx, int ny)
 
 }  // namespace
 
-TerrainPass::TerrainPass() : program_({"terrain.vert", "terrain.frag"}) {}
+TerrainPass::TerrainPass()
+    : program_({"terrain.vert", "terrain.frag", "froxel_common.glsl", "froxel_apply.glsl", "terrain_shadow.glsl"})
+{
+}
 
 bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggeration)
 {
@@ -92,10 +96,22 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
     return true;
 }
 
-void TerrainPass::draw(const FrameContext& frame) const
+void TerrainPass::draw_mesh() const
 {
     if (!has_terrain())
         return;
+    glBindVertexArray(vao_.get());
+    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+}
+
+void TerrainPass::draw(const FrameContext& frame, const FroxelPass* fog) const
+{
+    if (!has_terrain())
+        return;
+    if (fog)
+        fog->bind_apply(program_, true);
+    else
+        FroxelPass::bind_none(program_);
     program_.set("u_view_projection", frame.view_projection);
     program_.set("u_eye", frame.eye);
     program_.set("u_sun_direction", frame.sun_direction);

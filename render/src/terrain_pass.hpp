@@ -19,7 +19,13 @@ public:
     //! Returns true when it had to upload (the terrain or the exaggeration changed).
     bool set_terrain(const geometry::Terrain& terrain, double exaggeration);
     bool has_terrain() const { return index_count_ > 0; }
-    void draw(const FrameContext& frame) const;
+    //! Draws the terrain; `fog` (may be null) sets the froxel fog's apply and the sun's shadow
+    //! map on the terrain's program (froxel_apply.glsl, terrain_shadow.glsl).
+    void draw(const FrameContext& frame, const class FroxelPass* fog = nullptr) const;
+    //! Draws the mesh with whatever program is bound (positions at attribute 0): depth passes.
+    void draw_mesh() const;
+    //! What is uploaded (changes when the terrain or the exaggeration do).
+    const void* identity() const { return uploaded_heights_; }
     glm::dvec3 bounds_min() const { return min_; }
     glm::dvec3 bounds_max() const { return max_; }
 

@@ -315,8 +315,8 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
     }
     const double cos_sun = glm::dot(w, sun_);
     const double albedo_m = fog_.medium ? fog_.medium->options().albedo : 0.0;
-    const double phase_m = fog_.medium ? henyey_greenstein(cos_sun, fog_.medium->options().anisotropy) : 0.0;
-    const double albedo_h = fog_.height_fog.albedo, phase_h = henyey_greenstein(cos_sun, fog_.height_fog.anisotropy);
+    const double g_m = fog_.medium ? fog_.medium->options().anisotropy : 0.0;
+    const double albedo_h = fog_.height_fog.albedo, g_h = fog_.height_fog.anisotropy;
     const bool sun_term = light_.fog_shadows || (light_.terrain_shadows && terrain_);
     if (sun_term) {
         place_knots(o, w, s);
@@ -341,9 +341,11 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
                 visible = 0.0;
             }
         }
-        const glm::dvec3 sun = light_.sun_radiance * (visible * std::exp(-tau_sun));
-        const glm::dvec3 source = albedo_m * st.sigma_medium * (sun * phase_m + light_.ambient) +
-                                  albedo_h * st.sigma_height * (sun * phase_h + light_.ambient);
+        const int octaves = light_.scattering_octaves;
+        const double sun_m = st.sigma_medium > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_m, tau_sun, octaves) : 0.0;
+        const double sun_h = st.sigma_height > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_h, tau_sun, octaves) : 0.0;
+        const glm::dvec3 source = albedo_m * st.sigma_medium * (light_.sun_radiance * (visible * sun_m) + light_.ambient) +
+                                  albedo_h * st.sigma_height * (light_.sun_radiance * (visible * sun_h) + light_.ambient);
         const double sigma = st.sigma_medium + st.sigma_height;
         r.inscatter += std::exp(-st.tau_before) * source * step_weight(sigma, st.dt);
         tau = st.tau_before + sigma * st.dt;

@@ -34,4 +34,21 @@ struct FogLight {
 glm::dvec3 fog_source(const FogLight& light, const MediumOptions& optics, double cos_theta, double tau_sun,
                       double visibility = 1.0);
 
+//! How a volume renderer (the froxels, the CPU reference) is lit: the sun's direction, the
+//! FogLight values and which shadows it draws. The source is J above, with the sun's part
+//! pi sun_radiance V sun_scattering(cos_theta, g, tau_sun, scattering_octaves) (tests check it
+//! against fog_source).
+struct FogLighting {
+    glm::dvec3 sun_direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised where used)
+    glm::dvec3 sun_radiance{3.0};              //!< FogLight::sun: the scene's sun colour times intensity
+    glm::dvec3 ambient{0.25, 0.3, 0.38};       //!< FogLight::ambient: isotropic sky radiance
+    bool terrain_shadows = true;               //!< visibility: the terrain hides the sun
+    bool fog_shadows = true;                   //!< tau_sun: the fog dims the sun on its way
+    int scattering_octaves = 1;                //!< kiri render passes the Medium's (MediumOptions::scattering_octaves)
+};
+
+//! The sum over the octaves of J above, a^i p_HG(cos_theta, c^i g) exp(-b^i tau_sun) (1/sr);
+//! g is clamped strictly inside (-1, 1) by henyey_greenstein, octaves to [1, 8].
+double sun_scattering(double cos_theta, double g, double tau_sun, int octaves);
+
 }  // namespace kiri::geometry

@@ -32,7 +32,8 @@ struct FroxelOptions {
     int density_samples = 2;       //!< samples of the density per froxel, spread over its depth, 1..16
     int sun_steps = 12;            //!< steps of the sun's optical depth through the Medium, 1..64
     bool terrain_shadows = true;   //!< the terrain's shadow map (ESM) darkens the fog and the ground
-    bool fog_shadows = true;       //!< the fog dims the sun on its way (the lighting model's T_sun)
+    bool fog_shadows = true;       //!< the fog dims the sun on its way (the lighting model's tau_sun)
+    int scattering_octaves = 1;    //!< 1..8: 1 single scattering, more: multiple-scattering octaves (fog_lighting.hpp)
     int shadow_map_size = 1024;    //!< texels a side of the light-space terrain shadow map, 64..8192
     double esm_sharpness = 4.0;    //!< ESM exponent per shadow-map texel of depth, > 0
     HeightFog height_fog;          //!< optional global height fog

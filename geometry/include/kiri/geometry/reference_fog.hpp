@@ -23,6 +23,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/fog_lighting.hpp"
 #include "kiri/geometry/height_fog.hpp"
 #include "kiri/geometry/heightfield.hpp"
 #include "kiri/geometry/medium.hpp"
@@ -34,15 +35,6 @@ struct FogVolume {
     const Medium* medium = nullptr;
     HeightFog height_fog;
     bool empty() const { return (!medium || !(medium->max_extinction() > 0.0)) && !height_fog.enabled(); }
-};
-
-//! The lighting model shared by every volume renderer.
-struct FogLighting {
-    glm::dvec3 sun_direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised where used)
-    glm::dvec3 sun_radiance{3.0};              //!< E_sun: the scene's sun colour times intensity
-    glm::dvec3 ambient{0.25, 0.3, 0.38};       //!< isotropic sky radiance
-    bool terrain_shadows = true;               //!< V: the terrain hides the sun
-    bool fog_shadows = true;                   //!< T_sun: the fog dims the sun on its way
 };
 
 //! A pinhole view like render::Camera: rays through pixel centres, row 0 at the top.

@@ -17,8 +17,10 @@
 
 namespace kiri::geometry {
 class Terrain;
+class Medium;
 struct LayerBase;
 struct LayerOptions;
+struct FroxelOptions;
 }
 
 namespace kiri::render {
@@ -42,6 +44,22 @@ struct PassTime {
     double cpu_ms = 0.0;
 };
 
+//! What the froxel fog did in a frame.
+struct FroxelStats {
+    bool enabled = false;    //!< set_froxel_fog was called
+    bool visible = false;    //!< the fog was in view (fog off-screen costs nothing)
+    bool updated = false;    //!< its passes ran this frame (not for a static view and fog)
+    int updates = 0;         //!< frames whose passes ran since set_froxel_fog
+    int shadow_map_updates = 0;
+};
+
+//! Float pixels, rows top to bottom: the fog a frame's pixels received (froxel fog).
+struct FogBuffer {
+    int width = 0, height = 0;
+    std::vector<float> rgba;   //!< in-scattered radiance (linear RGB) and transmittance per pixel
+    std::vector<float> depth;  //!< view depth of the surface per pixel; -1 for sky
+};
+
 struct FrameStats {
     //! sky, terrain, layers, resolve, and overlays when any overlay is visible.
     std::vector<PassTime> passes;
@@ -50,6 +68,7 @@ struct FrameStats {
     int layers = 0;   //!< fog layers above the base drawn (0: none, or culled off-screen)
     int particles = 0;              //!< particle billboards drawn
     int attenuation_rebuilds = 0;   //!< attenuation buffer builds during this frame (0 when nothing changed)
+    FroxelStats froxel;
 };
 
 class Renderer {
@@ -82,6 +101,14 @@ public:
     void clear_particles();
     //! The particles' attenuation buffer (its grid, memory, build count and time).
     const AttenuationBuffer& attenuation() const;
+    //! Froxel volumetric fog (docs/froxel.md) of `medium` (kept by pointer: it must outlive the
+    //! renderer's use of it; null for the options' height fog alone), drawn over the terrain and
+    //! the sky. The passes rerun only when the view, the sun or the fog (e.g. its time) change.
+    //! \throw kiri::InputError for options out of range.
+    void set_froxel_fog(const geometry::Medium* medium, const geometry::FroxelOptions& options);
+    void clear_froxel_fog();
+    //! The froxel fog each pixel of the last frame received at its depth (empty without it).
+    FogBuffer read_froxel_fog();
     //! Adds or replaces the overlay mesh `name` (overlay_mesh.hpp), uploaded once here; its
     //! style is kept. \throw kiri::Error naming it when its arrays disagree.
     void set_overlay(const std::string& name, const OverlayMesh& mesh);

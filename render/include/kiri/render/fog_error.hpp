@@ -1,0 +1,28 @@
+#pragma once
+//! \file fog_error.hpp
+//! How far a GPU fog is from the CPU reference (geometry/reference_fog.hpp): both composed over
+//! the reference's background (what the fog does to the picture), per pixel the relative error
+//! of luminance, over the pixels the fog changes by more than 1 %.
+#include <cmath>
+
+#include "kiri/geometry/reference_fog.hpp"
+#include "kiri/render/renderer.hpp"
+
+namespace kiri::render {
+
+struct FogError {
+    double mean_relative = 0.0;  //!< mean of |Y - Y_ref| / Y_ref over the fog pixels
+    double p99_relative = 0.0;   //!< the worst 1 % of the fog pixels are at least this far off
+    double worst_relative = 0.0;
+    double mean_transmittance_error = 0.0;  //!< mean |T - T_ref| over the fog pixels
+    double mean_inscatter_relative = 0.0;   //!< the fog alone: mean |Y_in - Y_in,ref| / Y_in,ref
+    int fog_pixels = 0;          //!< pixels compared: the reference's fog changes them by > 1 %
+    int silhouette_pixels = 0;   //!< left out: the two see different surfaces (depths differ > 1 %)
+};
+
+//! Over the pixels whose reference surface lies between view depths min_depth and max_depth
+//! (sky: +inf). \throw kiri::Error when the sizes differ.
+FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& reference, double min_depth = 0.0,
+                     double max_depth = HUGE_VAL);
+
+}  // namespace kiri::render

@@ -1,0 +1,71 @@
+#version 450 core
+// Pass 2: the lighting per froxel (geometry/fog_lighting.hpp, docs/froxel.md) as J = S / sigma_t,
+// the in-scattered radiance per unit of extinction, S = albedo sigma (E_sun V P + L_amb) summed
+// over the media: V from the terrain's exponential shadow map (terrain_shadow.glsl), P the sun's
+// phase through tau_sun over the scattering octaves, tau_sun the optical depth towards the sun
+// (height fog in closed form, the Medium in u_sun_steps steps to the edge of its box). J is
+// smooth where the density is not: it is what the temporal filter blends. Froxels without fog
+// are skipped.
+layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(rgba16f, binding = 0) writeonly uniform image3D o_light;
+uniform sampler3D u_density;
+uniform vec3 u_jitter;
+uniform float u_sun_jitter;
+uniform vec3 u_sun_direction;
+uniform vec3 u_sun_radiance;
+uniform vec3 u_ambient;
+uniform vec2 u_albedo;        // medium, height fog
+uniform vec2 u_anisotropy;    // medium, height fog
+uniform int u_fog_shadows;
+uniform int u_sun_steps;
+uniform int u_octaves;        // 1: single scattering
+uniform vec3 u_box_min;       // the Medium's bounds
+uniform vec3 u_box_max;
+float sun_optical_depth(vec3 p)
+{
+    float tau = height_fog_depth_up(p.z, u_sun_direction.z);
+    if (u_md_on == 0)
+        return tau;
+    // Exit of the Medium's box along the sun (slab test).
+    vec3 inv = 1.0 / u_sun_direction;
+    vec3 a = (u_box_min - p) * inv, b = (u_box_max - p) * inv;
+    vec3 far_t = max(a, b), near_t = min(a, b);
+    float t0 = max(max(near_t.x, near_t.y), max(near_t.z, 0.0));
+    float t1 = min(min(far_t.x, far_t.y), far_t.z);
+    if (!(t1 > t0))
+        return tau;
+    // Steps growing quadratically from the point: fine where the sun enters the fog nearby.
+    float n = float(u_sun_steps);
+    for (int k = 0; k < u_sun_steps; ++k) {
+        float u0 = float(k) / n, u1 = float(k + 1) / n;
+        float s0 = t0 + (t1 - t0) * u0 * u0, s1 = t0 + (t1 - t0) * u1 * u1;
+        float s = mix(s0, s1, u_sun_jitter);
+        tau += medium_sigma(p + u_sun_direction * s) * (s1 - s0);
+    }
+    return tau;
+}
+
+void main()
+{
+    ivec3 id = ivec3(gl_GlobalInvocationID);
+    if (any(greaterThanEqual(id, u_fx_size)))
+        return;
+    vec4 density = texelFetch(u_density, id, 0);
+    float sigma = density.x + density.y;
+    if (!(sigma > 0.0)) {
+        imageStore(o_light, id, vec4(0.0));
+        return;
+    }
+    vec2 range = fx_tile_range(id.xy);
+    vec2 uv = (vec2(id.xy) + u_jitter.xy) / vec2(u_fx_size.xy);
+    float d0 = fx_slice_depth(float(id.z) / float(u_fx_size.z), range);
+    float d1 = fx_slice_depth(float(id.z + 1) / float(u_fx_size.z), range);
+    vec3 p = fx_world(uv, mix(d0, d1, density.z));
+    float cos_theta = dot(normalize(p - u_fx_eye), u_sun_direction);
+    float visible = terrain_visibility(p, u_ts_bias);
+    float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(p) : 0.0;
+    vec3 sun = u_sun_radiance * visible;
+    vec3 s = u_albedo.x * density.x * (sun * sun_scattering(cos_theta, u_anisotropy.x, tau, u_octaves) + u_ambient) +
+             u_albedo.y * density.y * (sun * sun_scattering(cos_theta, u_anisotropy.y, tau, u_octaves) + u_ambient);
+    imageStore(o_light, id, vec4(s / sigma, sigma));
+}

@@ -1,0 +1,80 @@
+// Library: the Medium (geometry/src/medium/medium.cpp) and the height fog
+// (geometry/src/volume/height_fog.cpp) as the reference evaluates them, and the HG phase.
+uniform int u_md_on;
+uniform sampler2D u_md_grid;     // RGBA32F: floor, bottom, top, coverage per grid sample (linear, clamp)
+uniform sampler2D u_md_noise;    // R32F: fog_noise_tile (linear, repeat)
+uniform vec2 u_md_origin;        // grid sample (0, 0)
+uniform vec2 u_md_last;          // grid sample (nx - 1, ny - 1)
+uniform vec2 u_md_cells;         // nx, ny
+uniform float u_md_extinction;   // sigma_t at density 1
+uniform float u_md_top_density;
+uniform float u_md_detail;
+uniform float u_md_tile;         // metres per noise tile (8 detail_scale)
+uniform float u_md_layers;       // l0: per-layer noise shift
+uniform vec2 u_md_drift;         // wind * time
+uniform float u_md_time;
+uniform float u_md_half_life;
+uniform vec4 u_hf;               // height fog: extinction, base, scale height, 0
+
+float medium_density(vec3 p)
+{
+    if (u_md_on == 0 || p.x < u_md_origin.x || p.y < u_md_origin.y || p.x > u_md_last.x || p.y > u_md_last.y)
+        return 0.0;
+    vec2 st = ((p.xy - u_md_origin) / (u_md_last - u_md_origin) * (u_md_cells - 1.0) + 0.5) / u_md_cells;
+    vec4 c = textureLod(u_md_grid, st, 0.0);  // floor, bottom, top, coverage
+    if (c.w <= 0.0 || p.z < c.x || p.z > c.z || !(c.z > c.y))
+        return 0.0;
+    float h = clamp((p.z - c.y) / (c.z - c.y), 0.0, 1.0);
+    float d = c.w * (1.0 - (1.0 - u_md_top_density) * h);
+    if (u_md_detail > 0.0) {
+        vec2 noise_st = (p.xy - u_md_drift) / u_md_tile + h * u_md_layers * vec2(0.137, 0.071);
+        float n = textureLod(u_md_noise, noise_st, 0.0).r;
+        d *= 1.0 - u_md_detail + u_md_detail * smoothstep(0.25, 0.75, n);
+    }
+    if (u_md_half_life > 0.0 && u_md_time > 0.0)
+        d *= exp2(-u_md_time / u_md_half_life * (1.0 + h));
+    return d;
+}
+
+float medium_sigma(vec3 p) { return u_md_extinction * medium_density(p); }
+
+float height_fog_sigma(float z)
+{
+    if (u_hf.x <= 0.0)
+        return 0.0;
+    return z <= u_hf.y ? u_hf.x : u_hf.x * exp(-(z - u_hf.y) / u_hf.z);
+}
+
+// Optical depth of the height fog from altitude z to infinity along a direction rising by
+// rise per metre (> 0).
+float height_fog_depth_up(float z, float rise)
+{
+    if (u_hf.x <= 0.0)
+        return 0.0;
+    if (rise <= 0.0)
+        return 1e30;
+    float below = max(u_hf.y - z, 0.0);
+    return (u_hf.x * below + height_fog_sigma(max(z, u_hf.y)) * u_hf.z) / rise;
+}
+
+// Henyey-Greenstein, g clamped strictly inside (-1, 1) like geometry::henyey_greenstein.
+float hg_phase(float cos_theta, float g)
+{
+    g = clamp(g, -0.999, 0.999);
+    float d = 1.0 + g * g - 2.0 * g * clamp(cos_theta, -1.0, 1.0);
+    return (1.0 - g * g) / (12.566370614359172 * d * sqrt(d));
+}
+
+// The sun's phase and transmittance over the scattering octaves (geometry/fog_lighting.hpp):
+// octave i scatters 2^-i of the sun through 2^-i of the optical depth with 2^-i of g.
+float sun_scattering(float cos_theta, float g, float tau, int octaves)
+{
+    float sum = 0.0, weight = 1.0;
+    for (int i = 0; i < octaves; ++i) {
+        sum += weight * exp(-tau) * hg_phase(cos_theta, g);
+        weight *= 0.5;
+        tau *= 0.5;
+        g *= 0.5;
+    }
+    return sum;
+}

@@ -1,0 +1,64 @@
+#version 450 core
+// Per tile: the depths its slices span. Standard: [near, far]. Fog-aware: from the nearest
+// shell entry to the farthest shell exit in front of the ground over the tile's raster samples
+// (and their neighbours), padded; where fog may be anywhere (eye inside the shell, height
+// fog): from near to the farthest ground. Fog-aware ranges end at the ground on the tile's
+// central ray (the apply never reads a column beyond it). Empty tiles get first >= last. The
+// third channel keeps that central ground depth (3e38: sky) for the apply.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = 0) writeonly uniform image2D o_tiles;
+uniform sampler2D u_first;   // nearest shell depth per raster sample (3e38: none)
+uniform sampler2D u_last;    // farthest shell depth (0: none)
+uniform sampler2D u_ground;  // the terrain's depth buffer at raster size
+uniform sampler2D u_centres; // the terrain's depth buffer at tile size: the tiles' central rays
+uniform ivec2 u_raster;
+uniform ivec2 u_tiles;
+uniform float u_near_plane;  // of the raster's projection
+uniform float u_far_plane;
+uniform float u_near;        // of the volume
+uniform float u_far;
+uniform int u_mode;          // 0 standard, 1 shell, 2 everywhere in front of the ground
+uniform float u_pad;         // relative padding of fog-aware ranges
+
+float view_depth(float d)
+{
+    if (d >= 1.0)
+        return 3e38;  // sky: as far as the volume goes
+    float z = d * 2.0 - 1.0;
+    return 2.0 * u_near_plane * u_far_plane / (u_far_plane + u_near_plane - z * (u_far_plane - u_near_plane));
+}
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (t.x >= u_tiles.x || t.y >= u_tiles.y)
+        return;
+    float centre_depth = texelFetch(u_centres, t, 0).r;
+    float centre_ground = view_depth(centre_depth);
+    if (u_mode == 0) {
+        imageStore(o_tiles, t, vec4(u_near, u_far, centre_ground, 0.0));
+        return;
+    }
+    ivec2 r0 = t * u_raster / u_tiles;
+    ivec2 r1 = max((t + 1) * u_raster / u_tiles, r0 + 1);
+    float first = 3e38, last = 0.0;
+    for (int y = r0.y - 1; y <= r1.y; ++y)
+        for (int x = r0.x - 1; x <= r1.x; ++x) {
+            ivec2 r = clamp(ivec2(x, y), ivec2(0), u_raster - 1);
+            float ground = view_depth(texelFetch(u_ground, r, 0).r);
+            if (u_mode == 2) {
+                first = u_near;
+                last = max(last, ground);
+                continue;
+            }
+            float a = texelFetch(u_first, r, 0).r;
+            float b = min(texelFetch(u_last, r, 0).r, ground);
+            if (a < b) {
+                first = min(first, a);
+                last = max(last, b);
+            }
+        }
+    first = max(first * (1.0 - u_pad), u_near);
+    last = min(min(last * (1.0 + u_pad), u_far), centre_ground);
+    imageStore(o_tiles, t, last > first ? vec4(first, last, centre_ground, 0.0) : vec4(0.0, 0.0, centre_ground, 0.0));
+}

@@ -1,0 +1,20 @@
+// Library: the terrain's shadow from the sun, an exponential shadow map (Annen et al. 2008) in
+// light space, low-passed in log space (render/src/shadow_map_pass.cpp): a point at light depth
+// d behind occluders at depth o is lit exp(k (o - d)), clamped to 1. The low-pass keeps the
+// volume's shafts free of the flicker a sharp map gives.
+uniform int u_ts_on;
+uniform sampler2D u_ts_esm;      // k * occluder depth (m), low-passed in log space
+uniform mat4 u_ts_matrix;        // world -> shadow map [0, 1]^2 and light depth (m)
+uniform float u_ts_k;            // 1/m
+uniform float u_ts_bias;         // m: the receivers' offset towards the sun
+
+float terrain_visibility(vec3 p, float bias)
+{
+    if (u_ts_on == 0)
+        return 1.0;
+    vec3 l = (u_ts_matrix * vec4(p, 1.0)).xyz;
+    if (any(lessThan(l.xy, vec2(0.0))) || any(greaterThan(l.xy, vec2(1.0))))
+        return 1.0;
+    float occluder = textureLod(u_ts_esm, l.xy, 0.0).r;
+    return clamp(exp(occluder - u_ts_k * (l.z - bias)), 0.0, 1.0);
+}

@@ -1,0 +1,470 @@
+#include "froxel_pass.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <cstdio>
+#include <cstdlib>
+
+#include <glm/geometric.hpp>
+
+#include "kiri/geometry/medium.hpp"
+#include "terrain_pass.hpp"
+
+namespace kiri::render::detail {
+namespace {
+
+// Texture units: the apply's (8..10) stay clear of the terrain's and layers' (0..2).
+constexpr int unit_tiles = 8, unit_volume = 9, unit_esm = 10, unit_medium = 11;  // 11, 12
+constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
+// The temporal filter settles over one Halton cycle; after it a static frame reruns nothing.
+constexpr int halton_cycle = 16;
+enum Stage { shadow_map, tiles, density, lighting, temporal, integrate, stage_count };
+const char* const stage_names[stage_count] = {"froxel shadow map", "froxel tiles", "froxel density",
+                                              "froxel lighting",   "froxel temporal", "froxel integrate"};
+
+double halton(int index, int base)
+{
+    double f = 1.0, r = 0.0;
+    for (; index > 0; index /= base) {
+        f /= base;
+        r += f * (index % base);
+    }
+    return r;
+}
+
+Texture make_volume(const glm::ivec3& size, GLenum format)
+{
+    Texture t = make_texture(GL_TEXTURE_3D);
+    glTextureStorage3D(t.get(), 1, format, size.x, size.y, size.z);
+    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+Texture make_tiles(const glm::ivec2& size)
+{
+    Texture t = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(t.get(), 1, GL_RGBA32F, size.x, size.y);
+    glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return t;
+}
+
+// Exactly zero components would make the box exit of the sun march 0 * inf.
+glm::vec3 safe_direction(glm::vec3 d)
+{
+    for (int c = 0; c < 3; ++c)
+        if (std::abs(d[c]) < 1e-6f)
+            d[c] = 1e-6f;
+    return glm::normalize(d);
+}
+
+}  // namespace
+
+struct FroxelPass::Volumes {
+    glm::ivec3 size{0};
+    Texture density, light, resolved[2], integrated, tiles[2];
+};
+
+FroxelPass::FroxelPass()
+    : v_(std::make_unique<Volumes>()),
+      density_({"froxel_density.comp", "froxel_common.glsl", "froxel_medium.glsl"}),
+      lighting_({"froxel_lighting.comp", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl"}),
+      temporal_({"froxel_temporal.comp", "froxel_common.glsl"}),
+      integrate_({"froxel_integrate.comp", "froxel_common.glsl"})
+{
+    for (const char* name : stage_names)
+        timers_.emplace_back(name);
+    timer_ran_.assign(stage_count, false);
+}
+
+FroxelPass::~FroxelPass() = default;
+
+void FroxelPass::set_fog(const geometry::Medium* medium, const geometry::FroxelOptions& options)
+{
+    geometry::validate_froxel_options(options);
+    if (medium && !(medium->max_extinction() > 0.0))
+        medium = nullptr;
+    if (medium != medium_ || (medium && medium_gpu_.set(medium))) {
+        medium_gpu_.set(medium);
+        shell_ = medium ? build_shell_mesh(*medium) : ShellMesh{};
+        tile_bounds_.set_shell(shell_);
+    }
+    medium_ = medium;
+    options_ = options;
+    if (!enabled_)
+        stats_ = {};
+    enabled_ = true;
+    stats_.enabled = true;
+}
+
+void FroxelPass::clear()
+{
+    enabled_ = false;
+    apply_ = false;
+    medium_ = nullptr;
+    history_valid_ = false;
+    key_.clear();
+    stats_ = {};
+}
+
+void FroxelPass::extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const
+{
+    if (!enabled_ || !medium_)
+        return;
+    lo = glm::min(lo, medium_->bounds().min);
+    hi = glm::max(hi, medium_->bounds().max);
+}
+
+bool FroxelPass::visible(const FrameContext& frame) const
+{
+    if (options_.height_fog.enabled())
+        return true;  // everywhere
+    if (!medium_)
+        return false;
+    const geometry::Bounds3& b = medium_->bounds();
+    std::array<glm::dvec4, 8> clip;
+    for (int c = 0; c < 8; ++c)
+        clip[c] = frame.projection * frame.view *
+                  glm::dvec4(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z, 1.0);
+    for (int axis = 0; axis < 3; ++axis)
+        for (double side : {-1.0, 1.0}) {
+            bool all_out = true;
+            for (const glm::dvec4& q : clip)
+                all_out = all_out && side * q[axis] > q.w;
+            if (all_out)
+                return false;
+        }
+    return true;
+}
+
+std::vector<double> FroxelPass::make_key(const FrameContext& frame, const TerrainPass& terrain) const
+{
+    // Everything the volume depends on; equal keys on consecutive frames: nothing to redo.
+    std::vector<double> k;
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+            k.push_back(frame.view[c][r]);
+    k.insert(k.end(), {frame.projection[0][0], frame.projection[1][1], double(frame.width), double(frame.height)});
+    for (const glm::vec3& v : {frame.sun_direction, frame.sun_radiance, frame.ambient})
+        k.insert(k.end(), {v.x, v.y, v.z});
+    std::uintptr_t ids[2] = {reinterpret_cast<std::uintptr_t>(medium_),
+                             reinterpret_cast<std::uintptr_t>(terrain.identity())};
+    for (std::uintptr_t id : ids)
+        k.push_back(double(id));
+    if (medium_) {
+        const geometry::MediumOptions& o = medium_->options();
+        const geometry::MediumDetail& d = medium_->detail();
+        k.insert(k.end(), {o.extinction, o.albedo, o.anisotropy, o.top_density, d.detail, d.detail_scale, d.layers,
+                           d.wind.x, d.wind.y, d.time, d.dissipation_half_life});
+    }
+    const geometry::FroxelOptions& o = options_;
+    const geometry::HeightFog& h = o.height_fog;
+    k.insert(k.end(), {double(o.width), double(o.height), double(o.slices), double(o.distribution), o.power,
+                       o.log2_scale, o.near, o.far, double(o.fog_aware), double(o.temporal), o.history_weight,
+                       double(o.density_samples), double(o.sun_steps), double(o.terrain_shadows),
+                       double(o.fog_shadows), double(o.scattering_octaves), double(o.shadow_map_size), o.esm_sharpness, h.extinction, h.base,
+                       h.scale_height, h.albedo, h.anisotropy});
+    return k;
+}
+
+void FroxelPass::bind_layout(const ShaderProgram& p) const
+{
+    p.set("u_fx_size", v_->size);
+    p.set("u_fx_distribution", int(options_.distribution));
+    p.set("u_fx_power", float(options_.power));
+    p.set("u_fx_log2_scale", float(options_.log2_scale));
+    p.set("u_fx_tiles", unit_tiles);
+    p.set("u_fx_far", view_.far);
+    p.set("u_fx_eye", view_.eye);
+    p.set("u_fx_forward", view_.forward);
+    p.set("u_fx_right", view_.right);
+    p.set("u_fx_up", view_.up);
+    glBindTextureUnit(unit_tiles, v_->tiles[current_].get());
+}
+
+void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain)
+{
+    std::fill(timer_ran_.begin(), timer_ran_.end(), false);
+    stats_.updated = false;
+    stats_.visible = enabled_ && visible(frame);
+    apply_ = false;
+    if (!stats_.visible) {  // off-screen: no pass runs, no history survives
+        history_valid_ = false;
+        key_.clear();
+        return;
+    }
+    const glm::ivec3 size(options_.width, options_.height, options_.slices);
+    if (v_->size != size) {
+        v_->density = make_volume(size, GL_RGBA16F);
+        v_->light = make_volume(size, GL_RGBA16F);
+        v_->integrated = make_volume(size, GL_RGBA16F);
+        for (int k = 0; k < 2; ++k) {
+            v_->resolved[k] = make_volume(size, GL_RGBA16F);
+            v_->tiles[k] = make_tiles({size.x, size.y});
+        }
+        v_->size = size;
+        history_valid_ = false;
+        key_.clear();
+    }
+    const geometry::FroxelOptions& o = options_;
+    std::vector<double> key = make_key(frame, terrain);
+    if (key == key_) {
+        ++static_frames_;
+        if (!options_.temporal || static_frames_ >= halton_cycle) {
+            apply_ = true;  // the volume is as good as it gets: reuse it
+            return;
+        }
+    } else {
+        static_frames_ = 0;
+    }
+    // The history stays usable across view, sun and fog changes (reprojection and the clamp
+    // take care of them), not across a change of the volume's layout.
+    const std::vector<double> layout = {double(o.width), double(o.height), double(o.slices), double(o.distribution),
+                                        o.power, o.log2_scale, o.near, o.far, double(o.fog_aware)};
+    history_valid_ = history_valid_ && o.temporal && layout == layout_;
+    layout_ = layout;
+    key_ = std::move(key);
+    run_passes(frame, terrain);
+    apply_ = true;
+    stats_.updated = true;
+    ++stats_.updates;
+}
+
+void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain)
+{
+    const geometry::FroxelOptions& o = options_;
+    const glm::ivec3 size = v_->size;
+    // This frame's view (the previous one is kept for reprojection).
+    previous_ = view_;
+    current_ = 1 - current_;
+    view_.view_projection = frame.view_projection;
+    view_.eye = frame.eye;
+    const glm::dmat4& V = frame.view;
+    view_.forward = glm::vec3(-V[0][2], -V[1][2], -V[2][2]);
+    view_.right = glm::vec3(V[0][0], V[1][0], V[2][0]) / float(frame.projection[0][0]);
+    view_.up = glm::vec3(V[0][1], V[1][1], V[2][1]) / float(frame.projection[1][1]);
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    const double far_plane = p32 / (p22 + 1.0);
+    view_.near = float(o.near);
+    view_.far = float(o.far > 0.0 ? o.far : far_plane);
+    view_.far = std::max(view_.far, view_.near * 1.01f);
+    const int jitter_index = o.temporal ? frame_index_ % halton_cycle + 1 : 0;
+    const glm::vec3 jitter = o.temporal ? glm::vec3(float(halton(jitter_index, 2)), float(halton(jitter_index, 3)),
+                                                    float(halton(jitter_index, 5)))
+                                        : glm::vec3(0.5f);
+    const float sun_jitter = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
+    ++frame_index_;
+
+    // The sun's view of the terrain (kept while the sun and the terrain stay).
+    const bool shadows = o.terrain_shadows && terrain.has_terrain();
+    if (shadows) {
+        glm::dvec3 lo = terrain.bounds_min(), hi = terrain.bounds_max();
+        extend_bounds(lo, hi);
+        timers_[shadow_map].begin();
+        if (shadow_.update(terrain, frame.sun_direction, lo, hi, o.shadow_map_size, o.esm_sharpness))
+            ++stats_.shadow_map_updates;
+        timers_[shadow_map].end();
+        timer_ran_[shadow_map] = true;
+    }
+
+    // Tiles: the depths their slices span.
+    FroxelTileBounds::Mode mode = FroxelTileBounds::Mode::standard;
+    if (o.fog_aware) {
+        const bool everywhere = o.height_fog.enabled() || !medium_ ||
+                                shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
+        mode = everywhere ? FroxelTileBounds::Mode::ground : FroxelTileBounds::Mode::shell;
+    }
+    timers_[tiles].begin();
+    tile_bounds_.update(frame, terrain, mode, {size.x, size.y}, view_.near, view_.far, v_->tiles[current_].get());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    timers_[tiles].end();
+    timer_ran_[tiles] = true;
+
+    const GLuint groups_x = GLuint((size.x + 7) / 8), groups_y = GLuint((size.y + 7) / 8);
+    const geometry::HeightFog& haze = o.height_fog;
+    auto barrier = [] { glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); };
+
+    timers_[density].begin();
+    bind_layout(density_);
+    medium_gpu_.bind(density_, haze, unit_medium);
+    density_.set("u_samples", o.density_samples);
+    density_.use();
+    glBindImageTexture(0, v_->density.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups_x, groups_y, GLuint(size.z));
+    barrier();
+    timers_[density].end();
+    timer_ran_[density] = true;
+
+    timers_[lighting].begin();
+    bind_layout(lighting_);
+    medium_gpu_.bind(lighting_, haze, unit_medium);
+    shadow_.bind(lighting_, unit_esm, shadows);
+    lighting_.set("u_density", unit_density);
+    lighting_.set("u_jitter", jitter);
+    lighting_.set("u_sun_jitter", sun_jitter);
+    lighting_.set("u_sun_direction", safe_direction(frame.sun_direction));
+    lighting_.set("u_sun_radiance", frame.sun_radiance);
+    lighting_.set("u_ambient", frame.ambient);
+    const double albedo = medium_ ? medium_->options().albedo : 0.0, g = medium_ ? medium_->options().anisotropy : 0.0;
+    lighting_.set("u_albedo", glm::vec2(float(albedo), float(haze.albedo)));
+    lighting_.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
+    lighting_.set("u_fog_shadows", int(o.fog_shadows));
+    lighting_.set("u_sun_steps", o.sun_steps);
+    lighting_.set("u_octaves", o.scattering_octaves);
+    const glm::dvec3 box_lo = medium_ ? medium_->bounds().min : glm::dvec3(0.0);
+    const glm::dvec3 box_hi = medium_ ? medium_->bounds().max : glm::dvec3(0.0);
+    lighting_.set("u_box_min", glm::vec3(box_lo));
+    lighting_.set("u_box_max", glm::vec3(box_hi));
+    lighting_.use();
+    glBindTextureUnit(unit_density, v_->density.get());
+    glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups_x, groups_y, GLuint(size.z));
+    barrier();
+    timers_[lighting].end();
+    timer_ran_[lighting] = true;
+
+    GLuint lit = v_->light.get();
+    if (o.temporal) {
+        timers_[temporal].begin();
+        bind_layout(temporal_);
+        temporal_.set("u_current", unit_light);
+        temporal_.set("u_history", unit_history);
+        temporal_.set("u_history_tiles", unit_history_tiles);
+        temporal_.set("u_history_valid", int(history_valid_));
+        temporal_.set("u_weight", float(o.history_weight));
+        temporal_.set("u_previous_view_projection", previous_.view_projection);
+        temporal_.set("u_previous_eye", previous_.eye);
+        temporal_.set("u_previous_forward", previous_.forward);
+        temporal_.use();
+        glBindTextureUnit(unit_light, v_->light.get());
+        glBindTextureUnit(unit_history, v_->resolved[1 - current_].get());
+        glBindTextureUnit(unit_history_tiles, v_->tiles[1 - current_].get());
+        glBindImageTexture(0, v_->resolved[current_].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+        glDispatchCompute(groups_x, groups_y, GLuint(size.z));
+        barrier();
+        timers_[temporal].end();
+        timer_ran_[temporal] = true;
+        lit = v_->resolved[current_].get();
+        history_valid_ = true;
+    }
+
+    timers_[integrate].begin();
+    bind_layout(integrate_);
+    integrate_.set("u_light", unit_light);
+    integrate_.use();
+    glBindTextureUnit(unit_light, lit);
+    glBindImageTexture(0, v_->integrated.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glDispatchCompute(groups_x, groups_y, 1);
+    barrier();
+    timers_[integrate].end();
+    timer_ran_[integrate] = true;
+}
+
+void FroxelPass::bind_apply(const ShaderProgram& p, bool terrain_shadow) const
+{
+    shadow_.bind(p, unit_esm, terrain_shadow && options_.terrain_shadows && enabled_);
+    p.set("u_fx_apply", apply_ ? (options_.fog_aware ? 2 : 1) : 0);
+    if (!apply_)
+        return;
+    bind_layout(p);
+    p.set("u_fx_volume", unit_volume);
+    p.set("u_fx_view_projection", view_.view_projection);
+    glBindTextureUnit(unit_volume, v_->integrated.get());
+}
+
+void FroxelPass::bind_none(const ShaderProgram& p)
+{
+    p.set("u_fx_apply", 0);
+    p.set("u_ts_on", 0);
+}
+
+FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& terrain)
+{
+    FogBuffer out;
+    if (!enabled_ || frame.width <= 0 || frame.height <= 0)
+        return out;
+    if (!readback_) {
+        readback_ = std::make_unique<ShaderProgram>(
+            std::initializer_list<std::string_view>{"froxel_readback.comp", "froxel_common.glsl", "froxel_apply.glsl"});
+        depth_program_ = std::make_unique<ShaderProgram>(
+            std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
+    }
+    // The terrain's depth at pixel centres, where the terrain's fragments applied the fog (the
+    // multisampled frame's resolved depth holds one sample, off the centre).
+    Texture surface = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(surface.get(), 1, GL_DEPTH_COMPONENT32F, frame.width, frame.height);
+    glTextureParameteri(surface.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(surface.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    Framebuffer fbo = make_framebuffer();
+    glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, surface.get(), 0);
+    glNamedFramebufferDrawBuffer(fbo.get(), GL_NONE);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+    glViewport(0, 0, frame.width, frame.height);
+    const float far_depth = 1.0f;
+    glClearNamedFramebufferfv(fbo.get(), GL_DEPTH, 0, &far_depth);
+    depth_program_->set("u_view_projection", frame.view_projection);
+    depth_program_->use();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    terrain.draw_mesh();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const GLuint depth_texture = surface.get();
+    if (std::getenv("KIRI_FOG_DEBUG")) {  // TEMP
+        std::vector<float> tiles(std::size_t(v_->size.x) * v_->size.y * 4), dens(std::size_t(v_->size.x) * v_->size.y * v_->size.z * 4);
+        glGetTextureImage(v_->tiles[current_].get(), 0, GL_RGBA, GL_FLOAT, GLsizei(tiles.size() * 4), tiles.data());
+        glGetTextureImage(v_->density.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(dens.size() * 4), dens.data());
+        const int tx = v_->size.x / 2;
+        for (int ty = 0; ty < v_->size.y; ++ty) {
+            const float* t = &tiles[(std::size_t(ty) * v_->size.x + tx) * 4];
+            std::printf("TILE %d: %g %g ground %g | dens:", ty, t[0], t[1], t[2]);
+            for (int k = 0; k < v_->size.z; k += 4)
+                std::printf(" %.3g", dens[((std::size_t(k) * v_->size.y + ty) * v_->size.x + tx) * 4]);
+            std::printf("\n");
+        }
+    }
+    const ShaderProgram& p = *readback_;
+    Texture image = make_texture(GL_TEXTURE_2D), depth = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(image.get(), 1, GL_RGBA32F, frame.width, frame.height);
+    glTextureStorage2D(depth.get(), 1, GL_R32F, frame.width, frame.height);
+    bind_apply(p, false);
+    p.set("u_depth", 0);
+    p.set("u_size", glm::ivec2(frame.width, frame.height));
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    p.set("u_near_plane", float(p32 / (p22 - 1.0)));
+    p.set("u_far_plane", float(p32 / (p22 + 1.0)));
+    p.use();
+    glBindTextureUnit(0, depth_texture);
+    glBindImageTexture(0, image.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    // Rows bottom-up in GL, top-down in the buffer.
+    auto read = [&](GLuint texture, GLenum format, int channels, std::vector<float>& into) {
+        std::vector<float> bottom_up(std::size_t(frame.width) * frame.height * channels);
+        glGetTextureImage(texture, 0, format, GL_FLOAT, GLsizei(bottom_up.size() * sizeof(float)), bottom_up.data());
+        into.resize(bottom_up.size());
+        const std::size_t row = std::size_t(frame.width) * channels;
+        for (int y = 0; y < frame.height; ++y)
+            std::memcpy(&into[std::size_t(y) * row], &bottom_up[std::size_t(frame.height - 1 - y) * row],
+                        row * sizeof(float));
+    };
+    out.width = frame.width;
+    out.height = frame.height;
+    read(image.get(), GL_RGBA, 4, out.rgba);
+    read(depth.get(), GL_RED, 1, out.depth);
+    return out;
+}
+
+void FroxelPass::append_timings(std::vector<PassTime>& out) const
+{
+    for (int s = 0; s < stage_count; ++s)
+        if (timer_ran_[std::size_t(s)])
+            out.push_back(timers_[std::size_t(s)].result());
+}
+
+}  // namespace kiri::render::detail

@@ -1,0 +1,39 @@
+#pragma once
+// A GL_TIME_ELAPSED query around one pass; results are read after the frame's readback,
+// when the GPU has finished anyway.
+#include <chrono>
+#include <string>
+
+#include "gl_objects.hpp"
+#include "kiri/render/renderer.hpp"
+
+namespace kiri::render::detail {
+
+class PassTimer {
+public:
+    explicit PassTimer(std::string name) : name_(std::move(name)), query_(make_query(GL_TIME_ELAPSED)) {}
+    void begin()
+    {
+        cpu_start_ = std::chrono::steady_clock::now();
+        glBeginQuery(GL_TIME_ELAPSED, query_.get());
+    }
+    void end()
+    {
+        glEndQuery(GL_TIME_ELAPSED);
+        cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start_).count();
+    }
+    PassTime result() const
+    {
+        GLuint64 ns = 0;
+        glGetQueryObjectui64v(query_.get(), GL_QUERY_RESULT, &ns);
+        return {name_, double(ns) * 1e-6, cpu_ms_};
+    }
+
+private:
+    std::string name_;
+    Query query_;
+    std::chrono::steady_clock::time_point cpu_start_;
+    double cpu_ms_ = 0.0;
+};
+
+}  // namespace kiri::render::detail

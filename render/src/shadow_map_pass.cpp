@@ -1,0 +1,119 @@
+#include "shadow_map_pass.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "terrain_pass.hpp"
+
+namespace kiri::render::detail {
+namespace {
+
+constexpr int blur_radius = 2;  // texels each side: a 5-tap Gaussian per axis
+
+void nearest_clamped(GLuint texture, GLint filter)
+{
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, filter);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, filter);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+}  // namespace
+
+ShadowMapPass::ShadowMapPass() : depth_program_({"terrain.vert", "depth_only.frag"}), blur_({"esm_blur.comp"}) {}
+
+bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, const glm::dvec3& lo,
+                           const glm::dvec3& hi, int size, double sharpness)
+{
+    if (!terrain.has_terrain())
+        return false;
+    if (ready() && sun == sun_ && lo == lo_ && hi == hi_ && size == size_ && sharpness == sharpness_ &&
+        terrain_ == terrain.identity())
+        return false;
+    // Light frame: looking down the sun's rays; the region's corners bound it.
+    const glm::dvec3 s = glm::normalize(glm::dvec3(sun));
+    const glm::dvec3 helper = std::abs(s.z) < 0.9 ? glm::dvec3(0.0, 0.0, 1.0) : glm::dvec3(1.0, 0.0, 0.0);
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo) + 1.0;
+    const glm::dmat4 view = glm::lookAt(centre + s * (radius * 2.0), centre, helper);
+    glm::dvec3 a(1e300), b(-1e300);
+    for (int c = 0; c < 8; ++c) {
+        const glm::dvec3 corner(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z);
+        const glm::dvec3 v(view * glm::dvec4(corner, 1.0));
+        a = glm::min(a, v);
+        b = glm::max(b, v);
+    }
+    const double margin = 1e-3 * radius;
+    const glm::dmat4 projection = glm::ortho(a.x - margin, b.x + margin, a.y - margin, b.y + margin, -b.z - margin,
+                                             -a.z + margin);
+    const double depth_range = (b.z - a.z) + 2.0 * margin;
+    const glm::dmat4 to_unit = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.5 * depth_range)) *
+                               glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.5 * depth_range));
+    matrix_ = glm::mat4(to_unit * projection * view);
+    texel_m_ = float(std::max(b.x - a.x, b.y - a.y) / size);
+    k_ = float(sharpness / std::max(double(texel_m_), 1e-9));
+
+    if (size != size_ || !fbo_) {
+        depth_ = make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(depth_.get(), 1, GL_DEPTH_COMPONENT32F, size, size);
+        nearest_clamped(depth_.get(), GL_NEAREST);
+        for (Texture& t : esm_) {
+            t = make_texture(GL_TEXTURE_2D);
+            glTextureStorage2D(t.get(), 1, GL_R32F, size, size);
+            nearest_clamped(t.get(), GL_LINEAR);
+        }
+        fbo_ = make_framebuffer();
+        glNamedFramebufferTexture(fbo_.get(), GL_DEPTH_ATTACHMENT, depth_.get(), 0);
+        glNamedFramebufferDrawBuffer(fbo_.get(), GL_NONE);
+        size_ = size;
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
+    glViewport(0, 0, size, size);
+    const float far_depth = 1.0f;
+    glClearNamedFramebufferfv(fbo_.get(), GL_DEPTH, 0, &far_depth);
+    depth_program_.set("u_view_projection", glm::mat4(projection * view));
+    depth_program_.use();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    terrain.draw_mesh();
+
+    blur_.set("u_size", glm::ivec2(size));
+    blur_.set("u_k_metres", float(k_ * depth_range));
+    blur_.set("u_radius", blur_radius);
+    blur_.set("u_source", 0);
+    blur_.use();
+    const GLuint groups = GLuint((size + 7) / 8);
+    for (int pass = 0; pass < 2; ++pass) {
+        blur_.set("u_pass", pass);
+        glBindTextureUnit(0, pass == 0 ? depth_.get() : esm_[0].get());
+        glBindImageTexture(0, esm_[pass].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        glDispatchCompute(groups, groups, 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
+    sun_ = sun;
+    lo_ = lo;
+    hi_ = hi;
+    sharpness_ = sharpness;
+    terrain_ = terrain.identity();
+    ++updates_;
+    return true;
+}
+
+void ShadowMapPass::bind(const ShaderProgram& program, int unit, bool on) const
+{
+    program.set("u_ts_on", int(on && ready()));
+    if (!on || !ready())
+        return;
+    program.set("u_ts_esm", unit);
+    program.set("u_ts_matrix", matrix_);
+    program.set("u_ts_k", k_);
+    program.set("u_ts_bias", texel_m_);
+    glBindTextureUnit(GLuint(unit), esm_[1].get());
+}
+
+}  // namespace kiri::render::detail

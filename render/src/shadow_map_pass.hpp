@@ -1,0 +1,43 @@
+#pragma once
+// The sun's view of the terrain: an orthographic depth map over a region (the terrain and the
+// fog), low-passed into an exponential shadow map (shaders esm_blur.comp, terrain_shadow.glsl).
+// Rebuilt only when the sun, the terrain or the region change.
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "shader_program.hpp"
+
+namespace kiri::render::detail {
+
+class TerrainPass;
+
+class ShadowMapPass {
+public:
+    ShadowMapPass();
+    //! Brings the map up to date; returns true when it was rebuilt. sharpness is the ESM exponent
+    //! per texel of light depth.
+    bool update(const TerrainPass& terrain, const glm::vec3& sun_direction, const glm::dvec3& lo, const glm::dvec3& hi,
+                int size, double sharpness);
+    bool ready() const { return bool(esm_[1]); }
+    //! Sets terrain_shadow.glsl's uniforms on `program` and binds the map to texture `unit`;
+    //! with on = false the library's visibility is 1 everywhere.
+    void bind(const ShaderProgram& program, int unit, bool on) const;
+    //! Size of a shadow-map texel in metres (the scale of its blur).
+    double texel_metres() const { return texel_m_; }
+    int updates() const { return updates_; }
+
+private:
+    ShaderProgram depth_program_, blur_;
+    Framebuffer fbo_;
+    Texture depth_, esm_[2];
+    int size_ = 0, updates_ = 0;
+    glm::mat4 matrix_{1.0f};  // world -> [0, 1]^2 and light depth in metres
+    float k_ = 0.0f, texel_m_ = 0.0f;
+    // What the map was built from.
+    glm::vec3 sun_{0.0f};
+    glm::dvec3 lo_{0.0}, hi_{-1.0};
+    double sharpness_ = 0.0;
+    const void* terrain_ = nullptr;
+};
+
+}  // namespace kiri::render::detail
