@@ -1,14 +1,25 @@
-// Library: pass 4, the apply. A surface (terrain, sky, layers, particles) reads the integrated
-// volume at its own screen position and view depth: per tile, between the ends of the two
-// slices around that depth; across tiles, bilinear in the screen (each tile with its own
-// slices). Fog-aware, a tile whose central ray meets the ground before that depth weighs
-// little (it has no fog beyond its ground), and the terrain reads each tile at the depth where
-// that tile's ray meets the terrain's own tangent plane: at grazing angles through a thin
-// layer the fog to the ground varies smoothly across tiles, the fog at a fixed depth does not.
-// Needs froxel_common.glsl before it.
-uniform int u_fx_apply;               // 0: no froxel fog this frame, 1: standard, 2: fog-aware
+// Library: pass 4, the apply: the fog between the eye and a point of the frame.
+//
+// froxel_fog_at / froxel_fog read the integrated volume (pass 3) at a screen position and view
+// depth: per tile between the ends of the two slices around that depth, bilinear across tiles
+// (each with its own slices; fog-aware, tiles whose central ray meets the ground before that
+// depth weigh little). That is Wronski's apply, what any surface (layers, particles) can read.
+//
+// froxel_pixel_fog is the fog-aware apply for the terrain and the sky: each pixel's own ray is
+// integrated over its own stretch of the Medium's shell (the shell's entry and exit rasterised
+// at full resolution, cut at the pixel's depth) with the Medium's exact density and the height
+// fog's closed-form optical depth, lit by the froxels' lighting J: thin layers and narrow
+// valleys smaller than a tile keep their shape.
+// Needs froxel_common.glsl and froxel_medium.glsl before it.
+uniform int u_fx_apply;               // 0: no froxel fog, 1: standard, 2: fog-aware
 uniform sampler3D u_fx_volume;        // (in-scattered radiance, transmittance) at slice ends
 uniform mat4 u_fx_view_projection;
+uniform int u_fx_shell;               // the shell's per-pixel depths are there (eye outside it)
+uniform int u_fx_pixel_steps;
+uniform float u_fx_near;              // the volume's first depth
+uniform sampler3D u_fx_light;         // (J, lit) per froxel, linear filtering
+uniform sampler2D u_fx_first;         // per pixel: the shell's nearest depth (3e38: none)
+uniform sampler2D u_fx_last;          // per pixel: the shell's farthest depth (0: none)
 
 vec4 froxel_column(ivec2 tile, float depth)
 {
@@ -25,8 +36,6 @@ vec4 froxel_column(ivec2 tile, float depth)
 }
 
 // (in-scattered radiance, transmittance) between the eye and screen point uv at view depth.
-// Of the four tiles around uv, those whose central ray reaches that depth before the ground
-// weigh most: a tile whose ray stops at a nearer slope or ridge has no fog beyond it.
 vec4 froxel_fog_at(vec2 uv, float depth)
 {
     if (u_fx_apply == 0)
@@ -58,39 +67,103 @@ vec4 froxel_fog(vec3 world)
     return froxel_fog_at(clip.xy / clip.w * 0.5 + 0.5, dot(world - u_fx_eye, u_fx_forward));
 }
 
-// The fog in front of a terrain point with unit normal n (facing the camera).
-vec4 froxel_fog_surface(vec3 world, vec3 n)
+// The froxels' lighting J at view depth d on the ray through uv: bilinear across the four tiles
+// around uv, each looked up at that depth in its own slices (linear between two slices).
+struct FroxelTaps {
+    ivec2 tile[4];
+    vec2 range[4];
+    float weight[4];
+};
+
+FroxelTaps froxel_taps(vec2 uv)
 {
-    if (u_fx_apply != 2)
-        return froxel_fog(world);
-    vec4 clip = u_fx_view_projection * vec4(world, 1.0);
-    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
-    float depth = dot(world - u_fx_eye, u_fx_forward);
+    FroxelTaps t;
     vec2 p = uv * vec2(u_fx_size.xy) - 0.5;
     vec2 f = p - floor(p);
     ivec2 base = ivec2(floor(p));
-    float height = dot(world - u_fx_eye, n);  // < 0: the eye is on the lit side of the plane
-    vec4 sum = vec4(0.0), plain = vec4(0.0);
-    float weight = 0.0;
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
-        ivec2 tile = clamp(base + o, ivec2(0), u_fx_size.xy - 1);
-        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-        float ground = fx_tile_ground(tile);
-        // Where the tile's ray meets this point's tangent plane.
-        float along = dot(fx_ray((vec2(tile) + 0.5) / vec2(u_fx_size.xy)), n);
-        float plane = along < 0.0 && height < 0.0 ? height / along : 3e38;
-        float tolerance = 0.1 * depth;
-        float at = ground;                    // the same surface: the tile's own ground
-        if (plane < ground - tolerance)
-            at = plane;                       // this point stands in front of what the tile sees
-        else if (ground < plane - tolerance)
-            w *= 1e-3;                        // the tile sees something nearer that hides this point
-        vec4 c = froxel_column(tile, at);
-        sum += w * c;
-        weight += w;
-        plain += (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * froxel_column(tile, depth);
+        t.tile[k] = clamp(base + o, ivec2(0), u_fx_size.xy - 1);
+        t.range[k] = fx_tile_range(t.tile[k]);
+        t.weight[k] = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
     }
-    return weight > 1e-6 ? sum / weight : plain;
+    return t;
 }
 
+vec3 froxel_light(FroxelTaps t, float d)
+{
+    vec4 sum = vec4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        vec2 range = t.range[k];
+        if (!(range.y > range.x) || t.weight[k] <= 0.0)
+            continue;
+        float s = fx_slice_coordinate(clamp(d, range.x, range.y), range);
+        vec2 centre = (vec2(t.tile[k]) + 0.5) / vec2(u_fx_size.xy);
+        sum += t.weight[k] * textureLod(u_fx_light, vec3(centre, s), 0.0);  // (J, lit): linear in depth only
+    }
+    return sum.a > 0.0 ? sum.rgb / sum.a : vec3(0.0);
+}
+
+// Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
+// spread like the slices: each with the Medium's extinction at its middle (when with_medium)
+// and the height fog's in closed form, and J every fourth step, in between linear.
+void froxel_march(inout vec4 fog, vec2 uv, FroxelTaps taps, float a, float b, int n, bool with_medium)
+{
+    if (!(b > a) || n < 1)
+        return;
+    vec3 ray = fx_ray(uv);
+    float stretch = length(ray);
+    float d0 = a;
+    vec3 j0 = froxel_light(taps, a), j1 = j0;
+    for (int k = 0; k < n; ++k) {
+        if (k % 4 == 0) {  // J at the end of the next four steps
+            j0 = j1;
+            j1 = froxel_light(taps, fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)));
+        }
+        float d1 = fx_slice_depth(float(k + 1) / float(n), vec2(a, b));
+        float d = 0.5 * (d0 + d1);
+        float tau = height_fog_depth(u_fx_eye.z + ray.z * d0, u_fx_eye.z + ray.z * d1, (d1 - d0) * stretch);
+        if (with_medium)
+            tau += medium_sigma(u_fx_eye + ray * d) * (d1 - d0) * stretch;
+        if (tau > 0.0) {
+            float span = float(min(4, n - (k / 4) * 4));
+            vec3 j = mix(j0, j1, (float(k % 4) + 0.5) / span);
+            float through = exp(-tau);
+            fog.rgb += fog.a * j * (1.0 - through);
+            fog.a *= through;
+        }
+        d0 = d1;
+    }
+}
+
+// The fog in front of pixel px (screen point uv) whose surface lies at view depth `depth`
+// (3e38: sky). Fog-aware: the pixel's own ray, over its stretch of the shell (or all of it
+// where the fog is everywhere), the height fog over the rest.
+vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
+{
+    if (u_fx_apply != 2)
+        return froxel_fog_at(uv, depth);
+    float end = min(depth, u_fx_far);
+    float near = u_fx_near;
+    vec4 fog = vec4(0.0, 0.0, 0.0, 1.0);
+    FroxelTaps taps = froxel_taps(uv);
+    bool haze = u_hf.x > 0.0;
+    if (u_fx_shell == 0) {  // the Medium may be anywhere along the ray
+        froxel_march(fog, uv, taps, near, end, u_fx_pixel_steps, true);
+        return fog;
+    }
+    float first = max(texelFetch(u_fx_first, px, 0).r, near);
+    float last = min(texelFetch(u_fx_last, px, 0).r, end);
+    int haze_steps = max(u_fx_pixel_steps / 2, 1);
+    if (!(last > first)) {
+        if (haze)
+            froxel_march(fog, uv, taps, near, end, haze_steps, false);
+        return fog;
+    }
+    if (haze)
+        froxel_march(fog, uv, taps, near, first, haze_steps, false);
+    froxel_march(fog, uv, taps, first, last, u_fx_pixel_steps, true);
+    if (haze)
+        froxel_march(fog, uv, taps, last, end, haze_steps, false);
+    return fog;
+}

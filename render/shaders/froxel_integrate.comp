@@ -5,7 +5,8 @@
 // radiance, T) at its far end.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba16f, binding = 0) writeonly uniform image3D o_integrated;
-uniform sampler3D u_light;
+uniform sampler3D u_light;    // (J, lit)
+uniform sampler3D u_density;  // (sigma_t of the Medium, of the height fog, ...)
 
 void main()
 {
@@ -26,9 +27,10 @@ void main()
     for (int k = 0; k < u_fx_size.z; ++k) {
         float d1 = fx_slice_depth(float(k + 1) / float(u_fx_size.z), range);
         vec4 v = texelFetch(u_light, ivec3(t, k), 0);
-        float sigma = v.a, l = (d1 - d0) * stretch;
+        vec2 m = texelFetch(u_density, ivec3(t, k), 0).xy;
+        float sigma = m.x + m.y, l = (d1 - d0) * stretch;
         float through = exp(-sigma * l);
-        vec3 added = v.rgb * (sigma * l > 1e-5 ? 1.0 - through : sigma * l);
+        vec3 added = v.a > 0.0 ? v.rgb * (sigma * l > 1e-5 ? 1.0 - through : sigma * l) : vec3(0.0);
         radiance += transmittance * added;
         transmittance *= through;
         imageStore(o_integrated, ivec3(t, k), vec4(radiance, transmittance));

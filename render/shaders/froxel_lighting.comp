@@ -4,8 +4,10 @@
 // over the media: V from the terrain's exponential shadow map (terrain_shadow.glsl), P the sun's
 // phase through tau_sun over the scattering octaves, tau_sun the optical depth towards the sun
 // (height fog in closed form, the Medium in u_sun_steps steps to the edge of its box). J is
-// smooth where the density is not: it is what the temporal filter blends. Froxels without fog
-// are skipped.
+// smooth where the density is not: it is what the temporal filter blends and what the apply
+// looks up for each pixel's own density. Stored as (J, 1); (0, 0) where skipped: froxels
+// without fog (standard slicing), or every froxel of a tile without fog (fog-aware, where the
+// apply may look J up anywhere in a tile's range).
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(rgba16f, binding = 0) writeonly uniform image3D o_light;
 uniform sampler3D u_density;
@@ -19,6 +21,7 @@ uniform vec2 u_anisotropy;    // medium, height fog
 uniform int u_fog_shadows;
 uniform int u_sun_steps;
 uniform int u_octaves;        // 1: single scattering
+uniform int u_whole_tiles;    // light every froxel of a tile with fog, not only those with fog
 uniform vec3 u_box_min;       // the Medium's bounds
 uniform vec3 u_box_max;
 float sun_optical_depth(vec3 p)
@@ -52,20 +55,25 @@ void main()
         return;
     vec4 density = texelFetch(u_density, id, 0);
     float sigma = density.x + density.y;
-    if (!(sigma > 0.0)) {
+    vec2 range = fx_tile_range(id.xy);
+    if (!(u_whole_tiles != 0 ? range.y > range.x : sigma > 0.0)) {
         imageStore(o_light, id, vec4(0.0));
         return;
     }
-    vec2 range = fx_tile_range(id.xy);
+    // Where a froxel has no fog, J is that of the Medium (or of the height fog alone).
+    vec2 weights = sigma > 0.0 ? density.xy : (u_md_on != 0 ? vec2(1.0, 0.0) : vec2(0.0, 1.0));
     vec2 uv = (vec2(id.xy) + u_jitter.xy) / vec2(u_fx_size.xy);
     float d0 = fx_slice_depth(float(id.z) / float(u_fx_size.z), range);
     float d1 = fx_slice_depth(float(id.z + 1) / float(u_fx_size.z), range);
-    vec3 p = fx_world(uv, mix(d0, d1, density.z));
+    // Lit where the tile's central ray still is above the ground: froxels beyond it (pixels of
+    // the tile see farther) take the light of the ray's last point before the ground, not that
+    // of a point inside the hill.
+    vec3 p = fx_world(uv, min(mix(d0, d1, density.z), 0.998 * fx_tile_ground(id.xy)));
     float cos_theta = dot(normalize(p - u_fx_eye), u_sun_direction);
     float visible = terrain_visibility(p, u_ts_bias);
     float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(p) : 0.0;
     vec3 sun = u_sun_radiance * visible;
-    vec3 s = u_albedo.x * density.x * (sun * sun_scattering(cos_theta, u_anisotropy.x, tau, u_octaves) + u_ambient) +
-             u_albedo.y * density.y * (sun * sun_scattering(cos_theta, u_anisotropy.y, tau, u_octaves) + u_ambient);
-    imageStore(o_light, id, vec4(s / sigma, sigma));
+    vec3 s = u_albedo.x * weights.x * (sun * sun_scattering(cos_theta, u_anisotropy.x, tau, u_octaves) + u_ambient) +
+             u_albedo.y * weights.y * (sun * sun_scattering(cos_theta, u_anisotropy.y, tau, u_octaves) + u_ambient);
+    imageStore(o_light, id, vec4(s / (weights.x + weights.y), 1.0));
 }

@@ -45,6 +45,22 @@ float height_fog_sigma(float z)
     return z <= u_hf.y ? u_hf.x : u_hf.x * exp(-(z - u_hf.y) / u_hf.z);
 }
 
+// Optical depth of the height fog along a straight segment from altitude z0 to z1, length metres
+// long (geometry::HeightFog::optical_depth).
+float height_fog_depth(float z0, float z1, float length)
+{
+    if (u_hf.x <= 0.0)
+        return 0.0;
+    float lo = min(z0, z1), hi = max(z0, z1);
+    if (hi - lo < 1e-4 * u_hf.z)
+        return height_fog_sigma(0.5 * (z0 + z1)) * length;
+    // Integral of sigma over [lo, hi] in z: constant under the base, exponential above it.
+    float below = max(min(hi, u_hf.y) - lo, 0.0) * u_hf.x;
+    float from = max(lo, u_hf.y);
+    float above = hi > from ? height_fog_sigma(from) * u_hf.z * (1.0 - exp(-(hi - from) / u_hf.z)) : 0.0;
+    return (below + above) * length / (hi - lo);
+}
+
 // Optical depth of the height fog from altitude z to infinity along a direction rising by
 // rise per metre (> 0).
 float height_fog_depth_up(float z, float rise)

@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 2b: temporal filtering of the lighting J (the extinction stays this frame's). Each
+// Pass 2b: temporal filtering of the lighting J. Each
 // froxel's centre is reprojected into the previous frame's volume (its view, its tile ranges);
 // the history found there is clamped to the range of the current froxel and its six
 // neighbours (rejecting what moving sun, camera or fog changed) and blended with the current,
@@ -53,10 +53,15 @@ void main()
         ivec3 q = id + offsets[k];
         if (all(greaterThanEqual(q, ivec3(0))) && all(lessThan(q, u_fx_size))) {
             vec4 v = texelFetch(u_current, q, 0);
-            lo = min(lo, v);
-            hi = max(hi, v);
+            if (v.a > 0.0) {
+                lo = min(lo, v);
+                hi = max(hi, v);
+            }
         }
     }
-    vec3 j = mix(current.rgb, clamp(history.rgb, lo.rgb, hi.rgb), current.a > 0.0 ? u_weight : 0.0);
+    // Neighbours and history that were not lit (a = 0) say nothing about J.
+    vec3 j = current.rgb;
+    if (current.a > 0.0 && history.a > 0.99)
+        j = mix(current.rgb, clamp(history.rgb, lo.rgb, hi.rgb), u_weight);
     imageStore(o_resolved, id, vec4(j, current.a));
 }

@@ -1,17 +1,15 @@
 #version 450 core
 // Per tile: the depths its slices span. Standard: [near, far]. Fog-aware: from the nearest
-// shell entry to the farthest shell exit in front of the ground over the tile's raster samples
-// (and their neighbours), padded; where fog may be anywhere (eye inside the shell, height
-// fog): from near to the farthest ground. Fog-aware ranges end at the ground on the tile's
-// central ray (the apply never reads a column beyond it). Empty tiles get first >= last. The
-// third channel keeps that central ground depth (3e38: sky) for the apply.
+// shell entry to the farthest shell exit in front of the ground over the tile's pixels (and a
+// pixel around), padded; where fog may be anywhere (eye inside the shell, height fog): from
+// near to the farthest ground. Empty tiles get first >= last. The third channel keeps the
+// ground's depth at the tile's centre (3e38: sky) for the apply.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_tiles;
-uniform sampler2D u_first;   // nearest shell depth per raster sample (3e38: none)
+uniform sampler2D u_first;   // nearest shell depth per pixel (3e38: none)
 uniform sampler2D u_last;    // farthest shell depth (0: none)
-uniform sampler2D u_ground;  // the terrain's depth buffer at raster size
-uniform sampler2D u_centres; // the terrain's depth buffer at tile size: the tiles' central rays
-uniform ivec2 u_raster;
+uniform sampler2D u_ground;  // the frame's depth buffer
+uniform ivec2 u_raster;      // the frame's size
 uniform ivec2 u_tiles;
 uniform float u_near_plane;  // of the raster's projection
 uniform float u_far_plane;
@@ -33,8 +31,8 @@ void main()
     ivec2 t = ivec2(gl_GlobalInvocationID.xy);
     if (t.x >= u_tiles.x || t.y >= u_tiles.y)
         return;
-    float centre_depth = texelFetch(u_centres, t, 0).r;
-    float centre_ground = view_depth(centre_depth);
+    ivec2 centre = clamp(ivec2((vec2(t) + 0.5) * vec2(u_raster) / vec2(u_tiles)), ivec2(0), u_raster - 1);
+    float centre_ground = view_depth(texelFetch(u_ground, centre, 0).r);
     if (u_mode == 0) {
         imageStore(o_tiles, t, vec4(u_near, u_far, centre_ground, 0.0));
         return;
@@ -59,6 +57,6 @@ void main()
             }
         }
     first = max(first * (1.0 - u_pad), u_near);
-    last = min(min(last * (1.0 + u_pad), u_far), centre_ground);
+    last = min(last * (1.0 + u_pad), u_far);
     imageStore(o_tiles, t, last > first ? vec4(first, last, centre_ground, 0.0) : vec4(0.0, 0.0, centre_ground, 0.0));
 }

@@ -19,8 +19,5 @@ void main()
         sky = u_sky_horizon * (1.0 + 0.3 * elevation);
     float sun = max(dot(direction, u_sun_direction), 0.0);
     sky += u_sun_radiance * (0.02 * pow(sun, 8.0) + 0.25 * pow(sun, 400.0));
-    // The froxel fog along the whole ray (froxel_apply.glsl; none unless it is on).
-    vec4 fog = froxel_fog_at(v_ndc * 0.5 + 0.5, 3e38);
-    sky = sky * fog.a + fog.rgb;
     o_color = vec4(sky, 1.0);
 }

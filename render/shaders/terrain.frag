@@ -29,15 +29,13 @@ void main()
     float height01 = clamp((v_world.z - u_z_min) / max(u_z_max - u_z_min, 1e-3), 0.0, 1.0);
     vec3 base = albedo(height01, 1.0 - n.z);
     float direct = max(dot(n, u_sun_direction), 0.0);
-    // The terrain's own shadow where the froxel fog built the sun's shadow map (terrain_shadow.glsl).
+    // The terrain's own shadow where the froxel fog built the sun's shadow map (terrain_shadow.glsl;
+    // froxel_none.glsl without it).
     if (direct > 0.0)
-        direct *= terrain_visibility(v_world + n * (2.0 * u_ts_bias), 0.0);
+        direct *= terrain_shadow(v_world, n);
     vec3 sky = u_ambient * (0.6 + 0.4 * n.z);
     vec3 radiance = base * (u_sun_radiance * direct + sky);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
-    // The froxel fog in front of this point (froxel_apply.glsl; none unless it is on).
-    vec4 fog = froxel_fog_surface(v_world, n);
-    radiance = radiance * fog.a + fog.rgb;
     o_color = vec4(radiance, 1.0);
 }

@@ -18,3 +18,7 @@ float terrain_visibility(vec3 p, float bias)
     float occluder = textureLod(u_ts_esm, l.xy, 0.0).r;
     return clamp(exp(occluder - u_ts_k * (l.z - bias)), 0.0, 1.0);
 }
+
+// The terrain's own shadow at a terrain point with normal n: looked up a little off the surface
+// (normal offset), so that the map's texels do not shadow the surface they were made of.
+float terrain_shadow(vec3 world, vec3 n) { return terrain_visibility(world + n * (2.0 * u_ts_bias), 0.0); }

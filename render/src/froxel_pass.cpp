@@ -5,8 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <cstdio>
-#include <cstdlib>
 
 #include <glm/geometric.hpp>
 
@@ -19,11 +17,12 @@ namespace {
 // Texture units: the apply's (8..10) stay clear of the terrain's and layers' (0..2).
 constexpr int unit_tiles = 8, unit_volume = 9, unit_esm = 10, unit_medium = 11;  // 11, 12
 constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
+constexpr int unit_first = 5, unit_last = 6;
 // The temporal filter settles over one Halton cycle; after it a static frame reruns nothing.
 constexpr int halton_cycle = 16;
-enum Stage { shadow_map, tiles, density, lighting, temporal, integrate, stage_count };
-const char* const stage_names[stage_count] = {"froxel shadow map", "froxel tiles", "froxel density",
-                                              "froxel lighting",   "froxel temporal", "froxel integrate"};
+enum Stage { shadow_map, tiles, density, lighting, temporal, integrate, apply_stage, stage_count };
+const char* const stage_names[stage_count] = {"froxel shadow map", "froxel tiles",     "froxel density", "froxel lighting",
+                                              "froxel temporal",   "froxel integrate", "froxel apply"};
 
 double halton(int index, int base)
 {
@@ -74,7 +73,8 @@ FroxelPass::FroxelPass()
       density_({"froxel_density.comp", "froxel_common.glsl", "froxel_medium.glsl"}),
       lighting_({"froxel_lighting.comp", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl"}),
       temporal_({"froxel_temporal.comp", "froxel_common.glsl"}),
-      integrate_({"froxel_integrate.comp", "froxel_common.glsl"})
+      integrate_({"froxel_integrate.comp", "froxel_common.glsl"}),
+      apply_program_({"froxel_apply.comp", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl"})
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
@@ -165,7 +165,7 @@ std::vector<double> FroxelPass::make_key(const FrameContext& frame, const Terrai
     const geometry::HeightFog& h = o.height_fog;
     k.insert(k.end(), {double(o.width), double(o.height), double(o.slices), double(o.distribution), o.power,
                        o.log2_scale, o.near, o.far, double(o.fog_aware), double(o.temporal), o.history_weight,
-                       double(o.density_samples), double(o.sun_steps), double(o.terrain_shadows),
+                       double(o.density_samples), double(o.sun_steps), double(o.pixel_steps), double(o.terrain_shadows),
                        double(o.fog_shadows), double(o.scattering_octaves), double(o.shadow_map_size), o.esm_sharpness, h.extinction, h.base,
                        h.scale_height, h.albedo, h.anisotropy});
     return k;
@@ -186,17 +186,34 @@ void FroxelPass::bind_layout(const ShaderProgram& p) const
     glBindTextureUnit(unit_tiles, v_->tiles[current_].get());
 }
 
-void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain)
+void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
 {
     std::fill(timer_ran_.begin(), timer_ran_.end(), false);
     stats_.updated = false;
-    stats_.visible = enabled_ && visible(frame);
-    apply_ = false;
-    if (!stats_.visible) {  // off-screen: no pass runs, no history survives
+    visible_ = enabled_ && visible(frame);
+    stats_.visible = visible_;
+    if (!visible_) {  // off-screen: no pass runs, no history survives
+        apply_ = false;
         history_valid_ = false;
         key_.clear();
-        return;
     }
+    // The sun's view of the terrain (kept while the sun and the terrain stay): the terrain
+    // casts its shadows in the frame whether the fog is in view or not.
+    if (enabled_ && options_.terrain_shadows && terrain.has_terrain()) {
+        glm::dvec3 lo = terrain.bounds_min(), hi = terrain.bounds_max();
+        extend_bounds(lo, hi);
+        timers_[shadow_map].begin();
+        if (shadow_.update(terrain, frame.sun_direction, lo, hi, options_.shadow_map_size, options_.esm_sharpness))
+            ++stats_.shadow_map_updates;
+        timers_[shadow_map].end();
+        timer_ran_[shadow_map] = true;
+    }
+}
+
+void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture)
+{
+    if (!visible_)
+        return;
     const glm::ivec3 size(options_.width, options_.height, options_.slices);
     if (v_->size != size) {
         v_->density = make_volume(size, GL_RGBA16F);
@@ -204,20 +221,22 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain)
         v_->integrated = make_volume(size, GL_RGBA16F);
         for (int k = 0; k < 2; ++k) {
             v_->resolved[k] = make_volume(size, GL_RGBA16F);
+            glTextureParameteri(v_->resolved[k].get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);  // the apply's J lookups
+            glTextureParameteri(v_->resolved[k].get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
             v_->tiles[k] = make_tiles({size.x, size.y});
         }
+        glTextureParameteri(v_->light.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(v_->light.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         v_->size = size;
         history_valid_ = false;
         key_.clear();
     }
     const geometry::FroxelOptions& o = options_;
     std::vector<double> key = make_key(frame, terrain);
-    if (key == key_) {
+    if (key == key_ && apply_) {
         ++static_frames_;
-        if (!options_.temporal || static_frames_ >= halton_cycle) {
-            apply_ = true;  // the volume is as good as it gets: reuse it
-            return;
-        }
+        if (!options_.temporal || static_frames_ >= halton_cycle)
+            return;  // the volume is as good as it gets: reuse it
     } else {
         static_frames_ = 0;
     }
@@ -228,13 +247,35 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain)
     history_valid_ = history_valid_ && o.temporal && layout == layout_;
     layout_ = layout;
     key_ = std::move(key);
-    run_passes(frame, terrain);
+    run_passes(frame, terrain, depth_texture);
     apply_ = true;
     stats_.updated = true;
     ++stats_.updates;
 }
 
-void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain)
+void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture)
+{
+    if (!visible_ || !apply_)
+        return;
+    timers_[apply_stage].begin();
+    const ShaderProgram& p = apply_program_;
+    bind_apply(p);
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    p.set("u_depth", 0);
+    p.set("u_size", glm::ivec2(frame.width, frame.height));
+    p.set("u_near_plane", float(p32 / (p22 - 1.0)));
+    p.set("u_far_plane", float(p32 / (p22 + 1.0)));
+    p.set("u_exposure", frame.exposure);
+    p.use();
+    glBindTextureUnit(0, depth_texture);
+    glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+    glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    timers_[apply_stage].end();
+    timer_ran_[apply_stage] = true;
+}
+
+void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture)
 {
     const geometry::FroxelOptions& o = options_;
     const glm::ivec3 size = v_->size;
@@ -259,28 +300,18 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     const float sun_jitter = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
     ++frame_index_;
 
-    // The sun's view of the terrain (kept while the sun and the terrain stay).
     const bool shadows = o.terrain_shadows && terrain.has_terrain();
-    if (shadows) {
-        glm::dvec3 lo = terrain.bounds_min(), hi = terrain.bounds_max();
-        extend_bounds(lo, hi);
-        timers_[shadow_map].begin();
-        if (shadow_.update(terrain, frame.sun_direction, lo, hi, o.shadow_map_size, o.esm_sharpness))
-            ++stats_.shadow_map_updates;
-        timers_[shadow_map].end();
-        timer_ran_[shadow_map] = true;
-    }
-
     // Tiles: the depths their slices span.
-    FroxelTileBounds::Mode mode = FroxelTileBounds::Mode::standard;
+    mode_ = FroxelTileBounds::Mode::standard;
+    shell_ok_ = false;
     if (o.fog_aware) {
-        const bool everywhere = o.height_fog.enabled() || !medium_ ||
-                                shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
-        mode = everywhere ? FroxelTileBounds::Mode::ground : FroxelTileBounds::Mode::shell;
+        // The shell's per-pixel depths hold unless the eye is in it (the near plane cuts it).
+        shell_ok_ = medium_ && !shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
+        mode_ = shell_ok_ && !o.height_fog.enabled() ? FroxelTileBounds::Mode::shell : FroxelTileBounds::Mode::ground;
     }
     timers_[tiles].begin();
-    tile_bounds_.update(frame, terrain, mode, {size.x, size.y}, view_.near, view_.far, v_->tiles[current_].get());
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
+                        v_->tiles[current_].get());
     timers_[tiles].end();
     timer_ran_[tiles] = true;
 
@@ -315,6 +346,7 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     lighting_.set("u_fog_shadows", int(o.fog_shadows));
     lighting_.set("u_sun_steps", o.sun_steps);
     lighting_.set("u_octaves", o.scattering_octaves);
+    lighting_.set("u_whole_tiles", int(o.fog_aware));
     const glm::dvec3 box_lo = medium_ ? medium_->bounds().min : glm::dvec3(0.0);
     const glm::dvec3 box_hi = medium_ ? medium_->bounds().max : glm::dvec3(0.0);
     lighting_.set("u_box_min", glm::vec3(box_lo));
@@ -327,7 +359,7 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     timers_[lighting].end();
     timer_ran_[lighting] = true;
 
-    GLuint lit = v_->light.get();
+    const GLuint lit = o.temporal ? v_->resolved[current_].get() : v_->light.get();
     if (o.temporal) {
         timers_[temporal].begin();
         bind_layout(temporal_);
@@ -348,15 +380,16 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
         barrier();
         timers_[temporal].end();
         timer_ran_[temporal] = true;
-        lit = v_->resolved[current_].get();
         history_valid_ = true;
     }
 
     timers_[integrate].begin();
     bind_layout(integrate_);
     integrate_.set("u_light", unit_light);
+    integrate_.set("u_density", unit_density);
     integrate_.use();
     glBindTextureUnit(unit_light, lit);
+    glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->integrated.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     glDispatchCompute(groups_x, groups_y, 1);
     barrier();
@@ -364,22 +397,35 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     timer_ran_[integrate] = true;
 }
 
-void FroxelPass::bind_apply(const ShaderProgram& p, bool terrain_shadow) const
+void FroxelPass::bind_shadow(const ShaderProgram& p) const
 {
-    shadow_.bind(p, unit_esm, terrain_shadow && options_.terrain_shadows && enabled_);
-    p.set("u_fx_apply", apply_ ? (options_.fog_aware ? 2 : 1) : 0);
-    if (!apply_)
-        return;
-    bind_layout(p);
-    p.set("u_fx_volume", unit_volume);
-    p.set("u_fx_view_projection", view_.view_projection);
-    glBindTextureUnit(unit_volume, v_->integrated.get());
+    p.set("u_ts_esm", unit_esm);
+    shadow_.bind(p, unit_esm, enabled_ && options_.terrain_shadows);
 }
 
-void FroxelPass::bind_none(const ShaderProgram& p)
+void FroxelPass::bind_apply(const ShaderProgram& p) const
 {
-    p.set("u_fx_apply", 0);
-    p.set("u_ts_on", 0);
+    // Every sampler on its own unit, even unused ones: types may not share a unit.
+    p.set("u_fx_tiles", unit_tiles);
+    p.set("u_fx_volume", unit_volume);
+    p.set("u_fx_light", unit_light);
+    p.set("u_fx_first", unit_first);
+    p.set("u_fx_last", unit_last);
+    p.set("u_md_grid", unit_medium);
+    p.set("u_md_noise", unit_medium + 1);
+    p.set("u_fx_apply", visible_ && apply_ ? (options_.fog_aware ? 2 : 1) : 0);
+    if (!visible_ || !apply_)
+        return;
+    bind_layout(p);
+    medium_gpu_.bind(p, options_.height_fog, unit_medium);
+    p.set("u_fx_view_projection", view_.view_projection);
+    p.set("u_fx_shell", int(shell_ok_));
+    p.set("u_fx_near", view_.near);
+    p.set("u_fx_pixel_steps", options_.pixel_steps);
+    glBindTextureUnit(unit_volume, v_->integrated.get());
+    glBindTextureUnit(unit_light, options_.temporal ? v_->resolved[current_].get() : v_->light.get());
+    glBindTextureUnit(unit_first, tile_bounds_.first());
+    glBindTextureUnit(unit_last, tile_bounds_.last());
 }
 
 FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& terrain)
@@ -389,7 +435,8 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
         return out;
     if (!readback_) {
         readback_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"froxel_readback.comp", "froxel_common.glsl", "froxel_apply.glsl"});
+            std::initializer_list<std::string_view>{"froxel_readback.comp", "froxel_common.glsl", "froxel_medium.glsl",
+                                                    "froxel_apply.glsl"});
         depth_program_ = std::make_unique<ShaderProgram>(
             std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
     }
@@ -414,24 +461,11 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     terrain.draw_mesh();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const GLuint depth_texture = surface.get();
-    if (std::getenv("KIRI_FOG_DEBUG")) {  // TEMP
-        std::vector<float> tiles(std::size_t(v_->size.x) * v_->size.y * 4), dens(std::size_t(v_->size.x) * v_->size.y * v_->size.z * 4);
-        glGetTextureImage(v_->tiles[current_].get(), 0, GL_RGBA, GL_FLOAT, GLsizei(tiles.size() * 4), tiles.data());
-        glGetTextureImage(v_->density.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(dens.size() * 4), dens.data());
-        const int tx = v_->size.x / 2;
-        for (int ty = 0; ty < v_->size.y; ++ty) {
-            const float* t = &tiles[(std::size_t(ty) * v_->size.x + tx) * 4];
-            std::printf("TILE %d: %g %g ground %g | dens:", ty, t[0], t[1], t[2]);
-            for (int k = 0; k < v_->size.z; k += 4)
-                std::printf(" %.3g", dens[((std::size_t(k) * v_->size.y + ty) * v_->size.x + tx) * 4]);
-            std::printf("\n");
-        }
-    }
     const ShaderProgram& p = *readback_;
     Texture image = make_texture(GL_TEXTURE_2D), depth = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(image.get(), 1, GL_RGBA32F, frame.width, frame.height);
     glTextureStorage2D(depth.get(), 1, GL_R32F, frame.width, frame.height);
-    bind_apply(p, false);
+    bind_apply(p);
     p.set("u_depth", 0);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];

@@ -1,14 +1,15 @@
 #pragma once
 // Froxel volumetric fog (Wronski 2014, with Hillaire's energy-conserving integration and
-// fog-aware slicing; docs/froxel.md). Per frame, only when the view, the sun or the fog
-// changed (and until the temporal history has settled):
-//   tiles     the depths each screen tile's slices span (froxel_tile_bounds.hpp)
-//   density   extinction per froxel from the Medium and the height fog (froxel_density.comp)
-//   lighting  in-scattering per froxel: sun through the terrain's ESM and the fog, sky ambient,
-//             Henyey-Greenstein (froxel_lighting.comp)
-//   temporal  reprojected, clamped history (froxel_temporal.comp), when on
-//   integrate front to back through the slices (froxel_integrate.comp)
-// and every frame the apply: terrain and sky read the volume at their depth (froxel_apply.glsl).
+// fog-aware slicing; docs/froxel.md). A frame:
+//   prepare   is the fog in view; the sun's shadow map of the terrain (kept while the sun and
+//             the terrain stay); then the scene is drawn and resolved, and
+//   update    only when the view, the sun or the fog changed (and until the temporal history
+//             has settled): tiles (the depths each screen tile's slices span, from the frame's
+//             depth and the rasterised shell, froxel_tile_bounds.hpp), density (extinction per
+//             froxel), lighting (J: the sun through the terrain's ESM and the fog, sky ambient,
+//             Henyey-Greenstein), temporal (reprojected, clamped history of J), integrate
+//             (front to back through the slices);
+//   apply     every frame, the fog on the resolved frame (froxel_apply.comp).
 #include <memory>
 #include <vector>
 
@@ -40,13 +41,17 @@ public:
     bool enabled() const { return enabled_; }
     //! Grows (lo, hi) to hold the Medium (for the frame's near and far planes).
     void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
-    //! Runs the passes this frame needs before the scene is drawn; leaves the framebuffer unbound.
-    void update(const FrameContext& frame, const TerrainPass& terrain);
-    //! The apply's uniforms and textures on a program linking froxel_common.glsl and
-    //! froxel_apply.glsl (and terrain_shadow.glsl when terrain_shadow).
-    void bind_apply(const ShaderProgram& program, bool terrain_shadow) const;
-    //! The same for a frame without froxel fog.
-    static void bind_none(const ShaderProgram& program);
+    //! Before the scene is drawn: whether the fog is in view, and the sun's shadow map.
+    void prepare(const FrameContext& frame, const TerrainPass& terrain);
+    //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's).
+    void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
+    //! The fog on the resolved frame (colour: RGBA8, read and written).
+    void apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture);
+    //! terrain_shadow.glsl's uniforms and the shadow map on a program linking it.
+    void bind_shadow(const ShaderProgram& program) const;
+    //! froxel_apply.glsl's uniforms and textures on a program linking froxel_common.glsl,
+    //! froxel_medium.glsl and froxel_apply.glsl (for layers and particles: froxel_fog(world)).
+    void bind_apply(const ShaderProgram& program) const;
     //! The fog the last frame's pixels received at the terrain's depth at their centres.
     FogBuffer read_fog(const FrameContext& frame, const TerrainPass& terrain);
     const FroxelStats& stats() const { return stats_; }
@@ -56,7 +61,7 @@ public:
 private:
     struct Volumes;
     std::unique_ptr<Volumes> v_;
-    ShaderProgram density_, lighting_, temporal_, integrate_;
+    ShaderProgram density_, lighting_, temporal_, integrate_, apply_program_;
     std::unique_ptr<ShaderProgram> readback_, depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;
@@ -64,7 +69,9 @@ private:
     ShellMesh shell_;
     const geometry::Medium* medium_ = nullptr;
     geometry::FroxelOptions options_;
-    bool enabled_ = false, apply_ = false;
+    bool enabled_ = false, visible_ = false, apply_ = false;
+    FroxelTileBounds::Mode mode_ = FroxelTileBounds::Mode::standard;
+    bool shell_ok_ = false;  // the shell's per-pixel depths are valid this frame
     // The frame the volume was built for, and the one before (reprojection).
     struct View {
         glm::mat4 view_projection{1.0f};
@@ -81,7 +88,8 @@ private:
     std::vector<double> make_key(const FrameContext& frame, const TerrainPass& terrain) const;
     bool visible(const FrameContext& frame) const;
     void bind_layout(const ShaderProgram& program) const;
-    void run_passes(const FrameContext& frame, const TerrainPass& terrain);
+    void run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
+    void bind_apply_textures(const ShaderProgram& program) const;
 };
 
 }  // namespace kiri::render::detail

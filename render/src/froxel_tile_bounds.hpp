@@ -1,17 +1,16 @@
 #pragma once
 // Fog-aware slicing: per screen tile of the froxel volume, the view depths its slices span.
-// The terrain's depth and the Medium's shell (froxel_shell.hpp: nearest and farthest depth by
-// GL_MIN / GL_MAX blending) are rasterised at a few samples per tile; froxel_tiles.comp reduces
-// them to one range per tile.
-#include <glm/mat4x4.hpp>
+// The Medium's shell (froxel_shell.hpp) is rasterised at the frame's resolution into its
+// nearest and farthest depth per pixel (GL_MIN / GL_MAX blending); froxel_tiles.comp reduces
+// them, cut at the frame's depth buffer, to one range per tile. The per-pixel depths stay for
+// the apply (froxel_apply.glsl).
+#include <glm/vec2.hpp>
 
 #include "frame_context.hpp"
 #include "froxel_shell.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {
-
-class TerrainPass;
 
 class FroxelTileBounds {
 public:
@@ -24,20 +23,21 @@ public:
     FroxelTileBounds();
     //! Uploads the shell mesh (once per medium).
     void set_shell(const ShellMesh& shell);
-    //! Writes the tiles' ranges and central ground depths into `tiles` (RGBA32F, tiles.x by tiles.y).
-    void update(const FrameContext& frame, const TerrainPass& terrain, Mode mode, const glm::ivec2& tiles,
-                double near, double far, GLuint tiles_texture);
+    //! Writes the tiles' ranges and central ground depths into `tiles` (RGBA32F, tiles.x by
+    //! tiles.y) from the frame's depth texture; rasterises the shell when `shell` (or in shell mode).
+    void update(const FrameContext& frame, Mode mode, bool shell, const glm::ivec2& tiles, double near, double far,
+                GLuint depth_texture, GLuint tiles_texture);
+    //! Per pixel of the last update with the shell: its nearest and farthest view depth.
+    GLuint first() const { return first_.get(); }
+    GLuint last() const { return last_.get(); }
 
 private:
-    ShaderProgram shell_program_, depth_program_, reduce_;
+    ShaderProgram shell_program_, reduce_;
     VertexArray vao_;
     Buffer vertices_, indices_;
     GLsizei index_count_ = 0;
     Framebuffer fbo_;
-    Texture first_, last_, ground_;
-    Framebuffer centres_fbo_;  // the ground on the tiles' central rays: one sample per tile
-    Texture centres_;
-    glm::ivec2 tiles_{0};
+    Texture first_, last_;
     glm::ivec2 raster_{0};
     void ensure_raster(const glm::ivec2& size);
 };

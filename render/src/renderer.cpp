@@ -129,11 +129,11 @@ void Renderer::draw(const Camera& camera, int width, int height)
     if (fog)
         r.froxel->extend_bounds(scene_min, scene_max);
     const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
-    if (fog)  // before the scene: terrain and sky read the volume
-        r.froxel->update(frame, r.terrain);
+    if (fog)  // before the scene: in view or not, the sun's shadow map for the terrain
+        r.froxel->prepare(frame, r.terrain);
     r.targets.bind_for_drawing();
     r.sky_timer.begin();
-    r.sky.draw(frame, fog);
+    r.sky.draw(frame);
     r.sky_timer.end();
     r.terrain_timer.begin();
     r.terrain.draw(frame, fog);
@@ -147,6 +147,10 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.resolve_timer.begin();
     r.targets.resolve();
     r.resolve_timer.end();
+    if (fog) {  // the volume from the frame's depth, then the fog on the resolved frame
+        r.froxel->update(frame, r.terrain, r.targets.resolved_depth());
+        r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth());
+    }
     if (!r.layers_multisampled) {  // layers in their own target, composited after the resolve
         r.layers_timer.begin();
         if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.hdr_framebuffer(), r.targets.resolved_depth()))

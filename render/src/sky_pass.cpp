@@ -1,21 +1,11 @@
 #include "sky_pass.hpp"
 
-#include "froxel_pass.hpp"
-
 namespace kiri::render::detail {
 
-SkyPass::SkyPass()
-    : program_({"fullscreen.vert", "sky.frag", "froxel_common.glsl", "froxel_apply.glsl"}),
-      empty_vao_(make_vertex_array())
-{
-}
+SkyPass::SkyPass() : program_({"fullscreen.vert", "sky.frag"}), empty_vao_(make_vertex_array()) {}
 
-void SkyPass::draw(const FrameContext& frame, const FroxelPass* fog) const
+void SkyPass::draw(const FrameContext& frame) const
 {
-    if (fog)
-        fog->bind_apply(program_, false);
-    else
-        FroxelPass::bind_none(program_);
     program_.set("u_inverse_view_projection", frame.inverse_view_projection);
     program_.set("u_eye", frame.eye);
     program_.set("u_sun_direction", frame.sun_direction);

@@ -8,8 +8,7 @@ namespace kiri::render::detail {
 class SkyPass {
 public:
     SkyPass();
-    //! `fog` (may be null): the froxel fog seen against the sky (froxel_apply.glsl).
-    void draw(const FrameContext& frame, const class FroxelPass* fog = nullptr) const;
+    void draw(const FrameContext& frame) const;
 
 private:
     ShaderProgram program_;

@@ -56,10 +56,7 @@ std::vector<std::uint32_t> grid_indices(int nx, int ny)
 
 }  // namespace
 
-TerrainPass::TerrainPass()
-    : program_({"terrain.vert", "terrain.frag", "froxel_common.glsl", "froxel_apply.glsl", "terrain_shadow.glsl"})
-{
-}
+TerrainPass::TerrainPass() : program_({"terrain.vert", "terrain.frag", "froxel_none.glsl"}) {}
 
 bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggeration)
 {
@@ -108,20 +105,22 @@ void TerrainPass::draw(const FrameContext& frame, const FroxelPass* fog) const
 {
     if (!has_terrain())
         return;
+    if (fog && !fog_program_)
+        fog_program_ = std::make_unique<ShaderProgram>(
+            std::initializer_list<std::string_view>{"terrain.vert", "terrain.frag", "terrain_shadow.glsl"});
+    const ShaderProgram& p = fog ? *fog_program_ : program_;
     if (fog)
-        fog->bind_apply(program_, true);
-    else
-        FroxelPass::bind_none(program_);
-    program_.set("u_view_projection", frame.view_projection);
-    program_.set("u_eye", frame.eye);
-    program_.set("u_sun_direction", frame.sun_direction);
-    program_.set("u_sun_radiance", frame.sun_radiance);
-    program_.set("u_ambient", frame.ambient);
-    program_.set("u_sky_horizon", frame.sky_horizon);
-    program_.set("u_z_min", float(min_.z));
-    program_.set("u_z_max", float(max_.z));
-    program_.set("u_haze_density", frame.haze_density);
-    program_.use();
+        fog->bind_shadow(p);
+    p.set("u_view_projection", frame.view_projection);
+    p.set("u_eye", frame.eye);
+    p.set("u_sun_direction", frame.sun_direction);
+    p.set("u_sun_radiance", frame.sun_radiance);
+    p.set("u_ambient", frame.ambient);
+    p.set("u_sky_horizon", frame.sky_horizon);
+    p.set("u_z_min", float(min_.z));
+    p.set("u_z_max", float(max_.z));
+    p.set("u_haze_density", frame.haze_density);
+    p.use();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao_.get());

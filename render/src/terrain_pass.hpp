@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <memory>
 
 #include <glm/vec3.hpp>
 
@@ -19,8 +20,8 @@ public:
     //! Returns true when it had to upload (the terrain or the exaggeration changed).
     bool set_terrain(const geometry::Terrain& terrain, double exaggeration);
     bool has_terrain() const { return index_count_ > 0; }
-    //! Draws the terrain; `fog` (may be null) sets the froxel fog's apply and the sun's shadow
-    //! map on the terrain's program (froxel_apply.glsl, terrain_shadow.glsl).
+    //! Draws the terrain; with `fog` (may be null) in the shadows of the sun's shadow map it
+    //! keeps (terrain_shadow.glsl).
     void draw(const FrameContext& frame, const class FroxelPass* fog = nullptr) const;
     //! Draws the mesh with whatever program is bound (positions at attribute 0): depth passes.
     void draw_mesh() const;
@@ -30,7 +31,8 @@ public:
     glm::dvec3 bounds_max() const { return max_; }
 
 private:
-    ShaderProgram program_;
+    ShaderProgram program_;                               // no shadow map: no shadows
+    mutable std::unique_ptr<ShaderProgram> fog_program_;  // in the shadow map's shadows, built on first use
     VertexArray vao_;
     Buffer vertices_, indices_;
     GLsizei index_count_ = 0;

@@ -38,7 +38,7 @@ FroxelOptions parse_froxel_options(const json& j, const std::string& file)
     const JsonReader r{file};
     const std::string p = "/froxel";
     r.only(j, p, {"size", "distribution", "power", "log2_scale", "near", "far", "fog_aware", "temporal",
-                  "history_weight", "density_samples", "sun_steps", "terrain_shadows", "fog_shadows",
+                  "history_weight", "density_samples", "sun_steps", "pixel_steps", "terrain_shadows", "fog_shadows",
                   "scattering_octaves", "shadow_map_size", "esm_sharpness", "height_fog"});
     FroxelOptions o;
     if (j.contains("size")) {
@@ -76,6 +76,8 @@ FroxelOptions parse_froxel_options(const json& j, const std::string& file)
         o.density_samples = r.integer(j["density_samples"], p + "/density_samples", 1, 16);
     if (j.contains("sun_steps"))
         o.sun_steps = r.integer(j["sun_steps"], p + "/sun_steps", 1, 64);
+    if (j.contains("pixel_steps"))
+        o.pixel_steps = r.integer(j["pixel_steps"], p + "/pixel_steps", 1, 256);
     if (j.contains("terrain_shadows"))
         o.terrain_shadows = r.boolean(j["terrain_shadows"], p + "/terrain_shadows");
     if (j.contains("fog_shadows"))
@@ -107,6 +109,7 @@ json froxel_options_to_json(const FroxelOptions& o)
             {"history_weight", o.history_weight},
             {"density_samples", o.density_samples},
             {"sun_steps", o.sun_steps},
+            {"pixel_steps", o.pixel_steps},
             {"terrain_shadows", o.terrain_shadows},
             {"fog_shadows", o.fog_shadows},
             {"scattering_octaves", o.scattering_octaves},

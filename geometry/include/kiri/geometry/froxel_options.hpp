@@ -31,6 +31,8 @@ struct FroxelOptions {
     double history_weight = 0.9;   //!< [0, 0.99]: weight of the (clamped) history
     int density_samples = 2;       //!< samples of the density per froxel, spread over its depth, 1..16
     int sun_steps = 12;            //!< steps of the sun's optical depth through the Medium, 1..64
+    //! Fog-aware apply: steps along each pixel's own stretch of the Medium's shell, 1..256.
+    int pixel_steps = 24;
     bool terrain_shadows = true;   //!< the terrain's shadow map (ESM) darkens the fog and the ground
     bool fog_shadows = true;       //!< the fog dims the sun on its way (the lighting model's tau_sun)
     int scattering_octaves = 1;    //!< 1..8: 1 single scattering, more: multiple-scattering octaves (fog_lighting.hpp)
