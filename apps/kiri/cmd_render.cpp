@@ -48,10 +48,20 @@ render::ParticleStyle to_style(const geometry::ParticleOptions& o)
 
 // The scene's fog (Medium and height fog) by the CPU reference ray marcher, tone mapped like the
 // shaders (exposure 0.7, gamma 2.2) over the reference's own terrain and sky.
+// The scene's froxel options in world units, its height fog over the terrain's extent only.
+geometry::FroxelOptions froxel_options(const geometry::Scene& scene, const geometry::Terrain& terrain)
+{
+    geometry::FroxelOptions options = geometry::world_froxel_options(scene);
+    const geometry::Bounds3 b = terrain.bounds();
+    options.height_fog.min = {b.min.x, b.min.y};
+    options.height_fog.max = {b.max.x, b.max.y};
+    return options;
+}
+
 void render_reference(const geometry::Scene& scene, const geometry::Terrain& terrain, const render::Camera& camera,
                       int width, int height, const std::string& out)
 {
-    const geometry::FroxelOptions options = geometry::world_froxel_options(scene);
+    const geometry::FroxelOptions options = froxel_options(scene, terrain);
     std::optional<geometry::SceneFog> fog;
     if (scene.fog)
         fog = geometry::author_scene_fog(scene, terrain);
@@ -117,7 +127,7 @@ void run(const RenderArgs& a)
         renderer.set_particles(*particles, to_style(scene.particles));
     }
     if (mode == "froxel") {  // the fog as a volume (docs/froxel.md): the Medium and the height fog
-        const geometry::FroxelOptions options = geometry::world_froxel_options(scene);
+        const geometry::FroxelOptions options = froxel_options(scene, terrain);
         if (!scene.fog && !options.height_fog.enabled())
             throw InputError(a.scene, "/fog", "--mode froxel needs a fog section or a froxel height fog");
         if (scene.fog)

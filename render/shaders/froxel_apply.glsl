@@ -122,7 +122,7 @@ void froxel_march(inout vec4 fog, vec2 uv, FroxelTaps taps, float a, float b, in
         }
         float d1 = fx_slice_depth(float(k + 1) / float(n), vec2(a, b));
         float d = 0.5 * (d0 + d1);
-        float tau = height_fog_depth(u_fx_eye.z + ray.z * d0, u_fx_eye.z + ray.z * d1, (d1 - d0) * stretch);
+        float tau = height_fog_segment(u_fx_eye + ray * d0, u_fx_eye + ray * d1);
         if (with_medium)
             tau += medium_sigma(u_fx_eye + ray * d) * (d1 - d0) * stretch;
         if (tau > 0.0) {

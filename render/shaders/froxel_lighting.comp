@@ -26,7 +26,7 @@ uniform vec3 u_box_min;       // the Medium's bounds
 uniform vec3 u_box_max;
 float sun_optical_depth(vec3 p)
 {
-    float tau = height_fog_depth_up(p.z, u_sun_direction.z);
+    float tau = height_fog_sun(p, u_sun_direction);
     if (u_md_on == 0)
         return tau;
     // Exit of the Medium's box along the sun (slab test).

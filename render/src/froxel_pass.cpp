@@ -167,7 +167,7 @@ std::vector<double> FroxelPass::make_key(const FrameContext& frame, const Terrai
                        o.log2_scale, o.near, o.far, double(o.fog_aware), double(o.temporal), o.history_weight,
                        double(o.density_samples), double(o.sun_steps), double(o.pixel_steps), double(o.terrain_shadows),
                        double(o.fog_shadows), double(o.scattering_octaves), double(o.shadow_map_size), o.esm_sharpness, h.extinction, h.base,
-                       h.scale_height, h.albedo, h.anisotropy});
+                       h.scale_height, h.albedo, h.anisotropy, h.min.x, h.min.y, h.max.x, h.max.y});
     return k;
 }
 
@@ -246,6 +246,14 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
                                         o.power, o.log2_scale, o.near, o.far, double(o.fog_aware)};
     history_valid_ = history_valid_ && o.temporal && layout == layout_;
     layout_ = layout;
+    // A sun that turned by more than half a degree, or light that changed by more than 2 %,
+    // changes J everywhere at once: the clamp alone would let the old light linger.
+    const glm::vec3 light[3] = {frame.sun_direction, frame.sun_radiance, frame.ambient};
+    const bool light_jumped = glm::dot(light[0], light_[0]) < std::cos(0.5f * 3.14159265f / 180.0f) ||
+                              glm::length(light[1] - light_[1]) > 0.02f * glm::length(light[1]) ||
+                              glm::length(light[2] - light_[2]) > 0.02f * glm::length(light[2]);
+    history_valid_ = history_valid_ && !light_jumped;
+    std::copy(std::begin(light), std::end(light), std::begin(light_));
     key_ = std::move(key);
     run_passes(frame, terrain, depth_texture);
     apply_ = true;

@@ -81,6 +81,7 @@ private:
     std::vector<double> key_, layout_;
     int static_frames_ = 0, frame_index_ = 0, current_ = 0;
     bool history_valid_ = false;
+    glm::vec3 light_[3]{};  // sun direction, radiance, ambient of the last run
     FroxelStats stats_;
     std::vector<PassTimer> timers_;
     std::vector<bool> timer_ran_;

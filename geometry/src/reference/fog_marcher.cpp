@@ -90,7 +90,7 @@ void FogMarcher::march_view(const glm::dvec3& o, const glm::dvec3& w, double t_e
         double t = a;
         auto sigma_at = [&](double u) {
             const glm::dvec3 p = o + w * u;
-            return (in_shell ? sigma_medium(p) : 0.0) + fog_.height_fog.sigma(p.z);
+            return (in_shell ? sigma_medium(p) : 0.0) + fog_.height_fog.sigma(p);
         };
         double sigma_estimate = sigma_at(a + 1e-9 * (b - a));
         while (t < b) {
@@ -109,7 +109,7 @@ void FogMarcher::march_view(const glm::dvec3& o, const glm::dvec3& w, double t_e
                 sigma_estimate = 0.0;
             }
             const double sh = haze ? fog_.height_fog.optical_depth(o, w, t, t + dt) / dt : 0.0;
-            sigma_estimate += haze ? std::max(fog_.height_fog.sigma(p.z), fog_.height_fog.sigma(p.z + w.z * dt)) : 0.0;
+            sigma_estimate += haze ? std::max(fog_.height_fog.sigma(p), fog_.height_fog.sigma(p + w * dt)) : 0.0;
             s.steps.push_back({t + 0.5 * dt, dt, sm, sh, tau});
             tau += (sm + sh) * dt;
             t += dt;
@@ -124,16 +124,26 @@ void FogMarcher::march_view(const glm::dvec3& o, const glm::dvec3& w, double t_e
                 return;
         return;
     }
+    // The height fog alone only over its extent.
+    double lo = 0.0, hi = t_end;
+    const HeightFog& h = fog_.height_fog;
+    if (!clip_slab(o.x, w.x, h.min.x, h.max.x, lo, hi) || !clip_slab(o.y, w.y, h.min.y, h.max.y, lo, hi))
+        hi = lo = t_end;
+    auto haze_only = [&](double a, double b) {
+        a = std::max(a, lo);
+        b = std::min(b, hi);
+        return !(b > a) || piece(a, b, false);
+    };
     double cursor = 0.0;
     for (const Interval& iv : s.view_intervals) {
-        if (iv.t0 > cursor && !piece(cursor, iv.t0, false))
+        if (iv.t0 > cursor && !haze_only(cursor, iv.t0))
             return;
         if (!piece(iv.t0, iv.t1, true))
             return;
         cursor = iv.t1;
     }
     if (t_end > cursor)
-        piece(cursor, t_end, false);
+        haze_only(cursor, t_end);
 }
 
 bool FogMarcher::sun_visible(const glm::dvec3& p) const

@@ -1,5 +1,6 @@
 #include "kiri/geometry/height_fog.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -34,9 +35,30 @@ double HeightFog::sigma(double z) const
     return z <= base ? extinction : extinction * std::exp(-(z - base) / scale_height);
 }
 
+double HeightFog::sigma(const glm::dvec3& p) const
+{
+    return p.x >= min.x && p.x <= max.x && p.y >= min.y && p.y <= max.y ? sigma(p.z) : 0.0;
+}
+
 double HeightFog::optical_depth(const glm::dvec3& origin, const glm::dvec3& dir, double t0, double t1) const
 {
     if (!enabled() || !(t1 > t0))
+        return 0.0;
+    // Only the part of the segment over the extent.
+    for (int axis = 0; axis < 2; ++axis) {
+        const double lo = min[axis], hi = max[axis], o = origin[axis], d = dir[axis];
+        if (d == 0.0) {
+            if (o < lo || o > hi)
+                return 0.0;
+            continue;
+        }
+        double a = (lo - o) / d, b = (hi - o) / d;
+        if (a > b)
+            std::swap(a, b);
+        t0 = std::max(t0, a);
+        t1 = std::min(t1, b);
+    }
+    if (!(t1 > t0))
         return 0.0;
     const double speed = std::sqrt(dir.x * dir.x + dir.y * dir.y + dir.z * dir.z);
     const double length_per_z = std::abs(dir.z) > 0.0 ? speed / std::abs(dir.z) : 0.0;
@@ -60,6 +82,8 @@ void validate_height_fog(const HeightFog& f, const std::string& label)
     const std::string p = "/froxel/height_fog/";
     if (!(f.extinction >= 0.0) || !std::isfinite(f.extinction) || f.extinction > 1e3)
         throw InputError(label, p + "extinction", "must be a finite number in [0, 1000] (1/m)");
+    if (!(f.min.x <= f.max.x && f.min.y <= f.max.y))
+        throw InputError(label, p + "extent", "the minimum must not exceed the maximum");
     if (!std::isfinite(f.base))
         throw InputError(label, p + "base", "must be a finite number (m)");
     if (!(f.scale_height > 0.0) || !std::isfinite(f.scale_height))
