@@ -1,5 +1,6 @@
-// `kiri author SCENE.json -o DIR`: the fog base surface of a scene as OBJ and PLY, and
-// DIR/report.json with the fit figures, counts and timings (issue 4). Every file is written
+// `kiri author SCENE.json -o DIR`: the fog base surface of a scene as OBJ and PLY, its layers,
+// its medium as OpenVDB (medium.vdb) and DIR/report.json with the fit figures, counts and
+// timings (issue 4). Every file is written
 // under a temporary name and renamed into place, so DIR never holds a half-written result.
 #include <chrono>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include "kiri/geometry/fog_spec.hpp"
 #include "kiri/geometry/layer_export.hpp"
 #include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/medium_vdb.hpp"
 #include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/scene.hpp"
 #include "kiri/geometry/terrain.hpp"
@@ -81,10 +83,12 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
                                                         {out_dir / (stem + "glb"), out_dir / "layers.glb"},
                                                         {out_dir / (stem + "layers.obj"), out_dir / "layers.obj"},
                                                         {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"},
-                                                        {out_dir / (stem + "particles.ply"), out_dir / "particles.ply"}};
+                                                        {out_dir / (stem + "particles.ply"), out_dir / "particles.ply"},
+                                                        {out_dir / (stem + "vdb"), out_dir / "medium.vdb"}};
     const std::vector<MapFile> maps = placement_maps(scene, terrain, fog);
     for (const MapFile& m : maps)
         files.push_back({out_dir / (stem + m.name), out_dir / m.name});
+    VdbExportReport vdb;
     try {
         write_mesh_file(a.tessellation.mesh, files[0].first, false);
         write_mesh_file(a.tessellation.mesh, files[1].first, true);
@@ -93,8 +97,9 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
         write_layers_obj(files[4].first, fog.base, layers);
         write_layers_ply(files[5].first, fog.base, layers, fog.layers);
         write_particles_ply(files[6].first.string(), particles);
+        vdb = write_medium_vdb(fog.medium, files[7].first);
         for (std::size_t m = 0; m < maps.size(); ++m)
-            maps[m].write(files[7 + m].first);
+            maps[m].write(files[8 + m].first);
         for (const auto& [tmp, final_path] : files) {
             fs::rename(tmp, final_path, ec);
             if (ec)
@@ -114,10 +119,10 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
                     c.top_max / e, fog.placed->outline.components, maps.size());
     }
     std::printf("%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
-                "%zu layers, %zu particles -> %s\n",
+                "%zu layers, %zu particles, medium %zu voxels of %.3g m -> %s\n",
                 scene_path.filename().string().c_str(), a.surface.num_patches(), a.tessellation.mesh.n_faces(),
                 a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, layers.size(), particles.particles.size(),
-                out_dir.string().c_str());
+                vdb.active_voxels, vdb.voxel_size, out_dir.string().c_str());
     return 0;
 }
 }  // namespace
@@ -125,7 +130,8 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
 //! Registers `kiri author`.
 void add_author_command(CLI::App& app)
 {
-    auto* sub = app.add_subcommand("author", "Fit the scene's fog; write its base surface, layers (OBJ, PLY, glTF), particles (PLY) and report.json");
+    auto* sub = app.add_subcommand("author", "Fit the scene's fog; write its base surface, layers (OBJ, PLY, glTF), "
+                                             "particles (PLY), the medium (OpenVDB) and report.json");
     auto scene = std::make_shared<std::string>();
     auto out = std::make_shared<std::string>();
     sub->add_option("scene", *scene, "scene file (JSON) with a fog section")->required();

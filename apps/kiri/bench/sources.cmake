@@ -2,6 +2,8 @@
 list(APPEND KIRI_BENCH_SOURCES
   bench/end_to_end_bench.cpp
   bench/fit_bench.cpp
+  bench/froxel_bench.cpp
+  bench/froxel_scene.cpp
   bench/layers_bench.cpp
   bench/layers_scene.cpp
   bench/particles_bench.cpp

@@ -5,4 +5,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/volume/fog_lighting.cpp
   src/volume/froxel_slices.cpp
   src/volume/froxel_options_json.cpp
+  src/volume/medium_vdb.cpp
 )
