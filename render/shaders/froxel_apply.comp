@@ -2,7 +2,7 @@
 // Pass 4 over the frame: the fog each pixel of the resolved (tone-mapped, 8-bit) frame gets at
 // its depth, applied in linear radiance (the tone map undone, then redone: exposure, gamma 2.2,
 // as terrain.frag and sky.frag write them).
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 32, local_size_y = 8) in;
 layout(rgba8, binding = 0) uniform image2D io_color;
 uniform sampler2D u_depth;
 uniform ivec2 u_size;

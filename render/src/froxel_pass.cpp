@@ -277,7 +277,7 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     p.use();
     glBindTextureUnit(0, depth_texture);
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
-    glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
+    glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     timers_[apply_stage].end();
     timer_ran_[apply_stage] = true;
