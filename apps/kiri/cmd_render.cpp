@@ -78,7 +78,7 @@ void render_reference(const geometry::Scene& scene, const geometry::Terrain& ter
     light.ambient = scene.sun.ambient;
     light.terrain_shadows = options.terrain_shadows;
     light.fog_shadows = options.fog_shadows;
-    light.scattering_octaves = options.scattering_octaves;
+    light.scattering_octaves = geometry::scattering_octaves_of(fog ? &fog->medium : nullptr);
     const geometry::ReferenceImage r = geometry::render_reference_fog({fog ? &fog->medium : nullptr, options.height_fog},
                                                                       &terrain.heightfield(), view, light);
     render::Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4, 255)};

@@ -1,14 +1,12 @@
 #version 450 core
-// Pass 4 over the frame: the fog each pixel of the resolved (tone-mapped, 8-bit) frame gets at
-// its depth, applied in linear radiance (the tone map undone, then redone: exposure, gamma 2.2,
-// as terrain.frag and sky.frag write them).
+// Pass 4 over the frame: the fog each pixel of the resolved linear-radiance frame (RGBA16F,
+// before the tone map) gets at its depth: radiance T + in-scattered radiance.
 layout(local_size_x = 32, local_size_y = 8) in;
-layout(rgba8, binding = 0) uniform image2D io_color;
+layout(rgba16f, binding = 0) uniform image2D io_color;
 uniform sampler2D u_depth;
 uniform ivec2 u_size;
 uniform float u_near_plane;  // of the frame's projection
 uniform float u_far_plane;
-uniform float u_exposure;
 
 void main()
 {
@@ -23,7 +21,5 @@ void main()
     if (fog.a >= 1.0 && all(equal(fog.rgb, vec3(0.0))))
         return;
     vec4 c = imageLoad(io_color, px);
-    vec3 radiance = -log(1.0 - min(pow(c.rgb, vec3(2.2)), vec3(0.999))) / u_exposure;
-    radiance = radiance * fog.a + fog.rgb;
-    imageStore(io_color, px, vec4(pow(vec3(1.0) - exp(-radiance * u_exposure), vec3(1.0 / 2.2)), c.a));
+    imageStore(io_color, px, vec4(c.rgb * fog.a + fog.rgb, c.a));
 }

@@ -72,7 +72,7 @@ void main()
     float cos_theta = dot(normalize(p - u_fx_eye), u_sun_direction);
     float visible = terrain_visibility(p, u_ts_bias);
     float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(p) : 0.0;
-    vec3 sun = u_sun_radiance * visible;
+    vec3 sun = 3.14159265358979 * u_sun_radiance * visible;  // pi sun: fog_lighting.hpp
     vec3 s = u_albedo.x * weights.x * (sun * sun_scattering(cos_theta, u_anisotropy.x, tau, u_octaves) + u_ambient) +
              u_albedo.y * weights.y * (sun * sun_scattering(cos_theta, u_anisotropy.y, tau, u_octaves) + u_ambient);
     imageStore(o_light, id, vec4(s / (weights.x + weights.y), 1.0));

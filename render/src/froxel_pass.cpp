@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "kiri/geometry/fog_lighting.hpp"
 #include "kiri/geometry/medium.hpp"
 #include "terrain_pass.hpp"
 
@@ -166,7 +167,7 @@ std::vector<double> FroxelPass::make_key(const FrameContext& frame, const Terrai
     k.insert(k.end(), {double(o.width), double(o.height), double(o.slices), double(o.distribution), o.power,
                        o.log2_scale, o.near, o.far, double(o.fog_aware), double(o.temporal), o.history_weight,
                        double(o.density_samples), double(o.sun_steps), double(o.pixel_steps), double(o.terrain_shadows),
-                       double(o.fog_shadows), double(o.scattering_octaves), double(o.shadow_map_size), o.esm_sharpness, h.extinction, h.base,
+                       double(o.fog_shadows), double(geometry::scattering_octaves_of(medium_)), double(o.shadow_map_size), o.esm_sharpness, h.extinction, h.base,
                        h.scale_height, h.albedo, h.anisotropy, h.min.x, h.min.y, h.max.x, h.max.y});
     return k;
 }
@@ -273,10 +274,9 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     p.set("u_near_plane", float(p32 / (p22 - 1.0)));
     p.set("u_far_plane", float(p32 / (p22 + 1.0)));
-    p.set("u_exposure", frame.exposure);
     p.use();
     glBindTextureUnit(0, depth_texture);
-    glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+    glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     timers_[apply_stage].end();
@@ -353,7 +353,7 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     lighting_.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
     lighting_.set("u_fog_shadows", int(o.fog_shadows));
     lighting_.set("u_sun_steps", o.sun_steps);
-    lighting_.set("u_octaves", o.scattering_octaves);
+    lighting_.set("u_octaves", geometry::scattering_octaves_of(medium_));
     lighting_.set("u_whole_tiles", int(o.fog_aware));
     const glm::dvec3 box_lo = medium_ ? medium_->bounds().min : glm::dvec3(0.0);
     const glm::dvec3 box_hi = medium_ ? medium_->bounds().max : glm::dvec3(0.0);

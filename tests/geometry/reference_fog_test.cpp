@@ -89,7 +89,19 @@ TEST(ReferenceFog, HomogeneousSlabLitByTheSunThroughTheFog)
     const RayFog r = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
     const double t_sun = std::exp(-sigma * (H - z) / std::sin(e));
     const double phase = henyey_greenstein(glm::dot(w, light.sun_direction), g);
-    const glm::dvec3 expected = a * (light.sun_radiance * t_sun * phase + light.ambient) * (1.0 - std::exp(-sigma * d));
+    const glm::dvec3 expected = a * (std::numbers::pi * light.sun_radiance * t_sun * phase + light.ambient) * (1.0 - std::exp(-sigma * d));
+    // The one lighting model (fog_lighting.hpp) says the same, at one octave and at three.
+    MediumOptions optics;
+    optics.albedo = a;
+    optics.anisotropy = g;
+    optics.scattering_octaves = 1;
+    const FogLight fl{light.sun_radiance, light.ambient};
+    expect_rel(fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
+                   (1.0 - std::exp(-sigma * d)), expected, 1e-12);
+    light.scattering_octaves = optics.scattering_octaves = 3;
+    const RayFog r3 = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
+    expect_rel(r3.inscatter, fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
+                                 (1.0 - std::exp(-sigma * d)), 1e-9);
     expect_rel(r.inscatter, expected, 1e-9);
     EXPECT_NEAR(r.transmittance, std::exp(-sigma * d), 1e-12);
 }
@@ -98,7 +110,7 @@ TEST(ReferenceFog, LookingDownThroughASlabWithTheSunOverhead)
 {
     // Eye at 2H looking straight down onto flat ground at 0, sun at the zenith: a point at
     // depth u under the top is lit through u of fog and seen through u of fog, so
-    // L = a E p(-1) (1 - exp(-2 sigma H)) / 2 + a L_amb (1 - exp(-sigma H)).
+    // L = a pi E p(-1) (1 - exp(-2 sigma H)) / 2 + a L_amb (1 - exp(-sigma H)) (pi E: fog_lighting.hpp).
     const double sigma = 0.015, a = 0.8, g = 0.3, H = 120.0;
     const Medium m = slab(0.0, H, sigma, 1.0, a, g);
     const Heightfield ground = flat();
@@ -109,7 +121,7 @@ TEST(ReferenceFog, LookingDownThroughASlabWithTheSunOverhead)
     const RayFog r = reference_ray({&m, {}}, &ground, {10.0, 20.0, 2.0 * H}, {0.0, 0.0, -1.0}, 1e6, light);
     ASSERT_TRUE(r.hit_terrain);
     EXPECT_NEAR(r.distance, 2.0 * H, 1e-9);
-    const glm::dvec3 expected = a * light.sun_radiance * henyey_greenstein(-1.0, g) * 0.5 * (1.0 - std::exp(-2.0 * sigma * H)) +
+    const glm::dvec3 expected = a * std::numbers::pi * light.sun_radiance * henyey_greenstein(-1.0, g) * 0.5 * (1.0 - std::exp(-2.0 * sigma * H)) +
                                 a * light.ambient * (1.0 - std::exp(-sigma * H));
     expect_rel(r.inscatter, expected, 2e-4);
     EXPECT_NEAR(r.transmittance, std::exp(-sigma * H), 1e-12);
@@ -180,8 +192,8 @@ TEST(ReferenceFog, RidgeShadowInTheFog)
     ASSERT_TRUE(r.hit_terrain);
     const double t_hit = -x0 - 10.0 * (1.0 - z / R);
     EXPECT_NEAR(r.distance, t_hit, 1e-9);
-    // Everything before the hit is lit: L = a sigma E p ∫_0^t_hit exp(-sigma t) dt.
-    const double p = 1.0 / (4.0 * std::numbers::pi);
+    // Everything before the hit is lit: L = a sigma pi E p ∫_0^t_hit exp(-sigma t) dt.
+    const double p = std::numbers::pi / (4.0 * std::numbers::pi);  // pi E p_HG(g = 0) (fog_lighting.hpp)
     EXPECT_NEAR(r.inscatter.x, a * 4.0 * p * (1.0 - std::exp(-sigma * t_hit)), 1e-9);
 
     // From behind the ridge looking away from it, starting in its shadow.

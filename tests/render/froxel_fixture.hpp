@@ -66,7 +66,7 @@ inline SunLight sun()
     return s;
 }
 
-inline g::FogLighting lighting(const SunLight& s, const g::FroxelOptions& o)
+inline g::FogLighting lighting(const SunLight& s, const g::FroxelOptions& o, const g::Medium* medium)
 {
     g::FogLighting l;
     l.sun_direction = s.direction;
@@ -74,7 +74,7 @@ inline g::FogLighting lighting(const SunLight& s, const g::FroxelOptions& o)
     l.ambient = s.ambient;
     l.terrain_shadows = o.terrain_shadows;
     l.fog_shadows = o.fog_shadows;
-    l.scattering_octaves = o.scattering_octaves;
+    l.scattering_octaves = g::scattering_octaves_of(medium);
     return l;
 }
 
@@ -117,7 +117,7 @@ protected:
         view.height = height;
         view.max_depth = options.far;
         c.reference = g::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view,
-                                              lighting(light, options));
+                                              lighting(light, options, medium));
         c.error = kiri::render::compare_fog(c.gpu, c.reference, min_depth, max_depth);
         expect_finite(c.gpu);
         std::printf("    fog pixels %d, silhouettes %d, mean %.4f, p99 %.4f, worst %.4f, |dT| %.4f, in-scatter %.4f "

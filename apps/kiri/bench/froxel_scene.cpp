@@ -42,7 +42,7 @@ geometry::FogLighting FroxelBenchScene::lighting(const geometry::FroxelOptions& 
     l.ambient = scene.sun.ambient;
     l.terrain_shadows = o.terrain_shadows;
     l.fog_shadows = o.fog_shadows;
-    l.scattering_octaves = o.scattering_octaves;
+    l.scattering_octaves = geometry::scattering_octaves_of(&fog.medium);
     return l;
 }
 

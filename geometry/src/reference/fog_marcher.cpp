@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <glm/geometric.hpp>
 
@@ -354,8 +355,10 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
         const int octaves = light_.scattering_octaves;
         const double sun_m = st.sigma_medium > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_m, tau_sun, octaves) : 0.0;
         const double sun_h = st.sigma_height > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_h, tau_sun, octaves) : 0.0;
-        const glm::dvec3 source = albedo_m * st.sigma_medium * (light_.sun_radiance * (visible * sun_m) + light_.ambient) +
-                                  albedo_h * st.sigma_height * (light_.sun_radiance * (visible * sun_h) + light_.ambient);
+        // J of fog_lighting.hpp (pi sun: the sun's irradiance) per medium, times its extinction.
+        const glm::dvec3 sun = std::numbers::pi * visible * light_.sun_radiance;
+        const glm::dvec3 source = albedo_m * st.sigma_medium * (sun * sun_m + light_.ambient) +
+                                  albedo_h * st.sigma_height * (sun * sun_h + light_.ambient);
         const double sigma = st.sigma_medium + st.sigma_height;
         r.inscatter += std::exp(-st.tau_before) * source * step_weight(sigma, st.dt);
         tau = st.tau_before + sigma * st.dt;

@@ -19,4 +19,9 @@ double sun_scattering(double cos_theta, double g, double tau_sun, int octaves)
     return sum;
 }
 
+int scattering_octaves_of(const Medium* medium)
+{
+    return std::clamp(medium ? medium->options().scattering_octaves : MediumOptions{}.scattering_octaves, 1, 8);
+}
+
 }  // namespace kiri::geometry

@@ -39,7 +39,7 @@ FroxelOptions parse_froxel_options(const json& j, const std::string& file)
     const std::string p = "/froxel";
     r.only(j, p, {"size", "distribution", "power", "log2_scale", "near", "far", "fog_aware", "temporal",
                   "history_weight", "density_samples", "sun_steps", "pixel_steps", "terrain_shadows", "fog_shadows",
-                  "scattering_octaves", "shadow_map_size", "esm_sharpness", "height_fog"});
+                  "shadow_map_size", "esm_sharpness", "height_fog"});
     FroxelOptions o;
     if (j.contains("size")) {
         const json& s = j["size"];
@@ -82,8 +82,6 @@ FroxelOptions parse_froxel_options(const json& j, const std::string& file)
         o.terrain_shadows = r.boolean(j["terrain_shadows"], p + "/terrain_shadows");
     if (j.contains("fog_shadows"))
         o.fog_shadows = r.boolean(j["fog_shadows"], p + "/fog_shadows");
-    if (j.contains("scattering_octaves"))
-        o.scattering_octaves = r.integer(j["scattering_octaves"], p + "/scattering_octaves", 1, 8);
     if (j.contains("shadow_map_size"))
         o.shadow_map_size = r.integer(j["shadow_map_size"], p + "/shadow_map_size", 64, 8192);
     if (j.contains("esm_sharpness"))
@@ -112,7 +110,6 @@ json froxel_options_to_json(const FroxelOptions& o)
             {"pixel_steps", o.pixel_steps},
             {"terrain_shadows", o.terrain_shadows},
             {"fog_shadows", o.fog_shadows},
-            {"scattering_octaves", o.scattering_octaves},
             {"shadow_map_size", o.shadow_map_size},
             {"esm_sharpness", o.esm_sharpness},
             {"height_fog",

@@ -87,7 +87,6 @@ void validate_froxel_options(const FroxelOptions& o, const std::string& label)
     in(o.sun_steps, 1, 64, "sun_steps");
     in(o.pixel_steps, 1, 256, "pixel_steps");
     in(o.shadow_map_size, 64, 8192, "shadow_map_size");
-    in(o.scattering_octaves, 1, 8, "scattering_octaves");
     if (!(o.power > 0.0) || !std::isfinite(o.power) || o.power > 16.0)
         throw InputError(label, p + "power", "must be in (0, 16]");
     if (!(o.log2_scale > 0.0) || !std::isfinite(o.log2_scale))

@@ -25,6 +25,8 @@
 
 namespace kiri::geometry {
 
+class Medium;
+
 struct FogLight {
     glm::dvec3 sun{3.0};      //!< colour x intensity (SunSpec)
     glm::dvec3 ambient{0.3};  //!< isotropic sky radiance (SunSpec::ambient)
@@ -50,5 +52,9 @@ struct FogLighting {
 //! The sum over the octaves of J above, a^i p_HG(cos_theta, c^i g) exp(-b^i tau_sun) (1/sr);
 //! g is clamped strictly inside (-1, 1) by henyey_greenstein, octaves to [1, 8].
 double sun_scattering(double cos_theta, double g, double tau_sun, int octaves);
+
+//! The octaves a renderer lights the fog with: the Medium's, MediumOptions' default without one
+//! (a height fog alone).
+int scattering_octaves_of(const Medium* medium);
 
 }  // namespace kiri::geometry

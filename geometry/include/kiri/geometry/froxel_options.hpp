@@ -35,7 +35,6 @@ struct FroxelOptions {
     int pixel_steps = 24;
     bool terrain_shadows = true;   //!< the terrain's shadow map (ESM) darkens the fog and the ground
     bool fog_shadows = true;       //!< the fog dims the sun on its way (the lighting model's tau_sun)
-    int scattering_octaves = 1;    //!< 1..8: 1 single scattering, more: multiple-scattering octaves (fog_lighting.hpp)
     int shadow_map_size = 1024;    //!< texels a side of the light-space terrain shadow map, 64..8192
     double esm_sharpness = 4.0;    //!< ESM exponent per shadow-map texel of depth, > 0
     HeightFog height_fog;          //!< optional global height fog
