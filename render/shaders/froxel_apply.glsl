@@ -73,17 +73,7 @@ struct FroxelTaps {
     ivec2 tile[4];
     vec2 range[4];
     float weight[4];
-    float scale[4];  // exponential slicing: 1 / log(last / first), so a lookup costs one log
-    bool alike;      // the four tiles slice alike: one filtered fetch does
 };
-
-// fx_slice_coordinate with the tap's constant part done once.
-float froxel_tap_coordinate(FroxelTaps t, int k, float d)
-{
-    vec2 range = t.range[k];
-    d = clamp(d, range.x, range.y);
-    return u_fx_distribution == 0 ? log(d / range.x) * t.scale[k] : fx_slice_coordinate(d, range);
-}
 
 FroxelTaps froxel_taps(vec2 uv)
 {
@@ -91,31 +81,23 @@ FroxelTaps froxel_taps(vec2 uv)
     vec2 p = uv * vec2(u_fx_size.xy) - 0.5;
     vec2 f = p - floor(p);
     ivec2 base = ivec2(floor(p));
-    t.alike = true;
     for (int k = 0; k < 4; ++k) {
         ivec2 o = ivec2(k & 1, k >> 1);
         t.tile[k] = clamp(base + o, ivec2(0), u_fx_size.xy - 1);
         t.range[k] = fx_tile_range(t.tile[k]);
         t.weight[k] = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-        t.scale[k] = t.range[k].y > t.range[k].x ? 1.0 / log(t.range[k].y / t.range[k].x) : 0.0;
-        vec2 gap = abs(t.range[k] - t.range[0]);
-        t.alike = t.alike && t.range[k].y > t.range[k].x && gap.x <= 1e-3 * t.range[0].x && gap.y <= 1e-3 * t.range[0].y;
     }
     return t;
 }
 
-vec3 froxel_light(FroxelTaps t, vec2 uv, float d)
+vec3 froxel_light(FroxelTaps t, float d)
 {
-    if (t.alike) {  // one trilinear fetch: the same depth is the same slice coordinate in all four
-        vec4 j = textureLod(u_fx_light, vec3(uv, froxel_tap_coordinate(t, 0, d)), 0.0);
-        return j.a > 0.0 ? j.rgb / j.a : vec3(0.0);
-    }
     vec4 sum = vec4(0.0);
     for (int k = 0; k < 4; ++k) {
         vec2 range = t.range[k];
         if (!(range.y > range.x) || t.weight[k] <= 0.0)
             continue;
-        float s = froxel_tap_coordinate(t, k, d);
+        float s = fx_slice_coordinate(clamp(d, range.x, range.y), range);
         vec2 centre = (vec2(t.tile[k]) + 0.5) / vec2(u_fx_size.xy);
         sum += t.weight[k] * textureLod(u_fx_light, vec3(centre, s), 0.0);  // (J, lit): linear in depth only
     }
@@ -124,29 +106,28 @@ vec3 froxel_light(FroxelTaps t, vec2 uv, float d)
 
 // Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
 // spread like the slices: each with the Medium's extinction at its middle (when with_medium)
-// and the height fog's in closed form, J every eighth step and linear in between (j1: J at a on
-// entry, at b on return). Stops where the fog lets through less than 0.1 %.
-void froxel_march(inout vec4 fog, inout vec3 j1, vec2 uv, FroxelTaps taps, float a, float b, int n, bool with_medium)
+// and the height fog's in closed form, and J every fourth step, in between linear.
+void froxel_march(inout vec4 fog, vec2 uv, FroxelTaps taps, float a, float b, int n, bool with_medium)
 {
-    if (!(b > a) || n < 1 || fog.a < 1e-3)
+    if (!(b > a) || n < 1)
         return;
-    const int knots = 8;
     vec3 ray = fx_ray(uv);
     float stretch = length(ray);
     float d0 = a;
-    vec3 j0 = j1;
-    for (int k = 0; k < n && fog.a >= 1e-3; ++k) {
-        if (k % knots == 0) {  // J at the end of the next steps
+    vec3 j0 = froxel_light(taps, a), j1 = j0;
+    for (int k = 0; k < n; ++k) {
+        if (k % 4 == 0) {  // J at the end of the next four steps
             j0 = j1;
-            j1 = froxel_light(taps, uv, fx_slice_depth(float(min(k + knots, n)) / float(n), vec2(a, b)));
+            j1 = froxel_light(taps, fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)));
         }
         float d1 = fx_slice_depth(float(k + 1) / float(n), vec2(a, b));
+        float d = 0.5 * (d0 + d1);
         float tau = height_fog_segment(u_fx_eye + ray * d0, u_fx_eye + ray * d1);
         if (with_medium)
-            tau += medium_sigma(u_fx_eye + ray * (0.5 * (d0 + d1))) * (d1 - d0) * stretch;
+            tau += medium_sigma(u_fx_eye + ray * d) * (d1 - d0) * stretch;
         if (tau > 0.0) {
-            float span = float(min(knots, n - (k / knots) * knots));
-            vec3 j = mix(j0, j1, (float(k % knots) + 0.5) / span);
+            float span = float(min(4, n - (k / 4) * 4));
+            vec3 j = mix(j0, j1, (float(k % 4) + 0.5) / span);
             float through = exp(-tau);
             fog.rgb += fog.a * j * (1.0 - through);
             fog.a *= through;
@@ -168,25 +149,21 @@ vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
     FroxelTaps taps = froxel_taps(uv);
     bool haze = u_hf.x > 0.0;
     if (u_fx_shell == 0) {  // the Medium may be anywhere along the ray
-        vec3 j = froxel_light(taps, uv, near);
-        froxel_march(fog, j, uv, taps, near, end, u_fx_pixel_steps, true);
+        froxel_march(fog, uv, taps, near, end, u_fx_pixel_steps, true);
         return fog;
     }
     float first = max(texelFetch(u_fx_first, px, 0).r, near);
     float last = min(texelFetch(u_fx_last, px, 0).r, end);
-    int haze_steps = max(u_fx_pixel_steps / 4, 2);  // T is exact per step: the steps only carry J
+    int haze_steps = max(u_fx_pixel_steps / 2, 1);
     if (!(last > first)) {
-        if (haze) {
-            vec3 j = froxel_light(taps, uv, near);
-            froxel_march(fog, j, uv, taps, near, end, haze_steps, false);
-        }
+        if (haze)
+            froxel_march(fog, uv, taps, near, end, haze_steps, false);
         return fog;
     }
-    vec3 j = froxel_light(taps, uv, haze ? near : first);
     if (haze)
-        froxel_march(fog, j, uv, taps, near, first, haze_steps, false);
-    froxel_march(fog, j, uv, taps, first, last, u_fx_pixel_steps, true);
+        froxel_march(fog, uv, taps, near, first, haze_steps, false);
+    froxel_march(fog, uv, taps, first, last, u_fx_pixel_steps, true);
     if (haze)
-        froxel_march(fog, j, uv, taps, last, end, haze_steps, false);
+        froxel_march(fog, uv, taps, last, end, haze_steps, false);
     return fog;
 }

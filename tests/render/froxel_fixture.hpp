@@ -36,7 +36,9 @@ inline g::Terrain flat_ground(double half = 2000.0, double spacing = 50.0, doubl
 }
 
 // A shell between bottom and top over [-half, half]^2, coverage 1.
-inline g::Medium slab(double bottom, double top, double sigma, double half = 2000.0, double g_aniso = 0.6)
+// Single scattering unless told (the tests judge the froxel machinery; the octaves are one sum).
+inline g::Medium slab(double bottom, double top, double sigma, double half = 2000.0, double g_aniso = 0.6,
+                      int octaves = 1)
 {
     g::MediumGrid grid;
     grid.nx = grid.ny = 3;
@@ -51,6 +53,7 @@ inline g::Medium slab(double bottom, double top, double sigma, double half = 200
     o.albedo = 0.9;
     o.anisotropy = g_aniso;
     o.top_density = 1.0;
+    o.scattering_octaves = octaves;
     g::MediumDetail d;
     d.detail = 0.0;
     return g::Medium(std::move(grid), o, d);

@@ -197,7 +197,18 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     const double fresh = kiri::render::compare_fog(after, truth).mean_relative;
     std::printf("    still %.4f, converged %.4f, after the sun moved %.4f (against the old sun %.4f)\n", still, converged,
                 fresh, stale);
-    EXPECT_LT(fresh, 0.03);
+    // As close as a first frame gets (no history: one jittered sample per froxel).
+    const auto without_history = [&](const SunLight& light, const Camera& cam, const g::ReferenceImage& ref) {
+        Renderer q;
+        q.set_terrain(s.ground);
+        q.set_sun(light);
+        q.set_froxel_fog(&s.fog, o);
+        q.render(cam, 96, 56);
+        return kiri::render::compare_fog(q.read_froxel_fog(), ref).mean_relative;
+    };
+    const double baseline = without_history(other, c, truth);
+    std::printf("    a first frame under the new sun %.4f\n", baseline);
+    EXPECT_LT(fresh, std::max(1.5 * baseline, 0.01));
     EXPECT_LT(fresh, 0.5 * stale);
     // The camera moves by a tile or so: reprojection keeps the picture right.
     Camera moved = c;
@@ -205,7 +216,8 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     r.render(moved, 96, 56);
     view.eye = moved.position;
     const g::ReferenceImage truth_moved = g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog));
-    EXPECT_LT(kiri::render::compare_fog(r.read_froxel_fog(), truth_moved).mean_relative, 0.03);
+    const double moved_error = kiri::render::compare_fog(r.read_froxel_fog(), truth_moved).mean_relative;
+    EXPECT_LT(moved_error, std::max(1.5 * without_history(other, moved, truth_moved), 0.01));
 }
 
 TEST_F(FroxelGl, AnisotropyNearOneStaysFinite)
