@@ -103,5 +103,9 @@ void main()
         discard;
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
-    o_color = vec4(radiance * a, a);
+    // The froxel fog between the eye and this layer (froxel_apply.glsl, none without it): the
+    // terrain behind got the whole ray's fog F already, so over it this layer is
+    // T C + a S (premultiplied), which composes to S + T (C + (1 - a) (what lies behind)).
+    vec4 fog = froxel_fog(v_world);
+    o_color = vec4((radiance * fog.a + fog.rgb) * a, a);
 }

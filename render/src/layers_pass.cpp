@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <vector>
 
+#include "froxel_pass.hpp"
 #include "kiri/geometry/heightfield.hpp"
 #include "noise_texture.hpp"
 
@@ -27,7 +29,7 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"layers.vert", "layers.frag"}), composite_({"fullscreen.vert", "layers_composite.frag"}),
+    : program_({"layers.vert", "layers.frag", "froxel_fog_none.glsl"}), composite_({"fullscreen.vert", "layers_composite.frag"}),
       empty_vao_(make_vertex_array()), noise_(make_noise_texture())
 {
 }
@@ -224,48 +226,55 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
 
 void LayersPass::draw_stack(const FrameContext& frame)
 {
+    // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
+    if (fog_ && !fog_program_)
+        fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+            "layers.vert", "layers.frag", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl"});
+    const ShaderProgram& p = fog_ ? *fog_program_ : program_;
+    if (fog_)
+        fog_->bind_apply(p);
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
     const bool bottom_first = eye.z >= 0.5 * (base_->min.z + base_->max.z);
     const auto& o = options_;
-    program_.set("u_view_projection", frame.view_projection);
-    program_.set("u_eye", frame.eye);
-    program_.set("u_centre", glm::vec2(base_->centre));
-    program_.set("u_thickness", float(o.thickness));
-    program_.set("u_count", float(o.count));
-    program_.set("u_max_count", float(o.max_count));
-    program_.set("u_divisor", float(o.spacing_divisor));
-    program_.set("u_rate", float(o.enlargement_rate));
-    program_.set("u_narrowing", int(o.narrowing));
-    program_.set("u_enlargement", int(o.enlargement));
-    program_.set("u_top", top);
-    program_.set("u_bottom_first", int(bottom_first));
-    program_.set("u_time", float(o.time));
-    program_.set("u_half_life", float(o.dissipation_half_life));
-    program_.set("u_atlas", 0);
-    program_.set("u_heights", 1);
-    program_.set("u_noise", 2);
-    program_.set("u_height_rect", height_rect_);
-    program_.set("u_height_texels", height_texels_);
-    program_.set("u_opacity", float(o.opacity));
-    program_.set("u_ground_fade", float(o.ground_fade));
-    program_.set("u_detail", float(o.detail));
-    program_.set("u_detail_scale", float(o.detail_scale));
-    program_.set("u_drift", glm::vec2(o.wind * o.time));
-    program_.set("u_sun_direction", frame.sun_direction);
-    program_.set("u_sun_radiance", frame.sun_radiance);
-    program_.set("u_ambient", frame.ambient);
-    program_.set("u_sky_horizon", frame.sky_horizon);
-    program_.set("u_haze_density", frame.haze_density);
+    p.set("u_view_projection", frame.view_projection);
+    p.set("u_eye", frame.eye);
+    p.set("u_centre", glm::vec2(base_->centre));
+    p.set("u_thickness", float(o.thickness));
+    p.set("u_count", float(o.count));
+    p.set("u_max_count", float(o.max_count));
+    p.set("u_divisor", float(o.spacing_divisor));
+    p.set("u_rate", float(o.enlargement_rate));
+    p.set("u_narrowing", int(o.narrowing));
+    p.set("u_enlargement", int(o.enlargement));
+    p.set("u_top", top);
+    p.set("u_bottom_first", int(bottom_first));
+    p.set("u_time", float(o.time));
+    p.set("u_half_life", float(o.dissipation_half_life));
+    p.set("u_atlas", 0);
+    p.set("u_heights", 1);
+    p.set("u_noise", 2);
+    p.set("u_height_rect", height_rect_);
+    p.set("u_height_texels", height_texels_);
+    p.set("u_opacity", float(o.opacity));
+    p.set("u_ground_fade", float(o.ground_fade));
+    p.set("u_detail", float(o.detail));
+    p.set("u_detail_scale", float(o.detail_scale));
+    p.set("u_drift", glm::vec2(o.wind * o.time));
+    p.set("u_sun_direction", frame.sun_direction);
+    p.set("u_sun_radiance", frame.sun_radiance);
+    p.set("u_ambient", frame.ambient);
+    p.set("u_sky_horizon", frame.sky_horizon);
+    p.set("u_haze_density", frame.haze_density);
     const bool medium = o.shading == geometry::LayerShading::medium;
-    program_.set("u_medium", int(medium));
-    program_.set("u_top_loss", float(medium ? 1.0 - o.optics.top_density : 0.9));
-    program_.set("u_extinction", float(o.optics.extinction));
-    program_.set("u_albedo", float(o.optics.albedo));
-    program_.set("u_octaves", std::clamp(o.optics.scattering_octaves, 1, 8));
-    program_.set("u_anisotropy", float(std::clamp(o.optics.anisotropy, -0.999, 0.999)));
-    program_.use();
+    p.set("u_medium", int(medium));
+    p.set("u_top_loss", float(medium ? 1.0 - o.optics.top_density : 0.9));
+    p.set("u_extinction", float(o.optics.extinction));
+    p.set("u_albedo", float(o.optics.albedo));
+    p.set("u_octaves", std::clamp(o.optics.scattering_octaves, 1, 8));
+    p.set("u_anisotropy", float(std::clamp(o.optics.anisotropy, -0.999, 0.999)));
+    p.use();
     glBindTextureUnit(0, atlas_.get());
     glBindTextureUnit(1, heights_.get());
     glBindTextureUnit(2, noise_.get());

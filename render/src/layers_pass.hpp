@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 
 #include <glm/vec3.hpp>
 
@@ -12,6 +13,8 @@ struct Heightfield;
 }
 
 namespace kiri::render::detail {
+
+class FroxelPass;
 
 //! The fog's layer stack: the base tessellation uploaded once, drawn as instances (one per
 //! layer) with the stack's formulas in the vertex shader, blended over the terrain with the
@@ -40,8 +43,13 @@ public:
     //! upsampling (a quarter of the fragments at scale 0.5). Returns true on an upload.
     bool draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth);
 
+    //! The froxel fog each layer reads at its own depth (nullptr: none); drawn after its apply.
+    void set_fog(const FroxelPass* fog) { fog_ = fog; }
+
 private:
     ShaderProgram program_, composite_;
+    mutable std::unique_ptr<ShaderProgram> fog_program_;
+    const FroxelPass* fog_ = nullptr;
     VertexArray empty_vao_;
     Texture noise_;
     // The reduced-resolution target.

@@ -131,6 +131,10 @@ void Renderer::draw(const Camera& camera, int width, int height)
     const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
     if (fog)  // before the scene: in view or not, the sun's shadow map for the terrain
         r.froxel->prepare(frame, r.terrain);
+    // With froxel fog the layers come after its apply and read it at their own depth (and so
+    // would particles: FroxelPass::bind_apply + froxel_fog(world) in their fragment shader).
+    const bool layers_multisampled = r.layers_multisampled && !fog;
+    r.layers.set_fog(fog);
     r.targets.bind_for_drawing();
     r.sky_timer.begin();
     r.sky.draw(frame);
@@ -138,7 +142,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.terrain_timer.begin();
     r.terrain.draw(frame, fog);
     r.terrain_timer.end();
-    if (r.layers_multisampled) {  // layers straight into the multisampled frame
+    if (layers_multisampled) {  // layers straight into the multisampled frame
         r.layers_timer.begin();
         if (r.layers.draw(frame))
             ++r.pending_uploads;
@@ -151,7 +155,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
         r.froxel->update(frame, r.terrain, r.targets.resolved_depth());
         r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth());
     }
-    if (!r.layers_multisampled) {  // layers in their own target, composited after the resolve
+    if (!layers_multisampled) {  // layers in their own target, composited after the resolve
         r.layers_timer.begin();
         if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.hdr_framebuffer(), r.targets.resolved_depth()))
             ++r.pending_uploads;
