@@ -73,6 +73,8 @@ struct FroxelTaps {
     ivec2 tile[4];
     vec2 range[4];
     float weight[4];
+    float rise[4];  // height gained per unit view depth along each tile's central ray
+    float ray_rise; // and along the pixel's ray
 };
 
 FroxelTaps froxel_taps(vec2 uv)
@@ -86,7 +88,9 @@ FroxelTaps froxel_taps(vec2 uv)
         t.tile[k] = clamp(base + o, ivec2(0), u_fx_size.xy - 1);
         t.range[k] = fx_tile_range(t.tile[k]);
         t.weight[k] = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        t.rise[k] = fx_ray((vec2(t.tile[k]) + 0.5) / vec2(u_fx_size.xy)).z;
     }
+    t.ray_rise = fx_ray(uv).z;
     return t;
 }
 
@@ -97,7 +101,13 @@ vec3 froxel_light(FroxelTaps t, float d)
         vec2 range = t.range[k];
         if (!(range.y > range.x) || t.weight[k] <= 0.0)
             continue;
-        float s = fx_slice_coordinate(clamp(d, range.x, range.y), range);
+        // At the pixel's height, not its depth: J changes fastest with height (the sun's path
+        // through the fog above), and seen at a grazing angle the next tile's ray at the same
+        // depth is tens of metres higher or lower. Where the two rays rise too differently
+        // (near level), the same depth.
+        float h = d * t.ray_rise, dk = abs(t.rise[k]) > 1e-6 ? h / t.rise[k] : -1.0;
+        dk = dk > 0.5 * d && dk < 2.0 * d ? dk : d;
+        float s = fx_slice_coordinate(clamp(dk, range.x, range.y), range);
         vec2 centre = (vec2(t.tile[k]) + 0.5) / vec2(u_fx_size.xy);
         sum += t.weight[k] * textureLod(u_fx_light, vec3(centre, s), 0.0);  // (J, lit): linear in depth only
     }
@@ -154,6 +164,13 @@ vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
     }
     float first = max(texelFetch(u_fx_first, px, 0).r, near);
     float last = min(texelFetch(u_fx_last, px, 0).r, end);
+    if (!haze) {  // the tiles' ranges end where the fog turns opaque (froxel_opaque.comp): so do the steps
+        float cut = 0.0;
+        for (int k = 0; k < 4; ++k)
+            cut = taps.range[k].y > taps.range[k].x ? max(cut, taps.range[k].y) : cut;
+        if (cut > first)
+            last = min(last, cut);
+    }
     int haze_steps = max(u_fx_pixel_steps / 2, 1);
     if (!(last > first)) {
         if (haze)

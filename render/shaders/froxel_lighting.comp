@@ -37,13 +37,28 @@ float sun_optical_depth(vec3 p)
     float t1 = min(min(far_t.x, far_t.y), far_t.z);
     if (!(t1 > t0))
         return tau;
-    // Steps growing quadratically from the point: fine where the sun enters the fog nearby.
-    float n = float(u_sun_steps);
-    for (int k = 0; k < u_sun_steps; ++k) {
+    // Half the steps evenly up to twice where the sun leaves the fog's top above p (the grid's
+    // top there): in a dense fog nearly all of tau_sun lies there, and with the scattering
+    // octaves (exp(-tau / 4)) its error shows. The rest grow quadratically to the box's exit,
+    // for fog the sun crosses farther away.
+    float split = t0;
+    if (u_sun_direction.z > 1e-3 && p.x >= u_md_origin.x && p.y >= u_md_origin.y && p.x <= u_md_last.x &&
+        p.y <= u_md_last.y) {
+        vec2 st = ((p.xy - u_md_origin) / (u_md_last - u_md_origin) * (u_md_cells - 1.0) + 0.5) / u_md_cells;
+        vec4 c = textureLod(u_md_grid, st, 0.0);  // floor, bottom, top, coverage
+        if (c.w > 0.0 && p.z < c.z)
+            split = clamp(t0 + 2.0 * (c.z - max(p.z, c.y)) / u_sun_direction.z, t0, t1);
+    }
+    int near_steps = split > t0 ? max(u_sun_steps / 2, 1) : 0, far_steps = max(u_sun_steps - near_steps, 1);
+    for (int k = 0; k < near_steps; ++k) {
+        float s0 = mix(t0, split, float(k) / float(near_steps)), s1 = mix(t0, split, float(k + 1) / float(near_steps));
+        tau += medium_sigma(p + u_sun_direction * mix(s0, s1, u_sun_jitter)) * (s1 - s0);
+    }
+    float n = float(far_steps);
+    for (int k = 0; k < far_steps; ++k) {
         float u0 = float(k) / n, u1 = float(k + 1) / n;
-        float s0 = t0 + (t1 - t0) * u0 * u0, s1 = t0 + (t1 - t0) * u1 * u1;
-        float s = mix(s0, s1, u_sun_jitter);
-        tau += medium_sigma(p + u_sun_direction * s) * (s1 - s0);
+        float s0 = split + (t1 - split) * u0 * u0, s1 = split + (t1 - split) * u1 * u1;
+        tau += medium_sigma(p + u_sun_direction * mix(s0, s1, u_sun_jitter)) * (s1 - s0);
     }
     return tau;
 }

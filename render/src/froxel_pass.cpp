@@ -75,6 +75,7 @@ FroxelPass::FroxelPass()
       lighting_({"froxel_lighting.comp", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl"}),
       temporal_({"froxel_temporal.comp", "froxel_common.glsl"}),
       integrate_({"froxel_integrate.comp", "froxel_common.glsl"}),
+      opaque_({"froxel_opaque.comp", "froxel_common.glsl", "froxel_medium.glsl"}),
       apply_program_({"froxel_apply.comp", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl"})
 {
     for (const char* name : stage_names)
@@ -320,11 +321,22 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     timers_[tiles].begin();
     tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
                         v_->tiles[current_].get());
+    const geometry::HeightFog& haze = o.height_fog;
+    if (mode_ == FroxelTileBounds::Mode::shell) {  // ranges end where the fog turns opaque
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        bind_layout(opaque_);
+        glBindTextureUnit(unit_tiles, 0);  // written below as an image, not read as a texture
+        medium_gpu_.bind(opaque_, haze, unit_medium);
+        opaque_.set("u_steps", 48);
+        opaque_.use();
+        glBindImageTexture(0, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+        glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    }
     timers_[tiles].end();
     timer_ran_[tiles] = true;
 
     const GLuint groups_x = GLuint((size.x + 7) / 8), groups_y = GLuint((size.y + 7) / 8);
-    const geometry::HeightFog& haze = o.height_fog;
     auto barrier = [] { glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); };
 
     timers_[density].begin();

@@ -61,7 +61,7 @@ public:
 private:
     struct Volumes;
     std::unique_ptr<Volumes> v_;
-    ShaderProgram density_, lighting_, temporal_, integrate_, apply_program_;
+    ShaderProgram density_, lighting_, temporal_, integrate_, opaque_, apply_program_;
     std::unique_ptr<ShaderProgram> readback_, depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;
