@@ -109,7 +109,10 @@ vec3 froxel_light(FroxelTaps t, float d)
         dk = dk > 0.5 * d && dk < 2.0 * d ? dk : d;
         float s = fx_slice_coordinate(clamp(dk, range.x, range.y), range);
         vec2 centre = (vec2(t.tile[k]) + 0.5) / vec2(u_fx_size.xy);
-        sum += t.weight[k] * textureLod(u_fx_light, vec3(centre, s), 0.0);  // (J, lit): linear in depth only
+        // A tile whose central ray met the ground before this depth was lit on the ground's
+        // near side (a sunlit ridge beside a valley in its shadow): it says little here.
+        float w = t.weight[k] * (fx_tile_ground(t.tile[k]) >= 0.999 * dk ? 1.0 : 1e-3);
+        sum += w * textureLod(u_fx_light, vec3(centre, s), 0.0);  // (J, lit): linear in depth only
     }
     return sum.a > 0.0 ? sum.rgb / sum.a : vec3(0.0);
 }

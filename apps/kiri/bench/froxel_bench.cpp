@@ -205,6 +205,7 @@ void thin_layer(Context& c)
     light.sun_direction = sun.direction;
     light.sun_radiance = sun.color * sun.intensity;
     light.ambient = sun.ambient;
+    light.scattering_octaves = geometry::scattering_octaves_of(&layer);
     const geometry::ReferenceImage reference =
         geometry::render_reference_fog({&layer, {}}, &ground.heightfield(), view, light);
     std::ofstream table(c.out_dir() / "froxel_thin.md");
