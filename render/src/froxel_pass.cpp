@@ -71,12 +71,12 @@ struct FroxelPass::Volumes {
 
 FroxelPass::FroxelPass()
     : v_(std::make_unique<Volumes>()),
-      density_({"froxel_density.comp", "froxel_common.glsl", "froxel_medium.glsl"}),
-      lighting_({"froxel_lighting.comp", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl"}),
-      temporal_({"froxel_temporal.comp", "froxel_common.glsl"}),
-      integrate_({"froxel_integrate.comp", "froxel_common.glsl"}),
-      opaque_({"froxel_opaque.comp", "froxel_common.glsl", "froxel_medium.glsl"}),
-      apply_program_({"froxel_apply.comp", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl"})
+      density_({"froxel_common.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
+      lighting_({"froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl", "froxel_lighting.comp"}),
+      temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
+      integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
+      opaque_({"froxel_common.glsl", "froxel_medium.glsl", "froxel_opaque.comp"}),
+      apply_program_({"froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"})
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
@@ -455,8 +455,8 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
         return out;
     if (!readback_) {
         readback_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"froxel_readback.comp", "froxel_common.glsl", "froxel_medium.glsl",
-                                                    "froxel_apply.glsl"});
+            std::initializer_list<std::string_view>{"froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl",
+                                                    "froxel_readback.comp"});
         depth_program_ = std::make_unique<ShaderProgram>(
             std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
     }

@@ -56,7 +56,7 @@ std::vector<std::uint32_t> grid_indices(int nx, int ny)
 
 }  // namespace
 
-TerrainPass::TerrainPass() : program_({"terrain.vert", "terrain.frag", "froxel_none.glsl"}) {}
+TerrainPass::TerrainPass() : program_({"terrain.vert", "froxel_none.glsl", "terrain.frag"}) {}
 
 bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggeration)
 {
@@ -107,7 +107,7 @@ void TerrainPass::draw(const FrameContext& frame, const FroxelPass* fog) const
         return;
     if (fog && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"terrain.vert", "terrain.frag", "terrain_shadow.glsl"});
+            std::initializer_list<std::string_view>{"terrain.vert", "terrain_shadow.glsl", "terrain.frag"});
     const ShaderProgram& p = fog ? *fog_program_ : program_;
     if (fog)
         fog->bind_shadow(p);
