@@ -133,6 +133,11 @@ void run(const RenderArgs& a)
         if (scene.fog)
             fog = geometry::author_scene_fog(scene, terrain);
         renderer.set_froxel_fog(fog ? &fog->medium : nullptr, options);
+        // A still picture: the temporal filter's jittered frames first (its 16-frame Halton
+        // cycle), so the lighting's shadow edges are averaged over each froxel, not aliased.
+        if (options.temporal)
+            for (int frame = 0; frame < 15; ++frame)
+                renderer.draw(camera, width, height);
     }
     const render::Image image = renderer.render(camera, width, height);
     render::write_png_atomic(a.out, image);
