@@ -12,3 +12,4 @@ kiri_test(froxel_options_test SOURCES froxel_options_test.cpp LIBS kiri_geometry
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
 kiri_test(medium_vdb_test SOURCES medium_vdb_test.cpp LIBS kiri_geometry OpenVDB::openvdb LABELS unit)
+kiri_test(fog_partition_test SOURCES fog_partition_test.cpp LIBS kiri_geometry LABELS unit)

@@ -5,4 +5,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/medium/medium.cpp
   src/medium/make_medium.cpp
   src/medium/medium_options_json.cpp
+  src/medium/fog_partition.cpp
 )

@@ -1,0 +1,46 @@
+#pragma once
+//! \file fog_partition.hpp
+//! Combined rendering (docs/combined.md): the one Medium's extinction is shared out between the
+//! renderers, with shares that sum to 1 at every point,
+//!
+//!   sigma_t(p) = sigma_t(p) [ w_particles(h) + (1 - w_particles(h)) (w_near(d) + w_far(d)) ],
+//!   w_near(d) + w_far(d) = 1,
+//!
+//! so every renderer draws its own share of the fog and the transmittance along any ray is
+//! the Medium's exactly (the shares multiply: exp(-a) exp(-b) = exp(-(a + b))). The froxels
+//! draw the near share (the inside of the cloud, where the layers would look hollow), the
+//! layers the far share (cheap at a distance), the particles the top band of the shell
+//! (billowy tops). The distance weights are smooth (a quintic step over [near_start,
+//! near_end]), so no seam shows where one renderer hands over to the next.
+//!
+//! The GLSL copies are in render/shaders/fog_partition.glsl.
+#include <string>
+
+namespace kiri::geometry {
+
+struct FogPartition {
+    double near_start = 400.0;     //!< metres from the eye: the froxels draw all the fog nearer
+    double near_end = 1600.0;      //!< metres: the layers draw all the fog farther
+    double particle_share = 0.0;   //!< the particles' share at the shell's top, [0, 1]
+    double particle_band = 0.35;   //!< the top fraction of the shell the particles share, (0, 1]
+};
+
+//! Quintic smooth step of x from a to b (0 below, 1 above; C2): a == b gives a step at a.
+double smoother_step(double a, double b, double x);
+
+//! The layers' share of the non-particle fog at view distance d: 0 near, 1 far.
+double far_share(const FogPartition& p, double distance);
+//! The particles' share at height fraction h in [0, 1] of the shell: 0 below the band, rising
+//! to particle_share at the top.
+double particle_share(const FogPartition& p, double h);
+
+//! What each renderer draws at one point (sums to 1).
+struct FogShares {
+    double froxels = 0.0, layers = 0.0, particles = 0.0;
+};
+FogShares fog_shares(const FogPartition& p, double distance, double h);
+
+//! \throw InputError(label, "/combined/<key>", reason) for values outside their ranges.
+void validate_fog_partition(const FogPartition& p, const std::string& label = {});
+
+}  // namespace kiri::geometry

@@ -1,0 +1,56 @@
+#include "kiri/geometry/fog_partition.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "kiri/geometry/error.hpp"
+
+namespace kiri::geometry {
+
+double smoother_step(double a, double b, double x)
+{
+    if (!(b > a))
+        return x >= a ? 1.0 : 0.0;
+    const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
+    return t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+}
+
+double far_share(const FogPartition& p, double distance)
+{
+    return smoother_step(p.near_start, p.near_end, std::isfinite(distance) ? distance : p.near_end);
+}
+
+double particle_share(const FogPartition& p, double h)
+{
+    if (!(p.particle_share > 0.0))
+        return 0.0;
+    const double band_start = 1.0 - p.particle_band;
+    return p.particle_share * smoother_step(band_start, 1.0, std::isfinite(h) ? h : 0.0);
+}
+
+FogShares fog_shares(const FogPartition& p, double distance, double h)
+{
+    FogShares s;
+    s.particles = particle_share(p, h);
+    const double far = far_share(p, distance);
+    s.layers = (1.0 - s.particles) * far;
+    s.froxels = (1.0 - s.particles) * (1.0 - far);
+    return s;
+}
+
+void validate_fog_partition(const FogPartition& p, const std::string& label)
+{
+    auto need = [&](bool ok, const char* key, const char* reason) {
+        if (!ok)
+            throw InputError(label, std::string("/combined/") + key, reason);
+    };
+    need(std::isfinite(p.near_start) && p.near_start >= 0.0, "near_start", "must be a finite distance >= 0 (metres)");
+    need(std::isfinite(p.near_end) && p.near_end >= p.near_start, "near_end", "must be finite and >= near_start");
+    need(p.near_end <= 1e7, "near_end", "must be at most 1e7 metres");
+    need(std::isfinite(p.particle_share) && p.particle_share >= 0.0 && p.particle_share <= 1.0, "particle_share",
+         "must be in [0, 1]");
+    need(std::isfinite(p.particle_band) && p.particle_band > 0.0 && p.particle_band <= 1.0, "particle_band",
+         "must be in (0, 1]");
+}
+
+}  // namespace kiri::geometry
