@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fog_partition.hpp"
 #include "kiri/geometry/particle_footprint.hpp"
 #include "kiri/geometry/particles.hpp"
 #include "kiri/geometry/scene.hpp"
@@ -245,4 +246,31 @@ TEST(ParticleSampling, PlyExport)
     EXPECT_FALSE(std::filesystem::exists(path.string() + ".tmp"));
     std::filesystem::remove(path);
     EXPECT_THROW(write_particles_ply("/nonexistent/dir/p.ply", c), kiri::IoError);
+}
+
+TEST(ParticleSampling, AWeightSamplesAShareOfTheMedium)
+{
+    // Combined rendering gives the particles the top band: weight = the quintic step of h over
+    // [0.5, 1]. The slab's profile is 1 - 0.9 h over 200 m, so the weighted integral is
+    // area * 200 * int_0^1 (1 - 0.9 h) s(h) dh with s the step from 0.5 to 1.
+    const Medium m = slab_medium(1000.0, 100.0, 300.0, false, 0.03);
+    FogPartition partition;
+    partition.particle_share = 1.0;
+    partition.particle_band = 0.5;
+    const DensityWeight weight = [&](const glm::dvec3& p) { return particle_share(partition, m.height_fraction(p)); };
+    const ParticleCloud c = sample_particles(m, options(3000), "", weight);
+    double expected = 0.0;
+    const int n = 100000;
+    for (int i = 0; i < n; ++i) {  // midpoint rule
+        const double h = (i + 0.5) / n;
+        expected += (1.0 - 0.9 * h) * smoother_step(0.5, 1.0, h) / n;
+    }
+    expected *= 1000.0 * 1000.0 * 200.0;
+    EXPECT_NEAR(c.density_integral, expected, 0.02 * expected);
+    for (const Particle& p : c.particles)
+        EXPECT_GT(p.position.z, 200.0 - 1e-9);  // none below the band (h = 0.5)
+    double carried = 0.0;
+    for (const Particle& p : c.particles)
+        carried += p.optical_depth * footprint_area() * p.radius * p.radius;
+    EXPECT_NEAR(carried, 0.03 * c.density_integral, 1e-9 * carried);
 }

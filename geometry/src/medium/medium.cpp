@@ -118,6 +118,14 @@ double Medium::density(const glm::dvec3& p) const
     return c.coverage * profile * detail_factor(p.x, p.y, h) * dissipation(h);
 }
 
+double Medium::height_fraction(const glm::dvec3& p) const
+{
+    const MediumColumn c = column(p.x, p.y);
+    if (!(c.top > c.bottom))
+        return 0.0;
+    return std::clamp((p.z - c.bottom) / (c.top - c.bottom), 0.0, 1.0);
+}
+
 double Medium::shell_volume() const
 {
     // Trapezoidal rule over the grid of coverage (top - floor)+.

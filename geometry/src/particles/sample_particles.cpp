@@ -48,7 +48,8 @@ void validate_particle_options(const ParticleOptions& o, const std::string& labe
         throw InputError(label, p + "soft_edge", "must be a finite number >= 0 (metres)");
 }
 
-ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label)
+ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label,
+                               const DensityWeight& weight)
 {
     validate_particle_options(options, label);
     const Bounds3& box = medium.bounds();
@@ -71,7 +72,9 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
             if (t > give_up)
                 throw InputError(label, "/particles", "the medium's fog is too thin to sample (almost every point is empty)");
             const glm::dvec3 p = box.min + extent * glm::dvec3(uniform(rng), uniform(rng), uniform(rng));
-            const double d = medium.density(p);
+            double d = medium.density(p);
+            if (weight && d > 0.0)  // a share of the Medium: still below d_max
+                d *= std::clamp(weight(p), 0.0, 1.0);
             ++trials;
             if (uniform(rng) * d_max < d) {
                 ++hits;

@@ -104,6 +104,9 @@ public:
     MediumColumn column(double x, double y) const;
     //! Relative density d(p) in [0, 1] (see the file comment); 0 outside the shell.
     double density(const glm::dvec3& p) const;
+    //! h of the file comment: (z - bottom) / (top - bottom) clamped to [0, 1]; 0 where the
+    //! column holds no shell.
+    double height_fraction(const glm::dvec3& p) const;
     //! sigma_t(p) = extinction * d(p), 1/m.
     double extinction(const glm::dvec3& p) const { return options_.extinction * density(p); }
     //! sigma_s = albedo sigma_t.

@@ -6,6 +6,7 @@
 //! inside the Medium, blue noise with a density that follows the Medium's, and carry together
 //! the Medium's extinction, so they draw the same fog as the layers and the froxels.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -78,8 +79,12 @@ double forward_scattering_fraction(double g, double solid_angle = harris_forward
 //! Medium. Each particle carries the same share of the Medium's extinction integral:
 //! tau_k = extinction * density_integral / (count * footprint_area(r_k)). Deterministic for a seed
 //! (the same seed, options and Medium give bit-identical particles).
+//! With a weight w(p) in [0, 1] the particles stand for the share w d of the Medium (combined
+//! rendering, fog_partition.hpp: they draw the top band, the other renderers the rest).
 //! \throw InputError on bad options; LimitError above 2e6 particles or 2e7 candidates.
-ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {});
+using DensityWeight = std::function<double(const glm::dvec3&)>;
+ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {},
+                               const DensityWeight& weight = {});
 
 //! Binary little-endian PLY of the particles: x y z (float), radius, optical_depth, albedo,
 //! with the forward-scattering fraction and the anisotropy in comments. Written atomically.
