@@ -5,6 +5,7 @@
 // - medium: the slab of fog the layer stands for (docs/medium.md): density = the layer's
 //   profile x border fade x detail, optical depth sigma_t density r / |cos(view, normal)|,
 //   single scattering albedo (sun HG(g) T_sun + ambient), T_sun through the fog above it.
+// Combined mode (fog_partition.glsl): the medium shading draws only the layers' share.
 // Both: world-space detail noise drifting with the wind and a soft fade where the layer meets
 // the ground. Output is premultiplied linear radiance.
 in vec3 v_world;
@@ -81,7 +82,9 @@ void main()
     float a;
     vec3 radiance;
     if (u_medium != 0) {
-        float density = v_alpha * tex.a * detail * ground;
+        // In combined mode the layers draw only their share of the fog (fog_partition.glsl);
+        // the sun still sees all of it.
+        float density = v_alpha * tex.a * detail * ground * layers_share(length(v_world - u_eye), v_height);
         float cos_view = max(abs(dot(normalize(v_normal), view)), 0.02);
         a = 1.0 - exp(-u_extinction * density * v_spacing / cos_view);
         // Fog above this layer towards the sun: the profile integrated from h to the top,

@@ -20,7 +20,18 @@ struct FrameContext {
     glm::vec3 sky_zenith{0.3f}, sky_horizon{0.8f};
     float exposure = 0.7f;
     float haze_density = 1.0f / 150000.0f;  // 1/m: the far side of a 30 km DEM is ~20% hazed
+    //! Combined mode: each fog renderer draws its share of the Medium (fog_partition.hpp).
+    bool partitioned = false;
+    glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band
 };
+
+//! Sets fog_partition.glsl's uniforms of `program` from the frame.
+template <class Program>
+void set_partition_uniforms(const Program& program, const FrameContext& frame)
+{
+    program.set("u_partitioned", int(frame.partitioned));
+    program.set("u_partition", frame.partition);
+}
 
 //! Builds the frame's context; near and far planes are fitted to the scene's bounds so that
 //! depth precision is spent where the scene is (the camera's own planes are the fallback).

@@ -29,7 +29,7 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"layers.vert", "froxel_fog_none.glsl", "layers.frag"}), composite_({"fullscreen.vert", "layers_composite.frag"}),
+    : program_({"layers.vert", "fog_partition.glsl", "froxel_fog_none.glsl", "layers.frag"}), composite_({"fullscreen.vert", "layers_composite.frag"}),
       empty_vao_(make_vertex_array()), noise_(make_noise_texture())
 {
 }
@@ -229,7 +229,7 @@ void LayersPass::draw_stack(const FrameContext& frame)
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "layers.vert", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
+            "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
@@ -274,6 +274,7 @@ void LayersPass::draw_stack(const FrameContext& frame)
     p.set("u_albedo", float(o.optics.albedo));
     p.set("u_octaves", std::clamp(o.optics.scattering_octaves, 1, 8));
     p.set("u_anisotropy", float(std::clamp(o.optics.anisotropy, -0.999, 0.999)));
+    set_partition_uniforms(p, frame);
     p.use();
     glBindTextureUnit(0, atlas_.get());
     glBindTextureUnit(1, heights_.get());

@@ -11,6 +11,7 @@
 #include "froxel_pass.hpp"
 #include "gl_debug.hpp"
 #include "kiri/geometry/froxel_options.hpp"
+#include "kiri/geometry/fog_partition.hpp"
 #include "kiri/geometry/terrain.hpp"
 #include "layers_pass.hpp"
 #include "overlay_pass.hpp"
@@ -35,6 +36,7 @@ struct Renderer::Impl {
     detail::ToneMapPass tonemap;
     detail::ParticlesPass particles;
     std::unique_ptr<detail::FroxelPass> froxel;  // built on first use
+    std::optional<geometry::FogPartition> partition;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
     detail::RenderTargets targets;
@@ -86,6 +88,13 @@ void Renderer::remove_overlay(const std::string& name) { impl_->overlays.remove(
 
 void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
 
+void Renderer::set_fog_partition(const std::optional<geometry::FogPartition>& partition)
+{
+    if (partition)
+        geometry::validate_fog_partition(*partition);
+    impl_->partition = partition;
+}
+
 void Renderer::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
 {
     if (impl_->particles.set_particles(cloud, style))
@@ -128,7 +137,12 @@ void Renderer::draw(const Camera& camera, int width, int height)
     const detail::FroxelPass* fog = r.froxel && r.froxel->enabled() ? r.froxel.get() : nullptr;
     if (fog)
         r.froxel->extend_bounds(scene_min, scene_max);
-    const FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
+    FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
+    if (r.partition) {
+        frame.partitioned = true;
+        frame.partition = glm::vec4(r.partition->near_start, r.partition->near_end, r.partition->particle_share,
+                                    r.partition->particle_band);
+    }
     if (fog)  // before the scene: in view or not, the sun's shadow map for the terrain
         r.froxel->prepare(frame, r.terrain);
     // With froxel fog the layers come after its apply and read it at their own depth (and so

@@ -21,6 +21,7 @@ class Medium;
 struct LayerBase;
 struct LayerOptions;
 struct FroxelOptions;
+struct FogPartition;
 }
 
 namespace kiri::render {
@@ -93,6 +94,10 @@ public:
     //! changes: `kiri bench --stage layers`). multisampled (scale 1 only) draws them straight
     //! into the 8-bit multisampled frame instead, the plain way.
     void set_layer_resolution(double scale, bool multisampled = false);
+    //! Combined mode (docs/combined.md): the layers, the froxels and the particles each draw
+    //! their share of the one Medium (geometry/fog_partition.hpp); empty: each draws all of it.
+    //! The particles' share is chosen when they are sampled (sample_particles' weight).
+    void set_fog_partition(const std::optional<geometry::FogPartition>& partition);
     //! A particle cloud lit through the 3D attenuation buffer, drawn as billboards over the
     //! terrain and the layers (kept by reference: it must outlive the renderer's use of it).
     //! Uploads only when the particles changed; the buffer is rebuilt on the next frame only when
