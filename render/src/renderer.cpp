@@ -243,6 +243,24 @@ void Renderer::present(int framebuffer_width, int framebuffer_height) const
 
 const FrameStats& Renderer::last_stats() const { return impl_->stats; }
 
+RadianceImage Renderer::read_radiance() const
+{
+    const detail::RenderTargets& t = impl_->targets;
+    RadianceImage image{t.width(), t.height(), {}};
+    image.rgba.resize(std::size_t(image.width) * std::size_t(image.height) * 4);
+    if (image.rgba.empty())
+        return image;
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(t.hdr_color(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * sizeof(float)), image.rgba.data());
+    // GL's rows run bottom to top.
+    const std::size_t row = std::size_t(image.width) * 4;
+    for (int y = 0; y < image.height / 2; ++y)
+        std::swap_ranges(image.rgba.begin() + std::ptrdiff_t(y * row), image.rgba.begin() + std::ptrdiff_t((y + 1) * row),
+                         image.rgba.begin() + std::ptrdiff_t((image.height - 1 - y) * row));
+    detail::check_gl_errors("Renderer::read_radiance");
+    return image;
+}
+
 std::optional<glm::dvec3> Renderer::pick(int x, int y) const
 {
     const Impl& r = *impl_;

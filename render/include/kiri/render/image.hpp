@@ -12,6 +12,12 @@ struct Image {
     std::vector<std::uint8_t> rgba;  //!< width * height * 4, row 0 at the top
 };
 
+//! Linear radiance (RGBA float), rows top to bottom: the frame before its tone mapping.
+struct RadianceImage {
+    int width = 0, height = 0;
+    std::vector<float> rgba;  //!< width * height * 4, row 0 at the top
+};
+
 //! Writes to a temporary file beside path, then renames it: no partial PNG is ever left.
 //! \throw kiri::IoError naming the path when it cannot be written.
 void write_png_atomic(const std::filesystem::path& path, const Image& image);

@@ -126,6 +126,9 @@ public:
     void present(int framebuffer_width, int framebuffer_height) const;
     //! Renders the frame offscreen and reads it back.
     Image render(const Camera& camera, int width, int height);
+    //! The last drawn frame's linear radiance, before the tone map (what the fog renderers are
+    //! judged on against the CPU reference).
+    RadianceImage read_radiance() const;
     const FrameStats& last_stats() const;
 
     //! World position of the surface seen at pixel (x, y) of the last rendered frame (origin at
