@@ -137,7 +137,7 @@ void froxel_march(inout vec4 fog, vec2 uv, FroxelTaps taps, float a, float b, in
         float d = 0.5 * (d0 + d1);
         float tau = height_fog_segment(u_fx_eye + ray * d0, u_fx_eye + ray * d1);
         if (with_medium)
-            tau += medium_sigma(u_fx_eye + ray * d) * (d1 - d0) * stretch;
+            tau += froxel_sigma(u_fx_eye + ray * d) * (d1 - d0) * stretch;
         if (tau > 0.0) {
             float span = float(min(4, n - (k / 4) * 4));
             vec3 j = mix(j0, j1, (float(k % 4) + 0.5) / span);
@@ -174,6 +174,8 @@ vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
         if (cut > first)
             last = min(last, cut);
     }
+    if (u_partitioned != 0)  // combined mode: the froxels' share ends at near_end from the eye
+        last = min(last, u_partition.y);
     int haze_steps = max(u_fx_pixel_steps / 2, 1);
     if (!(last > first)) {
         if (haze)

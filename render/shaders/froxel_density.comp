@@ -25,7 +25,7 @@ void main()
     for (int k = 0; k < u_samples; ++k) {
         float f = (float(k) + 0.5) / float(u_samples);
         vec3 p = u_fx_eye + ray * mix(d0, d1, f);
-        float m = medium_sigma(p), h = height_fog_sigma(p);
+        float m = froxel_sigma(p), h = height_fog_sigma(p);
         medium += m;
         haze += h;
         where += f * (m + h);

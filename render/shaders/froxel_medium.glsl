@@ -1,4 +1,4 @@
-// Library: the Medium (geometry/src/medium/medium.cpp) and the height fog
+// Library (after fog_partition.glsl and froxel_common.glsl): the Medium (geometry/src/medium/medium.cpp) and the height fog
 // (geometry/src/volume/height_fog.cpp) as the reference evaluates them, and the HG phase.
 uniform int u_md_on;
 uniform sampler2D u_md_grid;     // RGBA32F: floor, bottom, top, coverage per grid sample (linear, clamp)
@@ -17,15 +17,17 @@ uniform float u_md_half_life;
 uniform vec4 u_hf;               // height fog: extinction, base, scale height, 0
 uniform vec4 u_hf_extent;        // its horizontal extent: min x, min y, max x, max y
 
-float medium_density(vec3 p)
+// d(p) and the shell's height fraction h there.
+float medium_density_at(vec3 p, out float h)
 {
+    h = 0.0;
     if (u_md_on == 0 || p.x < u_md_origin.x || p.y < u_md_origin.y || p.x > u_md_last.x || p.y > u_md_last.y)
         return 0.0;
     vec2 st = ((p.xy - u_md_origin) / (u_md_last - u_md_origin) * (u_md_cells - 1.0) + 0.5) / u_md_cells;
     vec4 c = textureLod(u_md_grid, st, 0.0);  // floor, bottom, top, coverage
     if (c.w <= 0.0 || p.z < c.x || p.z > c.z || !(c.z > c.y))
         return 0.0;
-    float h = clamp((p.z - c.y) / (c.z - c.y), 0.0, 1.0);
+    h = clamp((p.z - c.y) / (c.z - c.y), 0.0, 1.0);
     float d = c.w * (1.0 - (1.0 - u_md_top_density) * h);
     if (u_md_detail > 0.0) {
         vec2 noise_st = (p.xy - u_md_drift) / u_md_tile + h * u_md_layers * vec2(0.137, 0.071);
@@ -37,7 +39,23 @@ float medium_density(vec3 p)
     return d;
 }
 
+float medium_density(vec3 p)
+{
+    float h;
+    return medium_density_at(p, h);
+}
+
+// All of the Medium: what dims the sun on its way to a point.
 float medium_sigma(vec3 p) { return u_md_extinction * medium_density(p); }
+
+// The part the froxels draw (fog_partition.glsl): all of it, or in combined mode their share
+// by the distance from the eye and the height in the shell.
+float froxel_sigma(vec3 p)
+{
+    float h;
+    float d = medium_density_at(p, h);
+    return d > 0.0 ? u_md_extinction * d * froxels_share(distance(p, u_fx_eye), h) : 0.0;
+}
 
 float height_fog_profile(float z)
 {

@@ -21,7 +21,7 @@ void main()
     for (int k = 1; k <= u_steps; ++k) {
         float d1 = tile.x * pow(tile.y / tile.x, float(k) / float(u_steps));
         float dt = (d1 - d0) * stretch;
-        float sigma = medium_sigma(u_fx_eye + ray * (0.5 * (d0 + d1)));
+        float sigma = froxel_sigma(u_fx_eye + ray * (0.5 * (d0 + d1)));
         if (tau + sigma * dt >= 9.0) {  // opaque within this step: where exactly, then cut
             float d = d0 + (9.0 - tau) / max(sigma * stretch, 1e-20);
             tile.y = min(tile.y, tile.x + 2.0 * (d - tile.x));

@@ -58,5 +58,9 @@ void main()
         }
     first = max(first * (1.0 - u_pad), u_near);
     last = min(last * (1.0 + u_pad), u_far);
+    // Combined mode: no froxel fog beyond near_end from the eye (depth <= distance), so the
+    // slices stay where the froxels draw.
+    if (u_partitioned != 0 && u_mode == 1)
+        last = min(last, u_partition.y);
     imageStore(o_tiles, t, last > first ? vec4(first, last, centre_ground, 0.0) : vec4(0.0, 0.0, centre_ground, 0.0));
 }

@@ -61,5 +61,8 @@ void main()
     vec3 radiance = clamp(p.optics.y, 0.0, 1.0) * (pi * sun_up * sun * u_sun_radiance + u_ambient);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
-    o_color = vec4(radiance * alpha, alpha);
+    // The froxel fog in front of this billboard (froxel_apply.glsl; none without it), as the
+    // layers read it: over the already fogged frame, T C + a S composes to S + T (...).
+    vec4 fog = froxel_fog(v_world);
+    o_color = vec4((radiance * fog.a + fog.rgb) * alpha, alpha);
 }

@@ -57,6 +57,8 @@ void FroxelMedium::bind(const ShaderProgram& p, const geometry::HeightFog& haze,
     p.set("u_hf_extent", glm::vec4(bounded(haze.min.x), bounded(haze.min.y), bounded(haze.max.x), bounded(haze.max.y)));
     const bool on = medium_ && uploaded_ && medium_->max_extinction() > 0.0;
     p.set("u_md_on", int(on));
+    p.set("u_partitioned", int(partitioned_));
+    p.set("u_partition", partition_);
     if (!on)
         return;
     const geometry::MediumGrid& g = medium_->grid();

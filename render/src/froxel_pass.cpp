@@ -71,12 +71,12 @@ struct FroxelPass::Volumes {
 
 FroxelPass::FroxelPass()
     : v_(std::make_unique<Volumes>()),
-      density_({"froxel_common.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
-      lighting_({"froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl", "froxel_lighting.comp"}),
+      density_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
+      lighting_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl", "froxel_lighting.comp"}),
       temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
-      opaque_({"froxel_common.glsl", "froxel_medium.glsl", "froxel_opaque.comp"}),
-      apply_program_({"froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"})
+      opaque_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_opaque.comp"}),
+      apply_program_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"})
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
@@ -153,6 +153,7 @@ std::vector<double> FroxelPass::make_key(const FrameContext& frame, const Terrai
     k.insert(k.end(), {frame.projection[0][0], frame.projection[1][1], double(frame.width), double(frame.height)});
     for (const glm::vec3& v : {frame.sun_direction, frame.sun_radiance, frame.ambient})
         k.insert(k.end(), {v.x, v.y, v.z});
+    k.insert(k.end(), {double(frame.partitioned), frame.partition.x, frame.partition.y, frame.partition.z, frame.partition.w});
     std::uintptr_t ids[2] = {reinterpret_cast<std::uintptr_t>(medium_),
                              reinterpret_cast<std::uintptr_t>(terrain.identity())};
     for (std::uintptr_t id : ids)
@@ -192,6 +193,7 @@ void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
 {
     std::fill(timer_ran_.begin(), timer_ran_.end(), false);
     stats_.updated = false;
+    medium_gpu_.set_partition(frame.partitioned, frame.partition);
     visible_ = enabled_ && visible(frame);
     stats_.visible = visible_;
     if (!visible_) {  // off-screen: no pass runs, no history survives
@@ -455,7 +457,7 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
         return out;
     if (!readback_) {
         readback_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl",
+            std::initializer_list<std::string_view>{"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl",
                                                     "froxel_readback.comp"});
         depth_program_ = std::make_unique<ShaderProgram>(
             std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});

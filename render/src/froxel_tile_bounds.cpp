@@ -19,7 +19,7 @@ void nearest(GLuint texture)
 }  // namespace
 
 FroxelTileBounds::FroxelTileBounds()
-    : shell_program_({"froxel_shell.vert", "froxel_shell.frag"}), reduce_({"froxel_tiles.comp"})
+    : shell_program_({"froxel_shell.vert", "froxel_shell.frag"}), reduce_({"fog_partition.glsl", "froxel_tiles.comp"})
 {
 }
 
@@ -102,6 +102,7 @@ void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, 
     reduce_.set("u_far", float(far));
     reduce_.set("u_mode", int(mode));
     reduce_.set("u_pad", relative_pad);
+    set_partition_uniforms(reduce_, frame);
     reduce_.use();
     glBindTextureUnit(0, first_.get());
     glBindTextureUnit(1, last_.get());

@@ -12,7 +12,7 @@
 namespace kiri::render::detail {
 
 ParticlesPass::ParticlesPass()
-    : program_({"particle_footprint.glsl", "particles.vert", "particles.frag"}),
+    : program_({"particle_footprint.glsl", "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {
 }
@@ -104,26 +104,34 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     const geometry::LightGrid& g = buffer_.grid();
     const glm::dmat4 inverse_view = glm::inverse(frame.view);
     const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
-    set_grid_uniforms(program_, g, cloud_->forward_scattering, buffer_.particle_centre());
-    program_.set("u_centre", glm::vec3(buffer_.particle_centre()));
-    program_.set("u_view_projection", frame.view_projection);
-    program_.set("u_camera_right", glm::vec3(inverse_view[0]));
-    program_.set("u_camera_up", glm::vec3(inverse_view[1]));
-    program_.set("u_lit", 1);
-    program_.set("u_log_gamma", 0);
-    program_.set("u_depth", 1);
-    program_.set("u_near", float(p32 / (p22 - 1.0)));
-    program_.set("u_far", float(p32 / (p22 + 1.0)));
-    program_.set("u_soft_edge", float(style_.soft_edge));
-    program_.set("u_anisotropy", float(cloud_->anisotropy));
-    program_.set("u_eye", frame.eye);
-    program_.set("u_sun_direction", frame.sun_direction);
-    program_.set("u_sun_radiance", frame.sun_radiance);
-    program_.set("u_ambient", frame.ambient);
-    program_.set("u_sky_horizon", frame.sky_horizon);
-    program_.set("u_haze_density", frame.haze_density);
-    program_.set("u_octaves", std::clamp(cloud_->scattering_octaves, 1, 8));
-    program_.use();
+    // With froxel fog, the variant that reads it at each billboard's depth (froxel_apply.glsl).
+    if (fog_ && !fog_program_)
+        fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+            "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl",
+            "froxel_apply.glsl", "particles.vert", "particles.frag"});
+    const ShaderProgram& p = fog_ ? *fog_program_ : program_;
+    if (fog_)
+        fog_->bind_apply(p);
+    set_grid_uniforms(p, g, cloud_->forward_scattering, buffer_.particle_centre());
+    p.set("u_centre", glm::vec3(buffer_.particle_centre()));
+    p.set("u_view_projection", frame.view_projection);
+    p.set("u_camera_right", glm::vec3(inverse_view[0]));
+    p.set("u_camera_up", glm::vec3(inverse_view[1]));
+    p.set("u_lit", 1);
+    p.set("u_log_gamma", 0);
+    p.set("u_depth", 1);
+    p.set("u_near", float(p32 / (p22 - 1.0)));
+    p.set("u_far", float(p32 / (p22 + 1.0)));
+    p.set("u_soft_edge", float(style_.soft_edge));
+    p.set("u_anisotropy", float(cloud_->anisotropy));
+    p.set("u_eye", frame.eye);
+    p.set("u_sun_direction", frame.sun_direction);
+    p.set("u_sun_radiance", frame.sun_radiance);
+    p.set("u_ambient", frame.ambient);
+    p.set("u_sky_horizon", frame.sky_horizon);
+    p.set("u_haze_density", frame.haze_density);
+    p.set("u_octaves", std::clamp(cloud_->scattering_octaves, 1, 8));
+    p.use();
     glBindTextureUnit(0, buffer_.texture());
     glBindTextureUnit(1, resolved_depth);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_.particle_buffer());

@@ -1,10 +1,12 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "frame_context.hpp"
+#include "froxel_pass.hpp"
 #include "kiri/geometry/particles.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
@@ -27,10 +29,14 @@ public:
     //! Draws over `resolved_fbo`. Returns whether the attenuation buffer was rebuilt.
     bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth);
     const AttenuationBuffer& buffer() const { return buffer_; }
+    //! Froxel fog to read at each billboard's depth (null: none); drawn after its apply.
+    void set_fog(const FroxelPass* fog) { fog_ = fog; }
     std::size_t count() const { return has_particles() ? count_ : 0; }
 
 private:
     ShaderProgram program_, composite_;
+    std::unique_ptr<ShaderProgram> fog_program_;  // the variant reading the froxel fog, built on first use
+    const FroxelPass* fog_ = nullptr;
     VertexArray vao_;
     AttenuationBuffer buffer_;
     const geometry::ParticleCloud* cloud_ = nullptr;

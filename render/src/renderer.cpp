@@ -145,10 +145,11 @@ void Renderer::draw(const Camera& camera, int width, int height)
     }
     if (fog)  // before the scene: in view or not, the sun's shadow map for the terrain
         r.froxel->prepare(frame, r.terrain);
-    // With froxel fog the layers come after its apply and read it at their own depth (and so
-    // would particles: FroxelPass::bind_apply + froxel_fog(world) in their fragment shader).
+    // With froxel fog the layers and the particles come after its apply and read it at their
+    // own depth (FroxelPass::bind_apply + froxel_fog(world) in their fragment shaders).
     const bool layers_multisampled = r.layers_multisampled && !fog;
     r.layers.set_fog(fog);
+    r.particles.set_fog(fog);
     r.targets.bind_for_drawing();
     r.sky_timer.begin();
     r.sky.draw(frame);

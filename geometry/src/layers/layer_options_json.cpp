@@ -12,7 +12,7 @@ LayerOptions parse_layer_options(const json& j, const std::string& file)
     const std::string p = "/layers";
     r.only(j, p, {"count", "max_count", "spacing_divisor", "narrowing", "enlargement", "enlargement_rate", "opacity",
                   "texture_size", "fade_width", "gray", "ground_fade", "detail", "detail_scale",
-                  "dissipation_half_life", "wind", "time", "shading"});
+                  "dissipation_half_life", "wind", "time", "shading", "resolution"});
     LayerOptions o;
     if (j.contains("count"))
         o.count = r.integer(j["count"], p + "/count", 1, 1000);
@@ -49,6 +49,8 @@ LayerOptions parse_layer_options(const json& j, const std::string& file)
         o.wind = r.point(j["wind"], p + "/wind");
     if (j.contains("time"))
         o.time = r.number(j["time"], p + "/time");
+    if (j.contains("resolution"))
+        o.resolution = r.in_range(j["resolution"], p + "/resolution", 0.125, 1.0, false);
     if (j.contains("shading")) {
         const json& v = j["shading"];
         if (v == "medium")
@@ -79,7 +81,8 @@ json layer_options_to_json(const LayerOptions& o)
             {"dissipation_half_life", o.dissipation_half_life},
             {"wind", {o.wind.x, o.wind.y}},
             {"time", o.time},
-            {"shading", o.shading == LayerShading::medium ? "medium" : "source"}};
+            {"shading", o.shading == LayerShading::medium ? "medium" : "source"},
+            {"resolution", o.resolution}};
 }
 
 }  // namespace kiri::geometry

@@ -12,6 +12,7 @@
 #include "layers/layer_options_json.hpp"
 #include "medium/medium_options_json.hpp"
 #include "particles/particle_options_json.hpp"
+#include "scene/fog_partition_json.hpp"
 #include "volume/froxel_options_json.hpp"
 #include "scene/json_reader.hpp"
 #include "kiri/geometry/dem.hpp"
@@ -141,7 +142,17 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         throw InputError(file_label, "", "malformed JSON: " + strip_exception_id(e.what()) + " (not a finite number)");
     }
     const Reader r{file_label};
-    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers", "medium", "particles", "froxel"});
+    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers", "medium", "particles", "froxel", "combined",
+                      "quality"});
+    std::optional<Quality> quality;
+    if (root.contains("quality")) {
+        const json& q = root["quality"];
+        Quality preset;
+        if (!q.is_string() || !parse_quality(q.get<std::string>(), preset))
+            r.fail("/quality", "expected \"low\", \"medium\", \"high\" or \"ultra\"");
+        apply_quality_preset(root, preset);  // under the scene's own keys
+        quality = preset;
+    }
     if (!root.contains("terrain"))
         r.fail("/terrain", "missing (every scene needs a terrain)");
     Scene scene;
@@ -168,6 +179,9 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         scene.particles = parse_particle_options(root["particles"], file_label);
     if (root.contains("froxel"))
         scene.froxel = parse_froxel_options(root["froxel"], file_label);
+    if (root.contains("combined"))
+        scene.combined = parse_fog_partition(root["combined"], file_label);
+    scene.quality = quality;
     return scene;
 }
 
@@ -216,6 +230,9 @@ std::string scene_to_json(const Scene& scene)
     root["medium"] = medium_options_to_json(scene.medium);
     root["particles"] = particle_options_to_json(scene.particles);
     root["froxel"] = froxel_options_to_json(scene.froxel);
+    root["combined"] = fog_partition_to_json(scene.combined);
+    if (scene.quality)  // every key is written too, so the preset changes nothing on reading
+        root["quality"] = to_string(*scene.quality);
     return root.dump(2) + "\n";
 }
 

@@ -77,6 +77,9 @@ struct LayerOptions {
     glm::dvec2 wind{0.0};            //!< m/s: drift of the detail texture
     double time = 0.0;               //!< seconds since the scene's start
     LayerShading shading = LayerShading::medium;
+    //! Resolution of the layer pass relative to the frame, [1/8, 1] (renderer: the layers are
+    //! smooth, half resolution costs a quarter and barely shows; `kiri bench --stage layers`).
+    double resolution = 0.5;
     //! The fog's optics for LayerShading::medium (world_layer_options copies the scene's medium).
     MediumOptions optics;
 };

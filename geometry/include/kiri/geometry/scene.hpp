@@ -11,7 +11,9 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/fog_spec.hpp"
+#include "kiri/geometry/fog_partition.hpp"
 #include "kiri/geometry/froxel_options.hpp"
+#include "kiri/geometry/quality.hpp"
 #include "kiri/geometry/layer_stack.hpp"
 #include "kiri/geometry/medium.hpp"
 #include "kiri/geometry/particles.hpp"
@@ -55,6 +57,10 @@ struct Scene {
     MediumOptions medium;             //!< the "medium" section (defaults when absent)
     ParticleOptions particles;        //!< the "particles" section (defaults when absent)
     FroxelOptions froxel;             //!< the "froxel" section (defaults when absent)
+    FogPartition combined;            //!< the "combined" section: each renderer's share in combined mode
+    //! The "quality" key (quality.hpp): the preset applied under the scene's own keys; kept so
+    //! that a saved scene names it.
+    std::optional<Quality> quality;
 
     //! The camera called name; the first when name is empty; a view framing `terrain_bounds`
     //! (min, max) from the south-west when the scene has no camera and name is empty.
