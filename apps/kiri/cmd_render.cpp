@@ -16,6 +16,7 @@
 #include "kiri/geometry/terrain.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/renderer.hpp"
+#include "kiri/render/scene_rendering.hpp"
 
 namespace kiri::cli {
 namespace {
@@ -23,45 +24,13 @@ namespace {
 struct RenderArgs {
     std::string scene, out, camera, mode = "auto";
     int width = 0, height = 0;
+    bool timings = false;
 };
-
-render::Camera to_camera(const geometry::CameraSpec& c)
-{
-    render::Camera out;
-    out.position = c.position;
-    out.target = c.target;
-    out.fov_y_deg = c.fov_y_deg;
-    return out;
-}
-
-render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
-
-render::ParticleStyle to_style(const geometry::ParticleOptions& o)
-{
-    render::ParticleStyle s;
-    s.buffer.resolution = o.resolution;
-    s.buffer.half_float = o.half_float;
-    s.buffer.frame = o.frame;
-    s.soft_edge = o.soft_edge;
-    return s;
-}
-
-// The scene's fog (Medium and height fog) by the CPU reference ray marcher, tone mapped like the
-// shaders (exposure 0.7, gamma 2.2) over the reference's own terrain and sky.
-// The scene's froxel options in world units, its height fog over the terrain's extent only.
-geometry::FroxelOptions froxel_options(const geometry::Scene& scene, const geometry::Terrain& terrain)
-{
-    geometry::FroxelOptions options = geometry::world_froxel_options(scene);
-    const geometry::Bounds3 b = terrain.bounds();
-    options.height_fog.min = {b.min.x, b.min.y};
-    options.height_fog.max = {b.max.x, b.max.y};
-    return options;
-}
 
 void render_reference(const geometry::Scene& scene, const geometry::Terrain& terrain, const render::Camera& camera,
                       int width, int height, const std::string& out)
 {
-    const geometry::FroxelOptions options = froxel_options(scene, terrain);
+    const geometry::FroxelOptions options = render::scene_froxel_options(scene, terrain);
     std::optional<geometry::SceneFog> fog;
     if (scene.fog)
         fog = geometry::author_scene_fog(scene, terrain);
@@ -72,13 +41,7 @@ void render_reference(const geometry::Scene& scene, const geometry::Terrain& ter
     view.width = width;
     view.height = height;
     view.max_depth = options.far;
-    geometry::FogLighting light;
-    light.sun_direction = scene.sun.direction;
-    light.sun_radiance = scene.sun.color * scene.sun.intensity;
-    light.ambient = scene.sun.ambient;
-    light.terrain_shadows = options.terrain_shadows;
-    light.fog_shadows = options.fog_shadows;
-    light.scattering_octaves = geometry::scattering_octaves_of(fog ? &fog->medium : nullptr);
+    const geometry::FogLighting light = render::scene_fog_lighting(scene, fog ? &fog->medium : nullptr, options);
     const geometry::ReferenceImage r = geometry::render_reference_fog({fog ? &fog->medium : nullptr, options.height_fog},
                                                                       &terrain.heightfield(), view, light);
     render::Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4, 255)};
@@ -98,7 +61,7 @@ void run(const RenderArgs& a)
     const geometry::Scene scene = geometry::load_scene(a.scene);
     const geometry::Terrain terrain = geometry::load_scene_terrain(scene);
     const geometry::Bounds3 bounds = terrain.bounds();
-    const render::Camera camera = to_camera(scene.camera(a.camera, bounds.min, bounds.max));
+    const render::Camera camera = render::to_camera(scene.camera(a.camera, bounds.min, bounds.max));
     const int width = a.width > 0 ? a.width : scene.image.width;
     const int height = a.height > 0 ? a.height : scene.image.height;
 
@@ -112,39 +75,39 @@ void run(const RenderArgs& a)
     const auto context = render::create_headless_context();
     render::Renderer renderer;
     renderer.set_terrain(terrain);
-    renderer.set_sun(to_sun(scene.sun));
-    // "auto" draws what the scene has: its fog as layers when it has a fog section.
-    const std::string mode = a.mode != "auto" ? a.mode : scene.fog ? "layers" : "terrain";
+    renderer.set_sun(render::to_sun(scene.sun));
+    // "auto" draws what the scene has: its fog combined (docs/combined.md) when it has fog.
+    render::FogMode mode = render::FogMode::terrain;
+    if (a.mode == "auto") {
+        if (scene.fog || geometry::world_froxel_options(scene).height_fog.enabled())
+            mode = render::FogMode::combined;
+    } else {
+        render::parse_fog_mode(a.mode, mode);  // CLI11 checked the name
+    }
     std::optional<geometry::SceneFog> fog;
-    std::optional<geometry::ParticleCloud> particles;
-    if (mode == "layers") {
+    if (mode != render::FogMode::terrain && scene.fog)
         fog = geometry::author_scene_fog(scene, terrain);
-        renderer.set_layers(fog->base, fog->layers);
-    }
-    if (mode == "particles") {  // the fog's medium sampled into particles (docs/particles.md)
-        fog = geometry::author_scene_fog(scene, terrain);
-        particles = geometry::sample_particles(fog->medium, scene.particles, scene.file.string());
-        renderer.set_particles(*particles, to_style(scene.particles));
-    }
-    if (mode == "froxel") {  // the fog as a volume (docs/froxel.md): the Medium and the height fog
-        const geometry::FroxelOptions options = froxel_options(scene, terrain);
-        if (!scene.fog && !options.height_fog.enabled())
-            throw InputError(a.scene, "/fog", "--mode froxel needs a fog section or a froxel height fog");
-        if (scene.fog)
-            fog = geometry::author_scene_fog(scene, terrain);
-        renderer.set_froxel_fog(fog ? &fog->medium : nullptr, options);
-        // A still picture: the temporal filter's jittered frames first (its 16-frame Halton
-        // cycle), so the lighting's shadow edges are averaged over each froxel, not aliased.
-        if (options.temporal)
-            for (int frame = 0; frame < 15; ++frame)
-                renderer.draw(camera, width, height);
+    const render::SceneRendering rendering(scene, terrain, fog ? &*fog : nullptr, mode);
+    rendering.apply(renderer);
+    // A still picture: the froxels' temporal filter's jittered frames first (its 16-frame
+    // Halton cycle), so the lighting's shadow edges are averaged over each froxel, not aliased.
+    for (int frame = 0; frame < rendering.warmup_frames(); ++frame) {
+        renderer.draw(camera, width, height);
+        if (!renderer.last_stats().froxel.visible)
+            break;  // no froxel fog in view: nothing to settle
     }
     const render::Image image = renderer.render(camera, width, height);
     render::write_png_atomic(a.out, image);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n", a.out.c_str());
-    std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, mode.c_str(), seconds);
-    if (particles) {
+    std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, render::to_string(mode), seconds);
+    if (a.timings) {  // the last frame's passes (GL timer queries; llvmpipe: CPU time)
+        const render::FrameStats& stats = renderer.last_stats();
+        for (const render::PassTime& t : stats.passes)
+            std::fprintf(stderr, "kiri render: pass %-18s gpu %9.2f ms  cpu %9.2f ms\n", t.pass.c_str(), t.gpu_ms, t.cpu_ms);
+        std::fprintf(stderr, "kiri render: frame %.2f ms\n", stats.frame_ms);
+    }
+    if (const auto& particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();
         const auto& size = b.grid().size;
         std::fprintf(stderr, "kiri render: %zu particles, attenuation buffer %dx%dx%d %s (%.1f MiB), built in %.1f ms\n",
@@ -166,9 +129,11 @@ void add_render_command(CLI::App& app)
     sub->add_option("--camera", a->camera, "camera name from the scene (default: its first)");
     sub->add_option("--mode", a->mode,
                     "what to draw: terrain, layers (the fog's layer stack), particles (the fog as lit particles), "
-                    "froxel (the fog as a volume), reference (the CPU reference ray marcher of that volume: slow), "
-                    "auto (layers when the scene has fog)")
-        ->check(CLI::IsMember({"auto", "terrain", "layers", "particles", "froxel", "reference"}));
+                    "froxel (the fog as a volume), combined (each of them drawing its share of the fog: froxels "
+                    "near, layers far, particles in the top band), reference (the CPU reference ray marcher of "
+                    "that volume: slow), auto (default: combined when the scene has fog, else terrain)")
+        ->check(CLI::IsMember({"auto", "terrain", "layers", "particles", "froxel", "combined", "reference"}));
+    sub->add_flag("--timings", a->timings, "print the last frame's time per pass");
     sub->callback([a] { run(*a); });
 }
 

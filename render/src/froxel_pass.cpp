@@ -128,6 +128,12 @@ bool FroxelPass::visible(const FrameContext& frame) const
     if (!medium_)
         return false;
     const geometry::Bounds3& b = medium_->bounds();
+    if (frame.partitioned) {  // combined mode: the froxels draw nothing beyond near_end
+        const glm::dvec3 eye(frame.eye);
+        const glm::dvec3 nearest = glm::clamp(eye, b.min, b.max);
+        if (glm::length(nearest - eye) > double(frame.partition.y) * 1.001 + 1.0)
+            return false;
+    }
     std::array<glm::dvec4, 8> clip;
     for (int c = 0; c < 8; ++c)
         clip[c] = frame.projection * frame.view *

@@ -55,7 +55,7 @@ TEST(KiriFroxel, NoFogToRenderIsOneLineAndExit2)
     const fs::path out = kiri::test::temp_path("froxel_cli_nofog.png");
     const auto r = run_kiri("render " + scene.string() + " -o " + out.string() + " --mode froxel");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "kiri: " + scene.string() + ": /fog: --mode froxel needs a fog section or a froxel height fog\n");
+    EXPECT_EQ(r.err, "kiri: " + scene.string() + ": /fog: mode froxel needs a fog section or a froxel height fog\n");
     EXPECT_FALSE(fs::exists(out));
     fs::remove(scene);
 }

@@ -60,7 +60,7 @@ TEST(Scene, ErrorsNameFilePointerAndReason)
 TEST(Scene, UnknownKeysAreErrors)
 {
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "colour": 1})"),
-              "s.json: /colour: unknown key (expected one of: cameras, fog, froxel, image, layers, medium, particles, sun, terrain)");
+              "s.json: /colour: unknown key (expected one of: cameras, combined, fog, froxel, image, layers, medium, particles, quality, sun, terrain)");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif", "exagerration": 2}})"),
               "s.json: /terrain/exagerration: unknown key (expected one of: cell_size, exaggeration, path, "
               "vertical_offset, vertical_scale)");

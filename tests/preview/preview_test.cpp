@@ -139,7 +139,8 @@ TEST_F(PreviewXvfb, TheViewIsWhatKiriRenderDraws)
     const Image preview = screenshot("");
     const fs::path png = kiri::test::temp_path("preview_test_render.png");
     const kiri::test::RunResult r =
-        kiri::test::run_kiri("render " + shell_quote(scene_path()) + " --width 640 --height 360 -o " + png.string());
+        kiri::test::run_kiri("render " + shell_quote(scene_path()) + " --mode layers --width 640 --height 360 -o " +
+                             png.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Image rendered = kiri::render::read_png(png);
     fs::remove(png);
