@@ -52,4 +52,38 @@ FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& ref, 
     return e;
 }
 
+FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
+                        const geometry::ReferenceImage& ref)
+{
+    const std::size_t n = std::size_t(ref.width) * std::size_t(ref.height);
+    for (const RadianceImage* image : {&with_fog, &without_fog})
+        if (image->width != ref.width || image->height != ref.height || image->rgba.size() != 4 * n)
+            throw Error("compare_frames: a frame is " + std::to_string(image->width) + "x" +
+                        std::to_string(image->height) + ", the reference " + std::to_string(ref.width) + "x" +
+                        std::to_string(ref.height));
+    FogError e;
+    std::vector<double> errors;
+    for (std::size_t k = 0; k < n; ++k) {
+        const float* w = &with_fog.rgba[4 * k];
+        const float* b = &without_fog.rgba[4 * k];
+        const double y_bg = geometry::luminance({b[0], b[1], b[2]});
+        const double y_ref = y_bg * ref.transmittance[k] + geometry::luminance(ref.inscatter[k]);
+        if (!(std::abs(y_ref - y_bg) > 0.01 * y_ref))
+            continue;  // the fog hardly shows here
+        const double y_gpu = geometry::luminance({w[0], w[1], w[2]});
+        errors.push_back(std::abs(y_gpu - y_ref) / y_ref);
+    }
+    e.fog_pixels = int(errors.size());
+    if (errors.empty())
+        return e;
+    double sum = 0.0;
+    for (double x : errors)
+        sum += x;
+    e.mean_relative = sum / double(errors.size());
+    std::sort(errors.begin(), errors.end());
+    e.p99_relative = errors[std::min(errors.size() - 1, std::size_t(std::floor(0.99 * double(errors.size()))))];
+    e.worst_relative = errors.back();
+    return e;
+}
+
 }  // namespace kiri::render

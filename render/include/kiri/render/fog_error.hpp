@@ -25,4 +25,14 @@ struct FogError {
 FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& reference, double min_depth = 0.0,
                      double max_depth = HUGE_VAL);
 
+//! Any renderer (layers, particles, froxels, combined) judged by its whole frame: `with_fog` and
+//! `without_fog` are the same view's linear radiance (Renderer::read_radiance) drawn with and
+//! without the fog; the reference's fog is composed over the GPU's own background,
+//! Y_ref = Y(without) T_ref + Y(S_ref), so both differ only by their fog. Over the pixels the
+//! reference's fog changes by more than 1 % (no silhouette test; the transmittance and in-scatter
+//! errors are not separable from a frame and stay 0).
+//! \throw kiri::Error when the sizes differ.
+FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
+                        const geometry::ReferenceImage& reference);
+
 }  // namespace kiri::render
