@@ -11,6 +11,7 @@
 #include <glm/vec4.hpp>
 
 #include "kiri/geometry/base_surface.hpp"
+#include "kiri/geometry/fog_placement.hpp"
 #include "kiri/geometry/layer_stack.hpp"
 #include "kiri/geometry/tessellate.hpp"
 #include "kiri/render/overlay_mesh.hpp"
@@ -31,6 +32,10 @@ struct FogViews {
 struct FogProducts {
     std::shared_ptr<const geometry::LayerBase> base;  //!< for the layer pass
     double base_offset = 0.0;                         //!< world m added to the base (lake: -thickness)
+    //! Fog placed by the terrain: what place_fog computed (null otherwise), and the layer stack's
+    //! thickness it sets (world m: the deepest fog), which replaces the scene's.
+    std::shared_ptr<const geometry::PlacedFog> placed;
+    double placed_thickness = 0.0;
     std::shared_ptr<const FogViews> views;
     geometry::FitReport fit;
     int patches = 0;

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "kiri/geometry/author_estimate.hpp"
+#include "kiri/geometry/fill_medium.hpp"
 #include "kiri/geometry/fog_spec.hpp"
 
 namespace kiri::preview {
@@ -35,6 +36,48 @@ std::string fog_key(const geometry::Scene& s, bool fit, bool tessellation)
     return geometry::scene_to_json(k);
 }
 
+// The placement reads the fill, outline, flow and burn-off keys and the patch size (the
+// outline's defaults); the flow and the burn-off also read the medium's optics (evaporation
+// depth, the sun through the fog) unless the scene gives their own.
+std::string placement_key(const geometry::Scene& s)
+{
+    geometry::Scene k;
+    k.terrain = s.terrain;
+    k.fog = geometry::FogSpec{};
+    k.fog->placement = s.fog->placement;
+    k.fog->patch_size = s.fog->patch_size;
+    if (s.fog->placement->flow || s.fog->placement->burn_off) {
+        k.medium.extinction = s.medium.extinction;
+        k.medium.anisotropy = s.medium.anisotropy;
+    }
+    return geometry::scene_to_json(k);
+}
+
+// The medium: the layer base it is made from (its version), the optics and the layers' detail
+// (medium_detail). The layers' time is left out: playing it would resample every frame.
+std::string medium_key(const geometry::Scene& s, std::uint64_t base_version)
+{
+    geometry::Scene k;
+    k.medium = s.medium;
+    k.layers = s.layers;
+    k.layers.time = 0.0;
+    return std::to_string(base_version) + geometry::scene_to_json(k);
+}
+
+// The particles: the medium (its version) and the sampling options; the attenuation buffer's
+// and the billboards' options apply per frame.
+std::string particles_key(const geometry::Scene& s, std::uint64_t medium_version)
+{
+    geometry::Scene k;
+    k.particles = s.particles;
+    const geometry::ParticleOptions defaults;
+    k.particles.resolution = defaults.resolution;
+    k.particles.half_float = defaults.half_float;
+    k.particles.frame = defaults.frame;
+    k.particles.soft_edge = defaults.soft_edge;
+    return std::to_string(medium_version) + geometry::scene_to_json(k);
+}
+
 std::string layer_base_key(const geometry::Scene& s)
 {
     geometry::Scene k;
@@ -48,13 +91,16 @@ std::string layer_base_key(const geometry::Scene& s)
 
 const char* stage_name(Stage stage)
 {
-    static const char* names[stage_count] = {"terrain", "control mesh", "fit", "tessellation", "layer base", "views"};
+    static const char* names[stage_count] = {"terrain", "placement",  "control mesh", "fit",      "tessellation",
+                                             "layer base", "views", "medium",       "particles"};
     return names[int(stage)];
 }
 
 struct Pipeline::Cache {
-    std::string terrain_key, control_key, fit_key, tessellation_key, layer_key;
+    std::string terrain_key, placement_key, control_key, fit_key, tessellation_key, layer_key, medium_key,
+        particles_key;
     std::shared_ptr<const geometry::Terrain> terrain;
+    std::shared_ptr<const geometry::PlacedFog> placed;
     std::optional<geometry::BaseSurface> surface;  // refitted in place (its samples are reused)
     geometry::FitReport fit;
     std::optional<geometry::Tessellation> tessellation;
@@ -62,9 +108,15 @@ struct Pipeline::Cache {
     double base_offset = 0.0;
     std::shared_ptr<const FogViews> views;
     std::shared_ptr<const FogProducts> fog;  // the last good fog
+    // Versions of the layer base (and placement) and of the medium: the keys of what follows.
+    std::uint64_t base_version = 0, medium_version = 0;
+    std::shared_ptr<const geometry::Medium> medium;
+    std::shared_ptr<const geometry::ParticleCloud> particles;
 
     void forget_fog_from(Stage stage)
     {
+        if (stage <= Stage::placement)
+            placement_key.clear();
         if (stage <= Stage::control_mesh)
             control_key.clear();
         if (stage <= Stage::fit)
@@ -87,12 +139,13 @@ Pipeline::~Pipeline()
     worker_.join();
 }
 
-std::uint64_t Pipeline::request(const geometry::Scene& scene)
+std::uint64_t Pipeline::request(const geometry::Scene& scene, Needs needs)
 {
     std::uint64_t generation = 0;
     {
         std::lock_guard lock(mutex_);
         pending_ = scene;
+        pending_needs_ = needs;
         generation = ++status_.requested;
     }
     wake_.notify_all();
@@ -127,6 +180,7 @@ void Pipeline::run()
 {
     for (;;) {
         geometry::Scene scene;
+        Needs needs;
         std::uint64_t generation = 0;
         {
             std::unique_lock lock(mutex_);
@@ -134,12 +188,13 @@ void Pipeline::run()
             if (stop_)
                 return;
             scene = std::move(*pending_);
+            needs = pending_needs_;
             pending_.reset();
             generation = status_.requested;
             status_.busy = true;
             job_start_ = stage_start_ = Clock::now();
         }
-        Products products = compute(scene, generation);
+        Products products = compute(scene, needs, generation);
         {
             std::lock_guard lock(mutex_);
             result_ = std::move(products);
@@ -171,7 +226,7 @@ void Pipeline::leave(Stage stage)
     r.last_seconds = seconds_between(stage_start_, Clock::now());
 }
 
-Products Pipeline::compute(const geometry::Scene& scene, std::uint64_t generation)
+Products Pipeline::compute(const geometry::Scene& scene, Needs needs, std::uint64_t generation)
 {
     Cache& c = *cache_;
     Products out;
@@ -194,7 +249,7 @@ Products Pipeline::compute(const geometry::Scene& scene, std::uint64_t generatio
     try {
         step(Stage::terrain, c.terrain_key, terrain_key(scene), [&] {
             c.terrain = std::make_shared<const geometry::Terrain>(geometry::load_scene_terrain(scene));
-            c.forget_fog_from(Stage::control_mesh);
+            c.forget_fog_from(Stage::placement);
         });
         out.terrain = c.terrain;
         if (out.rebuilt[int(Stage::terrain)] && scene.fog) {
@@ -203,13 +258,33 @@ Products Pipeline::compute(const geometry::Scene& scene, std::uint64_t generatio
             publish_partial(partial);
         }
         if (!scene.fog) {
-            c.forget_fog_from(Stage::control_mesh);
+            c.forget_fog_from(Stage::placement);
+            c.placed.reset();
             c.fog.reset();
             return out;
         }
-        const geometry::FogSpec spec = geometry::world_fog_spec(scene);
+        geometry::FogSpec spec = geometry::world_fog_spec(scene);
         geometry::LayerOptions layers = geometry::world_layer_options(scene);
         const geometry::Terrain& terrain = *c.terrain;
+        if (spec.placement) {
+            // As author_scene_fog: the placed footprint and lake target, and a layer stack as
+            // deep as the deepest fog, hanging from its top.
+            step(Stage::placement, c.placement_key, placement_key(scene), [&] {
+                geometry::check_author_estimate(
+                    geometry::estimate_author(spec, terrain.heightfield(), layers.count), label);
+                c.placed.reset();
+                c.placed = std::make_shared<const geometry::PlacedFog>(
+                    geometry::place_fog(terrain, *spec.placement, spec.patch_size, label));
+                c.forget_fog_from(Stage::control_mesh);
+            });
+            spec = geometry::placed_fog_spec(spec, *c.placed);
+            layers.thickness = spec.fit.thickness;
+            geometry::validate_layer_options(layers, label);
+        } else {
+            c.placement_key.clear();
+            c.placed.reset();
+        }
+        layers.base_offset = spec.fit.mode == geometry::FitMode::lake ? -layers.thickness : 0.0;
         step(Stage::control_mesh, c.control_key, fog_key(scene, false, false), [&] {
             geometry::check_author_estimate(geometry::estimate_author(spec, terrain.heightfield(), layers.count),
                                             label);
@@ -227,10 +302,10 @@ Products Pipeline::compute(const geometry::Scene& scene, std::uint64_t generatio
             new_surface = true;
         });
         step(Stage::layer_base, c.layer_key, layer_base_key(scene), [&] {
-            layers.base_offset = spec.fit.mode == geometry::FitMode::lake ? -layers.thickness : 0.0;
             c.base = std::make_shared<const geometry::LayerBase>(
                 geometry::make_layer_base(*c.surface, *c.tessellation, layers, label));
             c.base_offset = layers.base_offset;
+            ++c.base_version;
         });
         if (new_surface || !c.views) {
             stage = Stage::views;
@@ -244,6 +319,8 @@ Products Pipeline::compute(const geometry::Scene& scene, std::uint64_t generatio
             fog->base = c.base;
             fog->base_offset = c.base_offset;
             fog->views = c.views;
+            fog->placed = c.placed;
+            fog->placed_thickness = c.placed ? layers.thickness : 0.0;
             fog->fit = c.fit;
             fog->patches = c.surface->num_patches();
             fog->triangles = c.tessellation->mesh.n_faces();
@@ -253,10 +330,31 @@ Products Pipeline::compute(const geometry::Scene& scene, std::uint64_t generatio
             c.fog = std::move(fog);
         }
         out.fog = c.fog;
+        if (needs.medium || needs.particles) {
+            step(Stage::medium, c.medium_key, medium_key(scene, c.base_version), [&] {
+                c.medium.reset();
+                c.medium = std::make_shared<const geometry::Medium>(
+                    c.placed ? geometry::fill_medium(terrain, *c.placed, scene.medium, geometry::medium_detail(layers),
+                                                     label)
+                             : geometry::make_medium(*c.base, layers, terrain, scene.medium, label));
+                ++c.medium_version;
+            });
+            out.medium = c.medium;
+        }
+        if (needs.particles) {
+            step(Stage::particles, c.particles_key, particles_key(scene, c.medium_version), [&] {
+                c.particles.reset();
+                c.particles = std::make_shared<const geometry::ParticleCloud>(
+                    geometry::sample_particles(*c.medium, scene.particles, label));
+            });
+            out.particles = c.particles;
+        }
     } catch (const std::exception& e) {
         out.error = std::string(stage_name(stage)) + ": " + e.what();
         out.terrain = c.terrain;
         out.fog = c.fog;  // the last good fog stays on screen
+        out.medium = needs.medium || needs.particles ? c.medium : nullptr;
+        out.particles = needs.particles ? c.particles : nullptr;
     }
     return out;
 }

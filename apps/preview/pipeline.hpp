@@ -2,8 +2,13 @@
 // The preview's recomputation, off the render thread. A scene goes through stages, each
 // redone only when its inputs changed (compared as the JSON of the scene's parts it reads):
 //
-//   terrain (file, exaggeration) -> control mesh (footprint, patch size, surface kind)
-//     -> fit (fit options) -> tessellation -> layer base (texture) + views (overlay meshes)
+//   terrain (file, exaggeration) -> placement (fog placed by the terrain: fill, outline, flow,
+//     burn-off) -> control mesh (footprint, patch size, surface kind) -> fit (fit options)
+//     -> tessellation -> layer base (texture) + views (overlay meshes)
+//     -> medium (the optics, the layers' detail) -> particles (the sampling options)
+//
+// The medium and the particles are made only when the window's render mode asks for them
+// (Needs): a scene shown as layers never pays the ~1 s of sampling 60k particles.
 //
 // One worker thread runs one job at a time; a request made while it works replaces any
 // waiting one (the latest edit wins) and the running job finishes, so a slider dragged for
@@ -20,13 +25,15 @@
 #include <thread>
 
 #include "fog_views.hpp"
+#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/particles.hpp"
 #include "kiri/geometry/scene.hpp"
 #include "kiri/geometry/terrain.hpp"
 
 namespace kiri::preview {
 
-enum class Stage { terrain, control_mesh, fit, tessellation, layer_base, views };
-inline constexpr int stage_count = 6;
+enum class Stage { terrain, placement, control_mesh, fit, tessellation, layer_base, views, medium, particles };
+inline constexpr int stage_count = 9;
 const char* stage_name(Stage stage);
 
 struct StageRecord {
@@ -42,6 +49,9 @@ struct Products {
     geometry::Scene scene;  //!< the scene these come from
     std::shared_ptr<const geometry::Terrain> terrain;
     std::shared_ptr<const FogProducts> fog;  //!< null: no fog section (or it never worked)
+    //! The fog as a participating medium and as particles: null unless the request needed them.
+    std::shared_ptr<const geometry::Medium> medium;
+    std::shared_ptr<const geometry::ParticleCloud> particles;
     std::string error;                       //!< one line; the products are then the last good ones
     std::array<bool, stage_count> rebuilt{};
 };
@@ -54,6 +64,13 @@ struct PipelineStatus {
     std::array<StageRecord, stage_count> stages{};
 };
 
+//! What the window's render mode draws beyond the layers (the stages after the views).
+struct Needs {
+    bool medium = false;     //!< froxel fog, or the particles' source
+    bool particles = false;  //!< implies the medium
+    bool operator==(const Needs&) const = default;
+};
+
 class Pipeline {
 public:
     Pipeline();
@@ -62,7 +79,7 @@ public:
     Pipeline& operator=(const Pipeline&) = delete;
 
     //! Queues `scene`; returns its generation.
-    std::uint64_t request(const geometry::Scene& scene);
+    std::uint64_t request(const geometry::Scene& scene, Needs needs = {});
     //! The newest finished job not taken yet.
     std::optional<Products> take();
     //! Blocks until every request so far has finished.
@@ -77,13 +94,14 @@ private:
     std::condition_variable wake_, idle_;
     bool stop_ = false;
     std::optional<geometry::Scene> pending_;
+    Needs pending_needs_;
     std::optional<Products> result_;
     PipelineStatus status_;
     std::chrono::steady_clock::time_point job_start_, stage_start_;
     std::thread worker_;  // last: starts once the rest is built
 
     void run();
-    Products compute(const geometry::Scene& scene, std::uint64_t generation);
+    Products compute(const geometry::Scene& scene, Needs needs, std::uint64_t generation);
     //! Hands out what a job has so far (the terrain before the fog is fitted).
     void publish_partial(const Products& partial);
     void enter(Stage stage);

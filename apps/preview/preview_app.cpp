@@ -26,6 +26,16 @@ namespace {
 
 render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
 
+render::ParticleStyle to_style(const geometry::ParticleOptions& o)
+{
+    render::ParticleStyle s;
+    s.buffer.resolution = o.resolution;
+    s.buffer.half_float = o.half_float;
+    s.buffer.frame = o.frame;
+    s.soft_edge = o.soft_edge;
+    return s;
+}
+
 bool same(const render::Camera& a, const render::Camera& b)
 {
     return a.position == b.position && a.target == b.target && a.fov_y_deg == b.fov_y_deg;
@@ -63,7 +73,9 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     scene_ = geometry::load_scene(fs::absolute(args.scene));
     if (!args.camera_path.empty())
         camera_path_ = load_camera_path(args.camera_path);
-    ui_.view.layers = !args.no_fog;
+    ui_.view.fog = !args.no_fog;
+    if (!parse_mode(args.mode, ui_.view.mode))
+        throw Error("--mode: '" + args.mode + "' is not layers, particles, froxel or combined");
     ui_.view.show_panel = ui_.view.show_stats = !args.no_ui;
     apply_view_args(args.views, ui_.view);
     const fs::path scene_path(args.scene);
@@ -79,7 +91,13 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     ImGui_ImplOpenGL3_Init("#version 450 core");
     scale_ui_to_monitor();
     renderer_ = std::make_unique<render::Renderer>();
-    pipeline_.request(scene_);
+    request();
+}
+
+void PreviewApp::request()
+{
+    requested_needs_ = ui_.view.needs();
+    pipeline_.request(scene_, requested_needs_);
 }
 
 PreviewApp::~PreviewApp()
@@ -127,10 +145,14 @@ void PreviewApp::apply(Products p)
         apply_live_options();  // the sun, also for a scene without fog
         scene_dirty_ = true;
     }
-    if (p.fog != fog_) {
-        fog_ = p.fog;
-        apply_live_options();  // the layer pass gets the new base (it keeps it by reference)
-        update_overlays();
+    if (p.fog != fog_ || p.medium != medium_ || p.particles != particles_) {
+        // The renderer keeps them by reference: the old ones go once the new ones are in.
+        const auto old_fog = std::exchange(fog_, p.fog);
+        const auto old_medium = std::exchange(medium_, p.medium);
+        const auto old_particles = std::exchange(particles_, p.particles);
+        apply_live_options();
+        if (fog_ != old_fog)
+            update_overlays();
         scene_dirty_ = true;
     }
     if (!camera_placed_ && terrain_) {
@@ -143,13 +165,20 @@ void PreviewApp::apply_live_options()
 {
     renderer_->set_sun(to_sun(scene_.sun));
     renderer_->set_layer_resolution(ui_.view.layer_resolution);
-    if (!fog_ || !ui_.view.layers) {
+    const ViewOptions& v = ui_.view;
+    if (particles_ && v.draws_particles())
+        renderer_->set_particles(*particles_, to_style(scene_.particles));
+    else
+        renderer_->clear_particles();
+    if (!fog_ || !v.draws_layers()) {
         renderer_->clear_layers();
         return;
     }
     try {
         geometry::LayerOptions o = geometry::world_layer_options(scene_);
         o.base_offset = fog_->base_offset;  // the base was built with it
+        if (fog_->placed)  // the placed fog sets the stack's depth
+            o.thickness = fog_->placed_thickness;
         layer_options_ = o;
     } catch (const std::exception& e) {
         report(e.what(), true);  // the last valid options stay
@@ -209,6 +238,8 @@ void PreviewApp::place_camera(const std::string& name)
 void PreviewApp::draw_panel()
 {
     ViewOptions& view = ui_.view;
+    bool edited = false, view_changed = ui_.mode_changed;
+    const ViewOptions::Surface before = view.surface;
     if (view.show_panel) {
         const ImGuiIO& io = ImGui::GetIO();
         const float width = 420.0f * ui_scale_;
@@ -218,28 +249,34 @@ void PreviewApp::draw_panel()
         ImGui::Begin("kiri");
         ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.5f);  // room for the labels
         // Stages that feed the pipeline, then what applies per frame.
-        bool edited = terrain_panel(scene_);
+        edited |= terrain_panel(scene_);
         edited |= fog_panel(scene_, terrain_.get(), fog_.get());
+        edited |= placement_panel(scene_, fog_.get());
         edited |= layers_panel(scene_, view);
         edited |= medium_panel(scene_);
+        edited |= particles_panel(scene_, particles_.get(), renderer_->attenuation());
         edited |= sun_panel(scene_);
-        const ViewOptions::Surface before = view.surface;
-        const bool view_changed = view_panel(view, fog_ ? fog_->views.get() : nullptr);
+        view_changed |= view_panel(view, fog_ ? fog_->views.get() : nullptr);
         camera_panel(scene_, ui_);
         file_panel(ui_);
         ImGui::PopItemWidth();
         ImGui::End();
-        if (edited)
-            pipeline_.request(scene_);  // stages whose inputs did not change are kept
-        if (edited || view_changed) {
-            apply_live_options();
-            if (view_changed || view.surface != before)
-                update_overlays();
-            scene_dirty_ = true;
-        }
     }
-    if (view.show_stats)
-        stats_overlay(times_, renderer_->last_stats(), pipeline_.status());
+    // Stages whose inputs did not change are kept; a new mode may need the medium or particles.
+    if (edited || view.needs() != requested_needs_)
+        request();
+    if (edited || view_changed) {
+        apply_live_options();
+        if (view_changed || view.surface != before)
+            update_overlays();
+        scene_dirty_ = true;
+    }
+    if (view.show_stats) {
+        const render::AttenuationBuffer& buffer = renderer_->attenuation();
+        const FogCounts counts{particles_ && view.draws_particles() ? particles_->particles.size() : 0,
+                               buffer.rebuild_count(), buffer.last_build_ms()};
+        stats_overlay(times_, renderer_->last_stats(), counts, pipeline_.status());
+    }
 }
 
 void PreviewApp::do_actions()
@@ -336,6 +373,7 @@ int PreviewApp::run()
     }
     int frame = 0;
     std::vector<double> scene_ms;
+    std::string rebuilds;  // attenuation buffer builds per drawn frame (scripted)
     auto last = Clock::now();
     while (!window_->should_close()) {
         const auto start = Clock::now();
@@ -369,8 +407,11 @@ int PreviewApp::run()
         ImGui::Render();
         do_actions();
         const bool moved = !same(camera_.camera(), last_camera_);
-        if (draw_scene(fb_w, fb_h, moved, args_.scripted()) && args_.scripted())
+        if (draw_scene(fb_w, fb_h, moved, args_.scripted()) && args_.scripted()) {
             scene_ms.push_back(times_.scene_ms);
+            rebuilds += ' ';  // (" " + to_string trips GCC 12's -Wrestrict false positive)
+            rebuilds += std::to_string(renderer_->last_stats().attenuation_rebuilds);
+        }
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         try {
             if (ui_.screenshot)
@@ -394,6 +435,9 @@ int PreviewApp::run()
                 std::fprintf(stderr, "kiri-preview: %d frames of %dx%d, 3D view %.1f ms mean (%.1f..%.1f)\n", frame,
                              times_.scene_width, times_.scene_height, sum / double(scene_ms.size()), *lo, *hi);
             }
+            if (particles_ && ui_.view.draws_particles())
+                std::fprintf(stderr, "kiri-preview: %zu particles, attenuation buffer builds per frame:%s\n",
+                             particles_->particles.size(), rebuilds.c_str());
             return 0;
         }
         window_->swap_buffers();

@@ -19,7 +19,7 @@
 namespace kiri::preview {
 
 struct Args {
-    std::string scene, camera, screenshot, save, camera_path;
+    std::string scene, camera, screenshot, save, camera_path, mode = "layers";
     std::vector<std::string> views;  //!< surface, deviation, clearance, triangles, patches, control
     int frames = 0, width = 1280, height = 720;
     bool no_fog = false, no_ui = false;
@@ -45,6 +45,9 @@ private:
     std::shared_ptr<const geometry::Terrain> terrain_;
     std::shared_ptr<const FogProducts> fog_;
     std::shared_ptr<const FogViews> uploaded_views_;
+    std::shared_ptr<const geometry::Medium> medium_;
+    std::shared_ptr<const geometry::ParticleCloud> particles_;
+    Needs requested_needs_;  // what the last request asked the pipeline for
     ViewOptions::Surface uploaded_surface_ = ViewOptions::Surface::hidden;
     geometry::LayerOptions layer_options_;
     OrbitCamera camera_;
@@ -58,6 +61,8 @@ private:
     int last_width_ = 0, last_height_ = 0;
 
     float ui_scale_ = 1.0f;
+    //! Queues the scene with what the render mode needs.
+    void request();
     void scale_ui_to_monitor();
     void apply(Products products);
     void apply_live_options();

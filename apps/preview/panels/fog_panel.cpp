@@ -111,7 +111,13 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const F
         return true;
     }
     geometry::FogSpec& f = *scene.fog;
-    bool changed = footprint_editor(f, terrain);
+    // Fog placed by the terrain brings its own footprint and lake target (its own panel).
+    const bool placed = f.placement.has_value();
+    bool changed = false;
+    if (placed)
+        ImGui::TextDisabled("footprint, lake top and thickness: placed by the terrain");
+    else
+        changed |= footprint_editor(f, terrain);
     int kind = f.surface == geometry::SurfaceKind::gregory ? 0 : 1;
     if (ImGui::Combo("surface", &kind, "Gregory patches\0Catmull-Clark (OpenSubdiv)\0")) {
         f.surface = kind == 0 ? geometry::SurfaceKind::gregory : geometry::SurfaceKind::catmull_clark;
@@ -120,7 +126,7 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const F
     changed |= slider("patch size (m)", f.patch_size, 100.0, 10000.0, "%.0f", true);
     geometry::FitOptions& o = f.fit;
     int mode = o.mode == geometry::FitMode::blanket ? 0 : 1;
-    if (ImGui::Combo("mode", &mode, "blanket\0lake\0")) {
+    if (!placed && ImGui::Combo("mode", &mode, "blanket\0lake\0")) {
         o.mode = mode == 0 ? geometry::FitMode::blanket : geometry::FitMode::lake;
         if (o.mode == geometry::FitMode::lake && o.altitude == 0.0 && terrain)  // a third of the way up
             o.altitude = (terrain->bounds().min.z + (terrain->bounds().max.z - terrain->bounds().min.z) / 3.0) /
@@ -128,14 +134,16 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const F
         changed = true;
     }
     ImGui::TextDisabled("heights in metres of the DEM");
-    if (o.mode == geometry::FitMode::blanket) {
+    if (placed) {
+    } else if (o.mode == geometry::FitMode::blanket) {
         changed |= slider("offset (m)", o.offset, -200.0, 1000.0, "%.0f");
         changed |= slider("clearance (m)", o.clearance, 0.0, o.thickness, "%.0f");
         changed |= slider("smoothing (m)", o.smoothing_length, 0.0, 5000.0, "%.0f");
     } else {
         changed |= drag("fog top (m)", o.altitude, 2.0);
     }
-    changed |= slider("thickness (m)", o.thickness, std::max(o.clearance, 1.0), 2000.0, "%.0f", true);
+    if (!placed)
+        changed |= slider("thickness (m)", o.thickness, std::max(o.clearance, 1.0), 2000.0, "%.0f", true);
     changed |= slider("smoothness", o.smoothness, 0.0, 10.0, "%.4f", true);
     if (ImGui::TreeNode("fit samples")) {
         changed |= slider("samples per patch side", o.samples_per_patch, 0, 64);

@@ -15,8 +15,7 @@ bool layers_panel(geometry::Scene& scene, ViewOptions& view)
     if (!ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen))
         return false;
     geometry::LayerOptions& o = scene.layers;
-    bool changed = ImGui::Checkbox("show the fog layers", &view.layers);
-    changed |= slider("layers", o.count, 1, 100);
+    bool changed = slider("layers", o.count, 1, 100);
     o.max_count = std::max(o.max_count, o.count);
     changed |= ImGui::Checkbox("spacing rule (2.8, 2.9)", &o.narrowing);
     ImGui::SameLine();

@@ -14,7 +14,11 @@ namespace kiri::preview {
 //! What is drawn (not part of the scene).
 struct ViewOptions {
     enum class Surface { hidden, shaded, deviation, clearance };
-    bool layers = true;                     //!< the fog's layer stack
+    //! How the fog is drawn: its layer stack, particles lit through the attenuation buffer,
+    //! froxel volumetric fog, or all of them together.
+    enum class Mode { layers, particles, froxel, combined };
+    bool fog = true;                        //!< the fog, drawn as `mode` says
+    Mode mode = Mode::layers;
     Surface surface = Surface::hidden;      //!< the fitted base surface as a translucent mesh
     float surface_opacity = 0.6f;
     bool tessellation = false;              //!< the surface's triangles as lines
@@ -26,18 +30,33 @@ struct ViewOptions {
     bool reduce_while_moving = true;        //!< render at moving_scale while the camera moves
     float moving_scale = 0.5f;
     bool show_panel = true, show_stats = true;
+
+    bool draws_layers() const { return fog && (mode == Mode::layers || mode == Mode::combined); }
+    bool draws_particles() const { return fog && (mode == Mode::particles || mode == Mode::combined); }
+    bool draws_froxels() const { return fog && (mode == Mode::froxel || mode == Mode::combined); }
+    //! What the pipeline has to make for this view.
+    Needs needs() const { return {draws_froxels() || draws_particles(), draws_particles()}; }
 };
+
+const char* mode_name(ViewOptions::Mode mode);
+//! Returns false when `name` is no mode.
+bool parse_mode(const std::string& name, ViewOptions::Mode& mode);
 
 //! What the user asked for this frame (buttons and keys), and text fields that persist.
 struct UiState {
     ViewOptions view;
     bool fly_mode = false;
     bool save = false, screenshot = false, reset_camera = false, focus_fog = false, add_camera = false;
+    bool mode_changed = false;  //!< by a key (the panel reports its own edits)
     int bookmark = -1;
     std::string save_path, new_camera_name = "view";
     std::string message;  //!< last error or file written, at the bottom of the panel
     bool message_is_error = false;
-    void clear_actions() { save = screenshot = reset_camera = focus_fog = add_camera = false, bookmark = -1; }
+    void clear_actions()
+    {
+        save = screenshot = reset_camera = focus_fog = add_camera = mode_changed = false;
+        bookmark = -1;
+    }
 };
 
 //! Frame times measured by the window (the renderer's own are in its FrameStats).
@@ -53,10 +72,23 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const F
 bool sun_panel(geometry::Scene& scene);
 bool layers_panel(geometry::Scene& scene, ViewOptions& view);
 bool medium_panel(geometry::Scene& scene);
+//! Fog placed by the terrain (the fog section's fill, outline, flow and burn_off keys), with
+//! the last placement's figures; only for a scene whose fog has them.
+bool placement_panel(geometry::Scene& scene, const FogProducts* fog);
+//! The scene's "particles" section: sampling (the pipeline resamples) and the attenuation
+//! buffer and billboards (applied on the next frame); figures of the cloud and the buffer.
+bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* cloud,
+                     const render::AttenuationBuffer& buffer);
 //! Returns true when the picture changes (views, resolution).
 bool view_panel(ViewOptions& view, const FogViews* views);
 void camera_panel(const geometry::Scene& scene, UiState& ui);
 void file_panel(UiState& ui);
-void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, const PipelineStatus& pipeline);
+struct FogCounts {
+    std::size_t particles = 0;        //!< in the cloud on the renderer (0: none)
+    int attenuation_builds = 0;       //!< since the start
+    double attenuation_build_ms = 0.0;  //!< the last build
+};
+void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, const FogCounts& fog,
+                   const PipelineStatus& pipeline);
 
 }  // namespace kiri::preview

@@ -1,4 +1,5 @@
 // The timings overlay: frame times, each render pass's GPU and CPU time, what was uploaded,
+// the fog's own counters (particles, attenuation buffer builds: a static view rebuilds nothing),
 // and the recomputation stages (runs, last CPU time), with progress while one runs.
 #include <imgui.h>
 
@@ -6,7 +7,8 @@
 
 namespace kiri::preview {
 
-void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, const PipelineStatus& pipeline)
+void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, const FogCounts& fog,
+                   const PipelineStatus& pipeline)
 {
     ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_Always);
     ImGui::SetNextWindowBgAlpha(0.5f);
@@ -33,6 +35,11 @@ void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, con
         ImGui::EndTable();
     }
     ImGui::Text("layers drawn %d, GPU uploads this frame %d", stats.layers + (stats.layers > 0), stats.uploads);
+    if (fog.particles > 0) {
+        ImGui::Text("particles %zu (drawn %d)", fog.particles, stats.particles);
+        ImGui::Text("attenuation buffer: builds %d (this frame %d), last %.1f ms", fog.attenuation_builds,
+                    stats.attenuation_rebuilds, fog.attenuation_build_ms);
+    }
     if (ImGui::BeginTable("stages", 3, ImGuiTableFlags_SizingFixedFit)) {
         ImGui::TableSetupColumn("stage");
         ImGui::TableSetupColumn("rebuilds");

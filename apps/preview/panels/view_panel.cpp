@@ -9,11 +9,32 @@
 
 namespace kiri::preview {
 
+const char* mode_name(ViewOptions::Mode mode)
+{
+    static const char* names[] = {"layers", "particles", "froxel", "combined"};
+    return names[int(mode)];
+}
+
+bool parse_mode(const std::string& name, ViewOptions::Mode& mode)
+{
+    for (int i = 0; i < 4; ++i)
+        if (name == mode_name(ViewOptions::Mode(i))) {
+            mode = ViewOptions::Mode(i);
+            return true;
+        }
+    return false;
+}
+
 bool view_panel(ViewOptions& view, const FogViews* views)
 {
     if (!ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen))
         return false;
-    bool changed = ImGui::Checkbox("fog layers", &view.layers);
+    bool changed = ImGui::Checkbox("fog", &view.fog);
+    ImGui::SameLine();
+    int mode = int(view.mode);
+    ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
+    changed |= ImGui::Combo("render mode (M)", &mode, "layers\0particles\0froxel\0combined\0");
+    view.mode = ViewOptions::Mode(mode);
     int surface = int(view.surface);
     changed |= ImGui::Combo("base surface", &surface,
                             "hidden\0shaded\0deviation from the fit's target\0height above the terrain\0");

@@ -1,0 +1,68 @@
+// The fog as particles (the scene's "particles" section, docs/particles.md). Sampling options
+// resample the Medium on the worker (~1 s for 60k particles); the attenuation buffer's
+// resolution and format and the billboards' soft edge apply on the next frame (the buffer is
+// rebuilt once). Drawn in the particles and combined render modes.
+#include <algorithm>
+
+#include <imgui.h>
+
+#include "kiri/render/attenuation.hpp"
+#include "panels/panels.hpp"
+#include "panels/widgets.hpp"
+
+namespace kiri::preview {
+
+bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* cloud, const render::AttenuationBuffer& buffer)
+{
+    if (!ImGui::CollapsingHeader("Particles"))
+        return false;
+    geometry::ParticleOptions& o = scene.particles;
+    bool changed = false;
+    bool by_spacing = o.spacing > 0.0;
+    if (ImGui::Checkbox("by spacing", &by_spacing)) {
+        // Starts from the spacing the last cloud had, so the count barely moves.
+        o.spacing = by_spacing ? (cloud && cloud->spacing > 0.0 ? cloud->spacing : 200.0) : 0.0;
+        changed = true;
+    }
+    if (by_spacing)
+        changed |= slider("spacing (m)", o.spacing, 10.0, 2000.0, "%.0f", true);
+    else
+        changed |= ImGui::SliderInt("count", &o.count, 100, 200000, "%d", ImGuiSliderFlags_Logarithmic);
+    changed |= slider("radius scale", o.radius_scale, 0.5, 4.0, "%.2f");
+    bool own_albedo = o.albedo >= 0.0;
+    if (ImGui::Checkbox("own albedo", &own_albedo)) {
+        o.albedo = own_albedo ? scene.medium.albedo : -1.0;
+        changed = true;
+    }
+    if (own_albedo) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
+        changed |= slider("##albedo", o.albedo, 0.0, 1.0, "%.3f");
+    } else {
+        ImGui::SameLine();
+        ImGui::TextDisabled("(the medium's %.3f)", scene.medium.albedo);
+    }
+    int seed = int(std::min<std::uint64_t>(o.seed, 1000000));
+    if (ImGui::InputInt("seed", &seed)) {
+        o.seed = std::uint64_t(std::max(seed, 0));
+        changed = true;
+    }
+    ImGui::TextUnformatted("attenuation buffer");
+    changed |= slider("voxels per side", o.resolution, 64, 384);
+    int format = o.half_float ? 0 : 1;
+    if (ImGui::Combo("format", &format, "R16F\0R32F\0")) {
+        o.half_float = format == 0;
+        changed = true;
+    }
+    changed |= slider("soft edge (m)", o.soft_edge, 0.0, 500.0, "%.0f");
+    if (cloud)
+        ImGui::TextDisabled("%zu particles, spacing %.0f m", cloud->particles.size(), cloud->spacing);
+    if (buffer.rebuild_count() > 0) {
+        const auto& size = buffer.grid().size;
+        ImGui::TextDisabled("buffer %dx%dx%d, %.1f MiB, built %d times, last %.1f ms", size[0], size[1], size[2],
+                            double(buffer.texture_bytes()) / 1048576.0, buffer.rebuild_count(), buffer.last_build_ms());
+    }
+    return changed;
+}
+
+}  // namespace kiri::preview

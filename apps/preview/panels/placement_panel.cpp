@@ -1,0 +1,163 @@
+// Fog placed by the terrain (docs/placement.md): the fill regions (seeds, fog top, thickness
+// limits, the valley threshold), the night's flow and the morning's burn-off. An edit places the
+// fog again on the worker, then refits the lake surface and rebuilds what follows. Heights are
+// metres of the DEM, like the scene's keys.
+#include <string>
+
+#include <imgui.h>
+
+#include "panels/panels.hpp"
+#include "panels/widgets.hpp"
+
+namespace kiri::preview {
+namespace {
+
+bool seed_points(std::vector<glm::dvec2>& points)
+{
+    bool changed = false;
+    if (!ImGui::TreeNode("seed points", "%zu seed points (x, y m)", points.size()))
+        return false;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        ImGui::PushID(int(i));
+        float xy[2] = {float(points[i].x), float(points[i].y)};
+        if (ImGui::DragFloat2("##p", xy, 20.0f, 0.0f, 0.0f, "%.0f")) {
+            points[i] = {xy[0], xy[1]};
+            changed = true;
+        }
+        ImGui::PopID();
+    }
+    if (ImGui::Button("add a point")) {  // beside the last, so it is visible at once
+        points.push_back(points.back() + glm::dvec2(500.0, 0.0));
+        changed = true;
+    }
+    if (points.size() > 1) {
+        ImGui::SameLine();
+        if (ImGui::Button("remove the last")) {
+            points.pop_back();
+            changed = true;
+        }
+    }
+    ImGui::TreePop();
+    return changed;
+}
+
+bool region_editor(geometry::FillRegionSpec& r)
+{
+    bool changed = false;
+    int kind = int(r.seeds);
+    // A mask comes from a file: offered only when the scene has one.
+    const char* kinds = r.seeds == geometry::SeedKind::mask ? "seed points\0every basin\0valleys\0mask file\0"
+                                                             : "seed points\0every basin\0valleys\0";
+    if (ImGui::Combo("seeds", &kind, kinds) && kind != int(r.seeds)) {
+        r.seeds = geometry::SeedKind(kind);
+        if (r.seeds == geometry::SeedKind::points && r.points.empty())
+            r.points.push_back({0.0, 0.0});
+        changed = true;
+    }
+    if (r.seeds == geometry::SeedKind::points)
+        changed |= seed_points(r.points);
+    else if (r.seeds == geometry::SeedKind::valleys)
+        changed |= slider("valley threshold", r.valleys.threshold, -2.0, 4.0, "%.2f");
+    else if (r.seeds == geometry::SeedKind::mask)
+        ImGui::TextDisabled("mask %s", r.mask_path.filename().string().c_str());
+    changed |= drag("fog top (m)", r.top, 2.0);
+    changed |= slider("min thickness (m)", r.min_thickness, 0.0, 200.0, "%.0f");
+    bool limit = r.max_thickness > 0.0;
+    if (ImGui::Checkbox("max thickness", &limit)) {
+        r.max_thickness = limit ? 200.0 : 0.0;
+        changed = true;
+    }
+    if (limit) {
+        ImGui::SameLine();
+        ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
+        changed |= slider("##max", r.max_thickness, 1.0, 2000.0, "%.0f m", true);
+    }
+    changed |= slider("profile (blanket 0, fill 1)", r.profile, 0.0, 1.0, "%.2f");
+    return changed;
+}
+
+bool flow_editor(geometry::PlacementSpec& p)
+{
+    bool on = p.flow.has_value();
+    bool changed = false;
+    if (ImGui::Checkbox("flow (the night's wind)", &on)) {
+        if (on)
+            p.flow = geometry::FlowOptions{.wind = {2.0, 0.0}};
+        else
+            p.flow.reset();
+        changed = true;
+    }
+    if (!p.flow)
+        return changed;
+    float wind[2] = {float(p.flow->wind.x), float(p.flow->wind.y)};
+    if (ImGui::SliderFloat2("wind (m/s)", wind, -15.0f, 15.0f, "%.1f")) {
+        p.flow->wind = {wind[0], wind[1]};
+        changed = true;
+    }
+    double hours = p.flow->duration / 3600.0;
+    if (slider("flow time (h)", hours, 0.0, 12.0, "%.1f")) {
+        p.flow->duration = hours * 3600.0;
+        changed = true;
+    }
+    return changed;
+}
+
+bool burn_off_editor(geometry::PlacementSpec& p)
+{
+    bool on = p.burn_off.has_value();
+    bool changed = false;
+    if (ImGui::Checkbox("burn-off (the morning's sun)", &on)) {
+        if (on)
+            p.burn_off = geometry::BurnOffOptions{};
+        else
+            p.burn_off.reset();
+        changed = true;
+    }
+    if (!p.burn_off)
+        return changed;
+    changed |= slider("time of day (h)", p.burn_off->time, 0.0, 24.0, "%.2f");
+    changed |= slider("day of the year", p.burn_off->day_of_year, 1, 366);
+    return changed;
+}
+
+void figures(const geometry::PlacedFog& placed, double exaggeration)
+{
+    const geometry::ColumnFigures& f = placed.figures;
+    const double e = exaggeration > 0.0 ? exaggeration : 1.0;
+    ImGui::TextDisabled("fog over %.1f km^2, %.3f km^3; thickness mean %.0f m, max %.0f m", f.area_m2 * 1e-6,
+                        f.volume_m3 * 1e-9 / e, f.mean_thickness / e, f.max_thickness / e);
+    ImGui::TextDisabled("outline: %d polygons, %zu vertices; fill %.2f s, outline %.2f s", placed.outline.components,
+                        placed.outline.vertices, placed.seconds_fill, placed.seconds_outline);
+    if (placed.flow)
+        ImGui::TextDisabled("flow: spilled %.3f km^3, %.2f s", placed.flow->spilled_m3 * 1e-9 / e, placed.seconds_flow);
+    if (placed.burn_off)
+        ImGui::TextDisabled("burn-off: sun %.1f deg up, base lifted to %.0f m", placed.burn_off->sun_elevation_deg,
+                            placed.burn_off->lifted_base / e);
+}
+
+}  // namespace
+
+bool placement_panel(geometry::Scene& scene, const FogProducts* fog)
+{
+    if (!scene.fog || !scene.fog->placement)
+        return false;
+    if (!ImGui::CollapsingHeader("Fog placed by the terrain", ImGuiTreeNodeFlags_DefaultOpen))
+        return false;
+    geometry::PlacementSpec& p = *scene.fog->placement;
+    ImGui::TextDisabled("heights in metres of the DEM");
+    bool changed = false;
+    for (std::size_t i = 0; i < p.regions.size(); ++i) {
+        ImGui::PushID(int(i));
+        if (p.regions.size() > 1)
+            ImGui::Text("region %zu", i + 1);
+        changed |= region_editor(p.regions[i]);
+        ImGui::PopID();
+    }
+    changed |= flow_editor(p);
+    changed |= burn_off_editor(p);
+    if (fog && fog->placed)
+        figures(*fog->placed, scene.terrain.exaggeration);
+    return changed;
+}
+
+}  // namespace kiri::preview
