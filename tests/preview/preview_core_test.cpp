@@ -15,6 +15,7 @@
 #include "geometry/fog_test_terrains.hpp"
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/fog_spec.hpp"
+#include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/terrain.hpp"
 #include "orbit_camera.hpp"
 #include "pipeline.hpp"
@@ -55,13 +56,32 @@ double mean_height(const kiri::preview::FogProducts& fog)
     return sum / double(fog.views->surface.positions.size());
 }
 
+int runs(const Pipeline& p, Stage stage) { return p.status().stages[std::size_t(stage)].runs; }
+
 // Runs per stage so far: terrain, control mesh, fit, tessellation, layer base, views.
 std::array<int, 6> runs(const Pipeline& p)
 {
     std::array<int, 6> out{};
-    for (int i = 0; i < 6; ++i)
-        out[std::size_t(i)] = p.status().stages[std::size_t(i)].runs;
+    int i = 0;
+    for (Stage stage : {Stage::terrain, Stage::control_mesh, Stage::fit, Stage::tessellation, Stage::layer_base,
+                        Stage::views})
+        out[std::size_t(i++)] = runs(p, stage);
     return out;
+}
+
+// Runs of the stages after the views: placement, medium, particles.
+std::array<int, 3> fog_runs(const Pipeline& p)
+{
+    return {runs(p, Stage::placement), runs(p, Stage::medium), runs(p, Stage::particles)};
+}
+
+Products run(Pipeline& p, const g::Scene& s, kiri::preview::Needs needs)
+{
+    p.request(s, needs);
+    p.wait_idle();
+    std::optional<Products> r = p.take();
+    EXPECT_TRUE(r.has_value());
+    return r ? std::move(*r) : Products{};
 }
 
 }  // namespace
@@ -122,6 +142,90 @@ TEST(PreviewPipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
     EXPECT_EQ(runs(p), (std::array<int, 6>{2, 3, 4, 5, 6, 5}));
     EXPECT_NEAR(steeper.terrain->bounds().max.z / smaller.terrain->bounds().max.z, 2.0 / 1.5, 1e-12);
     EXPECT_TRUE(steeper.error.empty()) << steeper.error;
+}
+
+TEST(PreviewPipeline, FogPlacedByTheTerrainIsWhatKiriAuthorMakes)
+{
+    Pipeline p;
+    g::Scene s = g::load_scene(fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_fill.json");
+    ASSERT_TRUE(s.fog && s.fog->placement);
+    const Products first = run(p, s, {.medium = true});
+    ASSERT_TRUE(first.error.empty()) << first.error;
+    ASSERT_TRUE(first.fog && first.fog->placed && first.medium);
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{1, 1, 0}));
+    EXPECT_EQ(first.particles, nullptr);  // not asked for
+
+    // The same placement, lake fit, layer stack and medium as `kiri author` (author_scene_fog).
+    const g::SceneFog direct = g::author_scene_fog(s, *first.terrain);
+    ASSERT_TRUE(direct.placed);
+    EXPECT_EQ(first.fog->placed->figures.cells, direct.placed->figures.cells);
+    EXPECT_DOUBLE_EQ(first.fog->placed->figures.volume_m3, direct.placed->figures.volume_m3);
+    EXPECT_DOUBLE_EQ(first.fog->placed_thickness, direct.layers.thickness);
+    EXPECT_DOUBLE_EQ(first.fog->base_offset, direct.layers.base_offset);
+    EXPECT_EQ(first.fog->triangles, direct.authored.tessellation.mesh.n_faces());
+    EXPECT_NEAR(first.fog->fit.rms_deviation, direct.authored.fit.rms_deviation,
+                1e-9 * (1.0 + direct.authored.fit.rms_deviation));
+    EXPECT_EQ(first.medium->grid().nx, direct.medium.grid().nx);
+    EXPECT_NEAR(first.medium->shell_volume(), direct.medium.shell_volume(), 1e-9 * direct.medium.shell_volume());
+
+    // A tessellation edit keeps the placement and the medium; the medium's optics only remake it.
+    s.fog->tessellation.level = 6;
+    run(p, s, {.medium = true});
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{1, 2, 0}));  // the layer base changed under it
+    s.medium.albedo = 0.9;
+    const Products albedo = run(p, s, {.medium = true});
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{1, 3, 0}));
+    EXPECT_DOUBLE_EQ(albedo.medium->options().albedo, 0.9);
+
+    // A higher fog top places the fog again: more of it, deeper, and everything after reruns.
+    const std::array<int, 6> before = runs(p);
+    s.fog->placement->regions.at(0).top += 40.0;
+    const Products higher = run(p, s, {.medium = true});
+    ASSERT_TRUE(higher.error.empty()) << higher.error;
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{2, 4, 0}));
+    EXPECT_EQ(runs(p)[1], before[1] + 1);  // control mesh
+    EXPECT_GT(higher.fog->placed->figures.volume_m3, first.fog->placed->figures.volume_m3);
+    EXPECT_NEAR(higher.fog->placed_thickness, first.fog->placed_thickness + 40.0 * s.terrain.exaggeration, 1e-6);
+}
+
+TEST(PreviewPipeline, TheParticleCountResamplesOnlyTheParticles)
+{
+    Pipeline p;
+    g::Scene s = small_scene();
+    s.particles.count = 3000;
+    const Products first = run(p, s, {.medium = true, .particles = true});
+    ASSERT_TRUE(first.error.empty()) << first.error;
+    ASSERT_TRUE(first.particles && first.medium);
+    EXPECT_EQ(first.particles->particles.size(), 3000u);
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 1}));
+    // The particles `kiri author` samples from the same scene, bit for bit.
+    const g::SceneFog direct = g::author_scene_fog(s, *first.terrain);
+    const g::ParticleCloud cloud = g::sample_particles(direct.medium, s.particles);
+    ASSERT_EQ(cloud.particles.size(), first.particles->particles.size());
+    EXPECT_EQ(cloud.particles[1234].position, first.particles->particles[1234].position);
+    EXPECT_EQ(cloud.particles[1234].optical_depth, first.particles->particles[1234].optical_depth);
+
+    s.particles.count = 4000;
+    const Products more = run(p, s, {.medium = true, .particles = true});
+    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 1, 1, 1, 1, 1}));
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 2}));
+    EXPECT_EQ(more.medium, first.medium);
+    EXPECT_EQ(more.particles->particles.size(), 4000u);
+
+    // The attenuation buffer's options apply per frame: nothing is resampled.
+    s.particles.resolution = 256;
+    s.particles.half_float = false;
+    const Products finer = run(p, s, {.medium = true, .particles = true});
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 2}));
+    EXPECT_EQ(finer.particles, more.particles);
+
+    // A mode without particles gets none and runs nothing; back to particles, the same ones.
+    const Products layers = run(p, s, {});
+    EXPECT_EQ(layers.particles, nullptr);
+    EXPECT_EQ(layers.medium, nullptr);
+    const Products again = run(p, s, {.medium = true, .particles = true});
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 2}));
+    EXPECT_EQ(again.particles, more.particles);
 }
 
 TEST(PreviewPipeline, AFailedEditKeepsTheLastGoodFogAndNamesTheProblem)

@@ -88,15 +88,20 @@ Tone lower_half(const Image& image)
     return t;
 }
 
-// Scripted mode, 640 x 360, no panel: the 3D view alone.
-Image screenshot(const std::string& extra, const std::string& scene = scene_path())
+// Scripted mode, 640 x 360, no panel: the 3D view alone. `log`, when given, gets stderr.
+Image screenshot(const std::string& extra, const std::string& scene = scene_path(), std::string* log = nullptr,
+                 int frames = 2)
 {
     const fs::path png = kiri::test::temp_path("preview_test.png");
+    const fs::path err = kiri::test::temp_path("preview_test_stderr.txt");
     fs::remove(png);
-    const std::string command = xvfb + shell_quote(KIRI_PREVIEW) + " " + shell_quote(scene) +
-                                " --frames 2 --width 640 --height 360 --no-ui --screenshot " + png.string() + " " +
-                                extra + " > /dev/null 2>&1";
-    EXPECT_EQ(std::system(command.c_str()), 0) << command;
+    const std::string command = xvfb + shell_quote(KIRI_PREVIEW) + " " + shell_quote(scene) + " --frames " +
+                                std::to_string(frames) + " --width 640 --height 360 --no-ui --screenshot " +
+                                png.string() + " " + extra + " > /dev/null 2> " + err.string();
+    EXPECT_EQ(std::system(command.c_str()), 0) << command << "\n" << kiri::test::read_all(err);
+    if (log)
+        *log = kiri::test::read_all(err);
+    fs::remove(err);
     Image image = kiri::render::read_png(png);
     fs::remove(png);
     return image;
@@ -130,6 +135,50 @@ TEST_F(PreviewXvfb, ScriptedScreenshotShowsTerrainAndFog)
     EXPECT_GT(with.hi - with.lo, 30) << "the fog view is uniform";
     EXPECT_GT(with.luminance, without.luminance + 12.0) << without.luminance << " -> " << with.luminance;
     EXPECT_LT(with.saturation, 0.7 * without.saturation) << without.saturation << " -> " << with.saturation;
+}
+
+TEST_F(PreviewXvfb, FogPlacedByTheTerrainFillsTheValleys)
+{
+    // jacksboro_fill.json: a sea of fog up to 580 m, the ridges rising through it. Judged on the
+    // terrain's pixels (green or yellow without fog; sky and haze are blue).
+    const Image fog = screenshot("", scene_path("jacksboro_fill.json"));
+    const Image bare = screenshot("--no-fog", scene_path("jacksboro_fill.json"));
+    double lum_fog = 0.0, lum_bare = 0.0, sat_fog = 0.0, sat_bare = 0.0;
+    int terrain = 0, unchanged = 0;
+    const auto saturation = [](Rgb p) {
+        const int hi = std::max({p.r, p.g, p.b}), lo = std::min({p.r, p.g, p.b});
+        return hi > 0 ? double(hi - lo) / hi : 0.0;
+    };
+    for (int y = 0; y < fog.height; ++y)
+        for (int x = 0; x < fog.width; ++x) {
+            const Rgb p = at(fog, x, y), q = at(bare, x, y);
+            if (q.g <= q.b + 2)
+                continue;
+            ++terrain;
+            lum_fog += 0.3 * p.r + 0.6 * p.g + 0.1 * p.b;
+            lum_bare += 0.3 * q.r + 0.6 * q.g + 0.1 * q.b;
+            sat_fog += saturation(p);
+            sat_bare += saturation(q);
+            unchanged += std::abs(p.r - q.r) + std::abs(p.g - q.g) + std::abs(p.b - q.b) < 6;
+        }
+    ASSERT_GT(terrain, 640 * 360 / 10);
+    EXPECT_GT(lum_fog / terrain, lum_bare / terrain + 8.0) << lum_bare / terrain << " -> " << lum_fog / terrain;
+    EXPECT_LT(sat_fog, 0.7 * sat_bare) << sat_bare / terrain << " -> " << sat_fog / terrain;
+    // Not a blanket: the ridges above the fog top look as without fog.
+    EXPECT_GT(unchanged, terrain / 10) << unchanged << " of " << terrain << " terrain pixels unchanged";
+    EXPECT_LT(unchanged, terrain * 9 / 10) << unchanged << " of " << terrain << " terrain pixels unchanged";
+}
+
+TEST_F(PreviewXvfb, ParticlesBuildTheAttenuationBufferOnceForAStaticView)
+{
+    std::string log;
+    const Image particles = screenshot("--mode particles", scene_path(), &log, 4);
+    const Image bare = screenshot("--no-fog");
+    // The first frame builds the buffer; the next three (the same view, sun and particles) reuse it.
+    EXPECT_NE(log.find("20000 particles, attenuation buffer builds per frame: 1 0 0 0\n"), std::string::npos) << log;
+    const Tone with = lower_half(particles), without = lower_half(bare);
+    EXPECT_GT(with.luminance, without.luminance + 8.0) << without.luminance << " -> " << with.luminance;
+    EXPECT_LT(with.saturation, 0.8 * without.saturation) << without.saturation << " -> " << with.saturation;
 }
 
 TEST_F(PreviewXvfb, TheViewIsWhatKiriRenderDraws)
