@@ -177,6 +177,12 @@ int main(int argc, char** argv)
     XResizeWindow(dpy, window, 700, 420);
     pause_for(1000ms);
     screenshot(6, stem, "resized to 700x420");
+    key(XK_1);
+    pause_for(2000ms);  // past the reduced frame of the jump
+    screenshot(7, stem, "bookmark 1");
+    key(XK_m);
+    pause_for(6000ms);  // the medium and 20k particles on the worker (~1 s on llvmpipe's machine)
+    screenshot(8, stem, "render mode particles (M)");
     move_to(40, 300);
     key(XK_s, XK_Control_L);
     wait_for(work / (stem + "-edited.json"), "save (Ctrl+S)");

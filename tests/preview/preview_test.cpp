@@ -236,7 +236,7 @@ TEST_F(PreviewXvfb, CameraPathEndsAtItsLastKey)
     EXPECT_GT(mean_difference(along, at_first, 0, 0, 640, 360), 10.0);
 }
 
-TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSavesAndCloses)
+TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSwitchesModeSavesAndCloses)
 {
     const fs::path work = kiri::test::temp_path("preview_session");
     fs::remove_all(work);
@@ -270,6 +270,13 @@ TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSavesAndCloses)
     // The window was resized; the framebuffer followed.
     EXPECT_EQ(shot[6].width, 700);
     EXPECT_EQ(shot[6].height, 420);
+    // Key 1, then M: the same view with the fog as particles, right of the timings (the same
+    // medium: close to the layers, but not the same pixels).
+    const Image layers = kiri::render::read_png(work / "scene-preview-7.png");
+    const Image particles = kiri::render::read_png(work / "scene-preview-8.png");
+    ASSERT_EQ(particles.width, 700);
+    ASSERT_EQ(layers.width, 700);
+    EXPECT_GT(mean_difference(layers, particles, 430, 100, 700, 420), 0.5) << "particles mode (M)";
     // Ctrl+S wrote the scene next to it, and it loads back equal (the terrain path relative).
     const kiri::geometry::Scene saved = kiri::geometry::load_scene(work / "scene-edited.json");
     EXPECT_EQ(fs::weakly_canonical(saved.terrain.path), fs::weakly_canonical(scene.terrain.path));
