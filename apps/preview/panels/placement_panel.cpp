@@ -72,7 +72,9 @@ bool region_editor(geometry::FillRegionSpec& r)
         ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
         changed |= slider("##max", r.max_thickness, 1.0, 2000.0, "%.0f m", true);
     }
-    changed |= slider("profile (blanket 0, fill 1)", r.profile, 0.0, 1.0, "%.2f");
+    changed |= slider("density profile", r.profile, 0.0, 1.0, "%.2f");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("0: each column densest at its own bottom (blanket); 1: by altitude (fill)");
     return changed;
 }
 
@@ -124,10 +126,10 @@ void figures(const geometry::PlacedFog& placed, double exaggeration)
 {
     const geometry::ColumnFigures& f = placed.figures;
     const double e = exaggeration > 0.0 ? exaggeration : 1.0;
-    ImGui::TextDisabled("fog over %.1f km^2, %.3f km^3; thickness mean %.0f m, max %.0f m", f.area_m2 * 1e-6,
-                        f.volume_m3 * 1e-9 / e, f.mean_thickness / e, f.max_thickness / e);
-    ImGui::TextDisabled("outline: %d polygons, %zu vertices; fill %.2f s, outline %.2f s", placed.outline.components,
-                        placed.outline.vertices, placed.seconds_fill, placed.seconds_outline);
+    ImGui::TextDisabled("fog over %.1f km^2, %.3f km^3", f.area_m2 * 1e-6, f.volume_m3 * 1e-9 / e);
+    ImGui::TextDisabled("thickness mean %.0f m, max %.0f m", f.mean_thickness / e, f.max_thickness / e);
+    ImGui::TextDisabled("outline: %d polygons, %zu vertices", placed.outline.components, placed.outline.vertices);
+    ImGui::TextDisabled("fill %.2f s, outline %.2f s", placed.seconds_fill, placed.seconds_outline);
     if (placed.flow)
         ImGui::TextDisabled("flow: spilled %.3f km^3, %.2f s", placed.flow->spilled_m3 * 1e-9 / e, placed.seconds_flow);
     if (placed.burn_off)
