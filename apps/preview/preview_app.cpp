@@ -251,7 +251,7 @@ void PreviewApp::draw_panel()
         // Stages that feed the pipeline, then what applies per frame.
         edited |= terrain_panel(scene_);
         edited |= fog_panel(scene_, terrain_.get(), fog_.get());
-        edited |= placement_panel(scene_, fog_.get());
+        edited |= placement_panel(scene_, terrain_.get(), fog_.get());
         edited |= layers_panel(scene_, view);
         edited |= medium_panel(scene_);
         edited |= particles_panel(scene_, particles_.get(), renderer_->attenuation());

@@ -74,7 +74,7 @@ bool layers_panel(geometry::Scene& scene, ViewOptions& view);
 bool medium_panel(geometry::Scene& scene);
 //! Fog placed by the terrain (the fog section's fill, outline, flow and burn_off keys), with
 //! the last placement's figures; only for a scene whose fog has them.
-bool placement_panel(geometry::Scene& scene, const FogProducts* fog);
+bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog);
 //! The scene's "particles" section: sampling (the pipeline resamples) and the attenuation
 //! buffer and billboards (applied on the next frame); figures of the cloud and the buffer.
 bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* cloud,

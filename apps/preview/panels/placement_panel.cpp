@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include "kiri/geometry/terrain.hpp"
 #include "panels/panels.hpp"
 #include "panels/widgets.hpp"
 
@@ -139,13 +140,29 @@ void figures(const geometry::PlacedFog& placed, double exaggeration)
 
 }  // namespace
 
-bool placement_panel(geometry::Scene& scene, const FogProducts* fog)
+bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog)
 {
-    if (!scene.fog || !scene.fog->placement)
+    if (!scene.fog)
         return false;
     if (!ImGui::CollapsingHeader("Fog placed by the terrain", ImGuiTreeNodeFlags_DefaultOpen))
         return false;
-    geometry::PlacementSpec& p = *scene.fog->placement;
+    geometry::FogSpec& spec = *scene.fog;
+    if (!spec.placement) {
+        ImGui::TextDisabled("The fog's footprint and top are set by hand.");
+        if (!terrain || !ImGui::Button("fill every basin instead"))
+            return false;
+        // Up to a third of the way from the lowest ground to the highest, in metres of the DEM.
+        const geometry::Bounds3 b = terrain->bounds();
+        geometry::FillRegionSpec region;
+        region.seeds = geometry::SeedKind::all;
+        region.top = (b.min.z + (b.max.z - b.min.z) / 3.0) / scene.terrain.exaggeration;
+        spec.placement = geometry::PlacementSpec{};
+        spec.placement->regions = {region};
+        spec.footprint = {};
+        spec.fit.mode = geometry::FitMode::lake;
+        return true;
+    }
+    geometry::PlacementSpec& p = *spec.placement;
     ImGui::TextDisabled("heights in metres of the DEM");
     bool changed = false;
     for (std::size_t i = 0; i < p.regions.size(); ++i) {
@@ -159,6 +176,12 @@ bool placement_panel(geometry::Scene& scene, const FogProducts* fog)
     changed |= burn_off_editor(p);
     if (fog && fog->placed)
         figures(*fog->placed, scene.terrain.exaggeration);
+    if (ImGui::Button("set the footprint by hand")) {  // a lake at the first region's top
+        spec.fit.mode = geometry::FitMode::lake;
+        spec.fit.altitude = p.regions.front().top;
+        spec.placement.reset();
+        return true;
+    }
     return changed;
 }
 
