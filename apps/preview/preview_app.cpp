@@ -26,6 +26,17 @@ namespace {
 
 render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
 
+// The scene's froxel options in world units, its height fog over the terrain's extent only (as
+// kiri render draws it).
+geometry::FroxelOptions froxel_options(const geometry::Scene& scene, const geometry::Terrain& terrain)
+{
+    geometry::FroxelOptions options = geometry::world_froxel_options(scene);
+    const geometry::Bounds3 b = terrain.bounds();
+    options.height_fog.min = {b.min.x, b.min.y};
+    options.height_fog.max = {b.max.x, b.max.y};
+    return options;
+}
+
 render::ParticleStyle to_style(const geometry::ParticleOptions& o)
 {
     render::ParticleStyle s;
@@ -170,6 +181,22 @@ void PreviewApp::apply_live_options()
         renderer_->set_particles(*particles_, to_style(scene_.particles));
     else
         renderer_->clear_particles();
+    froxels_on_ = false;
+    if (terrain_ && v.draws_froxels()) {
+        try {
+            const geometry::FroxelOptions options = froxel_options(scene_, *terrain_);
+            // The medium while the fog has one (a scene without fog: the height fog alone).
+            const geometry::Medium* medium = fog_ ? medium_.get() : nullptr;
+            if (medium || options.height_fog.enabled()) {
+                renderer_->set_froxel_fog(medium, options);
+                froxels_on_ = true;
+            }
+        } catch (const std::exception& e) {
+            report(e.what(), true);
+        }
+    }
+    if (!froxels_on_)
+        renderer_->clear_froxel_fog();
     if (!fog_ || !v.draws_layers()) {
         renderer_->clear_layers();
         return;
@@ -255,6 +282,7 @@ void PreviewApp::draw_panel()
         edited |= layers_panel(scene_, view);
         edited |= medium_panel(scene_);
         edited |= particles_panel(scene_, particles_.get(), renderer_->attenuation());
+        edited |= froxel_panel(scene_, renderer_->last_stats().froxel);
         edited |= sun_panel(scene_);
         view_changed |= view_panel(view, fog_ ? fog_->views.get() : nullptr);
         camera_panel(scene_, ui_);
@@ -273,7 +301,7 @@ void PreviewApp::draw_panel()
     }
     if (view.show_stats) {
         const render::AttenuationBuffer& buffer = renderer_->attenuation();
-        const FogCounts counts{particles_ && view.draws_particles() ? particles_->particles.size() : 0,
+        const FogCounts counts{froxels_on_, particles_ && view.draws_particles() ? particles_->particles.size() : 0,
                                buffer.rebuild_count(), buffer.last_build_ms()};
         stats_overlay(times_, renderer_->last_stats(), counts, pipeline_.status());
     }
@@ -345,7 +373,9 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
         times_.scene_width = last_width_ = w;
         times_.scene_height = last_height_ = h;
         ++times_.scene_frames;
-        scene_dirty_ = false;
+        // The froxels' temporal filter refines a still view over its next frames (16 jittered
+        // ones); the pass itself stops once it has them, and so does the redrawing.
+        scene_dirty_ = froxels_on_ && renderer_->last_stats().froxel.updated && scene_.froxel.temporal;
         last_frame_reduced_ = reduced;
     } else {
         ++times_.reused_frames;
@@ -373,7 +403,7 @@ int PreviewApp::run()
     }
     int frame = 0;
     std::vector<double> scene_ms;
-    std::string rebuilds;  // attenuation buffer builds per drawn frame (scripted)
+    std::string rebuilds, froxel_runs;  // per drawn frame (scripted): attenuation builds, froxel passes run
     auto last = Clock::now();
     while (!window_->should_close()) {
         const auto start = Clock::now();
@@ -411,6 +441,7 @@ int PreviewApp::run()
             scene_ms.push_back(times_.scene_ms);
             rebuilds += ' ';  // (" " + to_string trips GCC 12's -Wrestrict false positive)
             rebuilds += std::to_string(renderer_->last_stats().attenuation_rebuilds);
+            froxel_runs += renderer_->last_stats().froxel.updated ? " 1" : " 0";
         }
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         try {
@@ -438,15 +469,17 @@ int PreviewApp::run()
             if (particles_ && ui_.view.draws_particles())
                 std::fprintf(stderr, "kiri-preview: %zu particles, attenuation buffer builds per frame:%s\n",
                              particles_->particles.size(), rebuilds.c_str());
+            if (froxels_on_)
+                std::fprintf(stderr, "kiri-preview: froxel passes run per frame:%s\n", froxel_runs.c_str());
             return 0;
         }
         window_->swap_buffers();
         times_.loop_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         // Idle: sleep until an event (or a moment, to show the pipeline's progress).
         const ImGuiIO& io = ImGui::GetIO();
-        const bool active = moved || ui_.view.play_time || ImGui::IsAnyItemActive() || io.MouseDown[0] || io.MouseDown[1] ||
-                            io.MouseDown[2] || io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f ||
-                            io.MouseWheel != 0.0f;
+        const bool active = moved || scene_dirty_ || ui_.view.play_time || ImGui::IsAnyItemActive() ||
+                            io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2] || io.MouseDelta.x != 0.0f ||
+                            io.MouseDelta.y != 0.0f || io.MouseWheel != 0.0f;
         if (args_.scripted() || active)
             glfwPollEvents();
         else

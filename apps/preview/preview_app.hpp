@@ -48,6 +48,7 @@ private:
     std::shared_ptr<const geometry::Medium> medium_;
     std::shared_ptr<const geometry::ParticleCloud> particles_;
     Needs requested_needs_;  // what the last request asked the pipeline for
+    bool froxels_on_ = false;  // froxel fog set on the renderer
     ViewOptions::Surface uploaded_surface_ = ViewOptions::Surface::hidden;
     geometry::LayerOptions layer_options_;
     OrbitCamera camera_;

@@ -181,6 +181,29 @@ TEST_F(PreviewXvfb, ParticlesBuildTheAttenuationBufferOnceForAStaticView)
     EXPECT_LT(with.saturation, 0.8 * without.saturation) << without.saturation << " -> " << with.saturation;
 }
 
+TEST_F(PreviewXvfb, FroxelFogIsDrawnAndAStaticViewRunsItsPassesOnce)
+{
+    // The default scene without the temporal filter (which would refine a still view over 16
+    // frames): the passes run on the first frame only.
+    kiri::geometry::Scene scene = kiri::geometry::load_scene(scene_path());
+    scene.terrain.path = fs::absolute(scene.terrain.path);
+    scene.froxel.temporal = false;
+    const fs::path path = kiri::test::temp_path("preview_froxel.json");
+    {
+        std::ofstream out(path);
+        out << kiri::geometry::scene_to_json(scene);
+    }
+    std::string log;
+    const Image froxel = screenshot("--mode froxel", path.string(), &log, 3);
+    const Image bare = screenshot("--no-fog", path.string());
+    fs::remove(path);
+    EXPECT_NE(log.find("froxel passes run per frame: 1 0 0\n"), std::string::npos) << log;
+    const Tone with = lower_half(froxel), without = lower_half(bare);
+    EXPECT_GT(with.hi - with.lo, 30) << "the froxel view is uniform";
+    EXPECT_GT(with.luminance, without.luminance + 8.0) << without.luminance << " -> " << with.luminance;
+    EXPECT_LT(with.saturation, 0.8 * without.saturation) << without.saturation << " -> " << with.saturation;
+}
+
 TEST_F(PreviewXvfb, TheViewIsWhatKiriRenderDraws)
 {
     // The window shows the scene as the headless renderer draws it (both on llvmpipe here:

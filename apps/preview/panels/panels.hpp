@@ -77,6 +77,9 @@ bool medium_panel(geometry::Scene& scene);
 bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog);
 //! The scene's "particles" section: sampling (the pipeline resamples) and the attenuation
 //! buffer and billboards (applied on the next frame); figures of the cloud and the buffer.
+//! The scene's "froxel" section: the grid, slicing, filtering, shadows, height fog (all applied
+//! on the next frame), and what the froxel passes did.
+bool froxel_panel(geometry::Scene& scene, const render::FroxelStats& stats);
 bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* cloud,
                      const render::AttenuationBuffer& buffer);
 //! Returns true when the picture changes (views, resolution).
@@ -84,6 +87,7 @@ bool view_panel(ViewOptions& view, const FogViews* views);
 void camera_panel(const geometry::Scene& scene, UiState& ui);
 void file_panel(UiState& ui);
 struct FogCounts {
+    bool froxels = false;             //!< froxel fog on the renderer
     std::size_t particles = 0;        //!< in the cloud on the renderer (0: none)
     int attenuation_builds = 0;       //!< since the start
     double attenuation_build_ms = 0.0;  //!< the last build

@@ -35,6 +35,11 @@ void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, con
         ImGui::EndTable();
     }
     ImGui::Text("layers drawn %d, GPU uploads this frame %d", stats.layers + (stats.layers > 0), stats.uploads);
+    if (fog.froxels) {
+        const render::FroxelStats& f = stats.froxel;
+        ImGui::Text("froxel passes: ran in %d frames (this frame %s), shadow map %d; %s", f.updates,
+                    f.updated ? "yes" : "no", f.shadow_map_updates, f.visible ? "in view" : "out of view");
+    }
     if (fog.particles > 0) {
         ImGui::Text("particles %zu (drawn %d)", fog.particles, stats.particles);
         ImGui::Text("attenuation buffer: builds %d (this frame %d), last %.1f ms", fog.attenuation_builds,
