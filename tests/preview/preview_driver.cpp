@@ -183,6 +183,8 @@ int main(int argc, char** argv)
     key(XK_m);
     pause_for(6000ms);  // the medium and 20k particles on the worker (~1 s on llvmpipe's machine)
     screenshot(8, stem, "render mode particles (M)");
+    pause_for(1000ms);
+    screenshot(9, stem, "the same view again");
     move_to(40, 300);
     key(XK_s, XK_Control_L);
     wait_for(work / (stem + "-edited.json"), "save (Ctrl+S)");

@@ -300,6 +300,10 @@ TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSwitchesModeSavesAnd
     ASSERT_EQ(particles.width, 700);
     ASSERT_EQ(layers.width, 700);
     EXPECT_GT(mean_difference(layers, particles, 430, 100, 700, 420), 0.5) << "particles mode (M)";
+    // The particles' attenuation buffer was built once for that view, not again for the frames
+    // after it (the session's summary line, on exit).
+    const std::string log = kiri::test::read_all(work / "driver.txt");
+    EXPECT_NE(log.find("attenuation buffer builds 1\n"), std::string::npos) << log;
     // Ctrl+S wrote the scene next to it, and it loads back equal (the terrain path relative).
     const kiri::geometry::Scene saved = kiri::geometry::load_scene(work / "scene-edited.json");
     EXPECT_EQ(fs::weakly_canonical(saved.terrain.path), fs::weakly_canonical(scene.terrain.path));
