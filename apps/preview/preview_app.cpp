@@ -160,6 +160,9 @@ void PreviewApp::apply(Products p)
         // The renderer keeps them by reference: the old ones go once the new ones are in.
         const auto old_fog = std::exchange(fog_, p.fog);
         const auto old_medium = std::exchange(medium_, p.medium);
+        std::unique_ptr<geometry::Medium> old_live;
+        if (medium_ != old_medium)
+            old_live = std::exchange(live_medium_, medium_ ? std::make_unique<geometry::Medium>(*medium_) : nullptr);
         const auto old_particles = std::exchange(particles_, p.particles);
         apply_live_options();
         if (fog_ != old_fog)
@@ -186,7 +189,9 @@ void PreviewApp::apply_live_options()
         try {
             const geometry::FroxelOptions options = froxel_options(scene_, *terrain_);
             // The medium while the fog has one (a scene without fog: the height fog alone).
-            const geometry::Medium* medium = fog_ ? medium_.get() : nullptr;
+            geometry::Medium* medium = fog_ ? live_medium_.get() : nullptr;
+            if (medium && medium->detail().time != scene_.layers.time)
+                medium->set_time(scene_.layers.time);
             if (medium || options.height_fog.enabled()) {
                 renderer_->set_froxel_fog(medium, options);
                 froxels_on_ = true;

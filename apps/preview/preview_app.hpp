@@ -46,6 +46,9 @@ private:
     std::shared_ptr<const FogProducts> fog_;
     std::shared_ptr<const FogViews> uploaded_views_;
     std::shared_ptr<const geometry::Medium> medium_;
+    //! The froxels' copy of it, whose time follows the layers' (wind drift and dissipation move
+    //! when time plays); replaced only with a new medium, so the renderer keeps its shell.
+    std::unique_ptr<geometry::Medium> live_medium_;
     std::shared_ptr<const geometry::ParticleCloud> particles_;
     Needs requested_needs_;  // what the last request asked the pipeline for
     bool froxels_on_ = false;  // froxel fog set on the renderer
