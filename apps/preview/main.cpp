@@ -17,8 +17,10 @@ int main(int argc, char** argv)
     app.add_option("--height", args.height, "window height (screen units)")->check(CLI::Range(64, 16384));
     app.add_option("--camera", args.camera, "scene camera to start from (default: its first)");
     app.add_flag("--no-fog", args.no_fog, "start with the fog hidden");
-    app.add_option("--mode", args.mode, "how the fog is drawn at the start (M cycles)")
-        ->check(CLI::IsMember({"layers", "particles", "froxel", "combined"}));
+    app.add_option("--mode", args.mode,
+                   "how the fog is drawn at the start (M cycles): layers, particles, froxel, combined; auto "
+                   "(default): combined, as kiri render")
+        ->check(CLI::IsMember({"auto", "layers", "particles", "froxel", "combined"}));
     app.add_option("--view", args.views, "start with a view on (repeatable)")
         ->check(CLI::IsMember({"surface", "deviation", "clearance", "triangles", "patches", "control"}));
     app.add_option("--frames", args.frames, "scripted mode: frames to draw, then write --screenshot and exit")

@@ -5,6 +5,7 @@
 
 #include "kiri/geometry/author_estimate.hpp"
 #include "kiri/geometry/fill_medium.hpp"
+#include "kiri/geometry/fog_partition.hpp"
 #include "kiri/geometry/fog_spec.hpp"
 
 namespace kiri::preview {
@@ -61,21 +62,24 @@ std::string medium_key(const geometry::Scene& s, std::uint64_t base_version)
     k.medium = s.medium;
     k.layers = s.layers;
     k.layers.time = 0.0;
+    k.layers.resolution = geometry::LayerOptions{}.resolution;  // the layer pass's, per frame
     return std::to_string(base_version) + geometry::scene_to_json(k);
 }
 
-// The particles: the medium (its version) and the sampling options; the attenuation buffer's
-// and the billboards' options apply per frame.
-std::string particles_key(const geometry::Scene& s, std::uint64_t medium_version)
+// The particles: the medium (its version), the sampling options and, in combined rendering,
+// the partition; the attenuation buffer's and the billboards' options apply per frame.
+std::string particles_key(const geometry::Scene& s, std::uint64_t medium_version, bool share)
 {
     geometry::Scene k;
     k.particles = s.particles;
+    if (share)
+        k.combined = s.combined;
     const geometry::ParticleOptions defaults;
     k.particles.resolution = defaults.resolution;
     k.particles.half_float = defaults.half_float;
     k.particles.frame = defaults.frame;
     k.particles.soft_edge = defaults.soft_edge;
-    return std::to_string(medium_version) + geometry::scene_to_json(k);
+    return std::to_string(medium_version) + (share ? "share" : "") + geometry::scene_to_json(k);
 }
 
 std::string layer_base_key(const geometry::Scene& s)
@@ -342,10 +346,19 @@ Products Pipeline::compute(const geometry::Scene& scene, Needs needs, std::uint6
             out.medium = c.medium;
         }
         if (needs.particles) {
-            step(Stage::particles, c.particles_key, particles_key(scene, c.medium_version), [&] {
+            const bool share = needs.particle_share;
+            step(Stage::particles, c.particles_key, particles_key(scene, c.medium_version, share), [&] {
                 c.particles.reset();
-                c.particles = std::make_shared<const geometry::ParticleCloud>(
-                    geometry::sample_particles(*c.medium, scene.particles, label));
+                const geometry::Medium& medium = *c.medium;
+                const geometry::FogPartition partition = scene.combined;
+                if (!share)
+                    c.particles = std::make_shared<const geometry::ParticleCloud>(
+                        geometry::sample_particles(medium, scene.particles, label));
+                else if (partition.particle_share > 0.0)  // as SceneRendering samples them
+                    c.particles = std::make_shared<const geometry::ParticleCloud>(
+                        geometry::sample_particles(medium, scene.particles, label, [&](const glm::dvec3& p) {
+                            return geometry::particle_share(partition, medium.height_fraction(p));
+                        }));
             });
             out.particles = c.particles;
         }

@@ -68,6 +68,9 @@ struct PipelineStatus {
 struct Needs {
     bool medium = false;     //!< froxel fog, or the particles' source
     bool particles = false;  //!< implies the medium
+    //! Combined rendering: the particles stand for their share of the Medium only (the top
+    //! band, the scene's "combined" section; render/scene_rendering.hpp); none when it is 0.
+    bool particle_share = false;
     bool operator==(const Needs&) const = default;
 };
 

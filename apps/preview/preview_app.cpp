@@ -16,6 +16,7 @@
 #include "kiri/geometry/error.hpp"
 #include "kiri/geometry/terrain.hpp"
 #include "kiri/render/image.hpp"
+#include "kiri/render/scene_rendering.hpp"
 #include "scene_file.hpp"
 
 namespace kiri::preview {
@@ -24,28 +25,9 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-render::SunLight to_sun(const geometry::SunSpec& s) { return {s.direction, s.color, s.intensity, s.ambient}; }
-
-// The scene's froxel options in world units, its height fog over the terrain's extent only (as
-// kiri render draws it).
-geometry::FroxelOptions froxel_options(const geometry::Scene& scene, const geometry::Terrain& terrain)
-{
-    geometry::FroxelOptions options = geometry::world_froxel_options(scene);
-    const geometry::Bounds3 b = terrain.bounds();
-    options.height_fog.min = {b.min.x, b.min.y};
-    options.height_fog.max = {b.max.x, b.max.y};
-    return options;
-}
-
-render::ParticleStyle to_style(const geometry::ParticleOptions& o)
-{
-    render::ParticleStyle s;
-    s.buffer.resolution = o.resolution;
-    s.buffer.half_float = o.half_float;
-    s.buffer.frame = o.frame;
-    s.soft_edge = o.soft_edge;
-    return s;
-}
+using render::particle_style;
+using render::scene_froxel_options;
+using render::to_sun;
 
 bool same(const render::Camera& a, const render::Camera& b)
 {
@@ -85,7 +67,10 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     if (!args.camera_path.empty())
         camera_path_ = load_camera_path(args.camera_path);
     ui_.view.fog = !args.no_fog;
-    if (!parse_mode(args.mode, ui_.view.mode))
+    // "auto" is kiri render's default: combined (every renderer its share of the fog).
+    if (args.mode == "auto")
+        ui_.view.mode = ViewOptions::Mode::combined;
+    else if (!parse_mode(args.mode, ui_.view.mode))
         throw Error("--mode: '" + args.mode + "' is not layers, particles, froxel or combined");
     ui_.view.show_panel = ui_.view.show_stats = !args.no_ui;
     apply_view_args(args.views, ui_.view);
@@ -178,16 +163,24 @@ void PreviewApp::apply(Products p)
 void PreviewApp::apply_live_options()
 {
     renderer_->set_sun(to_sun(scene_.sun));
-    renderer_->set_layer_resolution(ui_.view.layer_resolution);
+    renderer_->set_layer_resolution(scene_.layers.resolution);
     const ViewOptions& v = ui_.view;
+    // Combined: each renderer draws its share of the one Medium (as SceneRendering sets it up).
+    std::optional<geometry::FogPartition> partition;
+    if (v.fog && v.mode == ViewOptions::Mode::combined) {
+        partition = scene_.combined;
+        if (!particles_)
+            partition->particle_share = 0.0;  // none drawn: nobody else may leave their share out
+    }
+    renderer_->set_fog_partition(partition);
     if (particles_ && v.draws_particles())
-        renderer_->set_particles(*particles_, to_style(scene_.particles));
+        renderer_->set_particles(*particles_, particle_style(scene_.particles));
     else
         renderer_->clear_particles();
     froxels_on_ = false;
     if (terrain_ && v.draws_froxels()) {
         try {
-            const geometry::FroxelOptions options = froxel_options(scene_, *terrain_);
+            const geometry::FroxelOptions options = scene_froxel_options(scene_, *terrain_);
             // The medium while the fog has one (a scene without fog: the height fog alone).
             geometry::Medium* medium = fog_ ? live_medium_.get() : nullptr;
             if (medium && medium->detail().time != scene_.layers.time)
@@ -405,6 +398,16 @@ int PreviewApp::run()
             apply(std::move(*p));
         if (!terrain_ || ui_.message_is_error)
             throw Error(ui_.message.empty() ? "the scene could not be prepared" : ui_.message);
+        // A still picture, as kiri render makes it: the froxels' temporal filter gets its
+        // jittered frames first (SceneRendering::warmup_frames).
+        if (froxels_on_ && scene_.froxel.temporal) {
+            int w = 0, h = 0;
+            window_->framebuffer_size(w, h);
+            const render::Camera c = camera_path_.empty() ? camera_.camera() : camera_on_path(camera_path_, 0.0);
+            for (int i = 0; i < 15; ++i)
+                renderer_->draw(c, std::max(1, int(std::lround(w * ui_.view.render_scale))),
+                                std::max(1, int(std::lround(h * ui_.view.render_scale))));
+        }
     }
     int frame = 0;
     std::vector<double> scene_ms;

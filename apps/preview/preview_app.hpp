@@ -19,7 +19,7 @@
 namespace kiri::preview {
 
 struct Args {
-    std::string scene, camera, screenshot, save, camera_path, mode = "layers";
+    std::string scene, camera, screenshot, save, camera_path, mode = "auto";
     std::vector<std::string> views;  //!< surface, deviation, clearance, triangles, patches, control
     int frames = 0, width = 1280, height = 720;
     bool no_fog = false, no_ui = false;

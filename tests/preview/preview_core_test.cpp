@@ -14,6 +14,7 @@
 #include "fog_views.hpp"
 #include "geometry/fog_test_terrains.hpp"
 #include "kiri/geometry/error.hpp"
+#include "kiri/geometry/fog_partition.hpp"
 #include "kiri/geometry/fog_spec.hpp"
 #include "kiri/geometry/scene_fog.hpp"
 #include "kiri/geometry/terrain.hpp"
@@ -226,6 +227,23 @@ TEST(PreviewPipeline, TheParticleCountResamplesOnlyTheParticles)
     const Products again = run(p, s, {.medium = true, .particles = true});
     EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 2}));
     EXPECT_EQ(again.particles, more.particles);
+
+    // Combined: the particles stand for the top band's share of the medium (as SceneRendering
+    // samples them); a zero share gives none.
+    const Products shared = run(p, s, {.medium = true, .particles = true, .particle_share = true});
+    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 3}));
+    ASSERT_TRUE(shared.particles);
+    const g::Medium& m = *shared.medium;
+    const g::ParticleCloud top = g::sample_particles(m, s.particles, {}, [&](const glm::dvec3& q) {
+        return g::particle_share(s.combined, m.height_fraction(q));
+    });
+    ASSERT_EQ(top.particles.size(), shared.particles->particles.size());
+    EXPECT_EQ(top.particles[77].position, shared.particles->particles[77].position);
+    EXPECT_NE(top.particles[77].position, more.particles->particles[77].position);
+    s.combined.particle_share = 0.0;
+    const Products none = run(p, s, {.medium = true, .particles = true, .particle_share = true});
+    EXPECT_EQ(none.particles, nullptr);
+    EXPECT_TRUE(none.error.empty()) << none.error;
 }
 
 TEST(PreviewPipeline, AFailedEditKeepsTheLastGoodFogAndNamesTheProblem)

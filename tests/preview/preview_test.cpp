@@ -126,7 +126,7 @@ protected:
 
 TEST_F(PreviewXvfb, ScriptedScreenshotShowsTerrainAndFog)
 {
-    const Image fog = screenshot("");
+    const Image fog = screenshot("--mode layers");
     ASSERT_EQ(fog.width, 640);
     ASSERT_EQ(fog.height, 360);
     const Image bare = screenshot("--no-fog");
@@ -141,7 +141,7 @@ TEST_F(PreviewXvfb, FogPlacedByTheTerrainFillsTheValleys)
 {
     // jacksboro_fill.json: a sea of fog up to 580 m, the ridges rising through it. Judged on the
     // terrain's pixels (green or yellow without fog; sky and haze are blue).
-    const Image fog = screenshot("", scene_path("jacksboro_fill.json"));
+    const Image fog = screenshot("--mode layers", scene_path("jacksboro_fill.json"));
     const Image bare = screenshot("--no-fog", scene_path("jacksboro_fill.json"));
     double lum_fog = 0.0, lum_bare = 0.0, sat_fog = 0.0, sat_bare = 0.0;
     int terrain = 0, unchanged = 0;
@@ -208,7 +208,7 @@ TEST_F(PreviewXvfb, TheViewIsWhatKiriRenderDraws)
 {
     // The window shows the scene as the headless renderer draws it (both on llvmpipe here:
     // the same pixels; a GPU on one side only would differ by rounding).
-    const Image preview = screenshot("");
+    const Image preview = screenshot("--mode layers");
     const fs::path png = kiri::test::temp_path("preview_test_render.png");
     const kiri::test::RunResult r =
         kiri::test::run_kiri("render " + shell_quote(scene_path()) + " --mode layers --width 640 --height 360 -o " +
@@ -219,6 +219,36 @@ TEST_F(PreviewXvfb, TheViewIsWhatKiriRenderDraws)
     ASSERT_EQ(rendered.width, preview.width);
     ASSERT_EQ(rendered.height, preview.height);
     EXPECT_LT(mean_difference(preview, rendered, 0, 0, 640, 360), 1.0);
+}
+
+TEST_F(PreviewXvfb, TheDefaultModeIsKiriRendersCombinedFog)
+{
+    // Both default to combined (render/scene_rendering.hpp: froxels near, layers far, particles
+    // in the top band). Without the temporal filter, so that neither draws its 15 warm-up frames.
+    kiri::geometry::Scene scene = kiri::geometry::load_scene(scene_path());
+    scene.terrain.path = fs::absolute(scene.terrain.path);
+    scene.froxel.temporal = false;
+    const fs::path path = kiri::test::temp_path("preview_combined.json");
+    {
+        std::ofstream out(path);
+        out << kiri::geometry::scene_to_json(scene);
+    }
+    std::string log;
+    const Image preview = screenshot("", path.string(), &log, 1);
+    const fs::path png = kiri::test::temp_path("preview_test_combined.png");
+    const kiri::test::RunResult r =
+        kiri::test::run_kiri("render " + shell_quote(path.string()) + " --width 640 --height 360 -o " + png.string());
+    fs::remove(path);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("mode combined"), std::string::npos) << r.err;
+    EXPECT_NE(log.find("froxel passes run per frame: 1\n"), std::string::npos) << log;
+    EXPECT_NE(log.find("attenuation buffer builds per frame: 1\n"), std::string::npos) << log;
+    const Image rendered = kiri::render::read_png(png);
+    fs::remove(png);
+    ASSERT_EQ(rendered.width, preview.width);
+    EXPECT_LT(mean_difference(preview, rendered, 0, 0, 640, 360), 1.0);
+    const Image bare = screenshot("--no-fog");
+    EXPECT_GT(mean_difference(preview, bare, 0, 180, 640, 360), 5.0) << "no fog drawn";
 }
 
 TEST_F(PreviewXvfb, ViewsDrawTheControlMeshAndTheDeviationMap)
@@ -272,7 +302,7 @@ TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSwitchesModeSavesAnd
         out << kiri::geometry::scene_to_json(scene);
     }
     const std::string command = xvfb + shell_quote(KIRI_PREVIEW_DRIVER) + " " + work.string() + " " +
-                                shell_quote(KIRI_PREVIEW) + " scene.json --width 900 --height 520 > " +
+                                shell_quote(KIRI_PREVIEW) + " scene.json --mode layers --width 900 --height 520 > " +
                                 (work / "driver.txt").string() + " 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << kiri::test::read_all(work / "driver.txt");
     Image shot[7];

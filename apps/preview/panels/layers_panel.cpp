@@ -42,7 +42,7 @@ bool layers_panel(geometry::Scene& scene, ViewOptions& view)
         changed |= slider("texture fade width", o.texture.fade_width, 0.02, 1.0, "%.2f");
         changed |= slider("texture gray", o.texture.gray, 0.0, 1.0, "%.2f");
         changed |= slider("texture size", o.texture.resolution, 4, 1024);
-        changed |= slider("layer pass resolution", view.layer_resolution, 0.125, 1.0, "%.3f");
+        changed |= slider("layer pass resolution", o.resolution, 0.125, 1.0, "%.3f");
         ImGui::TreePop();
     }
     return changed;

@@ -24,7 +24,6 @@ struct ViewOptions {
     bool tessellation = false;              //!< the surface's triangles as lines
     bool patches = false;                   //!< patch borders
     bool control_mesh = false;
-    double layer_resolution = 0.5;          //!< Renderer::set_layer_resolution
     bool play_time = false;                 //!< advance the layers' time (wind, dissipation) in real time
     float render_scale = 1.0f;              //!< of the window's framebuffer
     bool reduce_while_moving = true;        //!< render at moving_scale while the camera moves
@@ -35,7 +34,10 @@ struct ViewOptions {
     bool draws_particles() const { return fog && (mode == Mode::particles || mode == Mode::combined); }
     bool draws_froxels() const { return fog && (mode == Mode::froxel || mode == Mode::combined); }
     //! What the pipeline has to make for this view.
-    Needs needs() const { return {draws_froxels() || draws_particles(), draws_particles()}; }
+    Needs needs() const
+    {
+        return {draws_froxels() || draws_particles(), draws_particles(), fog && mode == Mode::combined};
+    }
 };
 
 const char* mode_name(ViewOptions::Mode mode);
