@@ -67,6 +67,7 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
     ASSERT_GT(c.top - c.bottom, 100.0);
     const double ground = terrain.height(x, y);
     const double depth = c.top - c.bottom;
+    std::printf("    the path at (%.0f, %.0f): ground %.1f m, fog from %.1f to %.1f m (world)\n", x, y, ground, c.bottom, c.top);
     std::vector<Frame> path = {
         {depth + 3000.0, "far above"},  {depth + 800.0, "above"},     {depth + 150.0, "just above"},
         {depth + 20.0, "touching"},     {depth - 20.0, "in the top"}, {0.6 * depth, "inside"},
