@@ -28,6 +28,7 @@ struct PlotSpec {
     std::string y_label = "time (s)";
     bool log_x = true;
     bool log_y = true;
+    bool label_points = false;  //!< each point labelled with its row's parameters
 };
 
 struct Measured {

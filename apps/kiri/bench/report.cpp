@@ -52,14 +52,18 @@ bool write_plot(const std::filesystem::path& png, const Stage& stage, const std:
 {
     // One gnuplot data block per series, in the order the series first appear.
     std::vector<std::string> order;
-    std::map<std::string, std::vector<std::pair<double, double>>> series;
+    struct Point {
+        double x, y;
+        std::string label;
+    };
+    std::map<std::string, std::vector<Point>> series;
     for (const Row& r : rows) {
         const double y = column(r, stage.plot.y);
         if ((stage.plot.log_x && !(r.x > 0.0)) || (stage.plot.log_y && !(y > 0.0)) || !std::isfinite(y))
             continue;
         if (!series.count(r.series))
             order.push_back(r.series);
-        series[r.series].emplace_back(r.x, y);
+        series[r.series].push_back({r.x, y, r.parameters});
     }
     if (order.empty())
         return false;
@@ -67,8 +71,8 @@ bool write_plot(const std::filesystem::path& png, const Stage& stage, const std:
     script.precision(9);
     for (std::size_t k = 0; k < order.size(); ++k) {
         script << "$s" << k << " << EOD\n";
-        for (const auto& [x, y] : series[order[k]])
-            script << x << ' ' << y << '\n';
+        for (const Point& p : series[order[k]])
+            script << p.x << ' ' << p.y << ' ' << quoted(p.label) << '\n';
         script << "EOD\n";
     }
     const std::string tmp = png.string() + ".tmp";
@@ -83,8 +87,13 @@ bool write_plot(const std::filesystem::path& png, const Stage& stage, const std:
     if (stage.plot.log_y)
         script << "set logscale y\n";
     script << "plot ";
-    for (std::size_t k = 0; k < order.size(); ++k)
-        script << (k ? ", " : "") << "$s" << k << " using 1:2 with linespoints lw 2 pt 7 title " << quoted(order[k]);
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        script << (k ? ", " : "") << "$s" << k << " using 1:2 with linespoints lw 2 pt 7 lc " << k + 1 << " title "
+               << quoted(order[k]);
+        if (stage.plot.label_points)
+            script << ", $s" << k << " using 1:2:3 with labels offset char 0.6,0.6 left font ',8' tc lt " << k + 1
+                   << " noenhanced notitle";
+    }
     script << "\n";
     const std::filesystem::path script_path = png.string() + ".gp";
     {

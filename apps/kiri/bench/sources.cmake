@@ -1,7 +1,9 @@
 # Sources of kiri bench (paths relative to apps/kiri/); one file per stage.
 list(APPEND KIRI_BENCH_SOURCES
+  bench/agreement_bench.cpp
   bench/end_to_end_bench.cpp
   bench/fit_bench.cpp
+  bench/fog_judge.cpp
   bench/froxel_bench.cpp
   bench/froxel_scene.cpp
   bench/layers_bench.cpp
@@ -10,6 +12,7 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/particles_error_bench.cpp
   bench/particles_scene.cpp
   bench/placement_bench.cpp
+  bench/presets_bench.cpp
   bench/surface_bench.cpp
   bench/terrain_bench.cpp
   bench/tessellation_bench.cpp

@@ -1,0 +1,113 @@
+#include "bench/fog_judge.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "kiri/geometry/error.hpp"
+
+namespace kiri::bench {
+
+SceneJson::SceneJson(std::filesystem::path scene_file) : file(std::move(scene_file))
+{
+    std::ifstream in(file);
+    if (!in)
+        throw IoError(file.string(), "", "cannot read the scene");
+    root = nlohmann::json::parse(in);
+}
+
+geometry::Scene SceneJson::parse(const nlohmann::json& varied) const
+{
+    return geometry::parse_scene(varied.dump(), file.string(), file.parent_path());
+}
+
+FogJudge::FogJudge(const geometry::Scene& base, const geometry::Terrain& terrain, const std::string& camera,
+                   int width, int height)
+    : terrain_(terrain), width_(width), height_(height)
+{
+    const geometry::Bounds3 b = terrain.bounds();
+    camera_ = render::to_camera(base.camera(camera, b.min, b.max));
+    const geometry::FroxelOptions froxel = render::scene_froxel_options(base, terrain);
+    const geometry::SceneFog fog = geometry::author_scene_fog(base, terrain);
+    geometry::ReferenceView view;
+    view.eye = camera_.position;
+    view.target = camera_.target;
+    view.fov_y_deg = camera_.fov_y_deg;
+    view.width = width;
+    view.height = height;
+    view.max_depth = froxel.far;  // where the froxel volume ends (0: nowhere)
+    const auto start = std::chrono::steady_clock::now();
+    reference_ = geometry::render_reference_fog({&fog.medium, froxel.height_fog}, &terrain.heightfield(), view,
+                                                render::scene_fog_lighting(base, &fog.medium, froxel));
+    reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    context_ = render::create_headless_context();
+    renderer_ = std::make_unique<render::Renderer>();
+    renderer_->set_terrain(terrain);
+    renderer_->set_sun(render::to_sun(base.sun));
+}
+
+FogJudge::~FogJudge() = default;
+
+void FogJudge::prepare(const geometry::Scene& scene, render::FogMode mode)
+{
+    rendering_.reset();  // it refers to the fog and the scene replaced here
+    scene_ = scene;
+    fog_ = geometry::author_scene_fog(*scene_, terrain_);
+    rendering_.emplace(*scene_, terrain_, &*fog_, mode);
+    rendering_->apply(*renderer_);
+}
+
+double FogJudge::frame_ms(int width, int height, int frames)
+{
+    std::vector<double> ms;
+    for (int k = -1; k < frames; ++k) {
+        render::Camera c = camera_;
+        c.position.z += 1e-3 * (k + 2);  // a new view each frame: every pass reruns
+        renderer_->draw(c, width, height);
+        if (k >= 0)  // the first frame uploads the layers, builds the buffer and the shadow map
+            ms.push_back(renderer_->last_stats().frame_ms);
+    }
+    std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
+    return ms[ms.size() / 2];
+}
+
+render::FogError FogJudge::error()
+{
+    // A still picture as kiri render draws it: the froxels' jittered cycle first.
+    for (int k = 0; k < rendering_->warmup_frames(); ++k)
+        renderer_->draw(camera_, width_, height_);
+    last_image_ = renderer_->render(camera_, width_, height_);
+    const render::RadianceImage with = renderer_->read_radiance();
+    // The terrain is shadowed only where the froxels built the sun's shadow map: the frame
+    // without fog must see the same terrain.
+    const bool shadows = rendering_->draws_froxels() && rendering_->froxel_options().terrain_shadows;
+    const render::RadianceImage& plain = without_fog(shadows);
+    rendering_->apply(*renderer_);  // back to the fog for what follows
+    return render::compare_frames(with, plain, reference_);
+}
+
+const render::RadianceImage& FogJudge::without_fog(bool shadows)
+{
+    std::optional<render::RadianceImage>& plain = plain_[shadows ? 1 : 0];
+    if (!plain) {
+        renderer_->clear_layers();
+        renderer_->clear_particles();
+        renderer_->set_fog_partition(std::nullopt);
+        if (shadows) {  // no fog, only the sun's shadow map of the terrain
+            geometry::FroxelOptions o = rendering_->froxel_options();
+            o.height_fog.extinction = 0.0;
+            renderer_->set_froxel_fog(nullptr, o);
+        } else {
+            renderer_->clear_froxel_fog();
+        }
+        renderer_->draw(camera_, width_, height_);
+        renderer_->draw(camera_, width_, height_);
+        plain = renderer_->read_radiance();
+    }
+    return *plain;
+}
+
+}  // namespace kiri::bench

@@ -1,0 +1,70 @@
+#pragma once
+// Any fog renderer's frame of a scene judged against the CPU reference (render::compare_frames):
+// the scene's JSON varied per measurement (quality ladders, presets), the reference computed
+// once per view, each configuration's cost per frame while the view moves and its error once
+// the frame is settled (the froxels' warm-up).
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "kiri/geometry/reference_fog.hpp"
+#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/terrain.hpp"
+#include "kiri/render/fog_error.hpp"
+#include "kiri/render/gl_context.hpp"
+#include "kiri/render/image.hpp"
+#include "kiri/render/renderer.hpp"
+#include "kiri/render/scene_rendering.hpp"
+
+namespace kiri::bench {
+
+//! A scene file as JSON, to vary before parsing it.
+struct SceneJson {
+    std::filesystem::path file;
+    nlohmann::json root;
+    explicit SceneJson(std::filesystem::path scene_file);
+    geometry::Scene parse(const nlohmann::json& root) const;
+};
+
+class FogJudge {
+public:
+    //! The reference of `base`'s fog (its Medium, and its froxel height fog when the scene has
+    //! one) seen from `camera` at width x height. Timed: reference_seconds().
+    FogJudge(const geometry::Scene& base, const geometry::Terrain& terrain, const std::string& camera, int width,
+             int height);
+    ~FogJudge();
+    double reference_seconds() const { return reference_.seconds; }
+    const geometry::ReferenceImage& reference() const { return reference_; }
+
+    //! Sets the renderer up for `scene` in `mode`; its fog authored anew (the layers depend on
+    //! the scene's keys; the Medium is the reference's).
+    void prepare(const geometry::Scene& scene, render::FogMode mode);
+    //! Median Renderer draw time (ms) of `frames` frames at width x height while the view moves
+    //! by a millimetre a frame (the froxels rerun their passes, as in a moving view).
+    double frame_ms(int width, int height, int frames);
+    //! The settled frame (after the froxels' warm-up) at the judge's size against the reference.
+    render::FogError error();
+    //! The last settled frame, tone-mapped (for a look).
+    const render::Image& last_image() const { return last_image_; }
+
+private:
+    const render::RadianceImage& without_fog(bool terrain_shadows);
+
+    const geometry::Terrain& terrain_;
+    render::Camera camera_;
+    int width_, height_;
+    geometry::ReferenceImage reference_;
+    std::unique_ptr<render::GlContext> context_;
+    std::unique_ptr<render::Renderer> renderer_;
+    std::optional<geometry::Scene> scene_;
+    std::optional<geometry::SceneFog> fog_;
+    std::optional<render::SceneRendering> rendering_;
+    render::Image last_image_;
+    std::optional<render::RadianceImage> plain_[2];  //!< without fog: [terrain shadows off, on]
+};
+
+}  // namespace kiri::bench
