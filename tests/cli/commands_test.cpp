@@ -70,12 +70,12 @@ TEST(KiriBench, EndToEndStageWritesCsvAndPlot)
     const std::string csv = kiri::test::read_all(dir / "end_to_end.csv");
     ASSERT_EQ(csv.rfind("stage,series,parameters,x,time_s,error_metric,error_value,items_per_s,peak_rss_mb\n", 0), 0u)
         << csv;
-    // --quick renders 640x360 and 1280x720: one row each, with a time and a peak memory > 0.
+    // --quick renders 320x180 and 640x360: one row each, with a time and a peak memory > 0.
     EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 3) << csv;
     std::istringstream lines(csv);
     std::string line;
     std::getline(lines, line);
-    for (const char* size : {"640x360", "1280x720"}) {
+    for (const char* size : {"320x180", "640x360"}) {
         ASSERT_TRUE(std::getline(lines, line));
         EXPECT_NE(line.find(size), std::string::npos) << line;
         std::vector<std::string> cols;
