@@ -34,13 +34,7 @@ void render_reference(const geometry::Scene& scene, const geometry::Terrain& ter
     std::optional<geometry::SceneFog> fog;
     if (scene.fog)
         fog = geometry::author_scene_fog(scene, terrain);
-    geometry::ReferenceView view;
-    view.eye = camera.position;
-    view.target = camera.target;
-    view.fov_y_deg = camera.fov_y_deg;
-    view.width = width;
-    view.height = height;
-    view.max_depth = options.far;
+    const geometry::ReferenceView view = render::reference_view(camera, width, height, options.far);
     const geometry::FogLighting light = render::scene_fog_lighting(scene, fog ? &fog->medium : nullptr, options);
     const geometry::ReferenceImage r = geometry::render_reference_fog({fog ? &fog->medium : nullptr, options.height_fog},
                                                                       &terrain.heightfield(), view, light);

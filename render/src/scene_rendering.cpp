@@ -56,6 +56,18 @@ geometry::FroxelOptions scene_froxel_options(const geometry::Scene& scene, const
     return options;
 }
 
+geometry::ReferenceView reference_view(const Camera& camera, int width, int height, double max_depth)
+{
+    geometry::ReferenceView view;
+    view.eye = camera.position;
+    view.target = camera.target;
+    view.fov_y_deg = camera.fov_y_deg;
+    view.width = width;
+    view.height = height;
+    view.max_depth = max_depth;
+    return view;
+}
+
 geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
                                          const geometry::FroxelOptions& froxel)
 {

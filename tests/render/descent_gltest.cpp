@@ -99,13 +99,7 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
         bare.draw(camera, width, height);
         const RadianceImage without = bare.read_radiance();
         const double gl_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        g::ReferenceView view;
-        view.eye = camera.position;
-        view.target = camera.target;
-        view.fov_y_deg = camera.fov_y_deg;
-        view.width = width;
-        view.height = height;
-        view.max_depth = froxel.far;
+        const g::ReferenceView view = reference_view(camera, width, height, froxel.far);
         const g::ReferenceImage ref = g::render_reference_fog({&fog.medium, froxel.height_fog}, &terrain.heightfield(),
                                                               view, light);
         const FogError e = compare_frames(with_fog, without, ref);

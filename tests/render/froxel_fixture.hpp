@@ -13,6 +13,7 @@
 #include "kiri/geometry/reference_fog.hpp"
 #include "kiri/render/fog_error.hpp"
 #include "kiri/render/renderer.hpp"
+#include "kiri/render/scene_rendering.hpp"
 #include "render/render_fixture.hpp"
 
 namespace kiri::test {
@@ -112,13 +113,7 @@ protected:
         r.render(camera, width, height);
         Compared c;
         c.gpu = r.read_froxel_fog();
-        g::ReferenceView view;
-        view.eye = camera.position;
-        view.target = camera.target;
-        view.fov_y_deg = camera.fov_y_deg;
-        view.width = width;
-        view.height = height;
-        view.max_depth = options.far;
+        const g::ReferenceView view = kiri::render::reference_view(camera, width, height, options.far);
         c.reference = g::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view,
                                               lighting(light, options, medium));
         c.error = kiri::render::compare_fog(c.gpu, c.reference, min_depth, max_depth);

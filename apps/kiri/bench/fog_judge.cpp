@@ -32,13 +32,8 @@ FogJudge::FogJudge(const geometry::Scene& base, const geometry::Terrain& terrain
     camera_ = render::to_camera(base.camera(camera, b.min, b.max));
     const geometry::FroxelOptions froxel = render::scene_froxel_options(base, terrain);
     const geometry::SceneFog fog = geometry::author_scene_fog(base, terrain);
-    geometry::ReferenceView view;
-    view.eye = camera_.position;
-    view.target = camera_.target;
-    view.fov_y_deg = camera_.fov_y_deg;
-    view.width = width;
-    view.height = height;
-    view.max_depth = froxel.far;  // where the froxel volume ends (0: nowhere)
+    // The view ends where the froxel volume does (0: nowhere).
+    const geometry::ReferenceView view = render::reference_view(camera_, width, height, froxel.far);
     const auto start = std::chrono::steady_clock::now();
     reference_ = geometry::render_reference_fog({&fog.medium, froxel.height_fog}, &terrain.heightfield(), view,
                                                 render::scene_fog_lighting(base, &fog.medium, froxel));

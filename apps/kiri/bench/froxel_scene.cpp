@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "kiri/render/scene_rendering.hpp"
+
 namespace kiri::bench {
 
 FroxelBenchScene::FroxelBenchScene(const std::filesystem::path& scene_file)
@@ -48,14 +50,7 @@ geometry::FogLighting FroxelBenchScene::lighting(const geometry::FroxelOptions& 
 
 geometry::ReferenceView FroxelBenchScene::view(int width, int height, const geometry::FroxelOptions& o) const
 {
-    geometry::ReferenceView v;
-    v.eye = camera.position;
-    v.target = camera.target;
-    v.fov_y_deg = camera.fov_y_deg;
-    v.width = width;
-    v.height = height;
-    v.max_depth = o.far;
-    return v;
+    return render::reference_view(camera, width, height, o.far);
 }
 
 double FroxelBenchScene::frame_seconds(const geometry::FroxelOptions& o, const render::Camera& c, int width,

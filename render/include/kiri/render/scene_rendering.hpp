@@ -10,6 +10,7 @@
 #include "kiri/geometry/fog_lighting.hpp"
 #include "kiri/geometry/froxel_options.hpp"
 #include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/reference_fog.hpp"
 #include "kiri/geometry/scene.hpp"
 #include "kiri/geometry/scene_fog.hpp"
 #include "kiri/render/renderer.hpp"
@@ -27,6 +28,9 @@ SunLight to_sun(const geometry::SunSpec& sun);
 ParticleStyle particle_style(const geometry::ParticleOptions& options);
 //! The scene's froxel options in world units, its height fog over the terrain's extent only.
 geometry::FroxelOptions scene_froxel_options(const geometry::Scene& scene, const geometry::Terrain& terrain);
+//! The CPU reference's view of `camera` at width x height, ending at view depth max_depth (the
+//! froxel volume's far plane; 0: no limit).
+geometry::ReferenceView reference_view(const Camera& camera, int width, int height, double max_depth);
 //! The lighting the CPU reference judges a scene's fog with (the renderers' model).
 geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
                                          const geometry::FroxelOptions& froxel);
