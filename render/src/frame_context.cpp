@@ -1,6 +1,7 @@
 #include "frame_context.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -43,6 +44,23 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
     f.sky_zenith = glm::vec3(sun.ambient * glm::dvec3(0.9, 1.5, 2.6));
     f.sky_horizon = glm::vec3(glm::mix(sun.ambient * 3.0, glm::dvec3(1.0, 1.0, 1.0), 0.3));
     return f;
+}
+
+bool box_in_view(const FrameContext& frame, const glm::dvec3& lo, const glm::dvec3& hi)
+{
+    std::array<glm::dvec4, 8> clip;
+    for (int c = 0; c < 8; ++c)
+        clip[c] = frame.projection * frame.view *
+                  glm::dvec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0);
+    for (int axis = 0; axis < 3; ++axis)
+        for (double side : {-1.0, 1.0}) {
+            bool all_out = true;
+            for (const glm::dvec4& q : clip)
+                all_out = all_out && side * q[axis] > q.w;
+            if (all_out)
+                return false;
+        }
+    return true;
 }
 
 }  // namespace kiri::render::detail

@@ -25,6 +25,10 @@ struct FrameContext {
     glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band
 };
 
+//! False when the box [lo, hi] lies wholly outside one plane of the frame's view frustum
+//! (conservative: a box near a corner may pass).
+bool box_in_view(const FrameContext& frame, const glm::dvec3& lo, const glm::dvec3& hi);
+
 //! Sets fog_partition.glsl's uniforms of `program` from the frame.
 template <class Program>
 void set_partition_uniforms(const Program& program, const FrameContext& frame)

@@ -134,19 +134,7 @@ bool FroxelPass::visible(const FrameContext& frame) const
         if (glm::length(nearest - eye) > double(frame.partition.y) * 1.001 + 1.0)
             return false;
     }
-    std::array<glm::dvec4, 8> clip;
-    for (int c = 0; c < 8; ++c)
-        clip[c] = frame.projection * frame.view *
-                  glm::dvec4(c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z, 1.0);
-    for (int axis = 0; axis < 3; ++axis)
-        for (double side : {-1.0, 1.0}) {
-            bool all_out = true;
-            for (const glm::dvec4& q : clip)
-                all_out = all_out && side * q[axis] > q.w;
-            if (all_out)
-                return false;
-        }
-    return true;
+    return box_in_view(frame, b.min, b.max);
 }
 
 std::vector<double> FroxelPass::make_key(const FrameContext& frame, const TerrainPass& terrain) const

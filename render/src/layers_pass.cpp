@@ -133,19 +133,7 @@ bool LayersPass::visible(const FrameContext& frame) const
         return false;
     glm::dvec3 lo, hi;
     stack_bounds(lo, hi);
-    std::array<glm::dvec4, 8> clip;
-    for (int c = 0; c < 8; ++c)
-        clip[c] = frame.projection * frame.view *
-                  glm::dvec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0);
-    for (int axis = 0; axis < 3; ++axis)
-        for (double side : {-1.0, 1.0}) {
-            bool all_out = true;
-            for (const glm::dvec4& q : clip)
-                all_out = all_out && side * q[axis] > q.w;
-            if (all_out)
-                return false;
-        }
-    return true;
+    return box_in_view(frame, lo, hi);
 }
 
 bool LayersPass::ready(const FrameContext& frame, bool& uploaded)
