@@ -27,14 +27,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::fclose(f);
     }
     kiri::geometry::DemOptions options;
-    options.cell_size = 10.0;  // PNG heightmaps need one
+    options.cell_size = 10.0;                  // PNG heightmaps need one
     options.max_cells = std::size_t(1) << 22;  // the fuzzer's memory limit is small
     try {
         const kiri::geometry::Heightfield hf = kiri::geometry::load_dem(path, options);
         for (double z : hf.z)
             if (!std::isfinite(z))
                 __builtin_trap();  // the loader promises finite heights
-    } catch (const kiri::InputError&) {
-    }
+    } catch (const kiri::InputError&) {}
     return 0;
 }

@@ -15,7 +15,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const kiri::geometry::Scene scene = kiri::geometry::parse_scene(text, "fuzz.json", "/tmp");
         // What parses must write back to JSON that parses again.
         kiri::geometry::parse_scene(kiri::geometry::scene_to_json(scene), "again.json", "/tmp");
-    } catch (const kiri::InputError&) {
-    }
+    } catch (const kiri::InputError&) {}
     return 0;
 }

@@ -12,7 +12,7 @@
 namespace kiri::cli {
 
 struct MapFile {
-    std::string name;                                   //!< file name in the output folder
+    std::string name;                                         //!< file name in the output folder
     std::function<void(const std::filesystem::path&)> write;  //!< writes it at the given (temporary) path
 };
 

@@ -113,16 +113,18 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     if (fog.placed) {
         const ColumnFigures& c = fog.placed->figures;
         const double e = scene.terrain.exaggeration;
-        std::printf("fog placed by the terrain: %.2f km^2, %.3g m^3, thickness up to %.0f m (mean %.0f m), top %.0f..%.0f m, "
-                    "%d polygon(s), %zu map(s)\n",
-                    c.area_m2 * 1e-6, c.volume_m3 / e, c.max_thickness / e, c.mean_thickness / e, c.top_min / e,
-                    c.top_max / e, fog.placed->outline.components, maps.size());
+        std::printf(
+            "fog placed by the terrain: %.2f km^2, %.3g m^3, thickness up to %.0f m (mean %.0f m), top %.0f..%.0f m, "
+            "%d polygon(s), %zu map(s)\n",
+            c.area_m2 * 1e-6, c.volume_m3 / e, c.max_thickness / e, c.mean_thickness / e, c.top_min / e, c.top_max / e,
+            fog.placed->outline.components, maps.size());
     }
-    std::printf("%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
-                "%zu layers, %zu particles, medium %zu voxels of %.3g m -> %s\n",
-                scene_path.filename().string().c_str(), a.surface.num_patches(), a.tessellation.mesh.n_faces(),
-                a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, layers.size(), particles.particles.size(),
-                vdb.active_voxels, vdb.voxel_size, out_dir.string().c_str());
+    std::printf(
+        "%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
+        "%zu layers, %zu particles, medium %zu voxels of %.3g m -> %s\n",
+        scene_path.filename().string().c_str(), a.surface.num_patches(), a.tessellation.mesh.n_faces(),
+        a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, layers.size(), particles.particles.size(),
+        vdb.active_voxels, vdb.voxel_size, out_dir.string().c_str());
     return 0;
 }
 }  // namespace
@@ -130,8 +132,9 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
 //! Registers `kiri author`.
 void add_author_command(CLI::App& app)
 {
-    auto* sub = app.add_subcommand("author", "Fit the scene's fog; write its base surface, layers (OBJ, PLY, glTF), "
-                                             "particles (PLY), the medium (OpenVDB) and report.json");
+    auto* sub = app.add_subcommand("author",
+                                   "Fit the scene's fog; write its base surface, layers (OBJ, PLY, glTF), "
+                                   "particles (PLY), the medium (OpenVDB) and report.json");
     auto scene = std::make_shared<std::string>();
     auto out = std::make_shared<std::string>();
     sub->add_option("scene", *scene, "scene file (JSON) with a fog section")->required();

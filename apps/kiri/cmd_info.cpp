@@ -10,7 +10,8 @@ namespace kiri::cli {
 
 void add_info_command(CLI::App& app)
 {
-    auto* sub = app.add_subcommand("info", "Print grid size, cell size, extent, elevation range and nodata count of a DEM");
+    auto* sub =
+        app.add_subcommand("info", "Print grid size, cell size, extent, elevation range and nodata count of a DEM");
     auto file = std::make_shared<std::string>();
     auto cell = std::make_shared<double>(0.0);
     sub->add_option("file", *file, "elevation raster (GeoTIFF, ESRI ASCII, SRTM .hgt, PNG)")->required();

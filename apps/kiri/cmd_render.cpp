@@ -36,8 +36,8 @@ void render_reference(const geometry::Scene& scene, const geometry::Terrain& ter
         fog = geometry::author_scene_fog(scene, terrain);
     const geometry::ReferenceView view = render::reference_view(camera, width, height, options.far);
     const geometry::FogLighting light = render::scene_fog_lighting(scene, fog ? &fog->medium : nullptr, options);
-    const geometry::ReferenceImage r = geometry::render_reference_fog({fog ? &fog->medium : nullptr, options.height_fog},
-                                                                      &terrain.heightfield(), view, light);
+    const geometry::ReferenceImage r = geometry::render_reference_fog(
+        {fog ? &fog->medium : nullptr, options.height_fog}, &terrain.heightfield(), view, light);
     render::Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4, 255)};
     for (std::size_t k = 0; k < r.inscatter.size(); ++k) {
         const glm::dvec3 c = r.composed(k);
@@ -98,15 +98,17 @@ void run(const RenderArgs& a)
     if (a.timings) {  // the last frame's passes (GL timer queries; llvmpipe: CPU time)
         const render::FrameStats& stats = renderer.last_stats();
         for (const render::PassTime& t : stats.passes)
-            std::fprintf(stderr, "kiri render: pass %-18s gpu %9.2f ms  cpu %9.2f ms\n", t.pass.c_str(), t.gpu_ms, t.cpu_ms);
+            std::fprintf(stderr, "kiri render: pass %-18s gpu %9.2f ms  cpu %9.2f ms\n", t.pass.c_str(), t.gpu_ms,
+                         t.cpu_ms);
         std::fprintf(stderr, "kiri render: frame %.2f ms\n", stats.frame_ms);
     }
     if (const auto& particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();
         const auto& size = b.grid().size;
-        std::fprintf(stderr, "kiri render: %zu particles, attenuation buffer %dx%dx%d %s (%.1f MiB), built in %.1f ms\n",
-                     particles->particles.size(), size[0], size[1], size[2], scene.particles.half_float ? "R16F" : "R32F",
-                     double(b.texture_bytes()) / 1048576.0, b.last_build_ms());
+        std::fprintf(
+            stderr, "kiri render: %zu particles, attenuation buffer %dx%dx%d %s (%.1f MiB), built in %.1f ms\n",
+            particles->particles.size(), size[0], size[1], size[2], scene.particles.half_float ? "R16F" : "R32F",
+            double(b.texture_bytes()) / 1048576.0, b.last_build_ms());
     }
 }
 
@@ -119,7 +121,8 @@ void add_render_command(CLI::App& app)
     sub->add_option("scene", a->scene, "scene file (JSON)")->required();
     sub->add_option("-o,--out", a->out, "output PNG")->required();
     sub->add_option("--width", a->width, "image width in pixels (default: the scene's)")->check(CLI::Range(1, 16384));
-    sub->add_option("--height", a->height, "image height in pixels (default: the scene's)")->check(CLI::Range(1, 16384));
+    sub->add_option("--height", a->height, "image height in pixels (default: the scene's)")
+        ->check(CLI::Range(1, 16384));
     sub->add_option("--camera", a->camera, "camera name from the scene (default: its first)");
     sub->add_option("--mode", a->mode,
                     "what to draw: terrain, layers (the fog's layer stack), particles (the fog as lit particles), "

@@ -80,16 +80,18 @@ render::OverlayMesh control_mesh_lines(const geometry::ControlMesh& control)
 
 glm::vec4 diverging_color(double t)
 {
-    static const glm::vec4 stops[] = {{0.13f, 0.30f, 0.85f, 1.0f}, {0.97f, 0.97f, 0.97f, 1.0f},
-                                      {0.85f, 0.15f, 0.12f, 1.0f}};
+    static const glm::vec4 stops[] = {
+        {0.13f, 0.30f, 0.85f, 1.0f}, {0.97f, 0.97f, 0.97f, 1.0f}, {0.85f, 0.15f, 0.12f, 1.0f}};
     return ramp(stops, 0.5 * (t + 1.0));
 }
 
 glm::vec4 sequential_color(double t)
 {
     // Close to viridis at five stops.
-    static const glm::vec4 stops[] = {{0.27f, 0.00f, 0.33f, 1.0f}, {0.23f, 0.32f, 0.55f, 1.0f},
-                                      {0.13f, 0.57f, 0.55f, 1.0f}, {0.37f, 0.79f, 0.38f, 1.0f},
+    static const glm::vec4 stops[] = {{0.27f, 0.00f, 0.33f, 1.0f},
+                                      {0.23f, 0.32f, 0.55f, 1.0f},
+                                      {0.13f, 0.57f, 0.55f, 1.0f},
+                                      {0.37f, 0.79f, 0.38f, 1.0f},
                                       {0.99f, 0.91f, 0.14f, 1.0f}};
     return ramp(stops, t);
 }
@@ -106,8 +108,8 @@ std::shared_ptr<const FogViews> make_fog_views(const geometry::BaseSurface& surf
     // The fit's target, as BaseSurface::fit computes it.
     const geometry::Heightfield& hf = terrain.heightfield();
     const bool blanket = fit.mode == geometry::FitMode::blanket;
-    const geometry::Heightfield smooth = blanket ? geometry::smooth_heightfield(hf, fit.smoothing_length)
-                                                 : geometry::Heightfield{};
+    const geometry::Heightfield smooth =
+        blanket ? geometry::smooth_heightfield(hf, fit.smoothing_length) : geometry::Heightfield{};
     const std::size_t n = views->surface.positions.size();
     std::vector<double> deviation(n, 0.0), clearance(n, 0.0);
     std::vector<char> data(n, 0);

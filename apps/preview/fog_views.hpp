@@ -19,13 +19,13 @@
 namespace kiri::preview {
 
 struct FogViews {
-    render::OverlayMesh surface;                 //!< the tessellation, lit, white
-    std::vector<glm::vec4> deviation_colors;     //!< per surface vertex: blue below target, red above
-    std::vector<glm::vec4> clearance_colors;     //!< per surface vertex: height above the terrain
-    double deviation_range = 0.0;                //!< metres at full blue / red (98th percentile of |deviation|)
-    double clearance_range = 0.0;                //!< metres at the top of the clearance map
-    render::OverlayMesh patch_borders;           //!< lines along every patch side, on the surface
-    render::OverlayMesh control_mesh;            //!< lines of the fitted control mesh
+    render::OverlayMesh surface;              //!< the tessellation, lit, white
+    std::vector<glm::vec4> deviation_colors;  //!< per surface vertex: blue below target, red above
+    std::vector<glm::vec4> clearance_colors;  //!< per surface vertex: height above the terrain
+    double deviation_range = 0.0;             //!< metres at full blue / red (98th percentile of |deviation|)
+    double clearance_range = 0.0;             //!< metres at the top of the clearance map
+    render::OverlayMesh patch_borders;        //!< lines along every patch side, on the surface
+    render::OverlayMesh control_mesh;         //!< lines of the fitted control mesh
 };
 
 //! The fog as the window uses it; every part is immutable once published.

@@ -48,7 +48,8 @@ void OrbitCamera::pan(double dx, double dy, double viewport_height)
     const glm::dvec3 f = forward();
     const glm::dvec3 right = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1)));
     const glm::dvec3 up = glm::cross(right, f);
-    const double metres_per_pixel = 2.0 * distance_ * std::tan(fov_deg_ * M_PI / 360.0) / std::max(viewport_height, 1.0);
+    const double metres_per_pixel =
+        2.0 * distance_ * std::tan(fov_deg_ * M_PI / 360.0) / std::max(viewport_height, 1.0);
     target_ += (-dx * right + dy * up) * metres_per_pixel;
 }
 

@@ -13,7 +13,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+double seconds_between(Clock::time_point a, Clock::time_point b)
+{
+    return std::chrono::duration<double>(b - a).count();
+}
 
 // Stage keys: the JSON of a copy of the scene that keeps only what the stage reads and resets
 // the rest to defaults. A key written this way stays conservative when the scene grows: a new
@@ -95,8 +98,8 @@ std::string layer_base_key(const geometry::Scene& s)
 
 const char* stage_name(Stage stage)
 {
-    static const char* names[stage_count] = {"terrain", "placement",  "control mesh", "fit",      "tessellation",
-                                             "layer base", "views", "medium",       "particles"};
+    static const char* names[stage_count] = {"terrain",    "placement", "control mesh", "fit",      "tessellation",
+                                             "layer base", "views",     "medium",       "particles"};
     return names[int(stage)];
 }
 
@@ -274,8 +277,8 @@ Products Pipeline::compute(const geometry::Scene& scene, Needs needs, std::uint6
             // As author_scene_fog: the placed footprint and lake target, and a layer stack as
             // deep as the deepest fog, hanging from its top.
             step(Stage::placement, c.placement_key, placement_key(scene), [&] {
-                geometry::check_author_estimate(
-                    geometry::estimate_author(spec, terrain.heightfield(), layers.count), label);
+                geometry::check_author_estimate(geometry::estimate_author(spec, terrain.heightfield(), layers.count),
+                                                label);
                 c.placed.reset();
                 c.placed = std::make_shared<const geometry::PlacedFog>(
                     geometry::place_fog(terrain, *spec.placement, spec.patch_size, label));

@@ -52,13 +52,13 @@ struct Products {
     //! The fog as a participating medium and as particles: null unless the request needed them.
     std::shared_ptr<const geometry::Medium> medium;
     std::shared_ptr<const geometry::ParticleCloud> particles;
-    std::string error;                       //!< one line; the products are then the last good ones
+    std::string error;  //!< one line; the products are then the last good ones
     std::array<bool, stage_count> rebuilt{};
 };
 
 struct PipelineStatus {
     bool busy = false;
-    Stage stage = Stage::terrain;      //!< running now (when busy)
+    Stage stage = Stage::terrain;  //!< running now (when busy)
     double stage_seconds = 0.0, job_seconds = 0.0;
     std::uint64_t requested = 0, finished = 0;
     std::array<StageRecord, stage_count> stages{};

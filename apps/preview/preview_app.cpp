@@ -76,7 +76,8 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     apply_view_args(args.views, ui_.view);
     const fs::path scene_path(args.scene);
     ui_.save_path = (scene_path.parent_path() / (scene_path.stem().string() + "-edited.json")).string();
-    window_ = render::create_window_context(args.width, args.height, "kiri preview - " + scene_path.filename().string());
+    window_ =
+        render::create_window_context(args.width, args.height, "kiri preview - " + scene_path.filename().string());
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
     ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini beside the user's files
@@ -202,7 +203,7 @@ void PreviewApp::apply_live_options()
     try {
         geometry::LayerOptions o = geometry::world_layer_options(scene_);
         o.base_offset = fog_->base_offset;  // the base was built with it
-        if (fog_->placed)  // the placed fog sets the stack's depth
+        if (fog_->placed)                   // the placed fog sets the stack's depth
             o.thickness = fog_->placed_thickness;
         layer_options_ = o;
     } catch (const std::exception& e) {
@@ -239,16 +240,17 @@ void PreviewApp::update_overlays()
         renderer_->set_overlay(control_overlay, views->control_mesh);
         uploaded_views_ = fog_->views;
     }
-    const glm::vec4 shaded = v.surface == ViewOptions::Surface::shaded ? glm::vec4(0.85f, 0.9f, 1.0f, 1.0f)
-                                                                       : glm::vec4(1.0f);
-    renderer_->set_overlay_style(surface_overlay, {.color = glm::vec4(glm::vec3(shaded), v.surface_opacity),
-                                                   .visible = v.surface != ViewOptions::Surface::hidden,
-                                                   .order = 0});
-    renderer_->set_overlay_style(triangles_overlay, {.color = {1.0f, 1.0f, 1.0f, 0.35f},
-                                                     .visible = v.tessellation, .wireframe = true,
-                                                     .lift = 1e-3f, .order = 1});
-    renderer_->set_overlay_style(patches_overlay,
-                                 {.color = {1.0f, 0.8f, 0.15f, 0.95f}, .visible = v.patches, .lift = 1.5e-3f, .order = 2});
+    const glm::vec4 shaded =
+        v.surface == ViewOptions::Surface::shaded ? glm::vec4(0.85f, 0.9f, 1.0f, 1.0f) : glm::vec4(1.0f);
+    renderer_->set_overlay_style(surface_overlay,
+                                 {.color = glm::vec4(glm::vec3(shaded), v.surface_opacity),
+                                  .visible = v.surface != ViewOptions::Surface::hidden,
+                                  .order = 0});
+    renderer_->set_overlay_style(
+        triangles_overlay,
+        {.color = {1.0f, 1.0f, 1.0f, 0.35f}, .visible = v.tessellation, .wireframe = true, .lift = 1e-3f, .order = 1});
+    renderer_->set_overlay_style(
+        patches_overlay, {.color = {1.0f, 0.8f, 0.15f, 0.95f}, .visible = v.patches, .lift = 1.5e-3f, .order = 2});
     renderer_->set_overlay_style(control_overlay,
                                  {.color = {1.0f, 0.25f, 0.85f, 0.95f}, .visible = v.control_mesh, .order = 3});
 }
@@ -357,13 +359,13 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
     const ViewOptions& v = ui_.view;
     float scale = v.render_scale;
     // Dragging a slider redraws every frame too: reduced as well, so the panel keeps up.
-    const bool reduced = (camera_moved || ImGui::IsAnyItemActive()) && !force && v.reduce_while_moving &&
-                         v.moving_scale < scale;
+    const bool reduced =
+        (camera_moved || ImGui::IsAnyItemActive()) && !force && v.reduce_while_moving && v.moving_scale < scale;
     if (reduced)
         scale = v.moving_scale;
     const int w = std::max(1, int(std::lround(fb_w * scale))), h = std::max(1, int(std::lround(fb_h * scale)));
     const bool redraw = force || scene_dirty_ || camera_moved || w != last_width_ || h != last_height_ ||
-                        (last_frame_reduced_ && !reduced);
+        (last_frame_reduced_ && !reduced);
     if (redraw) {
         last_camera_ = camera_.camera();
         renderer_->draw(last_camera_, w, h);
@@ -486,8 +488,8 @@ int PreviewApp::run()
         // Idle: sleep until an event (or a moment, to show the pipeline's progress).
         const ImGuiIO& io = ImGui::GetIO();
         const bool active = moved || scene_dirty_ || ui_.view.play_time || ImGui::IsAnyItemActive() ||
-                            io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2] || io.MouseDelta.x != 0.0f ||
-                            io.MouseDelta.y != 0.0f || io.MouseWheel != 0.0f;
+            io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2] || io.MouseDelta.x != 0.0f ||
+            io.MouseDelta.y != 0.0f || io.MouseWheel != 0.0f;
         if (args_.scripted() || active)
             glfwPollEvents();
         else

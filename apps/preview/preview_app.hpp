@@ -50,7 +50,7 @@ private:
     //! when time plays); replaced only with a new medium, so the renderer keeps its shell.
     std::unique_ptr<geometry::Medium> live_medium_;
     std::shared_ptr<const geometry::ParticleCloud> particles_;
-    Needs requested_needs_;  // what the last request asked the pipeline for
+    Needs requested_needs_;    // what the last request asked the pipeline for
     bool froxels_on_ = false;  // froxel fog set on the renderer
     ViewOptions::Surface uploaded_surface_ = ViewOptions::Surface::hidden;
     geometry::LayerOptions layer_options_;

@@ -23,7 +23,8 @@ struct AttenuationBuffer::Impl {
     ShaderProgram scan = ShaderProgram({"attenuation_scan.comp"});
     ShaderProgram scan_quad = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n");
     ShaderProgram scan_half = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_HALF 1\n");
-    ShaderProgram scan_packed = ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_PACKED 1\n");
+    ShaderProgram scan_packed =
+        ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_PACKED 1\n");
     ShaderProgram scan_packed_half =
         ShaderProgram({"attenuation_scan.comp"}, "#define KIRI_QUAD 1\n#define KIRI_PACKED 1\n#define KIRI_HALF 1\n");
     ShaderProgram sample = ShaderProgram({"particle_footprint.glsl", "attenuation_sample.comp"});
@@ -34,7 +35,7 @@ struct AttenuationBuffer::Impl {
     glm::dvec3 built_light{0.0};
     AttenuationOptions built_options;
     geometry::LightGrid grid;
-    Buffer particles;  // GpuParticle per particle, uploaded when the particles change
+    Buffer particles;      // GpuParticle per particle, uploaded when the particles change
     Buffer sums, scanned;  // fixed-point deposits, then float log Gamma, voxel order
     Texture log_gamma;
     std::array<int, 3> texture_size{0, 0, 0};
@@ -80,8 +81,8 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     // Two columns a word (16 bits each, half the atomics) when the scale that keeps every voxel's
     // sum below 2^16 still resolves log G to 1.2e-4 (a receiver behind 140 occluders then carries
     // a rounding noise of ~4e-4 in log Gamma).
-    scale = std::exp2(std::clamp(std::floor(std::log2(0.9 * 2147483647.0 / std::max(gpu.strongest_log_gain_sum, 1e-30))),
-                                 4.0, 24.0));
+    scale = std::exp2(
+        std::clamp(std::floor(std::log2(0.9 * 2147483647.0 / std::max(gpu.strongest_log_gain_sum, 1e-30))), 4.0, 24.0));
     const double packed_scale = grid.size[0] % 4 == 0 ? packed_fixed_point_scale(c, grid) : 0.0;
     packed = packed_scale >= 8192.0 && packed_scale * gpu.strongest_log_gain_sum < 2e9;
     if (packed)
@@ -107,7 +108,10 @@ void AttenuationBuffer::Impl::build(const glm::dvec3& light, const AttenuationOp
     // Four columns per invocation where the width allows; half floats packed by the scan (the
     // GL's own float -> half conversion of the upload costs more than the whole build on llvmpipe).
     const bool quad = grid.size[0] % 4 == 0, half = quad && options.half_float;
-    const ShaderProgram& s = packed ? (half ? scan_packed_half : scan_packed) : half ? scan_half : quad ? scan_quad : scan;
+    const ShaderProgram& s = packed ? (half ? scan_packed_half : scan_packed)
+        : half                      ? scan_half
+        : quad                      ? scan_quad
+                                    : scan;
     const int columns = grid.size[0] * grid.size[1] / (quad ? 4 : 1);
     glProgramUniform3i(s.id(), s.location("u_size"), grid.size[0], grid.size[1], grid.size[2]);
     s.set("u_inverse_scale", float((packed ? -1.0 : 1.0) / scale));
@@ -152,7 +156,8 @@ void AttenuationBuffer::set_particles(const geometry::ParticleCloud& cloud)
         return;
     m.gpu = gpu_particles(cloud);
     m.particles = make_buffer();
-    glNamedBufferStorage(m.particles.get(), GLsizeiptr(std::max<std::size_t>(m.gpu.particles.size(), 1) * sizeof(GpuParticle)),
+    glNamedBufferStorage(m.particles.get(),
+                         GLsizeiptr(std::max<std::size_t>(m.gpu.particles.size(), 1) * sizeof(GpuParticle)),
                          m.gpu.particles.empty() ? nullptr : m.gpu.particles.data(), 0);
     m.uploaded_hash = m.hash;
 }

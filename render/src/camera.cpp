@@ -4,10 +4,7 @@
 
 namespace kiri::render {
 
-glm::dmat4 Camera::view() const
-{
-    return glm::lookAt(position, target, up);
-}
+glm::dmat4 Camera::view() const { return glm::lookAt(position, target, up); }
 
 glm::dmat4 Camera::projection(double aspect) const
 {
@@ -16,8 +13,7 @@ glm::dmat4 Camera::projection(double aspect) const
 
 glm::dvec2 project_to_pixel(const Camera& camera, const glm::dvec3& world, int width, int height)
 {
-    const glm::dvec4 clip = camera.projection(double(width) / double(height)) * camera.view() *
-                            glm::dvec4(world, 1.0);
+    const glm::dvec4 clip = camera.projection(double(width) / double(height)) * camera.view() * glm::dvec4(world, 1.0);
     const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
     // NDC y points up, image rows go down.
     return {(ndc.x * 0.5 + 0.5) * width, (0.5 - ndc.y * 0.5) * height};

@@ -29,8 +29,9 @@ public:
     {
         const char* client_ext = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
         if (!has_extension(client_ext, "EGL_MESA_platform_surfaceless"))
-            throw Error("EGL: the surfaceless platform (EGL_MESA_platform_surfaceless) is not available; "
-                        "install libegl-mesa0 and libgl1-mesa-dri");
+            throw Error(
+                "EGL: the surfaceless platform (EGL_MESA_platform_surfaceless) is not available; "
+                "install libegl-mesa0 and libgl1-mesa-dri");
         display_ = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         EGLint major = 0, minor = 0;
         if (display_ == EGL_NO_DISPLAY || !eglInitialize(display_, &major, &minor))
@@ -39,10 +40,14 @@ public:
             throw Error("EGL: EGL_KHR_no_config_context is missing, cannot create a headless context");
         if (!eglBindAPI(EGL_OPENGL_API))
             throw Error("EGL: desktop OpenGL is not available");
-        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                     EGL_CONTEXT_MINOR_VERSION, 5,
-                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                     EGL_CONTEXT_OPENGL_DEBUG, options.debug ? EGL_TRUE : EGL_FALSE,
+        const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                     4,
+                                     EGL_CONTEXT_MINOR_VERSION,
+                                     5,
+                                     EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                     EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                     EGL_CONTEXT_OPENGL_DEBUG,
+                                     options.debug ? EGL_TRUE : EGL_FALSE,
                                      EGL_NONE};
         context_ = eglCreateContext(display_, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
         if (context_ == EGL_NO_CONTEXT) {
@@ -55,7 +60,7 @@ public:
             throw Error("EGL: OpenGL 4.5 core is required");
         }
         description_ = std::string("OpenGL ") + reinterpret_cast<const char*>(glGetString(GL_VERSION)) + " (" +
-                       reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + ", EGL surfaceless)";
+            reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + ", EGL surfaceless)";
         if (options.debug || options.throw_on_gl_error)
             detail::install_debug_callback(options.throw_on_gl_error);
     }

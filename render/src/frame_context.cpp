@@ -51,7 +51,7 @@ bool box_in_view(const FrameContext& frame, const glm::dvec3& lo, const glm::dve
     std::array<glm::dvec4, 8> clip;
     for (int c = 0; c < 8; ++c)
         clip[c] = frame.projection * frame.view *
-                  glm::dvec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0);
+            glm::dvec4(c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z, 1.0);
     for (int axis = 0; axis < 3; ++axis)
         for (double side : {-1.0, 1.0}) {
             bool all_out = true;

@@ -52,7 +52,8 @@ bool FroxelMedium::set(const geometry::Medium* medium)
 
 void FroxelMedium::bind(const ShaderProgram& p, const geometry::HeightFog& haze, int unit) const
 {
-    p.set("u_hf", glm::vec4(float(haze.enabled() ? haze.extinction : 0.0), float(haze.base), float(haze.scale_height), 0.0f));
+    p.set("u_hf",
+          glm::vec4(float(haze.enabled() ? haze.extinction : 0.0), float(haze.base), float(haze.scale_height), 0.0f));
     const auto bounded = [](double v) { return float(std::clamp(v, -1e30, 1e30)); };
     p.set("u_hf_extent", glm::vec4(bounded(haze.min.x), bounded(haze.min.y), bounded(haze.max.x), bounded(haze.max.y)));
     const bool on = medium_ && uploaded_ && medium_->max_extinction() > 0.0;

@@ -22,8 +22,9 @@ constexpr int unit_first = 5, unit_last = 6;
 // The temporal filter settles over one Halton cycle; after it a static frame reruns nothing.
 constexpr int halton_cycle = 16;
 enum Stage { shadow_map, tiles, density, lighting, temporal, integrate, apply_stage, stage_count };
-const char* const stage_names[stage_count] = {"froxel shadow map", "froxel tiles",     "froxel density", "froxel lighting",
-                                              "froxel temporal",   "froxel integrate", "froxel apply"};
+const char* const stage_names[stage_count] = {"froxel shadow map", "froxel tiles",    "froxel density",
+                                              "froxel lighting",   "froxel temporal", "froxel integrate",
+                                              "froxel apply"};
 
 double halton(int index, int base)
 {
@@ -72,11 +73,13 @@ struct FroxelPass::Volumes {
 FroxelPass::FroxelPass()
     : v_(std::make_unique<Volumes>()),
       density_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
-      lighting_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl", "froxel_lighting.comp"}),
+      lighting_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl",
+                 "froxel_lighting.comp"}),
       temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_opaque.comp"}),
-      apply_program_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"})
+      apply_program_(
+          {"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"})
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
@@ -147,7 +150,8 @@ std::vector<double> FroxelPass::make_key(const FrameContext& frame, const Terrai
     k.insert(k.end(), {frame.projection[0][0], frame.projection[1][1], double(frame.width), double(frame.height)});
     for (const glm::vec3& v : {frame.sun_direction, frame.sun_radiance, frame.ambient})
         k.insert(k.end(), {v.x, v.y, v.z});
-    k.insert(k.end(), {double(frame.partitioned), frame.partition.x, frame.partition.y, frame.partition.z, frame.partition.w});
+    k.insert(k.end(),
+             {double(frame.partitioned), frame.partition.x, frame.partition.y, frame.partition.z, frame.partition.w});
     std::uintptr_t ids[2] = {reinterpret_cast<std::uintptr_t>(medium_),
                              reinterpret_cast<std::uintptr_t>(terrain.identity())};
     for (std::uintptr_t id : ids)
@@ -155,16 +159,41 @@ std::vector<double> FroxelPass::make_key(const FrameContext& frame, const Terrai
     if (medium_) {
         const geometry::MediumOptions& o = medium_->options();
         const geometry::MediumDetail& d = medium_->detail();
-        k.insert(k.end(), {o.extinction, o.albedo, o.anisotropy, o.top_density, d.detail, d.detail_scale, d.layers,
-                           d.wind.x, d.wind.y, d.time, d.dissipation_half_life});
+        k.insert(k.end(),
+                 {o.extinction, o.albedo, o.anisotropy, o.top_density, d.detail, d.detail_scale, d.layers, d.wind.x,
+                  d.wind.y, d.time, d.dissipation_half_life});
     }
     const geometry::FroxelOptions& o = options_;
     const geometry::HeightFog& h = o.height_fog;
-    k.insert(k.end(), {double(o.width), double(o.height), double(o.slices), double(o.distribution), o.power,
-                       o.log2_scale, o.near, o.far, double(o.fog_aware), double(o.temporal), o.history_weight,
-                       double(o.density_samples), double(o.sun_steps), double(o.pixel_steps), double(o.terrain_shadows),
-                       double(o.fog_shadows), double(geometry::scattering_octaves_of(medium_)), double(o.shadow_map_size), o.esm_sharpness, h.extinction, h.base,
-                       h.scale_height, h.albedo, h.anisotropy, h.min.x, h.min.y, h.max.x, h.max.y});
+    k.insert(k.end(),
+             {double(o.width),
+              double(o.height),
+              double(o.slices),
+              double(o.distribution),
+              o.power,
+              o.log2_scale,
+              o.near,
+              o.far,
+              double(o.fog_aware),
+              double(o.temporal),
+              o.history_weight,
+              double(o.density_samples),
+              double(o.sun_steps),
+              double(o.pixel_steps),
+              double(o.terrain_shadows),
+              double(o.fog_shadows),
+              double(geometry::scattering_octaves_of(medium_)),
+              double(o.shadow_map_size),
+              o.esm_sharpness,
+              h.extinction,
+              h.base,
+              h.scale_height,
+              h.albedo,
+              h.anisotropy,
+              h.min.x,
+              h.min.y,
+              h.max.x,
+              h.max.y});
     return k;
 }
 
@@ -240,16 +269,17 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     }
     // The history stays usable across view, sun and fog changes (reprojection and the clamp
     // take care of them), not across a change of the volume's layout.
-    const std::vector<double> layout = {double(o.width), double(o.height), double(o.slices), double(o.distribution),
-                                        o.power, o.log2_scale, o.near, o.far, double(o.fog_aware)};
+    const std::vector<double> layout = {
+        double(o.width), double(o.height),   double(o.slices), double(o.distribution), o.power, o.log2_scale, o.near,
+        o.far,           double(o.fog_aware)};
     history_valid_ = history_valid_ && o.temporal && layout == layout_;
     layout_ = layout;
     // A sun that turned by more than half a degree, or light that changed by more than 2 %,
     // changes J everywhere at once: the clamp alone would let the old light linger.
     const glm::vec3 light[3] = {frame.sun_direction, frame.sun_radiance, frame.ambient};
     const bool light_jumped = glm::dot(light[0], light_[0]) < std::cos(0.5f * 3.14159265f / 180.0f) ||
-                              glm::length(light[1] - light_[1]) > 0.02f * glm::length(light[1]) ||
-                              glm::length(light[2] - light_[2]) > 0.02f * glm::length(light[2]);
+        glm::length(light[1] - light_[1]) > 0.02f * glm::length(light[1]) ||
+        glm::length(light[2] - light_[2]) > 0.02f * glm::length(light[2]);
     history_valid_ = history_valid_ && !light_jumped;
     std::copy(std::begin(light), std::end(light), std::begin(light_));
     key_ = std::move(key);
@@ -299,9 +329,9 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     view_.far = float(o.far > 0.0 ? o.far : far_plane);
     view_.far = std::max(view_.far, view_.near * 1.01f);
     const int jitter_index = o.temporal ? frame_index_ % halton_cycle + 1 : 0;
-    const glm::vec3 jitter = o.temporal ? glm::vec3(float(halton(jitter_index, 2)), float(halton(jitter_index, 3)),
-                                                    float(halton(jitter_index, 5)))
-                                        : glm::vec3(0.5f);
+    const glm::vec3 jitter = o.temporal
+        ? glm::vec3(float(halton(jitter_index, 2)), float(halton(jitter_index, 3)), float(halton(jitter_index, 5)))
+        : glm::vec3(0.5f);
     const float sun_jitter = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
     ++frame_index_;
 
@@ -311,7 +341,8 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     shell_ok_ = false;
     if (o.fog_aware) {
         // The shell's per-pixel depths hold unless the eye is in it (the near plane cuts it).
-        shell_ok_ = medium_ && !shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
+        shell_ok_ = medium_ &&
+            !shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
         mode_ = shell_ok_ && !o.height_fog.enabled() ? FroxelTileBounds::Mode::shell : FroxelTileBounds::Mode::ground;
     }
     timers_[tiles].begin();
@@ -451,10 +482,10 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
         return out;
     if (!readback_) {
         readback_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl",
-                                                    "froxel_readback.comp"});
-        depth_program_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
+            std::initializer_list<std::string_view>{"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl",
+                                                    "froxel_apply.glsl", "froxel_readback.comp"});
+        depth_program_ =
+            std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
     }
     // The terrain's depth at pixel centres, where the terrain's fragments applied the fog (the
     // multisampled frame's resolved depth holds one sample, off the centre).

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-
 namespace kiri::render::detail {
 namespace {
 
@@ -20,8 +19,7 @@ void nearest(GLuint texture)
 
 FroxelTileBounds::FroxelTileBounds()
     : shell_program_({"froxel_shell.vert", "froxel_shell.frag"}), reduce_({"fog_partition.glsl", "froxel_tiles.comp"})
-{
-}
+{}
 
 void FroxelTileBounds::set_shell(const ShellMesh& shell)
 {
@@ -31,8 +29,10 @@ void FroxelTileBounds::set_shell(const ShellMesh& shell)
     vao_ = make_vertex_array();
     vertices_ = make_buffer();
     indices_ = make_buffer();
-    glNamedBufferStorage(vertices_.get(), GLsizeiptr(shell.positions.size() * sizeof(float)), shell.positions.data(), 0);
-    glNamedBufferStorage(indices_.get(), GLsizeiptr(shell.indices.size() * sizeof(std::uint32_t)), shell.indices.data(), 0);
+    glNamedBufferStorage(vertices_.get(), GLsizeiptr(shell.positions.size() * sizeof(float)), shell.positions.data(),
+                         0);
+    glNamedBufferStorage(indices_.get(), GLsizeiptr(shell.indices.size() * sizeof(std::uint32_t)), shell.indices.data(),
+                         0);
     glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, 3 * sizeof(float));
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
     glEnableVertexArrayAttrib(vao_.get(), 0);

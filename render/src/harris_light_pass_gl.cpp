@@ -46,9 +46,8 @@ std::vector<float> harris_light_pass_gl(const geometry::ParticleCloud& cloud, co
     }
     std::vector<std::size_t> order(n);
     std::iota(order.begin(), order.end(), std::size_t(0));
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return height[a] > height[b] || (height[a] == height[b] && a < b);
-    });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return height[a] > height[b] || (height[a] == height[b] && a < b); });
     // Square pixels of a quarter of the smallest radius, at most 2048 on the longer side.
     const glm::dvec2 extent = hi - lo;
     double pixel = std::max(r_min / 4.0, std::max(extent.x, extent.y) / 2048.0);
@@ -92,7 +91,8 @@ std::vector<float> harris_light_pass_gl(const geometry::ParticleCloud& cloud, co
     glDisable(GL_BLEND);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (stats)
-        *stats = {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), std::max(w, h), pixel};
+        *stats = {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), std::max(w, h),
+                  pixel};
     return gamma;
 }
 

@@ -12,8 +12,7 @@ namespace kiri::render {
 
 void write_png_atomic(const std::filesystem::path& path, const Image& image)
 {
-    if (image.width <= 0 || image.height <= 0 ||
-        image.rgba.size() != std::size_t(image.width) * image.height * 4)
+    if (image.width <= 0 || image.height <= 0 || image.rgba.size() != std::size_t(image.width) * image.height * 4)
         throw IoError(path.string(), "image", "empty or inconsistent image");
     // Same folder as the target so that rename() is atomic (same file system).
     std::filesystem::path tmp = path;

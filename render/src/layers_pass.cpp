@@ -29,10 +29,10 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"layers.vert", "fog_partition.glsl", "froxel_fog_none.glsl", "layers.frag"}), composite_({"fullscreen.vert", "layers_composite.frag"}),
-      empty_vao_(make_vertex_array()), noise_(make_noise_texture())
-{
-}
+    : program_({"layers.vert", "fog_partition.glsl", "froxel_fog_none.glsl", "layers.frag"}),
+      composite_({"fullscreen.vert", "layers_composite.frag"}), empty_vao_(make_vertex_array()),
+      noise_(make_noise_texture())
+{}
 
 bool LayersPass::set_base(const geometry::LayerBase& base)
 {
@@ -177,7 +177,8 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     bool uploaded = false;
     if (!ready(frame, uploaded))
         return uploaded;
-    const int w = std::max(1, int(std::ceil(frame.width * scale))), h = std::max(1, int(std::ceil(frame.height * scale)));
+    const int w = std::max(1, int(std::ceil(frame.width * scale))),
+              h = std::max(1, int(std::ceil(frame.height * scale)));
     ensure_low(w, h);
     // The terrain's depth, one sample per low-resolution texel.
     glBlitNamedFramebuffer(resolved_fbo, low_fbo_.get(), 0, 0, frame.width, frame.height, 0, 0, w, h,
@@ -216,8 +217,9 @@ void LayersPass::draw_stack(const FrameContext& frame)
 {
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
-        fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
+        fog_program_ = std::make_unique<ShaderProgram>(
+            std::initializer_list<std::string_view>{"layers.vert", "fog_partition.glsl", "froxel_common.glsl",
+                                                    "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);

@@ -43,7 +43,8 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
         const std::size_t slot = start[std::size_t(bucket(p))]++;
         const glm::dvec3 q = p.position - out.centre;
         const double tau = std::isfinite(p.optical_depth) ? p.optical_depth : 1e30;
-        out.particles[slot] = {{float(q.x), float(q.y), float(q.z), float(p.radius)}, {float(tau), float(p.albedo), 0.0f, 0.0f}};
+        out.particles[slot] = {{float(q.x), float(q.y), float(q.z), float(p.radius)},
+                               {float(tau), float(p.albedo), 0.0f, 0.0f}};
         out.index[slot] = std::uint32_t(k);
     }
     return out;
@@ -71,7 +72,8 @@ double packed_fixed_point_scale(const geometry::ParticleCloud& cloud, const geom
         const int i1 = int(std::clamp(std::floor((q.x + ru + 1.0) / block), 0.0, double(bx - 1)));
         const int j0 = int(std::clamp(std::floor((q.y - rv - 1.0) / block), 0.0, double(by - 1)));
         const int j1 = int(std::clamp(std::floor((q.y + rv + 1.0) / block), 0.0, double(by - 1)));
-        const double strongest = std::min(std::isfinite(p.optical_depth) ? p.optical_depth : 1e300, -geometry::min_log_gain);
+        const double strongest =
+            std::min(std::isfinite(p.optical_depth) ? p.optical_depth : 1e300, -geometry::min_log_gain);
         for (int k = k0; k <= k1; ++k)
             for (int j = j0; j <= j1; ++j)
                 for (int i = i0; i <= i1; ++i) {
@@ -125,11 +127,13 @@ glm::dmat4 relative_to_grid(const geometry::LightGrid& g, const glm::dvec3& cent
     return m;
 }
 
-void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& g, double forward, const glm::dvec3& centre)
+void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& g, double forward,
+                       const glm::dvec3& centre)
 {
     glProgramUniform3i(program.id(), program.location("u_grid_size"), g.size[0], g.size[1], g.size[2]);
     program.set("u_grid_voxel", glm::vec3(g.voxel));
-    program.set("u_grid_shear_cells", glm::vec2(float(g.shear_u * g.voxel.x / g.voxel.z), float(g.shear_v * g.voxel.y / g.voxel.z)));
+    program.set("u_grid_shear_cells",
+                glm::vec2(float(g.shear_u * g.voxel.x / g.voxel.z), float(g.shear_v * g.voxel.y / g.voxel.z)));
     program.set("u_forward", float(forward));
     program.set("u_to_grid", glm::mat4(relative_to_grid(g, centre)));
 }

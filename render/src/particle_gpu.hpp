@@ -25,9 +25,9 @@ static_assert(sizeof(GpuParticle) == 32);
 //! deposit's SIMD batches then loop over footprints of about the same size.
 struct GpuParticles {
     glm::dvec3 centre{0.0};
-    std::vector<GpuParticle> particles;  //!< in the sorted order
-    std::vector<std::uint32_t> index;    //!< cloud index of each
-    double strongest_log_gain_sum = 0.0; //!< sum of min(tau, 16): bounds every column's |sum of log G|
+    std::vector<GpuParticle> particles;   //!< in the sorted order
+    std::vector<std::uint32_t> index;     //!< cloud index of each
+    double strongest_log_gain_sum = 0.0;  //!< sum of min(tau, 16): bounds every column's |sum of log G|
 };
 GpuParticles gpu_particles(const geometry::ParticleCloud& cloud);
 //! The fixed-point scale (units per 1.0 of |log G|) of the packed deposit, two columns to a

@@ -14,8 +14,7 @@ namespace kiri::render::detail {
 ParticlesPass::ParticlesPass()
     : program_({"particle_footprint.glsl", "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
-{
-}
+{}
 
 bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
 {

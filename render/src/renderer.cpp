@@ -203,7 +203,8 @@ void Renderer::draw(const Camera& camera, int width, int height)
     if (particles) {
         // The buffer's build is part of the particles' pass; reported apart when it ran.
         if (rebuilt)
-            r.stats.passes.push_back({"attenuation", r.particles.buffer().last_build_ms(), r.particles.buffer().last_build_ms()});
+            r.stats.passes.push_back(
+                {"attenuation", r.particles.buffer().last_build_ms(), r.particles.buffer().last_build_ms()});
         r.stats.passes.push_back(r.particles_timer.result());
         r.stats.particles = int(r.particles.count());
         r.stats.attenuation_rebuilds = rebuilt ? 1 : 0;
@@ -252,11 +253,13 @@ RadianceImage Renderer::read_radiance() const
     if (image.rgba.empty())
         return image;
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(t.hdr_color(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * sizeof(float)), image.rgba.data());
+    glGetTextureImage(t.hdr_color(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * sizeof(float)),
+                      image.rgba.data());
     // GL's rows run bottom to top.
     const std::size_t row = std::size_t(image.width) * 4;
     for (int y = 0; y < image.height / 2; ++y)
-        std::swap_ranges(image.rgba.begin() + std::ptrdiff_t(y * row), image.rgba.begin() + std::ptrdiff_t((y + 1) * row),
+        std::swap_ranges(image.rgba.begin() + std::ptrdiff_t(y * row),
+                         image.rgba.begin() + std::ptrdiff_t((y + 1) * row),
                          image.rgba.begin() + std::ptrdiff_t((image.height - 1 - y) * row));
     detail::check_gl_errors("Renderer::read_radiance");
     return image;

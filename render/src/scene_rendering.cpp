@@ -90,8 +90,8 @@ SceneRendering::SceneRendering(const geometry::Scene& scene, const geometry::Ter
     if ((mode == FogMode::layers || mode == FogMode::particles) && !fog)
         throw InputError(label, "/fog", std::string("mode ") + to_string(mode) + " needs a fog section");
     if ((mode == FogMode::froxel || mode == FogMode::combined) && !fog && !haze)
-        throw InputError(label, "/fog", std::string("mode ") + to_string(mode) +
-                                            " needs a fog section or a froxel height fog");
+        throw InputError(label, "/fog",
+                         std::string("mode ") + to_string(mode) + " needs a fog section or a froxel height fog");
     if (mode == FogMode::particles)
         particles_ = geometry::sample_particles(fog->medium, scene.particles, label);
     if (mode == FogMode::combined && fog && scene.combined.particle_share > 0.0) {
@@ -104,10 +104,7 @@ SceneRendering::SceneRendering(const geometry::Scene& scene, const geometry::Ter
     }
 }
 
-bool SceneRendering::draws_froxels() const
-{
-    return mode_ == FogMode::froxel || (mode_ == FogMode::combined);
-}
+bool SceneRendering::draws_froxels() const { return mode_ == FogMode::froxel || (mode_ == FogMode::combined); }
 
 void SceneRendering::apply(Renderer& renderer) const
 {

@@ -15,17 +15,22 @@ GLenum stage_of(std::string_view file)
     const auto ends_with = [&](std::string_view ext) {
         return file.size() >= ext.size() && file.substr(file.size() - ext.size()) == ext;
     };
-    if (ends_with(".vert")) return GL_VERTEX_SHADER;
-    if (ends_with(".frag")) return GL_FRAGMENT_SHADER;
-    if (ends_with(".comp")) return GL_COMPUTE_SHADER;
-    if (ends_with(".geom")) return GL_GEOMETRY_SHADER;
+    if (ends_with(".vert"))
+        return GL_VERTEX_SHADER;
+    if (ends_with(".frag"))
+        return GL_FRAGMENT_SHADER;
+    if (ends_with(".comp"))
+        return GL_COMPUTE_SHADER;
+    if (ends_with(".geom"))
+        return GL_GEOMETRY_SHADER;
     throw Error("shader " + std::string(file) + ": unknown stage (expected .vert, .frag, .comp or .geom)");
 }
 
 std::string info_log(GLuint object, bool is_program)
 {
     GLint length = 0;
-    is_program ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length) : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
+    is_program ? glGetProgramiv(object, GL_INFO_LOG_LENGTH, &length)
+               : glGetShaderiv(object, GL_INFO_LOG_LENGTH, &length);
     std::string log(std::size_t(std::max(length, 1)), '\0');
     is_program ? glGetProgramInfoLog(object, length, nullptr, log.data())
                : glGetShaderInfoLog(object, length, nullptr, log.data());

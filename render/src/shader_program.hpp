@@ -37,7 +37,10 @@ public:
         glProgramUniform4f(id(), location(uniform), v.x, v.y, v.z, v.w);
     }
     void set(const char* uniform, const glm::mat4& m) const;
-    void set(const char* uniform, const glm::ivec3& v) const { glProgramUniform3i(id(), location(uniform), v.x, v.y, v.z); }
+    void set(const char* uniform, const glm::ivec3& v) const
+    {
+        glProgramUniform3i(id(), location(uniform), v.x, v.y, v.z);
+    }
     void set(const char* uniform, const glm::ivec2& v) const { glProgramUniform2i(id(), location(uniform), v.x, v.y); }
 
 private:

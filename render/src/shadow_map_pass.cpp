@@ -25,8 +25,8 @@ void nearest_clamped(GLuint texture, GLint filter)
 
 ShadowMapPass::ShadowMapPass() : depth_program_({"terrain.vert", "depth_only.frag"}), blur_({"esm_blur.comp"}) {}
 
-bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, const glm::dvec3& lo,
-                           const glm::dvec3& hi, int size, double sharpness)
+bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, const glm::dvec3& lo, const glm::dvec3& hi,
+                           int size, double sharpness)
 {
     if (!terrain.has_terrain())
         return false;
@@ -47,11 +47,11 @@ bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, con
         b = glm::max(b, v);
     }
     const double margin = 1e-3 * radius;
-    const glm::dmat4 projection = glm::ortho(a.x - margin, b.x + margin, a.y - margin, b.y + margin, -b.z - margin,
-                                             -a.z + margin);
+    const glm::dmat4 projection =
+        glm::ortho(a.x - margin, b.x + margin, a.y - margin, b.y + margin, -b.z - margin, -a.z + margin);
     const double depth_range = (b.z - a.z) + 2.0 * margin;
     const glm::dmat4 to_unit = glm::translate(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.5 * depth_range)) *
-                               glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.5 * depth_range));
+        glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.5 * depth_range));
     matrix_ = glm::mat4(to_unit * projection * view);
     texel_m_ = float(std::max(b.x - a.x, b.y - a.y) / size);
     k_ = float(sharpness / std::max(double(texel_m_), 1e-9));

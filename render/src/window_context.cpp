@@ -21,8 +21,7 @@ std::unique_ptr<WindowContext> create_window_context(int width, int height, cons
 {
     glfwSetErrorCallback(on_glfw_error);
     if (!glfwInit())
-        throw Error("GLFW: cannot open a window (no display? set DISPLAY or run under xvfb-run): " +
-                    g_last_glfw_error);
+        throw Error("GLFW: cannot open a window (no display? set DISPLAY or run under xvfb-run): " + g_last_glfw_error);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -38,8 +37,8 @@ std::unique_ptr<WindowContext> create_window_context(int width, int height, cons
     }
     context->make_current();
     glfwSwapInterval(1);
-    context->description_ = std::string("OpenGL ") + reinterpret_cast<const char*>(glGetString(GL_VERSION)) +
-                            " (" + reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + ", GLFW window)";
+    context->description_ = std::string("OpenGL ") + reinterpret_cast<const char*>(glGetString(GL_VERSION)) + " (" +
+        reinterpret_cast<const char*>(glGetString(GL_RENDERER)) + ", GLFW window)";
     if (options.debug || options.throw_on_gl_error)
         detail::install_debug_callback(options.throw_on_gl_error);
     return context;
@@ -56,7 +55,10 @@ void WindowContext::make_current() { glfwMakeContextCurrent(window_); }
 std::string WindowContext::description() const { return description_; }
 bool WindowContext::should_close() const { return glfwWindowShouldClose(window_); }
 void WindowContext::swap_buffers() { glfwSwapBuffers(window_); }
-void WindowContext::framebuffer_size(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
+void WindowContext::framebuffer_size(int& width, int& height) const
+{
+    glfwGetFramebufferSize(window_, &width, &height);
+}
 
 Image WindowContext::read_back_buffer() const
 {

@@ -28,8 +28,9 @@ protected:
     // A scene on the bundled DEM with `extra` appended to its top-level object.
     fs::path scene_with(const std::string& extra, const std::string& terrain_extra = "") const
     {
-        return file("scene.json", R"({"terrain": {"path": ")" + jacksboro.string() + "\"" + terrain_extra + "}" +
-                                      (extra.empty() ? "" : ", " + extra) + "}");
+        return file("scene.json",
+                    R"({"terrain": {"path": ")" + jacksboro.string() + "\"" + terrain_extra + "}" +
+                        (extra.empty() ? "" : ", " + extra) + "}");
     }
     RunResult author(const fs::path& scene) const
     {
@@ -55,7 +56,8 @@ protected:
         std::vector<float> data = values;
         EXPECT_EQ(GDALRasterIO(band, GF_Write, 0, 0, w, h, data.data(), w, h, GDT_Float32, 0, 0), CE_None);
         const fs::path p = dir_ / name;
-        GDALDatasetH copy = GDALCreateCopy(GDALGetDriverByName(driver), p.c_str(), mem, FALSE, nullptr, nullptr, nullptr);
+        GDALDatasetH copy =
+            GDALCreateCopy(GDALGetDriverByName(driver), p.c_str(), mem, FALSE, nullptr, nullptr, nullptr);
         EXPECT_NE(copy, nullptr) << driver;
         GDALClose(copy);
         GDALClose(mem);
@@ -107,15 +109,17 @@ TEST_F(BadInputCorpus, CorruptTiffHeader)
 
 TEST_F(BadInputCorpus, TruncatedAsciiGrid)
 {
-    const fs::path broken = file("cut.asc", "ncols 10\nnrows 10\nxllcorner 0\nyllcorner 0\ncellsize 30\n"
-                                            "1 2 3 4 5 6 7 8 9 10\n1 2 3 4 5 6 7 8 9 10\n1 2 3\n");
+    const fs::path broken = file("cut.asc",
+                                 "ncols 10\nnrows 10\nxllcorner 0\nyllcorner 0\ncellsize 30\n"
+                                 "1 2 3 4 5 6 7 8 9 10\n1 2 3 4 5 6 7 8 9 10\n1 2 3\n");
     expect_raster_refused(broken, {});
 }
 
 TEST_F(BadInputCorpus, AsciiGridAbsurdHeaderRefusedBeforeAllocating)
 {
-    const fs::path huge = file("huge.asc", "ncols 1000000000\nnrows 1000000000\nxllcorner 0\nyllcorner 0\n"
-                                           "cellsize 30\n1 2 3\n");
+    const fs::path huge = file("huge.asc",
+                               "ncols 1000000000\nnrows 1000000000\nxllcorner 0\nyllcorner 0\n"
+                               "cellsize 30\n1 2 3\n");
     // GDAL's own header check refuses it before kiri sees a size (kiri's limit, with the memory
     // it would need, is BadInput.AbsurdDimensionsRefusedBeforeAllocating).
     expect_raster_refused(huge, {"format"});
@@ -123,16 +127,14 @@ TEST_F(BadInputCorpus, AsciiGridAbsurdHeaderRefusedBeforeAllocating)
 
 TEST_F(BadInputCorpus, AsciiGridAllNodata)
 {
-    const fs::path nodata = file("nodata.asc", "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 30\n"
-                                               "NODATA_value -9999\n-9999 -9999 -9999\n-9999 -9999 -9999\n"
-                                               "-9999 -9999 -9999\n");
+    const fs::path nodata = file("nodata.asc",
+                                 "ncols 3\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 30\n"
+                                 "NODATA_value -9999\n-9999 -9999 -9999\n-9999 -9999 -9999\n"
+                                 "-9999 -9999 -9999\n");
     expect_raster_refused(nodata, {"nodata: every cell is nodata"});
 }
 
-TEST_F(BadInputCorpus, HgtOfTheWrongSize)
-{
-    expect_raster_refused(file("N36W085.hgt", std::string(1000, '\0')), {});
-}
+TEST_F(BadInputCorpus, HgtOfTheWrongSize) { expect_raster_refused(file("N36W085.hgt", std::string(1000, '\0')), {}); }
 
 TEST_F(BadInputCorpus, TruncatedHgt)
 {
@@ -179,10 +181,7 @@ TEST_F(BadInputCorpus, SceneIsAnArray)
     expect_scene_refused(scene, {"expected an object"});
 }
 
-TEST_F(BadInputCorpus, SceneWithoutTerrain)
-{
-    expect_scene_refused(file("empty.json", "{}"), {"/terrain", "missing"});
-}
+TEST_F(BadInputCorpus, SceneWithoutTerrain) { expect_scene_refused(file("empty.json", "{}"), {"/terrain", "missing"}); }
 
 TEST_F(BadInputCorpus, TerrainPathIsANumber)
 {
@@ -211,8 +210,9 @@ TEST_F(BadInputCorpus, NegativeImageHeight)
 
 TEST_F(BadInputCorpus, CameraFieldOfViewOf180)
 {
-    expect_scene_refused(scene_with(R"("cameras": [{"name": "a", "position": [0, 0, 9000], "target": [0, 0, 0], "fov": 180}])"),
-                         {"/cameras/0/fov"});
+    expect_scene_refused(
+        scene_with(R"("cameras": [{"name": "a", "position": [0, 0, 9000], "target": [0, 0, 0], "fov": 180}])"),
+        {"/cameras/0/fov"});
 }
 
 TEST_F(BadInputCorpus, CameraPositionWithTwoNumbers)
@@ -241,10 +241,7 @@ TEST_F(BadInputCorpus, ZeroTessellation)
     expect_scene_refused(scene_with(R"("fog": {"tessellation": {"level": 0}})"), {"/fog/tessellation/level"});
 }
 
-TEST_F(BadInputCorpus, UnknownFogMode)
-{
-    expect_scene_refused(scene_with(R"("fog": {"mode": "sea"})"), {"/fog/mode"});
-}
+TEST_F(BadInputCorpus, UnknownFogMode) { expect_scene_refused(scene_with(R"("fog": {"mode": "sea"})"), {"/fog/mode"}); }
 
 TEST_F(BadInputCorpus, LakeWithoutAltitude)
 {
@@ -285,15 +282,17 @@ TEST_F(BadInputCorpus, NumberBeyondDouble)
 
 TEST_F(BadInputCorpus, FootprintOutsideTheTerrain)
 {
-    expect_scene_refused(scene_with(R"("fog": {"footprint": {"type": "rectangle", "min": [90000, 90000], "max": [95000, 95000]}})"),
-                         {"footprint"});
+    expect_scene_refused(
+        scene_with(R"("fog": {"footprint": {"type": "rectangle", "min": [90000, 90000], "max": [95000, 95000]}})"),
+        {"footprint"});
 }
 
 TEST_F(BadInputCorpus, SelfIntersectingFootprint)
 {
     // A bow tie: edges 0-1 and 2-3 cross.
     expect_scene_refused(
-        scene_with(R"("fog": {"footprint": {"type": "polygon", "points": [[-5000, -5000], [5000, 5000], [5000, -5000], [-5000, 5000]]}})"),
+        scene_with(
+            R"("fog": {"footprint": {"type": "polygon", "points": [[-5000, -5000], [5000, 5000], [5000, -5000], [-5000, 5000]]}})"),
         {"/fog/footprint/points"});
 }
 
@@ -346,9 +345,9 @@ TEST_F(BadInputCorpus, UnknownRenderMode)
 TEST_F(BadInputCorpus, LayersModeWithoutFog)
 {
     const fs::path scene = scene_with("");
-    expect_refused(run_kiri("render " + shell_quote(scene.string()) + " -o " + shell_quote(out().string()) +
-                            " --mode layers"),
-                   {scene.string(), "/fog"}, out());
+    expect_refused(
+        run_kiri("render " + shell_quote(scene.string()) + " -o " + shell_quote(out().string()) + " --mode layers"),
+        {scene.string(), "/fog"}, out());
 }
 
 }  // namespace
@@ -358,7 +357,8 @@ namespace {
 TEST_F(BadInputCorpus, AuthorAboveTheMemoryLimit)
 {
     // 840 patches tessellated 256 x 256 with 15 layers: tens of GiB, refused before the fit.
-    const fs::path scene = scene_with(R"("fog": {"footprint": {"type": "terrain", "margin": 1000}, "tessellation": {"level": 256}})");
+    const fs::path scene =
+        scene_with(R"("fog": {"footprint": {"type": "terrain", "margin": 1000}, "tessellation": {"level": 256}})");
     const RunResult r = author(scene);
     expect_refused(r, {scene.string(), "/layers/count", "MiB", "the limit is 16384 MiB"}, author_dir() / "report.json");
     expect_refused(render(scene), {scene.string(), "MiB"}, out());

@@ -50,8 +50,8 @@ protected:
         for (const std::string& o : options)
             opts.push_back(o.c_str());
         opts.push_back(nullptr);
-        GDALDatasetH ds = GDALCreate(GDALGetDriverByName("GTiff"), p.c_str(), w, h, 1, GDT_Float32,
-                                     const_cast<char**>(opts.data()));
+        GDALDatasetH ds =
+            GDALCreate(GDALGetDriverByName("GTiff"), p.c_str(), w, h, 1, GDT_Float32, const_cast<char**>(opts.data()));
         double gt[6] = {500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0};
         GDALSetGeoTransform(ds, gt);
         GDALRasterBandH band = GDALGetRasterBand(ds, 1);

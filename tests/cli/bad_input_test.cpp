@@ -80,8 +80,8 @@ TEST_F(BadInput, MalformedJson)
 TEST_F(BadInput, WrongTypes)
 {
     const fs::path dem = fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif";
-    const fs::path scene = file("types.json", R"({"terrain": {"path": ")" + dem.string() +
-                                                  R"("}, "sun": {"direction": "up"}})");
+    const fs::path scene =
+        file("types.json", R"({"terrain": {"path": ")" + dem.string() + R"("}, "sun": {"direction": "up"}})");
     expect_refused(render(scene), {scene.string(), "/sun/direction", "expected an array of 3 numbers"}, out());
 }
 
@@ -115,8 +115,8 @@ TEST_F(BadInput, UsageErrorsExitWithTwo)
     EXPECT_EQ(r.error_lines(), 1) << r.err;
     r = run_kiri("no-such-command");
     EXPECT_EQ(r.exit_code, 2);
-    r = run_kiri("render " + (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string() + " -o " +
-                 out().string() + " --mode nonsense");
+    r = run_kiri("render " + (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string() + " -o " + out().string() +
+                 " --mode nonsense");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("nonsense"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out()));

@@ -25,7 +25,8 @@ TEST(Determinism, AuthorTwiceGivesIdenticalFiles)
     const std::string scene = (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_lake.json").string();
     ASSERT_EQ(run_kiri("author " + scene + " -o " + a.string()).exit_code, 0);
     ASSERT_EQ(run_kiri("author " + scene + " -o " + b.string()).exit_code, 0);
-    for (const char* name : {"base_surface.obj", "base_surface.ply", "layers.glb", "layers.obj", "layers.ply", "particles.ply"}) {
+    for (const char* name :
+         {"base_surface.obj", "base_surface.ply", "layers.glb", "layers.obj", "layers.ply", "particles.ply"}) {
         const std::string first = read_all(a / name);
         EXPECT_GT(first.size(), 1000u) << name;
         EXPECT_TRUE(first == read_all(b / name)) << name << " differs between two runs";

@@ -27,8 +27,8 @@ double mean_abs_difference(const kiri::render::Image& a, const kiri::render::Ima
 
 TEST(KiriFroxel, RendersTheFogAsAVolumeAndTheReferenceAgrees)
 {
-    const fs::path bare = kiri::test::temp_path("froxel_cli_bare.png"), fog = kiri::test::temp_path("froxel_cli_fog.png"),
-                   ref = kiri::test::temp_path("froxel_cli_ref.png");
+    const fs::path bare = kiri::test::temp_path("froxel_cli_bare.png"),
+                   fog = kiri::test::temp_path("froxel_cli_fog.png"), ref = kiri::test::temp_path("froxel_cli_ref.png");
     const std::string size = " --width 64 --height 36 --camera sun";
     ASSERT_EQ(run_kiri("render " + lake + " -o " + bare.string() + size + " --mode terrain").exit_code, 0);
     const auto r = run_kiri("render " + lake + " -o " + fog.string() + size + " --mode froxel");
@@ -50,8 +50,8 @@ TEST(KiriFroxel, RendersTheFogAsAVolumeAndTheReferenceAgrees)
 TEST(KiriFroxel, NoFogToRenderIsOneLineAndExit2)
 {
     const fs::path scene = kiri::test::temp_path("froxel_cli_nofog.json");
-    std::ofstream(scene) << R"({"terrain": {"path": ")" << (fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif").string()
-                         << R"("}})";
+    std::ofstream(scene) << R"({"terrain": {"path": ")"
+                         << (fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif").string() << R"("}})";
     const fs::path out = kiri::test::temp_path("froxel_cli_nofog.png");
     const auto r = run_kiri("render " + scene.string() + " -o " + out.string() + " --mode froxel");
     EXPECT_EQ(r.exit_code, 2);

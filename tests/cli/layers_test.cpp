@@ -80,7 +80,7 @@ TEST(KiriLayers, AuthorWritesLayersThatTheKhronosValidatorAccepts)
     EXPECT_EQ(glb.substr(0, 4), "glTF");
     const fs::path report = dir / "validator.txt";
     const std::string command = "node " + kiri::test::shell_quote(KIRI_VALIDATOR) + " " +
-                                kiri::test::shell_quote((dir / "layers.glb").string()) + " > " + report.string() + " 2>&1";
+        kiri::test::shell_quote((dir / "layers.glb").string()) + " > " + report.string() + " 2>&1";
     const int status = std::system(command.c_str());
     const std::string text = kiri::test::read_all(report);
     EXPECT_EQ(status, 0) << text;

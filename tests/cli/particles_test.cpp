@@ -29,10 +29,13 @@ double mean_difference(const kiri::render::Image& a, const kiri::render::Image& 
 TEST(KiriParticles, RenderDrawsLitParticleFog)
 {
     const fs::path fog = kiri::test::temp_path("particles_fog.png"), bare = kiri::test::temp_path("particles_bare.png");
-    const auto r = run_kiri("render " + default_scene + " -o " + fog.string() + " --width 160 --height 90 --mode particles");
+    const auto r =
+        run_kiri("render " + default_scene + " -o " + fog.string() + " --width 160 --height 90 --mode particles");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("20000 particles, attenuation buffer 128x128x128 R16F (4.0 MiB)"), std::string::npos) << r.err;
-    ASSERT_EQ(run_kiri("render " + default_scene + " -o " + bare.string() + " --width 160 --height 90 --mode terrain").exit_code, 0);
+    ASSERT_EQ(run_kiri("render " + default_scene + " -o " + bare.string() + " --width 160 --height 90 --mode terrain")
+                  .exit_code,
+              0);
     const kiri::render::Image a = kiri::render::read_png(fog), b = kiri::render::read_png(bare);
     EXPECT_GT(mean_difference(a, b), 10.0);  // the fog covers most of the terrain
     fs::remove(fog);
@@ -57,7 +60,8 @@ TEST(KiriParticles, AuthorWritesParticlesPly)
 
 TEST(KiriParticles, BadKeyIsOneLine)
 {
-    const fs::path scene = kiri::test::temp_path("particles_bad.json"), out = kiri::test::temp_path("particles_bad.png");
+    const fs::path scene = kiri::test::temp_path("particles_bad.json"),
+                   out = kiri::test::temp_path("particles_bad.png");
     {
         std::ofstream s(scene);
         s << R"({"terrain": {"path": ")" << (fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif").string()

@@ -67,7 +67,8 @@ TEST(PlacementCli, FillSceneWritesIdenticalMapsTwice)
     EXPECT_EQ(optics["extinction_per_m"].get<double>(), 0.02);
     EXPECT_NEAR(optics["hdrp_fog_attenuation_distance_m"].get<double>(), 50.0, 1e-12);
     EXPECT_NEAR(optics["godot_fog_density"].get<double>(), 0.02, 1e-15);
-    EXPECT_NEAR(optics["unreal_exponential_height_fog_density"].get<double>(), 0.02 / (0.1 * std::log(2.0) * std::log(2.0)), 1e-12);
+    EXPECT_NEAR(optics["unreal_exponential_height_fog_density"].get<double>(),
+                0.02 / (0.1 * std::log(2.0) * std::log(2.0)), 1e-12);
     EXPECT_NEAR(optics["visibility_m"].get<double>(), 195.6, 1e-9);
     fs::remove_all(a);
     fs::remove_all(b);
@@ -82,7 +83,8 @@ TEST(PlacementCli, TheValleyMaskCanBeAcceptedAsSeeds)
     ASSERT_TRUE(fs::exists(out / "valley_index.tif"));
     // The user looks at valleys.png, keeps it, and names it as the seed mask.
     const fs::path accepted =
-        write_scene("valleys_accepted.json", R"({"fill": {"top": 520, "seeds": {"mask": ")" + (out / "valleys.png").string() + R"("}}})");
+        write_scene("valleys_accepted.json",
+                    R"({"fill": {"top": 520, "seeds": {"mask": ")" + (out / "valleys.png").string() + R"("}}})");
     const auto r = run_kiri("author " + accepted.string() + " -o " + again.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(read_all(out / "fog_mask.png") == read_all(again / "fog_mask.png"));
@@ -105,7 +107,8 @@ TEST(PlacementCli, WindSceneSpillsAndIsDeterministic)
     EXPECT_GT(flow["stream_m3"].get<double>(), 0.0);
     EXPECT_GT(flow["evaporated_m3"].get<double>(), 0.0);
     // Volume bookkeeping: what is left + what left the grid + what evaporated = what was there.
-    EXPECT_NEAR((flow["volume_after_m3"].get<double>() + flow["outflow_m3"].get<double>() + flow["evaporated_m3"].get<double>()) /
+    EXPECT_NEAR((flow["volume_after_m3"].get<double>() + flow["outflow_m3"].get<double>() +
+                 flow["evaporated_m3"].get<double>()) /
                     flow["volume_before_m3"].get<double>(),
                 1.0, 1e-9);
     fs::remove_all(a);
@@ -116,9 +119,11 @@ TEST(PlacementCli, BadPlacementIsOneLineAndNoOutput)
 {
     const fs::path out = kiri::test::temp_path("bad_fill");
     for (const auto& [fog, expected] :
-         {std::pair<std::string, std::string>{R"({"fill": {"top": 200, "seeds": [[11100, 6600]]}})",
-                                              ": /fog/fill/top: the fog top 200 m is at or below every seed (the lowest seed's ground is 340 m)"},
-          {R"({"fill": {"top": 460, "seeds": [[-40000, 0]]}})", ": /fog/fill/seeds/0: seed (-40000, 0) lies outside the terrain"},
+         {std::pair<std::string, std::string>{
+              R"({"fill": {"top": 200, "seeds": [[11100, 6600]]}})",
+              ": /fog/fill/top: the fog top 200 m is at or below every seed (the lowest seed's ground is 340 m)"},
+          {R"({"fill": {"top": 460, "seeds": [[-40000, 0]]}})",
+           ": /fog/fill/seeds/0: seed (-40000, 0) lies outside the terrain"},
           {R"({"fill": {"top": 460, "seeds": "all"}, "flow": {"wind": [1, 0], "time_step": -1}})",
            ": /fog/flow/time_step: must be in [0, 86400], got -1"}}) {
         const fs::path scene = write_scene("bad_fill.json", fog);

@@ -170,8 +170,8 @@ TEST(AttenuationCpu, OpaqueParticlesStayFinite)
 TEST(AttenuationCpu, LightAlongAnAxisAndADiagonal)
 {
     const ParticleCloud c = kiri::test::ball_cloud(1500, 200.0, 32.0, 0.4);
-    for (const glm::dvec3& light : {glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0),
-                                    glm::dvec3(1, 1, 1), glm::dvec3(-1, 1, -1)}) {
+    for (const glm::dvec3& light :
+         {glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(1, 1, 1), glm::dvec3(-1, 1, -1)}) {
         const Score s = score(c, light, 96);
         EXPECT_LT(s.mean, 0.03) << light.x << " " << light.y << " " << light.z;
     }

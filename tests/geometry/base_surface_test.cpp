@@ -216,14 +216,16 @@ TEST(BaseSurfaceFit, NodataCellsAreLeftOut)
 
 TEST(BaseSurfaceFit, NearlyFlatAndCliff)
 {
-    const Terrain flat(make_heightfield(101, 101, 20.0, -1000.0, -1000.0,
-                                        [](double x, double) { return 250.0 + 1e-9 * x; }));
-    BaseSurface s = surface_over(flat, rectangle_footprint({-900, -900}, {900, 900}), 300.0, SurfaceKind::catmull_clark);
+    const Terrain flat(
+        make_heightfield(101, 101, 20.0, -1000.0, -1000.0, [](double x, double) { return 250.0 + 1e-9 * x; }));
+    BaseSurface s =
+        surface_over(flat, rectangle_footprint({-900, -900}, {900, 900}), 300.0, SurfaceKind::catmull_clark);
     const FitReport r = s.fit(flat, {});
     EXPECT_LT(r.max_deviation, 1e-6);
-    const Terrain cliff(make_heightfield(101, 101, 20.0, -1000.0, -1000.0,
-                                         [](double x, double) { return x < 10.0 ? 300.0 : 700.0; }));
-    BaseSurface c = surface_over(cliff, rectangle_footprint({-900, -900}, {900, 900}), 300.0, SurfaceKind::catmull_clark);
+    const Terrain cliff(
+        make_heightfield(101, 101, 20.0, -1000.0, -1000.0, [](double x, double) { return x < 10.0 ? 300.0 : 700.0; }));
+    BaseSurface c =
+        surface_over(cliff, rectangle_footprint({-900, -900}, {900, 900}), 300.0, SurfaceKind::catmull_clark);
     FitOptions o;
     o.clearance = 8.0;
     const FitReport rc = c.fit(cliff, o);
@@ -291,7 +293,8 @@ TEST(FogTarget, SmoothingKeepsPlanesAwayFromTheBorderAndIgnoresNodata)
 {
     // A box filter reproduces a linear function wherever its window is whole; normalised
     // convolution keeps constants exact everywhere, and nodata values do not leak in.
-    Heightfield hf = make_heightfield(60, 50, 10.0, 0.0, 0.0, [](double x, double y) { return 3.0 + 0.5 * x - 0.25 * y; });
+    Heightfield hf =
+        make_heightfield(60, 50, 10.0, 0.0, 0.0, [](double x, double y) { return 3.0 + 0.5 * x - 0.25 * y; });
     const Heightfield s = smooth_heightfield(hf, 20.0);
     for (int j = 15; j < 35; ++j)
         for (int i = 15; i < 45; ++i)
@@ -337,7 +340,8 @@ TEST(SurfaceKinds, AgreesWithTheSurfaceModule)
                     }
                     const PatchPoint q = s->evaluate(f, u, v);
                     worst = std::max(worst, glm::length(b.evaluate(f, u, v) - q.position));
-                    worst = std::max({worst, glm::length(p - q.position), glm::length(du - q.du), glm::length(dv - q.dv)});
+                    worst =
+                        std::max({worst, glm::length(p - q.position), glm::length(du - q.du), glm::length(dv - q.dv)});
                 }
         EXPECT_LT(worst, 1e-6) << to_string(kind);
     }

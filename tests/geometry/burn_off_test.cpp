@@ -31,7 +31,8 @@ namespace {
 
 // A bowl (inverted cone) filled to 300 m: thickness falls to zero at its rim.
 struct Bowl {
-    Heightfield hf = make_heightfield(81, 81, 25.0, -1000.0, -1000.0, [](double x, double y) { return 0.3 * std::hypot(x, y); });
+    Heightfield hf =
+        make_heightfield(81, 81, 25.0, -1000.0, -1000.0, [](double x, double y) { return 0.3 * std::hypot(x, y); });
     FogColumns dawn;
     Bowl()
     {

@@ -51,8 +51,8 @@ protected:
 
     // Writes a one-band raster; values in source order (row 0 first). epsg 0: no CRS.
     fs::path write(const std::string& name, const char* driver, int w, int h, GDALDataType type,
-                   const std::vector<double>& values, const double* gt, int epsg,
-                   const double* nodata = nullptr, std::vector<std::string> options = {})
+                   const std::vector<double>& values, const double* gt, int epsg, const double* nodata = nullptr,
+                   std::vector<std::string> options = {})
     {
         const fs::path path = dir / name;
         std::vector<char*> opts;
@@ -61,8 +61,8 @@ protected:
         opts.push_back(nullptr);
         if (values.empty()) {
             // No values: created in place (a MEM copy of a huge raster would be allocated).
-            GDALDataset* out = GetGDALDriverManager()->GetDriverByName(driver)->Create(
-                path.string().c_str(), w, h, 1, type, opts.data());
+            GDALDataset* out = GetGDALDriverManager()->GetDriverByName(driver)->Create(path.string().c_str(), w, h, 1,
+                                                                                       type, opts.data());
             EXPECT_NE(out, nullptr) << "GDAL could not write " << path;
             if (gt)
                 out->SetGeoTransform(const_cast<double*>(gt));
@@ -82,11 +82,11 @@ protected:
         GDALRasterBand* band = ds->GetRasterBand(1);
         if (nodata)
             band->SetNoDataValue(*nodata);
-        EXPECT_EQ(band->RasterIO(GF_Write, 0, 0, w, h, const_cast<double*>(values.data()), w, h, GDT_Float64,
-                                     0, 0, nullptr),
-                      CE_None);
-        GDALDataset* out = GetGDALDriverManager()->GetDriverByName(driver)->CreateCopy(
-            path.string().c_str(), ds, FALSE, opts.data(), nullptr, nullptr);
+        EXPECT_EQ(
+            band->RasterIO(GF_Write, 0, 0, w, h, const_cast<double*>(values.data()), w, h, GDT_Float64, 0, 0, nullptr),
+            CE_None);
+        GDALDataset* out = GetGDALDriverManager()->GetDriverByName(driver)->CreateCopy(path.string().c_str(), ds, FALSE,
+                                                                                       opts.data(), nullptr, nullptr);
         EXPECT_NE(out, nullptr) << "GDAL could not write " << path;
         GDALClose(out);
         GDALClose(ds);
@@ -164,8 +164,7 @@ TEST_F(Dem, JacksboroLoadsInLocalMetres)
     GDALDataset* ds = GDALDataset::Open(path.string().c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY);
     ASSERT_NE(ds, nullptr);
     std::vector<double> row(403);
-    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 343, 403, 1, row.data(), 403, 1, GDT_Float64, 0, 0,
-                                             nullptr),
+    ASSERT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 343, 403, 1, row.data(), 403, 1, GDT_Float64, 0, 0, nullptr),
               CE_None);
     GDALClose(ds);
     for (int i = 0; i < 403; ++i)
@@ -273,7 +272,8 @@ TEST_F(Dem, SrtmHgtTileIsGeographic)
             bytes[(std::size_t(r) * n + c) * 2 + 1] = static_cast<unsigned char>(u & 0xff);
         }
     const fs::path path = dir / "N36W085.hgt";
-    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    std::ofstream(path, std::ios::binary)
+        .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
 
     const Heightfield hf = load_dem(path);
     ASSERT_EQ(hf.nx, n);
@@ -283,7 +283,7 @@ TEST_F(Dem, SrtmHgtTileIsGeographic)
     EXPECT_NEAR(hf.georef.origin_y, 36.5, 1e-9);
     EXPECT_NEAR(hf.dx, 3.0 / 3600.0 * series_m_per_deg_lon(36.5), 0.01);
     EXPECT_NEAR(hf.dy, 3.0 / 3600.0 * series_m_per_deg_lat(36.5), 0.01);
-    EXPECT_EQ(hf.at(0, 0), 2.0 * (n - 1));        // south-west corner: source row 1200
+    EXPECT_EQ(hf.at(0, 0), 2.0 * (n - 1));          // south-west corner: source row 1200
     EXPECT_EQ(hf.at(n - 1, n - 1), double(n - 1));  // north-east corner: source row 0
     // The void at the centre: masked, and refilled exactly (z is linear in i and j).
     EXPECT_EQ(hf.valid[std::size_t(600) * n + 600], 0);
@@ -297,8 +297,8 @@ TEST_F(Dem, PngHeightmaps8And16Bit)
     opt.cell_size = 2.0;
     opt.vertical_scale = 0.5;
     opt.vertical_offset = 100.0;
-    const auto p8 = write("h8.png", "PNG", w, h, GDT_Byte,
-                          grid_values(w, h, [](int c, int r) { return 10.0 * c + r; }), nullptr, 0);
+    const auto p8 = write("h8.png", "PNG", w, h, GDT_Byte, grid_values(w, h, [](int c, int r) { return 10.0 * c + r; }),
+                          nullptr, 0);
     const auto p16 = write("h16.png", "PNG", w, h, GDT_UInt16,
                            grid_values(w, h, [](int c, int r) { return 65535.0 - 1000.0 * c - r; }), nullptr, 0);
     const Heightfield a = load_dem(p8, opt), b = load_dem(p16, opt);
@@ -403,8 +403,8 @@ TEST_F(Dem, TruncatedTiff)
 {
     const int w = 64, h = 64;
     const double gt[6] = {0.0, 1.0, 0.0, 64.0, 0.0, -1.0};
-    const auto full = write("full.tif", "GTiff", w, h, GDT_Float32,
-                            grid_values(w, h, [](int c, int r) { return c * r; }), gt, 32616);
+    const auto full =
+        write("full.tif", "GTiff", w, h, GDT_Float32, grid_values(w, h, [](int c, int r) { return c * r; }), gt, 32616);
     ASSERT_EQ(load_dem(full).nx, w);  // whole, it loads
     std::ifstream in(full, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -461,8 +461,8 @@ TEST_F(Dem, CorruptCompressedStrips)
     const int w = 64, h = 64;
     const double gt[6] = {0.0, 1.0, 0.0, 64.0, 0.0, -1.0};
     const auto path = write("deflate.tif", "GTiff", w, h, GDT_Float32,
-                            grid_values(w, h, [](int c, int r) { return std::sin(c * 0.3) * r; }), gt, 32616,
-                            nullptr, {"COMPRESS=DEFLATE", "BLOCKYSIZE=8"});
+                            grid_values(w, h, [](int c, int r) { return std::sin(c * 0.3) * r; }), gt, 32616, nullptr,
+                            {"COMPRESS=DEFLATE", "BLOCKYSIZE=8"});
     std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
     f.seekp(std::streamoff(fs::file_size(path) / 2));
     const std::string junk(2000, '\x5a');

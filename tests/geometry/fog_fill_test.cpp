@@ -49,7 +49,8 @@ TEST(FogFill, TopJustBelowTheSaddleStaysInItsBasin)
     const Heightfield hf = basins();
     const FogFill f = fill_fog(hf, seeded(199.999, {-500.0, 0.0}));
     // Exactly the left basin's cells below the top.
-    const std::size_t expected = count_if_cells(hf, [&](int i, int j) { return hf.x_of(i) < 0.0 && hf.at(i, j) < 199.999; });
+    const std::size_t expected =
+        count_if_cells(hf, [&](int i, int j) { return hf.x_of(i) < 0.0 && hf.at(i, j) < 199.999; });
     EXPECT_EQ(f.cells, expected);
     for (int j = 0; j < hf.ny; ++j)
         for (int i = 0; i < hf.nx; ++i) {
@@ -100,7 +101,8 @@ TEST(FogFill, TopJustAboveTheSaddleFillsBothBasins)
 TEST(FogFill, ThePlaneFillsTheHalfBelowTheTop)
 {
     // z = 50 + 0.1 x over [-500, 500]: the top at 60 m covers x < 100.
-    const Heightfield hf = make_heightfield(101, 51, 10.0, -500.0, -250.0, [](double x, double) { return 50.0 + 0.1 * x; });
+    const Heightfield hf =
+        make_heightfield(101, 51, 10.0, -500.0, -250.0, [](double x, double) { return 50.0 + 0.1 * x; });
     const FogFill f = fill_fog(hf, seeded(60.0, {-400.0, 0.0}));
     for (int j = 0; j < hf.ny; ++j)
         for (int i = 0; i < hf.nx; ++i) {
@@ -120,7 +122,8 @@ TEST(FogFill, TheConeHoldsItsAnalyticVolume)
     // An inverted cone z = r: fog to the top T is a cone of volume pi T^3 / 3 over a disc of
     // area pi T^2 (the grid's sums converge to both as the cells shrink).
     const double top = 400.0;
-    const Heightfield hf = make_heightfield(401, 401, 2.5, -500.0, -500.0, [](double x, double y) { return std::hypot(x, y); });
+    const Heightfield hf =
+        make_heightfield(401, 401, 2.5, -500.0, -500.0, [](double x, double y) { return std::hypot(x, y); });
     const FogFill f = fill_fog(hf, seeded(top, {0.0, 0.0}));
     EXPECT_NEAR(f.volume_m3 / (M_PI * top * top * top / 3.0), 1.0, 1e-4);
     EXPECT_NEAR(f.area_m2 / (M_PI * top * top), 1.0, 2e-3);

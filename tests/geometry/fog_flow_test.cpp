@@ -66,7 +66,7 @@ FlowOptions wind_east(double evaporation)
 
 TEST(FogFlow, WithoutEvaporationTheVolumeIsKeptAndNeverNegative)
 {
-    const Case c(195.0);  // 5 m below the saddle
+    const Case c(195.0);                      // 5 m below the saddle
     for (double dt : {10.0, 60.0, 3600.0}) {  // the last one crosses the whole grid in one step
         const FlowOptions o = wind_east(0.0);
         FlowState st = make_flow_state(c.hf, c.fog, o);

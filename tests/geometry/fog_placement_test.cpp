@@ -83,26 +83,39 @@ TEST(FogPlacement, BadKeysGiveOneLineNamingThem)
     EXPECT_EQ(error_of(R"({"fill": {"top": 460}})"),
               "s.json: /fog/fill/seeds: missing: seed points [[x, y], ...] (local metres), \"all\", \"valleys\" or "
               "{\"mask\": FILE}");
-    EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": [[90000, 0]]}})").rfind("s.json: /fog/fill/seeds/0: seed (90000, 0) lies outside the terrain", 0), 0u);
-    EXPECT_EQ(error_of(R"({"fill": {"top": 200, "seeds": [[11100, 6600]]}})").rfind("s.json: /fog/fill/top: the fog top 200 m is at or below every seed (the lowest seed's ground is 340 m)", 0), 0u);
+    EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": [[90000, 0]]}})")
+                  .rfind("s.json: /fog/fill/seeds/0: seed (90000, 0) lies outside the terrain", 0),
+              0u);
+    EXPECT_EQ(
+        error_of(R"({"fill": {"top": 200, "seeds": [[11100, 6600]]}})")
+            .rfind(
+                "s.json: /fog/fill/top: the fog top 200 m is at or below every seed (the lowest seed's ground is 340 m)",
+                0),
+        0u);
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all", "valleys": {}}})"),
               "s.json: /fog/fill/valleys: only used with \"seeds\": \"valleys\"");
-    EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all"}, "mode": "blanket"})").rfind("s.json: /fog/mode: a fill sets this itself", 0), 0u);
-    EXPECT_EQ(error_of(R"({"flow": {"wind": [1, 0]}})"), "s.json: /fog/flow: needs /fog/fill: the fog placed by the terrain that this acts on");
+    EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all"}, "mode": "blanket"})")
+                  .rfind("s.json: /fog/mode: a fill sets this itself", 0),
+              0u);
+    EXPECT_EQ(error_of(R"({"flow": {"wind": [1, 0]}})"),
+              "s.json: /fog/flow: needs /fog/fill: the fog placed by the terrain that this acts on");
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all"}, "flow": {"wind": [1, 0], "coupling": 2}})"),
               "s.json: /fog/flow/coupling: must be in [0, 1], got 2");
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all"}, "burn_off": {"time": 25}})"),
               "s.json: /fog/burn_off/time: must be in [0, 24], got 25");
-    EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all"}, "burn_off": {"time": 17, "burn_rate": 2000, "lift_rate": 2000}})")
-                  .rfind("s.json: /fog/burn_off/time: the fog has burnt off completely by 17", 0),
-              0u);
+    EXPECT_EQ(
+        error_of(
+            R"({"fill": {"top": 460, "seeds": "all"}, "burn_off": {"time": 17, "burn_rate": 2000, "lift_rate": 2000}})")
+            .rfind("s.json: /fog/burn_off/time: the fog has burnt off completely by 17", 0),
+        0u);
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": {"mask": "nothing.png"}}})"),
               "s.json: /fog/fill/seeds/mask: no such mask file: /d/nothing.png");
     EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "valleys", "valleys": {"threshold": 9}}})"),
               "s.json: /fog/fill/valleys/threshold: no cell of the terrain is a valley at this threshold: lower it");
-    EXPECT_EQ(error_of(R"({"fill": {"top": 460, "seeds": "all", "colour": 1}})"),
-              "s.json: /fog/fill/colour: unknown key (expected one of: max_thickness, min_thickness, profile, seeds, top, "
-              "valleys)");
+    EXPECT_EQ(
+        error_of(R"({"fill": {"top": 460, "seeds": "all", "colour": 1}})"),
+        "s.json: /fog/fill/colour: unknown key (expected one of: max_thickness, min_thickness, profile, seeds, top, "
+        "valleys)");
 }
 
 TEST(FogPlacement, PlacedFogGivesTheFootprintAndTheLakeTarget)

@@ -50,7 +50,8 @@ TEST(FogSpecJson, ReadsEveryKey)
 
 TEST(FogSpecJson, RectangleAndTerrainFootprints)
 {
-    const FogSpec r = parse_fog_spec(json::parse(R"({"footprint": {"type": "rectangle", "min": [-5, -6], "max": [7, 8]}})"), "");
+    const FogSpec r =
+        parse_fog_spec(json::parse(R"({"footprint": {"type": "rectangle", "min": [-5, -6], "max": [7, 8]}})"), "");
     ASSERT_EQ(r.footprint.polygon.size(), 4u);
     EXPECT_EQ(r.footprint.polygon[2], glm::dvec2(7, 8));
     const FogSpec t = parse_fog_spec(json::parse(R"({"footprint": {"type": "terrain", "margin": 300}})"), "");
@@ -60,16 +61,20 @@ TEST(FogSpecJson, RectangleAndTerrainFootprints)
 
 TEST(FogSpecJson, PreciseErrors)
 {
-    EXPECT_EQ(error_of(R"({"colour": 1})"), "s.json: /fog/colour: unknown key (expected one of: altitude, burn_off, clearance, fill, flow, footprint, mode, "
-              "offset, outline, patch_size, samples_per_patch, smoothing, smoothness, surface, tessellation, thickness)");
+    EXPECT_EQ(
+        error_of(R"({"colour": 1})"),
+        "s.json: /fog/colour: unknown key (expected one of: altitude, burn_off, clearance, fill, flow, footprint, mode, "
+        "offset, outline, patch_size, samples_per_patch, smoothing, smoothness, surface, tessellation, thickness)");
     EXPECT_EQ(error_of(R"({"surface": "nurbs"})"), "s.json: /fog/surface: expected \"gregory\" or \"catmull-clark\"");
     EXPECT_EQ(error_of(R"({"patch_size": -3})"), "s.json: /fog/patch_size: must be > 0");
-    EXPECT_EQ(error_of(R"({"mode": "lake"})"), "s.json: /fog/altitude: lake mode needs the altitude of the fog top (metres)");
+    EXPECT_EQ(error_of(R"({"mode": "lake"})"),
+              "s.json: /fog/altitude: lake mode needs the altitude of the fog top (metres)");
     EXPECT_EQ(error_of(R"({"footprint": {"type": "rectangle", "min": [0, 0], "max": [5]}})"),
               "s.json: /fog/footprint/max: expected an array of 2 numbers [x, y] (local metres)");
     EXPECT_EQ(error_of(R"({"footprint": {"type": "polygon", "points": [[0, 0], [1, "a"], [2, 2]]}})"),
               "s.json: /fog/footprint/points/1/1: expected a number");
-    EXPECT_EQ(error_of(R"({"tessellation": {"level": 0}})"), "s.json: /fog/tessellation/level: must be in [1, 256], got 0");
+    EXPECT_EQ(error_of(R"({"tessellation": {"level": 0}})"),
+              "s.json: /fog/tessellation/level: must be in [1, 256], got 0");
     EXPECT_NE(error_of(R"({"clearance": 300, "thickness": 100})").find("s.json: /fog/clearance: clearance 300"),
               std::string::npos);
     EXPECT_EQ(error_of(R"({"footprint": {"type": "polygon", "points": [[0, 0], [200, 100], [200, 0], [0, 150]]}})"),

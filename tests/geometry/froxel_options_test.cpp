@@ -93,15 +93,18 @@ TEST(FroxelOptionsJson, DefaultsKeysErrorsAndRoundTrip)
         }
         return std::string("no error");
     };
-    EXPECT_EQ(error(R"({"slices": 3})"), "s.json: /froxel/slices: unknown key (expected one of: density_samples, "
-                                          "distribution, esm_sharpness, far, fog_aware, fog_shadows, height_fog, "
-                                          "history_weight, log2_scale, near, pixel_steps, power, "
-                                          "shadow_map_size, size, sun_steps, temporal, terrain_shadows)");
-    EXPECT_EQ(error(R"({"size": [160, 90]})"), "s.json: /froxel/size: expected an array of 3 integers [width, height, slices]");
+    EXPECT_EQ(error(R"({"slices": 3})"),
+              "s.json: /froxel/slices: unknown key (expected one of: density_samples, "
+              "distribution, esm_sharpness, far, fog_aware, fog_shadows, height_fog, "
+              "history_weight, log2_scale, near, pixel_steps, power, "
+              "shadow_map_size, size, sun_steps, temporal, terrain_shadows)");
+    EXPECT_EQ(error(R"({"size": [160, 90]})"),
+              "s.json: /froxel/size: expected an array of 3 integers [width, height, slices]");
     EXPECT_EQ(error(R"({"size": [160, 90, 1]})"), "s.json: /froxel/size/2: must be in [2, 512], got 1");
     EXPECT_EQ(error(R"({"distribution": "linear"})"),
               "s.json: /froxel/distribution: expected \"exponential\", \"log2\" or \"power\", got \"linear\"");
-    EXPECT_EQ(error(R"({"near": 10, "far": 5})"), "s.json: /froxel/far: must be 0 (the scene's far side) or larger than near");
+    EXPECT_EQ(error(R"({"near": 10, "far": 5})"),
+              "s.json: /froxel/far: must be 0 (the scene's far side) or larger than near");
     EXPECT_EQ(error(R"({"history_weight": 1})"), "s.json: /froxel/history_weight: must be in [0, 0.99], got 1");
     EXPECT_EQ(error(R"({"height_fog": {"anisotropy": 1}})"),
               "s.json: /froxel/height_fog/anisotropy: must be in (-1, 1), got 1");

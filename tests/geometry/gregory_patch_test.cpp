@@ -27,7 +27,8 @@ GregoryPatch::Points random_points(unsigned seed, double size = 100.0, glm::dvec
                 offset + size * glm::dvec3(i / 3.0 + 0.1 * d(rng), j / 3.0 + 0.1 * d(rng), d(rng));
     for (int j = 1; j < 3; ++j)
         for (int i = 1; i < 3; ++i)
-            p[GregoryPatch::index(i, j, 1)] = p[GregoryPatch::index(i, j, 0)] + size * glm::dvec3(d(rng), d(rng), d(rng));
+            p[GregoryPatch::index(i, j, 1)] =
+                p[GregoryPatch::index(i, j, 0)] + size * glm::dvec3(d(rng), d(rng), d(rng));
     return p;
 }
 

@@ -71,7 +71,8 @@ TEST(HarrisReference, IndexEqualsEveryPair)
     const ParticleCloud c = kiri::test::ball_cloud(1500, 200.0, 25.0, 0.8);
     HarrisStats stats;
     for (const glm::dvec3& light : {glm::dvec3(0.3, -0.5, 0.8), glm::dvec3(0, 0, 1), glm::dvec3(1, 1, 1)}) {
-        const std::vector<double> fast = harris_light_pass(c, light, &stats), slow = harris_light_pass_quadratic(c, light);
+        const std::vector<double> fast = harris_light_pass(c, light, &stats),
+                                  slow = harris_light_pass_quadratic(c, light);
         ASSERT_EQ(fast.size(), slow.size());
         for (std::size_t k = 0; k < fast.size(); ++k)
             ASSERT_EQ(fast[k], slow[k]) << k;

@@ -30,7 +30,7 @@ LayerOptions options_15()
 bool finite(const LayerVertex& v)
 {
     return std::isfinite(v.position.x) && std::isfinite(v.position.y) && std::isfinite(v.position.z) &&
-           std::isfinite(v.alpha) && std::isfinite(v.exponent);
+        std::isfinite(v.alpha) && std::isfinite(v.exponent);
 }
 
 }  // namespace
@@ -259,7 +259,7 @@ TEST(LayerTexture, BorderAlpha)
     EXPECT_EQ(border_alpha(all_sides, 0.0, 0.5, 0.5), 0.0);
     EXPECT_EQ(border_alpha(all_sides, 0.5, 1.0, 0.5), 0.0);
     EXPECT_NEAR(border_alpha(all_sides, 0.25, 0.5, 0.5), 0.5, 1e-15);  // smoothstep(1/2)
-    EXPECT_EQ(border_alpha(0, 0.0, 0.0, 0.5), 1.0);                     // interior patch: uniform
+    EXPECT_EQ(border_alpha(0, 0.0, 0.0, 0.5), 1.0);                    // interior patch: uniform
     // Side v = 0 only: alpha depends on v alone, zero on that side, one from w on.
     EXPECT_EQ(border_alpha(0x01, 0.3, 0.0, 0.4), 0.0);
     EXPECT_EQ(border_alpha(0x01, 0.0, 0.4, 0.4), 1.0);

@@ -15,7 +15,10 @@ using kiri::test::make_heightfield;
 
 namespace {
 
-Heightfield grid(int nx = 30, int ny = 20) { return make_heightfield(nx, ny, 10.0, 0.0, 0.0, [](double, double) { return 0.0; }); }
+Heightfield grid(int nx = 30, int ny = 20)
+{
+    return make_heightfield(nx, ny, 10.0, 0.0, 0.0, [](double, double) { return 0.0; });
+}
 
 std::vector<std::uint8_t> cells(const Heightfield& g, const std::function<bool(int, int)>& on)
 {
@@ -39,7 +42,8 @@ double area(const std::vector<glm::dvec2>& p)
 TEST(MaskOutline, ABlockOfCellsIsItsRectangle)
 {
     const Heightfield g = grid();
-    const MaskOutline o = mask_outline(g, cells(g, [](int i, int j) { return i >= 3 && i <= 7 && j >= 4 && j <= 5; }), {}, {});
+    const MaskOutline o =
+        mask_outline(g, cells(g, [](int i, int j) { return i >= 3 && i <= 7 && j >= 4 && j <= 5; }), {}, {});
     ASSERT_EQ(o.components, 1);
     const auto& p = o.footprint.polygon;
     ASSERT_EQ(p.size(), 4u);
@@ -52,9 +56,13 @@ TEST(MaskOutline, ABlockOfCellsIsItsRectangle)
 TEST(MaskOutline, AnLShapeKeepsItsAreaExactly)
 {
     const Heightfield g = grid();
-    const MaskOutline o = mask_outline(
-        g, cells(g, [](int i, int j) { return (i >= 2 && i <= 10 && j >= 2 && j <= 4) || (i >= 2 && i <= 4 && j <= 12 && j >= 2); }),
-        {}, {});
+    const MaskOutline o = mask_outline(g,
+                                       cells(g,
+                                             [](int i, int j) {
+                                                 return (i >= 2 && i <= 10 && j >= 2 && j <= 4) ||
+                                                     (i >= 2 && i <= 4 && j <= 12 && j >= 2);
+                                             }),
+                                       {}, {});
     EXPECT_EQ(o.footprint.polygon.size(), 6u);
     EXPECT_DOUBLE_EQ(area(o.footprint.polygon), (9 * 3 + 3 * 8) * 100.0);
 }
@@ -87,8 +95,9 @@ TEST(MaskOutline, SeveralComponentsHolesAndNesting)
 TEST(MaskOutline, DiagonalContactsAreClosedIntoOneSimplePolygon)
 {
     const Heightfield g = grid();
-    const MaskOutline o =
-        mask_outline(g, cells(g, [](int i, int j) { return (i == 5 && j == 5) || (i == 6 && j == 6) || (i == 7 && j == 5); }), {}, {});
+    const MaskOutline o = mask_outline(
+        g, cells(g, [](int i, int j) { return (i == 5 && j == 5) || (i == 6 && j == 6) || (i == 7 && j == 5); }), {},
+        {});
     EXPECT_EQ(o.components, 1);
     EXPECT_NO_THROW(validate_footprint(o.footprint));
     EXPECT_DOUBLE_EQ(area(o.footprint.polygon), 4 * 100.0);  // cell (6, 5) added joins all three
@@ -128,11 +137,16 @@ TEST(MaskOutline, GrowsOnlyIntoAllowedCellsAndSimplifies)
 
 TEST(MaskOutline, TheControlMeshCoversSeveralPolygons)
 {
-    const Heightfield hf = make_heightfield(101, 101, 20.0, -1000.0, -1000.0, [](double x, double) { return 300.0 + 0.1 * x; });
+    const Heightfield hf =
+        make_heightfield(101, 101, 20.0, -1000.0, -1000.0, [](double x, double) { return 300.0 + 0.1 * x; });
     const Terrain terrain{Heightfield(hf)};
-    const MaskOutline o = mask_outline(
-        hf, cells(hf, [](int i, int j) { return (i > 5 && i < 40 && j > 10 && j < 60) || (i > 60 && i < 95 && j > 50 && j < 90); }), {},
-        {});
+    const MaskOutline o =
+        mask_outline(hf,
+                     cells(hf,
+                           [](int i, int j) {
+                               return (i > 5 && i < 40 && j > 10 && j < 60) || (i > 60 && i < 95 && j > 50 && j < 90);
+                           }),
+                     {}, {});
     ASSERT_EQ(o.components, 2);
     ControlMeshOptions cmo;
     cmo.patch_size = 100.0;

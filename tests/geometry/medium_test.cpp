@@ -312,8 +312,9 @@ TEST(FogLighting, OctavesOfScattering)
     EXPECT_NEAR(single.x, 0.9 * (3.0 * s1 + 0.2), 1e-15);
     EXPECT_NEAR(single.z, 0.9 * (1.0 * s1 + 0.4), 1e-15);
     o.scattering_octaves = 3;
-    const double s3 = pi * (henyey_greenstein(0.3, 0.8) * std::exp(-2.0) + 0.5 * henyey_greenstein(0.3, 0.4) * std::exp(-1.0) +
-                            0.25 * henyey_greenstein(0.3, 0.2) * std::exp(-0.5));
+    const double s3 = pi *
+        (henyey_greenstein(0.3, 0.8) * std::exp(-2.0) + 0.5 * henyey_greenstein(0.3, 0.4) * std::exp(-1.0) +
+         0.25 * henyey_greenstein(0.3, 0.2) * std::exp(-0.5));
     EXPECT_NEAR(fog_source(light, o, 0.3, 2.0).y, 0.9 * (2.0 * s3 + 0.3), 1e-15);
     // In the terrain's shadow only the sky lights the fog; non-finite inputs stay finite.
     EXPECT_NEAR(fog_source(light, o, 0.3, 2.0, 0.0).x, 0.9 * 0.2, 1e-15);

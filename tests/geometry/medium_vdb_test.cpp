@@ -69,7 +69,8 @@ TEST(MediumVdb, ReadsBackWithOpenVdb)
     // Inside the shell, away from its faces, the profile is linear in z, so the mean of the
     // 2 x 2 x 2 samples is the extinction at the voxel's centre.
     auto accessor = grid->getConstAccessor();
-    for (const openvdb::Coord c : {openvdb::Coord(0, 0, 44), openvdb::Coord(-40, 20, 46), openvdb::Coord(30, -50, 42)}) {
+    for (const openvdb::Coord c :
+         {openvdb::Coord(0, 0, 44), openvdb::Coord(-40, 20, 46), openvdb::Coord(30, -50, 42)}) {
         const openvdb::Vec3d p = grid->indexToWorld(c);
         EXPECT_NEAR(accessor.getValue(c), m.extinction({p.x(), p.y(), p.z()}), 1e-6) << c;
         EXPECT_GT(accessor.getValue(c), 0.0f);

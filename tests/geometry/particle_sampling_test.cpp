@@ -194,8 +194,9 @@ TEST(ParticleSampling, BadOptionsNameTheirKey)
 TEST(ParticleSampling, SceneSection)
 {
     const auto parse = [](const std::string& particles) {
-        return parse_scene(R"({"terrain": {"path": "t.tif"}, "sun": {"direction": [0, 0, 1]}, "particles": )" + particles + "}",
-                           "s.json", "/");
+        return parse_scene(
+            R"({"terrain": {"path": "t.tif"}, "sun": {"direction": [0, 0, 1]}, "particles": )" + particles + "}",
+            "s.json", "/");
     };
     const Scene s = parse(R"({"count": 900, "radius": [5, 20], "albedo": 0.7, "format": "r32f", "frame": "light",
                               "resolution": 256, "seed": 5})");
@@ -215,12 +216,14 @@ TEST(ParticleSampling, SceneSection)
         }
         return std::string();
     };
-    EXPECT_EQ(error(R"({"cuont": 3})").rfind("s.json: /particles/cuont: unknown key (expected one of: albedo, ", 0), 0u);
+    EXPECT_EQ(error(R"({"cuont": 3})").rfind("s.json: /particles/cuont: unknown key (expected one of: albedo, ", 0),
+              0u);
     EXPECT_EQ(error(R"({"count": 3, "spacing": 4})"),
               "s.json: /particles: give count or spacing, not both (each sets the number of particles)");
     EXPECT_EQ(error(R"({"radius": [5, 2]})"), "s.json: /particles/radius: the minimum is above the maximum");
     EXPECT_EQ(error(R"({"radius": 5})"), "s.json: /particles/radius: expected [min, max] in metres");
-    EXPECT_EQ(error(R"({"format": "rgba8"})"), "s.json: /particles/format: expected \"r16f\" or \"r32f\", got \"rgba8\"");
+    EXPECT_EQ(error(R"({"format": "rgba8"})"),
+              "s.json: /particles/format: expected \"r16f\" or \"r32f\", got \"rgba8\"");
     EXPECT_EQ(error(R"({"resolution": 8})"), "s.json: /particles/resolution: must be in [16, 512], got 8");
     EXPECT_EQ(error(R"({"albedo": 2})"), "s.json: /particles/albedo: must be in [0, 1], got 2");
 }

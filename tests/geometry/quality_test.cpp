@@ -69,7 +69,8 @@ TEST(Quality, PresetsRiseAndTheScenesKeysWin)
 
 TEST(Quality, SavedScenesReadBackEqual)
 {
-    const Scene a = parse(R"(, "quality": "medium", "combined": {"near_start": 250, "near_end": 900, "particle_band": 0.5})");
+    const Scene a =
+        parse(R"(, "quality": "medium", "combined": {"near_start": 250, "near_end": 900, "particle_band": 0.5})");
     EXPECT_EQ(a.combined.near_start, 250.0);
     EXPECT_EQ(a.combined.near_end, 900.0);
     EXPECT_EQ(a.combined.particle_band, 0.5);

@@ -89,7 +89,8 @@ TEST(ReferenceFog, HomogeneousSlabLitByTheSunThroughTheFog)
     const RayFog r = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
     const double t_sun = std::exp(-sigma * (H - z) / std::sin(e));
     const double phase = henyey_greenstein(glm::dot(w, light.sun_direction), g);
-    const glm::dvec3 expected = a * (std::numbers::pi * light.sun_radiance * t_sun * phase + light.ambient) * (1.0 - std::exp(-sigma * d));
+    const glm::dvec3 expected =
+        a * (std::numbers::pi * light.sun_radiance * t_sun * phase + light.ambient) * (1.0 - std::exp(-sigma * d));
     // The one lighting model (fog_lighting.hpp) says the same, at one octave and at three.
     MediumOptions optics;
     optics.albedo = a;
@@ -97,11 +98,14 @@ TEST(ReferenceFog, HomogeneousSlabLitByTheSunThroughTheFog)
     optics.scattering_octaves = 1;
     const FogLight fl{light.sun_radiance, light.ambient};
     expect_rel(fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
-                   (1.0 - std::exp(-sigma * d)), expected, 1e-12);
+                   (1.0 - std::exp(-sigma * d)),
+               expected, 1e-12);
     light.scattering_octaves = optics.scattering_octaves = 3;
     const RayFog r3 = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
-    expect_rel(r3.inscatter, fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
-                                 (1.0 - std::exp(-sigma * d)), 1e-9);
+    expect_rel(r3.inscatter,
+               fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
+                   (1.0 - std::exp(-sigma * d)),
+               1e-9);
     expect_rel(r.inscatter, expected, 1e-9);
     EXPECT_NEAR(r.transmittance, std::exp(-sigma * d), 1e-12);
 }
@@ -121,8 +125,9 @@ TEST(ReferenceFog, LookingDownThroughASlabWithTheSunOverhead)
     const RayFog r = reference_ray({&m, {}}, &ground, {10.0, 20.0, 2.0 * H}, {0.0, 0.0, -1.0}, 1e6, light);
     ASSERT_TRUE(r.hit_terrain);
     EXPECT_NEAR(r.distance, 2.0 * H, 1e-9);
-    const glm::dvec3 expected = a * std::numbers::pi * light.sun_radiance * henyey_greenstein(-1.0, g) * 0.5 * (1.0 - std::exp(-2.0 * sigma * H)) +
-                                a * light.ambient * (1.0 - std::exp(-sigma * H));
+    const glm::dvec3 expected = a * std::numbers::pi * light.sun_radiance * henyey_greenstein(-1.0, g) * 0.5 *
+            (1.0 - std::exp(-2.0 * sigma * H)) +
+        a * light.ambient * (1.0 - std::exp(-sigma * H));
     expect_rel(r.inscatter, expected, 2e-4);
     EXPECT_NEAR(r.transmittance, std::exp(-sigma * H), 1e-12);
 }
@@ -178,8 +183,8 @@ TEST(ReferenceFog, RidgeShadowInTheFog)
     // in-scattering is a (1 - exp) integral with that gap cut out.
     const double sigma = 0.004, a = 1.0, R = 200.0, z = 50.0, e = 0.3;
     const Medium m = slab(0.0, 400.0, sigma, 1.0, a, 0.0);
-    const Heightfield ridge = kiri::test::make_heightfield(401, 5, 10.0, -2000.0, -20.0,
-                                                           [R](double x, double) { return std::abs(x) < 1e-9 ? R : 0.0; });
+    const Heightfield ridge = kiri::test::make_heightfield(
+        401, 5, 10.0, -2000.0, -20.0, [R](double x, double) { return std::abs(x) < 1e-9 ? R : 0.0; });
     FogLighting light;
     light.sun_direction = {-std::cos(e), 0.0, std::sin(e)};
     light.sun_radiance = glm::dvec3(4.0);
@@ -225,7 +230,8 @@ TEST(ReferenceFog, ConvergesOnANoisyMedium)
     fine.shadow_optical_step = coarse.shadow_optical_step / 4.0;
     fine.feature_fraction = coarse.feature_fraction / 4.0;
     fine.shadow_feature_fraction = coarse.shadow_feature_fraction / 4.0;
-    for (const glm::dvec3 dir : {glm::dvec3(0.8, 0.5, -0.2), glm::dvec3(-0.3, 0.9, -0.1), glm::dvec3(0.2, -0.1, -0.6)}) {
+    for (const glm::dvec3 dir :
+         {glm::dvec3(0.8, 0.5, -0.2), glm::dvec3(-0.3, 0.9, -0.1), glm::dvec3(0.2, -0.1, -0.6)}) {
         const glm::dvec3 w = glm::normalize(dir);
         const RayFog a = reference_ray({&m, {}}, &ground, {-200.0, -300.0, 300.0}, w, 1e5, light, coarse);
         const RayFog b = reference_ray({&m, {}}, &ground, {-200.0, -300.0, 300.0}, w, 1e5, light, fine);

@@ -49,8 +49,10 @@ TEST(Scene, ErrorsNameFilePointerAndReason)
               "s.json: /image/width: expected an integer");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": {"height": 0}})"),
               "s.json: /image/height: must be in [1, 16384], got 0");
-    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,0], "fov": 180}]})"),
-              "s.json: /cameras/0/fov: must be in (0, 180), got 180");
+    EXPECT_EQ(
+        error_of(
+            R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,0], "fov": 180}]})"),
+        "s.json: /cameras/0/fov: must be in (0, 180), got 180");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,1]}]})"),
               "s.json: /cameras/0/target: equals the position: the view direction is undefined");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1]}]})"),
@@ -59,8 +61,9 @@ TEST(Scene, ErrorsNameFilePointerAndReason)
 
 TEST(Scene, UnknownKeysAreErrors)
 {
-    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "colour": 1})"),
-              "s.json: /colour: unknown key (expected one of: cameras, combined, fog, froxel, image, layers, medium, particles, quality, sun, terrain)");
+    EXPECT_EQ(
+        error_of(R"({"terrain": {"path": "t.tif"}, "colour": 1})"),
+        "s.json: /colour: unknown key (expected one of: cameras, combined, fog, froxel, image, layers, medium, particles, quality, sun, terrain)");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif", "exagerration": 2}})"),
               "s.json: /terrain/exagerration: unknown key (expected one of: cell_size, exaggeration, path, "
               "vertical_offset, vertical_scale)");
@@ -103,7 +106,8 @@ TEST(Scene, RoundTripsThroughJson)
 TEST(Scene, CamerasByNameAndAutomaticFraming)
 {
     Scene s = parse_scene(R"({"terrain": {"path": "t.tif"},
-        "cameras": [{"name": "a", "position": [1, 2, 3], "target": [4, 5, 6]}]})", "s.json", "/");
+        "cameras": [{"name": "a", "position": [1, 2, 3], "target": [4, 5, 6]}]})",
+                          "s.json", "/");
     EXPECT_EQ(s.camera("", {}, {}).name, "a");
     EXPECT_EQ(s.camera("a", {}, {}).position, glm::dvec3(1, 2, 3));
     try {
@@ -159,14 +163,15 @@ TEST(Scene, MoreErrorClasses)
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": [640, 480]})"), "s.json: /image: expected an object");
     EXPECT_EQ(error_of(R"([1, 2])"), "s.json: /: expected an object");
     EXPECT_EQ(error_of(R"({"terrain": {"path": ""}})"), "s.json: /terrain/path: must not be empty");
-    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,0], "zoom": 2}]})"),
-              "s.json: /cameras/0/zoom: unknown key (expected one of: fov, name, position, target)");
+    EXPECT_EQ(
+        error_of(R"({"terrain": {"path": "t.tif"}, "cameras": [{"position": [0,0,1], "target": [0,0,0], "zoom": 2}]})"),
+        "s.json: /cameras/0/zoom: unknown key (expected one of: fov, name, position, target)");
 }
 
 TEST(Scene, SunDirectionIsNormalisedAndAbsolutePathsKept)
 {
-    const Scene s = parse_scene(R"({"terrain": {"path": "/data/t.tif"}, "sun": {"direction": [3, 0, 4]}})", "s.json",
-                                "/scenes");
+    const Scene s =
+        parse_scene(R"({"terrain": {"path": "/data/t.tif"}, "sun": {"direction": [3, 0, 4]}})", "s.json", "/scenes");
     EXPECT_EQ(s.terrain.path, std::filesystem::path("/data/t.tif"));
     EXPECT_DOUBLE_EQ(s.sun.direction.x, 0.6);
     EXPECT_DOUBLE_EQ(s.sun.direction.y, 0.0);
@@ -217,7 +222,8 @@ TEST(Scene, FogVerticalQuantitiesFollowTheExaggeration)
 {
     const Scene s = parse_scene(R"({"terrain": {"path": "t.tif", "exaggeration": 1.5},
         "fog": {"mode": "lake", "altitude": 420, "offset": 40, "clearance": 10, "thickness": 100,
-                "smoothing": 300}})", "s.json", "/");
+                "smoothing": 300}})",
+                                "s.json", "/");
     const kiri::geometry::FogSpec w = kiri::geometry::world_fog_spec(s);
     EXPECT_EQ(w.fit.altitude, 630.0);
     EXPECT_EQ(w.fit.offset, 60.0);

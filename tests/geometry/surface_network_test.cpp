@@ -59,8 +59,8 @@ SeamStats seams(const Surface& s, const PolyMesh& m)
             const glm::dvec2 a = side_param(sa, t), b = side_param(sb, 1.0 - t);
             const PatchPoint pa = s.evaluate(fa, a.x, a.y), pb = s.evaluate(fb, b.x, b.y);
             st.gap = std::max(st.gap, glm::length(pa.position - pb.position));
-            st.angle = std::max(st.angle, std::atan2(glm::length(glm::cross(pa.normal, pb.normal)),
-                                                     glm::dot(pa.normal, pb.normal)));
+            st.angle = std::max(
+                st.angle, std::atan2(glm::length(glm::cross(pa.normal, pb.normal)), glm::dot(pa.normal, pb.normal)));
             ++st.samples;
         }
     }
@@ -130,8 +130,10 @@ TEST(SurfaceNetwork, SharedEdgesAreC0AndG1)
         EXPECT_GT(st.edges, 10) << c.name;
         EXPECT_LE(st.gap, 1e-12) << c.name;
         EXPECT_LE(st.angle, 1e-9) << c.name;
-        RecordProperty(std::string(c.name) + " max gap, max angle", std::to_string(st.gap) + ", " + std::to_string(st.angle));
-        std::printf("%-18s edges %3d samples %5d  max gap %.3g m  max normal angle %.3g rad\n", c.name, st.edges, st.samples, st.gap, st.angle);
+        RecordProperty(std::string(c.name) + " max gap, max angle",
+                       std::to_string(st.gap) + ", " + std::to_string(st.angle));
+        std::printf("%-18s edges %3d samples %5d  max gap %.3g m  max normal angle %.3g rad\n", c.name, st.edges,
+                    st.samples, st.gap, st.angle);
         // The limit surface of the same mesh is C0 and smooth too (a sanity check of the
         // harness, with OpenSubdiv's own accuracy).
         const SeamStats so = seams(*make_surface(c.mesh, SurfaceKind::catmull_clark), c.mesh);

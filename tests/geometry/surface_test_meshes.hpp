@@ -50,8 +50,8 @@ inline PolyMesh quad_split(const PolyMesh& in)
         const std::size_t n = hs.size();
         for (std::size_t k = 0; k < n; ++k) {
             const auto h = hs[k], hp = hs[(k + n - 1) % n];
-            m.add_face(std::vector<PolyMesh::VertexHandle>{vv[in.from_vertex_handle(h).idx()], ev[in.edge_handle(h).idx()],
-                                                           cv, ev[in.edge_handle(hp).idx()]});
+            m.add_face(std::vector<PolyMesh::VertexHandle>{
+                vv[in.from_vertex_handle(h).idx()], ev[in.edge_handle(h).idx()], cv, ev[in.edge_handle(hp).idx()]});
         }
     }
     return m;

@@ -17,8 +17,8 @@ using kiri::geometry::Terrain;
 
 namespace {
 
-Heightfield sample(const std::function<double(double, double)>& f, int nx, int ny, double dx, double dy,
-                   double x0, double y0)
+Heightfield sample(const std::function<double(double, double)>& f, int nx, int ny, double dx, double dy, double x0,
+                   double y0)
 {
     Heightfield hf;
     hf.nx = nx, hf.ny = ny, hf.dx = dx, hf.dy = dy, hf.x0 = x0, hf.y0 = y0;

@@ -13,8 +13,9 @@ using kiri::test::make_heightfield;
 TEST(ValleyAnalysis, TroughsOfACorrugationAreTheValleys)
 {
     // Valleys along y every 1000 m (troughs at x = 0, +-1000, ...).
-    const Heightfield hf = make_heightfield(161, 81, 25.0, -2000.0, -1000.0,
-                                            [](double x, double) { return 300.0 - 100.0 * std::cos(2.0 * M_PI * x / 1000.0); });
+    const Heightfield hf = make_heightfield(161, 81, 25.0, -2000.0, -1000.0, [](double x, double) {
+        return 300.0 - 100.0 * std::cos(2.0 * M_PI * x / 1000.0);
+    });
     ValleyOptions o;
     o.radii = {250.0};
     o.threshold = 0.5;

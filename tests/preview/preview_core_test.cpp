@@ -64,8 +64,8 @@ std::array<int, 6> runs(const Pipeline& p)
 {
     std::array<int, 6> out{};
     int i = 0;
-    for (Stage stage : {Stage::terrain, Stage::control_mesh, Stage::fit, Stage::tessellation, Stage::layer_base,
-                        Stage::views})
+    for (Stage stage :
+         {Stage::terrain, Stage::control_mesh, Stage::fit, Stage::tessellation, Stage::layer_base, Stage::views})
         out[std::size_t(i++)] = runs(p, stage);
     return out;
 }
@@ -234,9 +234,8 @@ TEST(PreviewPipeline, TheParticleCountResamplesOnlyTheParticles)
     EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 3}));
     ASSERT_TRUE(shared.particles);
     const g::Medium& m = *shared.medium;
-    const g::ParticleCloud top = g::sample_particles(m, s.particles, {}, [&](const glm::dvec3& q) {
-        return g::particle_share(s.combined, m.height_fraction(q));
-    });
+    const g::ParticleCloud top = g::sample_particles(
+        m, s.particles, {}, [&](const glm::dvec3& q) { return g::particle_share(s.combined, m.height_fraction(q)); });
     ASSERT_EQ(top.particles.size(), shared.particles->particles.size());
     EXPECT_EQ(top.particles[77].position, shared.particles->particles[77].position);
     EXPECT_NE(top.particles[77].position, more.particles->particles[77].position);
@@ -289,9 +288,8 @@ TEST(PreviewPipeline, TheLatestRequestWins)
 TEST(FogViews, FlatBlanketHasNoDeviationAndItsOffsetAsClearance)
 {
     // A plane is fitted exactly: the surface is the terrain + offset everywhere.
-    const g::Terrain flat(kiri::test::make_heightfield(41, 41, 50.0, -1000.0, -1000.0, [](double, double) {
-        return 100.0;
-    }));
+    const g::Terrain flat(
+        kiri::test::make_heightfield(41, 41, 50.0, -1000.0, -1000.0, [](double, double) { return 100.0; }));
     g::FogSpec spec;
     spec.patch_size = 500.0;
     spec.margin = 100.0;

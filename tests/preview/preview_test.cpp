@@ -96,8 +96,8 @@ Image screenshot(const std::string& extra, const std::string& scene = scene_path
     const fs::path err = kiri::test::temp_path("preview_test_stderr.txt");
     fs::remove(png);
     const std::string command = xvfb + shell_quote(KIRI_PREVIEW) + " " + shell_quote(scene) + " --frames " +
-                                std::to_string(frames) + " --width 640 --height 360 --no-ui --screenshot " +
-                                png.string() + " " + extra + " > /dev/null 2> " + err.string();
+        std::to_string(frames) + " --width 640 --height 360 --no-ui --screenshot " + png.string() + " " + extra +
+        " > /dev/null 2> " + err.string();
     EXPECT_EQ(std::system(command.c_str()), 0) << command << "\n" << kiri::test::read_all(err);
     if (log)
         *log = kiri::test::read_all(err);
@@ -210,9 +210,8 @@ TEST_F(PreviewXvfb, TheViewIsWhatKiriRenderDraws)
     // the same pixels; a GPU on one side only would differ by rounding).
     const Image preview = screenshot("--mode layers");
     const fs::path png = kiri::test::temp_path("preview_test_render.png");
-    const kiri::test::RunResult r =
-        kiri::test::run_kiri("render " + shell_quote(scene_path()) + " --mode layers --width 640 --height 360 -o " +
-                             png.string());
+    const kiri::test::RunResult r = kiri::test::run_kiri("render " + shell_quote(scene_path()) +
+                                                         " --mode layers --width 640 --height 360 -o " + png.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const Image rendered = kiri::render::read_png(png);
     fs::remove(png);
@@ -276,8 +275,8 @@ TEST_F(PreviewXvfb, CameraPathEndsAtItsLastKey)
     {
         std::ofstream out(path);
         out << "# eye, target, fov\n"
-            << first.position.x << " " << first.position.y << " " << first.position.z << "  " << first.target.x
-            << " " << first.target.y << " " << first.target.z << " " << first.fov_y_deg << "\n\n"
+            << first.position.x << " " << first.position.y << " " << first.position.z << "  " << first.target.x << " "
+            << first.target.y << " " << first.target.z << " " << first.fov_y_deg << "\n\n"
             << top.position.x << " " << top.position.y << " " << top.position.z << "  " << top.target.x << " "
             << top.target.y << " " << top.target.z << " " << top.fov_y_deg << "\n";
     }
@@ -302,8 +301,8 @@ TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSwitchesModeSavesAnd
         out << kiri::geometry::scene_to_json(scene);
     }
     const std::string command = xvfb + shell_quote(KIRI_PREVIEW_DRIVER) + " " + work.string() + " " +
-                                shell_quote(KIRI_PREVIEW) + " scene.json --mode layers --width 900 --height 520 > " +
-                                (work / "driver.txt").string() + " 2>&1";
+        shell_quote(KIRI_PREVIEW) + " scene.json --mode layers --width 900 --height 520 > " +
+        (work / "driver.txt").string() + " 2>&1";
     ASSERT_EQ(std::system(command.c_str()), 0) << kiri::test::read_all(work / "driver.txt");
     Image shot[7];
     for (int i = 1; i <= 6; ++i)
@@ -348,7 +347,7 @@ TEST(KiriPreview, NoDisplayGivesOneLineAndExitTwo)
 {
     const fs::path err = kiri::test::temp_path("preview_test_nodisplay.txt");
     const std::string command = "env -u DISPLAY -u WAYLAND_DISPLAY " + shell_quote(KIRI_PREVIEW) + " " +
-                                shell_quote(scene_path()) + " > /dev/null 2> " + err.string();
+        shell_quote(scene_path()) + " > /dev/null 2> " + err.string();
     const int status = std::system(command.c_str());
     EXPECT_EQ(WEXITSTATUS(status), 2);
     const std::string text = kiri::test::read_all(err);
@@ -375,8 +374,8 @@ TEST(KiriPreview, ScriptedOptionsAreCheckedBeforeAnyWindow)
         const std::string command = "env -u DISPLAY " + shell_quote(KIRI_PREVIEW) + " " + args + " > /dev/null 2>&1";
         return WEXITSTATUS(std::system(command.c_str()));
     };
-    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --frames 3"), 2);           // no --screenshot
-    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --save x.json"), 2);        // not scripted
-    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --view sideways"), 2);      // unknown view
+    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --frames 3"), 2);       // no --screenshot
+    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --save x.json"), 2);    // not scripted
+    EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --view sideways"), 2);  // unknown view
     EXPECT_EQ(exit_code("--help"), 0);
 }

@@ -42,9 +42,9 @@ double mean_luminance(const g::ReferenceImage& ref, const RadianceImage& backgro
 }
 
 struct Frame {
-    double height = 0.0;          // of the eye above the fog's bottom (m)
+    double height = 0.0;  // of the eye above the fog's bottom (m)
     const char* where = "";
-    double error = 0.0;           // mean relative luminance error against the reference
+    double error = 0.0;  // mean relative luminance error against the reference
     double p99 = 0.0;
     double y_gpu = 0.0, y_ref = 0.0;  // mean luminance of the frame and of the reference's
     int fog_pixels = 0;
@@ -67,11 +67,12 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
     ASSERT_GT(c.top - c.bottom, 100.0);
     const double ground = terrain.height(x, y);
     const double depth = c.top - c.bottom;
-    std::printf("    the path at (%.0f, %.0f): ground %.1f m, fog from %.1f to %.1f m (world)\n", x, y, ground, c.bottom, c.top);
+    std::printf("    the path at (%.0f, %.0f): ground %.1f m, fog from %.1f to %.1f m (world)\n", x, y, ground,
+                c.bottom, c.top);
     std::vector<Frame> path = {
-        {depth + 3000.0, "far above"},  {depth + 800.0, "above"},     {depth + 150.0, "just above"},
-        {depth + 20.0, "touching"},     {depth - 20.0, "in the top"}, {0.6 * depth, "inside"},
-        {0.3 * depth, "inside"},        {0.08 * depth, "near the base"},
+        {depth + 3000.0, "far above"}, {depth + 800.0, "above"},        {depth + 150.0, "just above"},
+        {depth + 20.0, "touching"},    {depth - 20.0, "in the top"},    {0.6 * depth, "inside"},
+        {0.3 * depth, "inside"},       {0.08 * depth, "near the base"},
     };
     if (c.bottom - ground > 30.0)
         path.push_back({-0.5 * (c.bottom - ground), "below"});
@@ -100,17 +101,18 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
         const RadianceImage without = bare.read_radiance();
         const double gl_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const g::ReferenceView view = reference_view(camera, width, height, froxel.far);
-        const g::ReferenceImage ref = g::render_reference_fog({&fog.medium, froxel.height_fog}, &terrain.heightfield(),
-                                                              view, light);
+        const g::ReferenceImage ref =
+            g::render_reference_fog({&fog.medium, froxel.height_fog}, &terrain.heightfield(), view, light);
         const FogError e = compare_frames(with_fog, without, ref);
         f.error = e.mean_relative;
         f.p99 = e.p99_relative;
         f.fog_pixels = e.fog_pixels;
         f.y_gpu = mean_luminance(with_fog);
         f.y_ref = mean_luminance(ref, without);
-        std::printf("    %-14s eye %7.0f m above the base: fog pixels %4d, mean error %.3f, p99 %.3f, Y %.4f (reference "
-                    "%.4f, %.1f s; GL %.1f s)\n",
-                    f.where, f.height, f.fog_pixels, f.error, f.p99, f.y_gpu, f.y_ref, ref.seconds, gl_seconds);
+        std::printf(
+            "    %-14s eye %7.0f m above the base: fog pixels %4d, mean error %.3f, p99 %.3f, Y %.4f (reference "
+            "%.4f, %.1f s; GL %.1f s)\n",
+            f.where, f.height, f.fog_pixels, f.error, f.p99, f.y_gpu, f.y_ref, ref.seconds, gl_seconds);
     }
     for (std::size_t i = 0; i < path.size(); ++i) {
         const Frame& f = path[i];

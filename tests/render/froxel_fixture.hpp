@@ -118,11 +118,12 @@ protected:
                                               lighting(light, options, medium));
         c.error = kiri::render::compare_fog(c.gpu, c.reference, min_depth, max_depth);
         expect_finite(c.gpu);
-        std::printf("    fog pixels %d, silhouettes %d, mean %.4f, p99 %.4f, worst %.4f, |dT| %.4f, in-scatter %.4f "
-                    "(reference %.2f s)\n",
-                    c.error.fog_pixels, c.error.silhouette_pixels, c.error.mean_relative, c.error.p99_relative,
-                    c.error.worst_relative, c.error.mean_transmittance_error, c.error.mean_inscatter_relative,
-                    c.reference.seconds);
+        std::printf(
+            "    fog pixels %d, silhouettes %d, mean %.4f, p99 %.4f, worst %.4f, |dT| %.4f, in-scatter %.4f "
+            "(reference %.2f s)\n",
+            c.error.fog_pixels, c.error.silhouette_pixels, c.error.mean_relative, c.error.p99_relative,
+            c.error.worst_relative, c.error.mean_transmittance_error, c.error.mean_inscatter_relative,
+            c.reference.seconds);
         return c;
     }
     static g::FroxelOptions small(int w, int h, int slices = 64)

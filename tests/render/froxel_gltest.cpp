@@ -80,7 +80,6 @@ TEST_F(FroxelGl, ThinLayerAt30Metres)
 
 }  // namespace
 
-
 namespace {
 
 // A hill under a homogeneous fog slab, seen from outside it.
@@ -180,7 +179,8 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     view.width = 96;
     view.height = 56;
     view.max_depth = o.far;
-    const g::ReferenceImage before = g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(sun(), o, &s.fog));
+    const g::ReferenceImage before =
+        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(sun(), o, &s.fog));
     r.render(c, 96, 56);
     const double converged = kiri::render::compare_fog(r.read_froxel_fog(), before).mean_relative;
     EXPECT_LT(converged, std::max(1.5 * still, 0.02));  // the jittered average blurs J over the tile
@@ -192,11 +192,12 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     r.render(c, 96, 56);
     const FogBuffer after = r.read_froxel_fog();
     expect_finite(after);
-    const g::ReferenceImage truth = g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog));
+    const g::ReferenceImage truth =
+        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog));
     const double stale = kiri::render::compare_fog(r.read_froxel_fog(), before).mean_relative;
     const double fresh = kiri::render::compare_fog(after, truth).mean_relative;
-    std::printf("    still %.4f, converged %.4f, after the sun moved %.4f (against the old sun %.4f)\n", still, converged,
-                fresh, stale);
+    std::printf("    still %.4f, converged %.4f, after the sun moved %.4f (against the old sun %.4f)\n", still,
+                converged, fresh, stale);
     // As close as a first frame gets (no history: one jittered sample per froxel).
     const auto without_history = [&](const SunLight& light, const Camera& cam, const g::ReferenceImage& ref) {
         Renderer q;
@@ -215,7 +216,8 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     moved.position += glm::dvec3(40.0, -30.0, 10.0);
     r.render(moved, 96, 56);
     view.eye = moved.position;
-    const g::ReferenceImage truth_moved = g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog));
+    const g::ReferenceImage truth_moved =
+        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog));
     const double moved_error = kiri::render::compare_fog(r.read_froxel_fog(), truth_moved).mean_relative;
     EXPECT_LT(moved_error, std::max(1.5 * without_history(other, moved, truth_moved), 0.01));
 }

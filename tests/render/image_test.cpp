@@ -40,7 +40,11 @@ TEST(Png, UnwritablePathThrowsAndLeavesNothing)
 TEST(Png, NotAPngIsAnInputError)
 {
     const fs::path path = kiri::test::temp_path("not_a_png.png");
-    { std::FILE* f = std::fopen(path.c_str(), "w"); std::fputs("hello", f); std::fclose(f); }
+    {
+        std::FILE* f = std::fopen(path.c_str(), "w");
+        std::fputs("hello", f);
+        std::fclose(f);
+    }
     EXPECT_THROW(kiri::render::read_png(path), kiri::InputError);
     fs::remove(path);
 }

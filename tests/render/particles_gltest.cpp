@@ -172,8 +172,8 @@ TEST_F(ParticlesGl, LightAlongAnAxisAndADiagonal)
     const g::ParticleCloud c = kiri::test::ball_cloud(800, 200.0, 35.0, 0.3);
     AttenuationBuffer b;
     b.set_particles(c);
-    for (const glm::dvec3& light : {glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(1, 1, 1),
-                                    glm::dvec3(-1, 1, -1)}) {
+    for (const glm::dvec3& light :
+         {glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0), glm::dvec3(0, -1, 0), glm::dvec3(1, 1, 1), glm::dvec3(-1, 1, -1)}) {
         b.update(light, options(48));
         const double e = mean_relative_error(b.gamma_at_particles(), g::harris_light_pass(c, light));
         EXPECT_LT(e, 0.04) << light.x << " " << light.y << " " << light.z;

@@ -69,8 +69,8 @@ TEST_F(RendererGl, KnownTerrainPointsAppearAtTheirProjectedPixels)
             // footprint on the ground at this distance bounds the error.
             const double distance = glm::length(world - camera.position);
             const double pixel_m = 2.0 * distance * std::tan(glm::radians(camera.fov_y_deg) / 2.0) / h;
-            const double slant = 1.0 / std::max(0.2, std::abs(glm::dot(glm::normalize(world - camera.position),
-                                                                      hill.normal(x, y))));
+            const double slant =
+                1.0 / std::max(0.2, std::abs(glm::dot(glm::normalize(world - camera.position), hill.normal(x, y))));
             EXPECT_LT(glm::length(*seen - world), 1.5 * pixel_m * slant) << "at " << x << ", " << y;
             EXPECT_NEAR(seen->z, hill.height(seen->x, seen->y), 0.5 * pixel_m * slant);
             ++checked;
@@ -125,7 +125,8 @@ TEST_F(RendererGl, GaussianHillMatchesReferenceImage)
     sun.direction = {0.6, -0.2, 0.5};
     renderer.set_sun(sun);
     const Image image = renderer.render(oblique_camera(), 160, 120);
-    const std::filesystem::path reference = std::filesystem::path(KIRI_TESTS_DIR) / "render/reference/gaussian_hill.png";
+    const std::filesystem::path reference =
+        std::filesystem::path(KIRI_TESTS_DIR) / "render/reference/gaussian_hill.png";
     if (std::getenv("KIRI_UPDATE_REFERENCE"))
         kiri::render::write_png_atomic(reference, image);
     const Image expected = kiri::render::read_png(reference);

@@ -28,9 +28,10 @@ std::vector<Rung> ladder(bool quick)
 {
     std::vector<Rung> r;
     const std::vector<std::pair<int, double>> layers = {{5, 0.25}, {10, 0.5}, {15, 0.5}, {30, 1.0}, {60, 1.0}};
-    const std::vector<std::pair<int, int>> particles = {{5000, 64}, {10000, 96}, {20000, 128}, {40000, 160}, {60000, 192}};
-    const std::vector<std::array<int, 3>> froxels = {{80, 45, 32}, {120, 68, 48}, {160, 90, 64}, {240, 135, 96},
-                                                     {320, 180, 128}};
+    const std::vector<std::pair<int, int>> particles = {
+        {5000, 64}, {10000, 96}, {20000, 128}, {40000, 160}, {60000, 192}};
+    const std::vector<std::array<int, 3>> froxels = {
+        {80, 45, 32}, {120, 68, 48}, {160, 90, 64}, {240, 135, 96}, {320, 180, 128}};
     const auto keep = [quick](std::size_t k) { return !quick || k % 2 == 0; };
     for (std::size_t k = 0; k < layers.size(); ++k)
         if (keep(k))
@@ -70,7 +71,8 @@ void agreement(Context& c)
 
     std::ofstream md(c.out_dir() / "agreement.md");
     md << "Camera " << camera << ", " << w << "x" << h << ", the Medium alone (no height fog); reference "
-       << judge.reference_seconds() << " s.\n\n| renderer | quality | frame (ms) | mean error | p99 error | fog pixels |\n"
+       << judge.reference_seconds()
+       << " s.\n\n| renderer | quality | frame (ms) | mean error | p99 error | fog pixels |\n"
        << "|---|---|---|---|---|---|\n";
     for (const Rung& rung : ladder(c.quick())) {
         json varied = base;
@@ -91,7 +93,9 @@ void agreement(Context& c)
 
 }  // namespace
 
-KIRI_BENCH_STAGE({"agreement", "Fog renderers of the default scene's Medium: error against the CPU reference vs frame cost",
-                  {"frame (ms)", "error_value", "mean relative luminance error", true, true, true}, agreement});
+KIRI_BENCH_STAGE({"agreement",
+                  "Fog renderers of the default scene's Medium: error against the CPU reference vs frame cost",
+                  {"frame (ms)", "error_value", "mean relative luminance error", true, true, true},
+                  agreement});
 
 }  // namespace kiri::bench

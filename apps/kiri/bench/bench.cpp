@@ -30,8 +30,7 @@ void reset_peak_rss()
 
 Context::Context(std::filesystem::path out_dir, std::filesystem::path data_dir, bool quick)
     : out_dir_(std::move(out_dir)), data_dir_(std::move(data_dir)), quick_(quick)
-{
-}
+{}
 
 Measured Context::measure(const std::function<void()>& fn, int repeats)
 {

@@ -11,9 +11,9 @@
 namespace kiri::bench {
 
 struct Row {
-    std::string series;        //!< one curve of the plot, e.g. "gregory", "opensubdiv"
-    std::string parameters;    //!< human-readable, e.g. "cells=1024^2"
-    double x = 0.0;            //!< abscissa of the plot (size, level, resolution, ...)
+    std::string series;      //!< one curve of the plot, e.g. "gregory", "opensubdiv"
+    std::string parameters;  //!< human-readable, e.g. "cells=1024^2"
+    double x = 0.0;          //!< abscissa of the plot (size, level, resolution, ...)
     double time_s = 0.0;
     std::string error_metric;  //!< e.g. "max |dp| (m)"; empty when there is none
     double error_value = 0.0;

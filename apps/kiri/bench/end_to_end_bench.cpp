@@ -57,8 +57,8 @@ void end_to_end(Context& c)
     if (!c.quick())
         sizes = {{640, 360}, {1280, 720}, {1920, 1080}};
     for (const auto& [w, h] : sizes) {
-        const ChildRun run = run_kiri({"render", scene, "-o", png, "--width", std::to_string(w), "--height",
-                                       std::to_string(h)});
+        const ChildRun run =
+            run_kiri({"render", scene, "-o", png, "--width", std::to_string(w), "--height", std::to_string(h)});
         Row row;
         row.series = "kiri render (cold start)";
         row.parameters = std::to_string(w) + "x" + std::to_string(h);
@@ -71,7 +71,9 @@ void end_to_end(Context& c)
 
 }  // namespace
 
-KIRI_BENCH_STAGE({"end_to_end", "kiri render of the default scene, cold start to PNG",
-                  {"pixels", "time_s", "time (s)", true, false}, end_to_end});
+KIRI_BENCH_STAGE({"end_to_end",
+                  "kiri render of the default scene, cold start to PNG",
+                  {"pixels", "time_s", "time (s)", true, false},
+                  end_to_end});
 
 }  // namespace kiri::bench

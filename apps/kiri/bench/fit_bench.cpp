@@ -29,7 +29,8 @@ std::string figures(const FitReport& r)
 
 // 2. Patch size against deviation from the target, clearance and time (default options,
 //    blanket mode, the whole DEM less a 500 m margin).
-KIRI_BENCH_STAGE({"fit", "Jacksboro blanket fit: patch size vs RMS deviation",
+KIRI_BENCH_STAGE({"fit",
+                  "Jacksboro blanket fit: patch size vs RMS deviation",
                   {"patch size (m)", "error_value", "RMS deviation from target (m)", true, true},
                   [](kiri::bench::Context& c) {
                       const Terrain terrain(jacksboro(c));
@@ -56,7 +57,8 @@ KIRI_BENCH_STAGE({"fit", "Jacksboro blanket fit: patch size vs RMS deviation",
 
 // 3. Growth: the DEM resampled from 256^2 to 4096^2 samples, same extent and footprint, the
 //    default fit (1000 m patches, one sample per cell); time and peak memory.
-KIRI_BENCH_STAGE({"fit_growth", "Fit cost growth with DEM size (Jacksboro resampled)",
+KIRI_BENCH_STAGE({"fit_growth",
+                  "Fit cost growth with DEM size (Jacksboro resampled)",
                   {"DEM samples", "time_s", "time (s)", true, true},
                   [](kiri::bench::Context& c) {
                       const Heightfield source = jacksboro(c);

@@ -24,8 +24,8 @@ geometry::Scene SceneJson::parse(const nlohmann::json& varied) const
     return geometry::parse_scene(varied.dump(), file.string(), file.parent_path());
 }
 
-FogJudge::FogJudge(const geometry::Scene& base, const geometry::Terrain& terrain, const std::string& camera,
-                   int width, int height)
+FogJudge::FogJudge(const geometry::Scene& base, const geometry::Terrain& terrain, const std::string& camera, int width,
+                   int height)
     : terrain_(terrain), width_(width), height_(height)
 {
     const geometry::Bounds3 b = terrain.bounds();

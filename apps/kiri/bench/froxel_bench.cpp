@@ -101,7 +101,8 @@ void lake(Context& c)
     for (const Result& r : results) {
         md << "| " << r.options.width << "x" << r.options.height << "x" << r.options.slices << " | "
            << geometry::to_string(r.options.distribution) << " | "
-           << (r.options.fog_aware ? "fog-aware, " + std::to_string(r.options.pixel_steps) + " steps" : std::string("standard"))
+           << (r.options.fog_aware ? "fog-aware, " + std::to_string(r.options.pixel_steps) + " steps"
+                                   : std::string("standard"))
            << " | " << std::lround(r.seconds * 1e3) << " | " << std::lround(ref.seconds / r.seconds) << " | "
            << r.error.mean_relative * 100.0 << " % | " << r.error.p99_relative * 100.0 << " % | "
            << r.error.mean_inscatter_relative * 100.0 << " % |\n";
@@ -232,18 +233,25 @@ void thin_layer(Context& c)
             c.add({series + ": in-scatter", "slices=" + std::to_string(slices), double(slices), 0.0,
                    "mean relative error", e[aware].mean_inscatter_relative, 0.0, 0.0});
         }
-        table << "| " << slices << " | " << e[0].mean_relative * 100.0 << " % | " << e[0].mean_inscatter_relative * 100.0
-              << " % | " << e[1].mean_relative * 100.0 << " % | " << e[1].mean_inscatter_relative * 100.0 << " % |\n";
+        table << "| " << slices << " | " << e[0].mean_relative * 100.0 << " % | "
+              << e[0].mean_inscatter_relative * 100.0 << " % | " << e[1].mean_relative * 100.0 << " % | "
+              << e[1].mean_inscatter_relative * 100.0 << " % |\n";
     }
 }
 
 }  // namespace
 
-KIRI_BENCH_STAGE({"froxel", "Froxel fog, Jacksboro fog lake: error against the CPU reference vs frame time",
-                  {"frame time (ms)", "error_value", "mean relative error of luminance", true, true}, lake});
-KIRI_BENCH_STAGE({"froxel_cost", "Froxel fog: frame cost with every pass, a static view, fog off-screen",
-                  {"case", "time_s", "frame time (s)", false, true}, cost});
-KIRI_BENCH_STAGE({"froxel_thin", "A 2 m fog layer at 30 m: error against slices, standard vs fog-aware slicing",
-                  {"slices", "error_value", "mean relative error", true, true}, thin_layer});
+KIRI_BENCH_STAGE({"froxel",
+                  "Froxel fog, Jacksboro fog lake: error against the CPU reference vs frame time",
+                  {"frame time (ms)", "error_value", "mean relative error of luminance", true, true},
+                  lake});
+KIRI_BENCH_STAGE({"froxel_cost",
+                  "Froxel fog: frame cost with every pass, a static view, fog off-screen",
+                  {"case", "time_s", "frame time (s)", false, true},
+                  cost});
+KIRI_BENCH_STAGE({"froxel_thin",
+                  "A 2 m fog layer at 30 m: error against slices, standard vs fog-aware slicing",
+                  {"slices", "error_value", "mean relative error", true, true},
+                  thin_layer});
 
 }  // namespace kiri::bench

@@ -53,8 +53,8 @@ geometry::ReferenceView FroxelBenchScene::view(int width, int height, const geom
     return render::reference_view(camera, width, height, o.far);
 }
 
-double FroxelBenchScene::frame_seconds(const geometry::FroxelOptions& o, const render::Camera& c, int width,
-                                       int height, int frames)
+double FroxelBenchScene::frame_seconds(const geometry::FroxelOptions& o, const render::Camera& c, int width, int height,
+                                       int frames)
 {
     renderer->set_froxel_fog(&fog.medium, o);
     const double t0 = fog.medium.detail().time;

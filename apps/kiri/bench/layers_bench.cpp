@@ -141,8 +141,8 @@ void error_curve(Context& c)
         geometry::SceneFog fog = s.fog(8, count);
         fog.layers.narrowing = false;
         fog.layers.opacity = 1.0 - std::pow(1.0 - s.scene.layers.opacity, 15.0 / count);
-        fog.layers.detail = 0.0;          // the noise varies per layer; compare the medium itself
-        fog.layers.enlargement = false;   // (2.10) grows with the layer index: 400 layers would be 40 % wider
+        fog.layers.detail = 0.0;         // the noise varies per layer; compare the medium itself
+        fog.layers.enlargement = false;  // (2.10) grows with the layer index: 400 layers would be 40 % wider
         return fog;
     };
     const geometry::SceneFog fine = stack(400);
@@ -162,9 +162,13 @@ void error_curve(Context& c)
 
 }  // namespace
 
-KIRI_BENCH_STAGE({"layers", "Layer stack at 1280x720: frames per second against layers (source: Table 3.2)",
-                  {"layers", "items_per_s", "frames per second", false, true}, table});
-KIRI_BENCH_STAGE({"layers_error", "Layer stack: image error against a 400-layer stack vs layer count",
-                  {"layers", "error_value", "mean |difference| (8-bit levels)", true, true}, error_curve});
+KIRI_BENCH_STAGE({"layers",
+                  "Layer stack at 1280x720: frames per second against layers (source: Table 3.2)",
+                  {"layers", "items_per_s", "frames per second", false, true},
+                  table});
+KIRI_BENCH_STAGE({"layers_error",
+                  "Layer stack: image error against a 400-layer stack vs layer count",
+                  {"layers", "error_value", "mean |difference| (8-bit levels)", true, true},
+                  error_curve});
 
 }  // namespace kiri::bench

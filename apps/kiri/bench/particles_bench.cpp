@@ -63,7 +63,8 @@ void figures(Context& c, ParticleBenchScene& s)
             break;
         const geometry::ParticleCloud cloud = ParticleBenchScene::sample(m, n);
         r.set_particles(cloud);
-        render::write_png_atomic(c.out_dir() / ("particles_cumulus_" + std::to_string(n) + ".png"), r.render(cam, 960, 540));
+        render::write_png_atomic(c.out_dir() / ("particles_cumulus_" + std::to_string(n) + ".png"),
+                                 r.render(cam, 960, 540));
     }
     // The last cloud from the south-south-west, across the light: the sun (west-north-west, 19
     // degrees up) from the left, so its top and left are lit and its right and underside lie in
@@ -123,11 +124,12 @@ void goal(Context& c, ParticleBenchScene& s, const geometry::Medium& m, std::siz
         md << "| " << k + 1 << " | " << fixed(harris[k], 3) << " | " << fixed(buffer[k] * 1e3, 1) << " | "
            << fixed(ratios[k], 0) << "x |\n";
     md << "\nMedian speed-up " << fixed(median, 0) << "x (range " << fixed(sorted.front(), 0) << "x .. "
-       << fixed(sorted.back(), 0) << "x), mean relative error " << fixed(error.mean * 100, 2) << " % (Harris's own: "
-       << fixed(harris_error * 100, 2) << " %); goal >= 100x and <= 1 %: "
-       << (median >= 100.0 && error.mean <= 0.01 ? "met" : "NOT met") << ".\n";
-    std::printf("  goal (%zu particles, 128^3): median %.0fx faster than Harris GL (%.0fx .. %.0fx), mean error %.2f %%\n",
-                n, median, sorted.front(), sorted.back(), error.mean * 100);
+       << fixed(sorted.back(), 0) << "x), mean relative error " << fixed(error.mean * 100, 2)
+       << " % (Harris's own: " << fixed(harris_error * 100, 2)
+       << " %); goal >= 100x and <= 1 %: " << (median >= 100.0 && error.mean <= 0.01 ? "met" : "NOT met") << ".\n";
+    std::printf(
+        "  goal (%zu particles, 128^3): median %.0fx faster than Harris GL (%.0fx .. %.0fx), mean error %.2f %%\n", n,
+        median, sorted.front(), sorted.back(), error.mean * 100);
 }
 
 void table(Context& c)
@@ -142,7 +144,8 @@ void table(Context& c)
     std::ofstream md(c.out_dir() / "particles_table.md");
     md << "Precompute (light pass) times in seconds, this machine beside Shimada's Table 1 (GeForce 8800 GTX); "
           "error = mean relative error of Gamma per particle against the exact Harris pass (max in brackets). "
-          "Buffer: R16F, best of " << repeats << " builds (median in brackets).\n\n"
+          "Buffer: R16F, best of "
+       << repeats << " builds (median in brackets).\n\n"
        << "| method | 9,382 | 32,914 | 60,134 |\n|---|---|---|---|\n";
     std::map<std::string, std::map<std::size_t, std::string>> cells;
     std::map<std::size_t, double> harris_s, harris_error;
@@ -158,8 +161,9 @@ void table(Context& c)
         double mean_log = 0.0;
         for (double g : exact)
             mean_log += std::log(g);
-        std::printf("  %zu particles: sampled in %.2f s (spacing %.1f m), exact pass %.2f s (%zu occluders, mean log Gamma %.2f)\n",
-                    n, sample_s, cloud.spacing, exact_s, stats.occluders, mean_log / double(n));
+        std::printf(
+            "  %zu particles: sampled in %.2f s (spacing %.1f m), exact pass %.2f s (%zu occluders, mean log Gamma %.2f)\n",
+            n, sample_s, cloud.spacing, exact_s, stats.occluders, mean_log / double(n));
         c.add({"exact Harris, CPU double (this machine)", "N=" + std::to_string(n), double(n), exact_s, "", 0.0,
                double(n) / exact_s, 0.0});
         cells["exact Harris pass, CPU, double, light-plane index (this machine)"][n] = fixed(exact_s, 3);
@@ -183,9 +187,8 @@ void table(Context& c)
             fixed(gl_s, 3) + " (error " + fixed(ge.mean * 100, 2) + " %)";
         render::HarrisGlStats coarse_stats;
         const GammaError coarse = relative_error(render::harris_light_pass_gl(cloud, s.sun, 0, &coarse_stats), exact);
-        cells["Harris, GL light buffer of r_min / 4 pixels (this machine)"][n] =
-            fixed(coarse_stats.seconds, 3) + " (" + std::to_string(coarse_stats.buffer_size) + "^2, error " +
-            fixed(coarse.mean * 100, 2) + " %)";
+        cells["Harris, GL light buffer of r_min / 4 pixels (this machine)"][n] = fixed(coarse_stats.seconds, 3) + " (" +
+            std::to_string(coarse_stats.buffer_size) + "^2, error " + fixed(coarse.mean * 100, 2) + " %)";
         cells["Harris (paper)"][n] = fixed(paper_harris.at(n), 3);
         render::AttenuationBuffer b;
         b.set_particles(cloud);
@@ -197,26 +200,29 @@ void table(Context& c)
             const BufferBuild r = time_buffer(b, s.sun, o, repeats, exact);
             builds[{res, n}] = r;
             const std::string rs = std::to_string(res);
-            c.add({"buffer " + rs + "^3 (this machine)", "N=" + std::to_string(n) + " mib=" + fixed(r.bytes / 1048576.0, 0),
-                   double(n), r.best_s, "mean relative error", r.error.mean, double(n) / r.best_s, 0.0});
-            c.add({"buffer " + rs + "^3 (paper)", "N=" + std::to_string(n), double(n), paper_buffer.at(res).at(n), "", 0.0,
-                   0.0, 0.0});
-            cells["attenuation buffer " + rs + "^3 (this machine)"][n] = fixed(r.best_s, 4) + " [" + fixed(r.median_s, 4) +
-                                                                         "] (error " + fixed(r.error.mean * 100, 2) +
-                                                                         " % [" + fixed(r.error.max * 100, 1) + " %])";
+            c.add({"buffer " + rs + "^3 (this machine)",
+                   "N=" + std::to_string(n) + " mib=" + fixed(r.bytes / 1048576.0, 0), double(n), r.best_s,
+                   "mean relative error", r.error.mean, double(n) / r.best_s, 0.0});
+            c.add({"buffer " + rs + "^3 (paper)", "N=" + std::to_string(n), double(n), paper_buffer.at(res).at(n), "",
+                   0.0, 0.0, 0.0});
+            cells["attenuation buffer " + rs + "^3 (this machine)"][n] = fixed(r.best_s, 4) + " [" +
+                fixed(r.median_s, 4) + "] (error " + fixed(r.error.mean * 100, 2) + " % [" +
+                fixed(r.error.max * 100, 1) + " %])";
             cells["proposed " + rs + "^3 (paper)"][n] = fixed(paper_buffer.at(res).at(n), 3);
-            std::printf("  %zu particles, %d^3: %.1f ms (setup %.1f, deposit %.1f, scan %.1f, upload %.1f), error %.3f %% (max %.1f %%), %.0f MiB\n",
-                        n, res, r.best_s * 1e3, r.times.setup_ms, r.times.deposit_ms, r.times.scan_ms, r.times.upload_ms,
-                        r.error.mean * 100, r.error.max * 100, r.bytes / 1048576.0);
+            std::printf(
+                "  %zu particles, %d^3: %.1f ms (setup %.1f, deposit %.1f, scan %.1f, upload %.1f), error %.3f %% (max %.1f %%), %.0f MiB\n",
+                n, res, r.best_s * 1e3, r.times.setup_ms, r.times.deposit_ms, r.times.scan_ms, r.times.upload_ms,
+                r.error.mean * 100, r.error.max * 100, r.bytes / 1048576.0);
         }
     }
     for (const std::string& row :
-         {std::string("Harris (paper)"), std::string("Harris, GL 512^2 light buffer + one read-back per particle (this machine)"),
+         {std::string("Harris (paper)"),
+          std::string("Harris, GL 512^2 light buffer + one read-back per particle (this machine)"),
           std::string("Harris, GL light buffer of r_min / 4 pixels (this machine)"),
-          std::string("exact Harris pass, CPU, double, light-plane index (this machine)"), std::string("proposed 384^3 (paper)"),
-          std::string("attenuation buffer 384^3 (this machine)"), std::string("proposed 256^3 (paper)"),
-          std::string("attenuation buffer 256^3 (this machine)"), std::string("proposed 128^3 (paper)"),
-          std::string("attenuation buffer 128^3 (this machine)")}) {
+          std::string("exact Harris pass, CPU, double, light-plane index (this machine)"),
+          std::string("proposed 384^3 (paper)"), std::string("attenuation buffer 384^3 (this machine)"),
+          std::string("proposed 256^3 (paper)"), std::string("attenuation buffer 256^3 (this machine)"),
+          std::string("proposed 128^3 (paper)"), std::string("attenuation buffer 128^3 (this machine)")}) {
         md << "| " << row;
         for (std::size_t n : shimada_counts)
             md << " | " << (cells[row].count(n) ? cells[row][n] : "");
@@ -228,7 +234,9 @@ void table(Context& c)
 
 }  // namespace
 
-KIRI_BENCH_STAGE({"particles", "Particle light pass: precompute time vs particles (Shimada Table 1)",
-                  {"particles", "time_s", "precompute time (s)", true, true}, table});
+KIRI_BENCH_STAGE({"particles",
+                  "Particle light pass: precompute time vs particles (Shimada Table 1)",
+                  {"particles", "time_s", "precompute time (s)", true, true},
+                  table});
 
 }  // namespace kiri::bench

@@ -50,16 +50,19 @@ void curves(Context& c)
                 o.resolution = res;
                 o.half_float = half;
                 const BufferBuild r = time_buffer(b, s.sun, o, repeats, exact);
-                const std::string series = std::string(half ? "R16F" : "R32F") + ", " + std::to_string(n) + " particles";
+                const std::string series =
+                    std::string(half ? "R16F" : "R32F") + ", " + std::to_string(n) + " particles";
                 const std::string params = "res=" + std::to_string(res) + " max=" + std::to_string(r.error.max) +
-                                           " mib=" + std::to_string(r.bytes / 1048576.0);
+                    " mib=" + std::to_string(r.bytes / 1048576.0);
                 c.add({series, params, double(res), r.best_s, "mean relative error of Gamma", r.error.mean,
                        double(n) / r.best_s, 0.0});
                 by_time.push_back({series, params, r.best_s, r.best_s, "", r.error.mean, 0.0, 0.0});
             }
     }
-    Stage against_time{"particles_error_time", "Attenuation buffer: per-particle error against build time (points: resolutions)",
-                       {"build time (s)", "error_value", "mean relative error of Gamma", true, true}, {}};
+    Stage against_time{"particles_error_time",
+                       "Attenuation buffer: per-particle error against build time (points: resolutions)",
+                       {"build time (s)", "error_value", "mean relative error of Gamma", true, true},
+                       {}};
     write_plot(c.out_dir() / "particles_error_time.png", against_time, by_time);
 
     // Error against the optical depth of one voxel along the light: the extinction swept at 128^3.
@@ -83,12 +86,14 @@ void curves(Context& c)
             mean_log += std::log(g);
         sweep.push_back({"128^3 R16F, " + std::to_string(n) + " particles", "sigma=" + std::to_string(sigma), per_voxel,
                          r.best_s, "", r.error.mean, 0.0, 0.0});
-        md << "| " << sigma << " | " << std::lround(3.912 / sigma) << " | " << per_voxel << " | " << mean_log / double(n)
-           << " | " << r.error.mean * 100 << " % | " << r.error.max * 100 << " % |\n";
+        md << "| " << sigma << " | " << std::lround(3.912 / sigma) << " | " << per_voxel << " | "
+           << mean_log / double(n) << " | " << r.error.mean * 100 << " % | " << r.error.max * 100 << " % |\n";
     }
-    Stage against_depth{"particles_error_depth", "Attenuation buffer at 128^3: error against a voxel's optical depth along the light",
-                        {"optical depth of a voxel along the light (beam)", "error_value", "mean relative error of Gamma", true, true},
-                        {}};
+    Stage against_depth{
+        "particles_error_depth",
+        "Attenuation buffer at 128^3: error against a voxel's optical depth along the light",
+        {"optical depth of a voxel along the light (beam)", "error_value", "mean relative error of Gamma", true, true},
+        {}};
     write_plot(c.out_dir() / "particles_error_depth.png", against_depth, sweep);
 
     // The default scene's fog: a 300 m sheet over 30 km under a 19 degree sun.
@@ -108,9 +113,9 @@ void curves(Context& c)
             o.resolution = res;
             const BufferBuild r = time_buffer(b, s.sun, o, repeats, exact);
             const auto& v = b.grid().voxel;
-            md << "| " << res << "^3 | " << (b.grid().frame == geometry::LightFrame::sheared ? "sheared" : "light") << " | "
-               << v.x << " x " << v.y << " x " << v.z << " | " << r.best_s * 1e3 << " | " << r.error.mean * 100 << " % | "
-               << r.error.max * 100 << " % |\n";
+            md << "| " << res << "^3 | " << (b.grid().frame == geometry::LightFrame::sheared ? "sheared" : "light")
+               << " | " << v.x << " x " << v.y << " x " << v.z << " | " << r.best_s * 1e3 << " | " << r.error.mean * 100
+               << " % | " << r.error.max * 100 << " % |\n";
             c.add({"Jacksboro fog, R16F", "res=" + std::to_string(res), double(res), r.best_s,
                    "mean relative error of Gamma", r.error.mean, double(n) / r.best_s, 0.0});
         }
@@ -121,7 +126,9 @@ void curves(Context& c)
 
 }  // namespace
 
-KIRI_BENCH_STAGE({"particles_error", "Attenuation buffer: per-particle error against resolution",
-                  {"resolution (voxels per side)", "error_value", "mean relative error of Gamma", true, true}, curves});
+KIRI_BENCH_STAGE({"particles_error",
+                  "Attenuation buffer: per-particle error against resolution",
+                  {"resolution (voxels per side)", "error_value", "mean relative error of Gamma", true, true},
+                  curves});
 
 }  // namespace kiri::bench

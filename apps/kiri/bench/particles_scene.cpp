@@ -10,8 +10,7 @@ namespace kiri::bench {
 ParticleBenchScene::ParticleBenchScene(const std::filesystem::path& data_dir)
     : scene(geometry::load_scene(data_dir / "scenes/jacksboro.json")), sun(glm::normalize(scene.sun.direction)),
       context(render::create_headless_context({.debug = false}))
-{
-}
+{}
 
 geometry::Medium ParticleBenchScene::cumulus(double extinction)
 {

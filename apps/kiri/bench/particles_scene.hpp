@@ -23,8 +23,8 @@ namespace kiri::bench {
 constexpr std::size_t shimada_counts[3] = {9382, 32914, 60134};
 
 struct ParticleBenchScene {
-    geometry::Scene scene;   //!< the default scene (sun, cameras, terrain path)
-    glm::dvec3 sun;          //!< towards the sun, unit
+    geometry::Scene scene;  //!< the default scene (sun, cameras, terrain path)
+    glm::dvec3 sun;         //!< towards the sun, unit
     std::unique_ptr<render::GlContext> context;
 
     explicit ParticleBenchScene(const std::filesystem::path& data_dir);
@@ -48,7 +48,7 @@ struct BufferBuild {
     std::size_t bytes = 0;
     render::AttenuationBuildTimes times;
 };
-BufferBuild time_buffer(render::AttenuationBuffer& buffer, const glm::dvec3& sun, const render::AttenuationOptions& options,
-                        int repeats, const std::vector<double>& exact);
+BufferBuild time_buffer(render::AttenuationBuffer& buffer, const glm::dvec3& sun,
+                        const render::AttenuationOptions& options, int repeats, const std::vector<double>& exact);
 
 }  // namespace kiri::bench

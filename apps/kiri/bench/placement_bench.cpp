@@ -31,7 +31,8 @@ FillOptions valley_fill()
 
 std::string size_name(int n) { return "dem=" + std::to_string(n) + "^2"; }
 
-KIRI_BENCH_STAGE({"fill", "Priority-flood fill vs DEM size (Jacksboro resampled)",
+KIRI_BENCH_STAGE({"fill",
+                  "Priority-flood fill vs DEM size (Jacksboro resampled)",
                   {"DEM cells", "time_s", "time (s)", true, true},
                   [](Context& c) {
                       const Heightfield source = jacksboro(c);
@@ -50,17 +51,20 @@ KIRI_BENCH_STAGE({"fill", "Priority-flood fill vs DEM size (Jacksboro resampled)
                           c.add({"fill to 460 m", p, cells, m.seconds, "|area / area(403x344) - 1|",
                                  std::abs(f.area_m2 / reference - 1.0), cells / m.seconds, m.peak_rss_mb});
                           FloodLevels levels;
-                          const auto all = c.measure([&] { levels = flood_levels(hf, valley_fill().seeds); }, n <= 1024 ? 3 : 1);
+                          const auto all =
+                              c.measure([&] { levels = flood_levels(hf, valley_fill().seeds); }, n <= 1024 ? 3 : 1);
                           // Check: the fill is exactly the cells whose flood level is below the top.
                           std::size_t mismatch = 0;
                           for (std::size_t k = 0; k < hf.size(); ++k)
                               mismatch += (levels.reached[k] && levels.level[k] < 460.0) != (f.mask[k] != 0);
-                          c.add({"flood levels (whole grid)", size_name(n), cells, all.seconds, "cells disagreeing with the fill",
-                                 double(mismatch), cells / all.seconds, all.peak_rss_mb});
+                          c.add({"flood levels (whole grid)", size_name(n), cells, all.seconds,
+                                 "cells disagreeing with the fill", double(mismatch), cells / all.seconds,
+                                 all.peak_rss_mb});
                       }
                   }});
 
-KIRI_BENCH_STAGE({"flow", "Flow step (pools + semi-Lagrangian stream) vs grid size",
+KIRI_BENCH_STAGE({"flow",
+                  "Flow step (pools + semi-Lagrangian stream) vs grid size",
                   {"DEM cells", "time_s", "time per step (s)", true, true},
                   [](Context& c) {
                       const Heightfield source = jacksboro(c);

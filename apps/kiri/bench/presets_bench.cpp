@@ -34,8 +34,8 @@ void presets(Context& c)
     for (std::size_t k = 0; k < sizes.size(); ++k)
         md << "---|";
     md << "---|---|\n";
-    for (geometry::Quality q : {geometry::Quality::low, geometry::Quality::medium, geometry::Quality::high,
-                                geometry::Quality::ultra}) {
+    for (geometry::Quality q :
+         {geometry::Quality::low, geometry::Quality::medium, geometry::Quality::high, geometry::Quality::ultra}) {
         nlohmann::json varied = source.root;
         varied["quality"] = geometry::to_string(q);
         judge.prepare(source.parse(varied), render::FogMode::combined);
@@ -62,7 +62,9 @@ void presets(Context& c)
 
 }  // namespace
 
-KIRI_BENCH_STAGE({"presets", "Quality presets of the default scene (combined): error against the CPU reference vs frame cost",
-                  {"frame (ms)", "error_value", "mean relative luminance error", true, true, true}, presets});
+KIRI_BENCH_STAGE({"presets",
+                  "Quality presets of the default scene (combined): error against the CPU reference vs frame cost",
+                  {"frame (ms)", "error_value", "mean relative luminance error", true, true, true},
+                  presets});
 
 }  // namespace kiri::bench

@@ -22,10 +22,14 @@ std::string quoted(const std::string& s)
 
 double column(const Row& r, const std::string& name)
 {
-    if (name == "time_s") return r.time_s;
-    if (name == "error_value") return r.error_value;
-    if (name == "items_per_s") return r.items_per_s;
-    if (name == "peak_rss_mb") return r.peak_rss_mb;
+    if (name == "time_s")
+        return r.time_s;
+    if (name == "error_value")
+        return r.error_value;
+    if (name == "items_per_s")
+        return r.items_per_s;
+    if (name == "peak_rss_mb")
+        return r.peak_rss_mb;
     return r.time_s;
 }
 
@@ -39,9 +43,9 @@ void write_csv(const std::filesystem::path& path, const Stage& stage, const std:
         out << "stage,series,parameters,x,time_s,error_metric,error_value,items_per_s,peak_rss_mb\n";
         out.precision(9);
         for (const Row& r : rows)
-            out << stage.name << ',' << quoted(r.series) << ',' << quoted(r.parameters) << ',' << r.x << ','
-                << r.time_s << ',' << quoted(r.error_metric) << ',' << r.error_value << ',' << r.items_per_s << ','
-                << r.peak_rss_mb << '\n';
+            out << stage.name << ',' << quoted(r.series) << ',' << quoted(r.parameters) << ',' << r.x << ',' << r.time_s
+                << ',' << quoted(r.error_metric) << ',' << r.error_value << ',' << r.items_per_s << ',' << r.peak_rss_mb
+                << '\n';
         if (!out)
             throw IoError(path.string(), "", "cannot write the CSV");
     }

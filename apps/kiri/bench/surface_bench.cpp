@@ -40,8 +40,8 @@ std::vector<GregoryPatch> network_patches()
     for (int k = 0; k < n; ++k)
         m.add_face(std::vector<PolyMesh::VertexHandle>{c, ring[2 * k], ring[2 * k + 1], ring[(2 * k + 2) % (2 * n)]});
     for (int k = 0; k < 2 * n; ++k)
-        m.add_face(std::vector<PolyMesh::VertexHandle>{ring[k], outer[k], outer[(k + 1) % (2 * n)],
-                                                       ring[(k + 1) % (2 * n)]});
+        m.add_face(
+            std::vector<PolyMesh::VertexHandle>{ring[k], outer[k], outer[(k + 1) % (2 * n)], ring[(k + 1) % (2 * n)]});
     std::mt19937 rng(20261122);
     std::uniform_real_distribution<double> dz(-20.0, 20.0);
     for (auto v : m.vertices())
@@ -145,10 +145,10 @@ void run_surface(Context& ctx)
         char ratio[64];
         std::snprintf(ratio, sizeof ratio, " speedup=%.2fx", rk / ro);
         const std::string params = "batch=" + std::to_string(batch) + " patches=" + std::to_string(patches.size());
-        ctx.add(Row{"kiri gregory evaluate_into", params + ratio, double(batch), tk.seconds,
-                    "max |p_kiri - p_osd| (m)", err, rk, tk.peak_rss_mb});
-        ctx.add(Row{"opensubdiv GREGORY_BASIS", params, double(batch), to.seconds, "max |p_kiri - p_osd| (m)", err,
-                    ro, to.peak_rss_mb});
+        ctx.add(Row{"kiri gregory evaluate_into", params + ratio, double(batch), tk.seconds, "max |p_kiri - p_osd| (m)",
+                    err, rk, tk.peak_rss_mb});
+        ctx.add(Row{"opensubdiv GREGORY_BASIS", params, double(batch), to.seconds, "max |p_kiri - p_osd| (m)", err, ro,
+                    to.peak_rss_mb});
         run_regular_grid(ctx, batch, u, v, total / 4);
     }
 }

@@ -75,16 +75,15 @@ void run_terrain(Context& ctx)
         // one (detail lost below the source's 403 x 344, interpolation above it).
         Heightfield hf;
         // Median of 3: the first call of the run also pays GDAL's driver registration.
-        const auto load =
-            ctx.measure([&] { hf = kiri::geometry::resample(kiri::geometry::load_dem(path), n, n); }, 3);
+        const auto load = ctx.measure([&] { hf = kiri::geometry::resample(kiri::geometry::load_dem(path), n, n); }, 3);
         double dev = 0.0;
         {
             const Terrain t(hf);
             for (const auto& p : probe)
                 dev = std::max(dev, std::abs(t.height(p.x, p.y) - source_terrain.height(p.x, p.y)));
         }
-        ctx.add(Row{"load+resample", params, cells, load.seconds, "max |h - h_source| (m)", dev,
-                    cells / load.seconds, load.peak_rss_mb});
+        ctx.add(Row{"load+resample", params, cells, load.seconds, "max |h - h_source| (m)", dev, cells / load.seconds,
+                    load.peak_rss_mb});
 
         // Mesh build, alone in its Terrain so the row's memory is the mesh's.
         {
@@ -131,7 +130,9 @@ void run_terrain(Context& ctx)
     }
 }
 
-KIRI_BENCH_STAGE({"terrain", "Terrain: load + resample, mesh, AABB tree, rays (Jacksboro resampled)",
-                  {"cells", "time_s", "time (s)", true, true}, run_terrain});
+KIRI_BENCH_STAGE({"terrain",
+                  "Terrain: load + resample, mesh, AABB tree, rays (Jacksboro resampled)",
+                  {"cells", "time_s", "time (s)", true, true},
+                  run_terrain});
 
 }  // namespace

@@ -47,8 +47,7 @@ bool footprint_editor(geometry::FogSpec& f, const geometry::Terrain* terrain)
         return true;
     }
     switch (kind) {
-    case whole_terrain:
-        return slider("margin (m)", f.margin, 0.0, 10000.0, "%.0f");
+    case whole_terrain: return slider("margin (m)", f.margin, 0.0, 10000.0, "%.0f");
     case rectangle: {
         auto& p = f.footprint.polygon;  // (min), (max.x, min.y), (max), (min.x, max.y)
         double lo[2] = {p[0].x, p[0].y}, hi[2] = {p[2].x, p[2].y};
@@ -130,7 +129,7 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const F
         o.mode = mode == 0 ? geometry::FitMode::blanket : geometry::FitMode::lake;
         if (o.mode == geometry::FitMode::lake && o.altitude == 0.0 && terrain)  // a third of the way up
             o.altitude = (terrain->bounds().min.z + (terrain->bounds().max.z - terrain->bounds().min.z) / 3.0) /
-                         scene.terrain.exaggeration;
+                scene.terrain.exaggeration;
         changed = true;
     }
     ImGui::TextDisabled("heights in metres of the DEM");

@@ -50,7 +50,9 @@ bool froxel_panel(geometry::Scene& scene, const render::FroxelStats& stats)
         changed |= slider("scale height (m)", h.scale_height, 10.0, 5000.0, "%.0f", true);
     }
     ImGui::TextDisabled("updates %d, shadow map %d; %s", stats.updates, stats.shadow_map_updates,
-                        !stats.enabled ? "off" : stats.visible ? "in view" : "out of view");
+                        !stats.enabled      ? "off"
+                            : stats.visible ? "in view"
+                                            : "out of view");
     return changed;
 }
 

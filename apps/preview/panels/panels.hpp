@@ -17,16 +17,16 @@ struct ViewOptions {
     //! How the fog is drawn: its layer stack, particles lit through the attenuation buffer,
     //! froxel volumetric fog, or all of them together.
     enum class Mode { layers, particles, froxel, combined };
-    bool fog = true;                        //!< the fog, drawn as `mode` says
+    bool fog = true;  //!< the fog, drawn as `mode` says
     Mode mode = Mode::layers;
-    Surface surface = Surface::hidden;      //!< the fitted base surface as a translucent mesh
+    Surface surface = Surface::hidden;  //!< the fitted base surface as a translucent mesh
     float surface_opacity = 0.6f;
-    bool tessellation = false;              //!< the surface's triangles as lines
-    bool patches = false;                   //!< patch borders
+    bool tessellation = false;  //!< the surface's triangles as lines
+    bool patches = false;       //!< patch borders
     bool control_mesh = false;
-    bool play_time = false;                 //!< advance the layers' time (wind, dissipation) in real time
-    float render_scale = 1.0f;              //!< of the window's framebuffer
-    bool reduce_while_moving = true;        //!< render at moving_scale while the camera moves
+    bool play_time = false;           //!< advance the layers' time (wind, dissipation) in real time
+    float render_scale = 1.0f;        //!< of the window's framebuffer
+    bool reduce_while_moving = true;  //!< render at moving_scale while the camera moves
     float moving_scale = 0.5f;
     bool show_panel = true, show_stats = true;
 
@@ -63,8 +63,8 @@ struct UiState {
 
 //! Frame times measured by the window (the renderer's own are in its FrameStats).
 struct FrameTimes {
-    double loop_ms = 0.0;     //!< the last iteration of the window loop (UI included)
-    double scene_ms = 0.0;    //!< the last 3D frame (Renderer::draw)
+    double loop_ms = 0.0;   //!< the last iteration of the window loop (UI included)
+    double scene_ms = 0.0;  //!< the last 3D frame (Renderer::draw)
     int scene_width = 0, scene_height = 0;
     long long scene_frames = 0, reused_frames = 0;  //!< drawn, and shown again unchanged
 };
@@ -89,9 +89,9 @@ bool view_panel(ViewOptions& view, const FogViews* views);
 void camera_panel(const geometry::Scene& scene, UiState& ui);
 void file_panel(UiState& ui);
 struct FogCounts {
-    bool froxels = false;             //!< froxel fog on the renderer
-    std::size_t particles = 0;        //!< in the cloud on the renderer (0: none)
-    int attenuation_builds = 0;       //!< since the start
+    bool froxels = false;               //!< froxel fog on the renderer
+    std::size_t particles = 0;          //!< in the cloud on the renderer (0: none)
+    int attenuation_builds = 0;         //!< since the start
     double attenuation_build_ms = 0.0;  //!< the last build
 };
 void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, const FogCounts& fog,

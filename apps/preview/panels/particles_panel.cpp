@@ -12,7 +12,8 @@
 
 namespace kiri::preview {
 
-bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* cloud, const render::AttenuationBuffer& buffer)
+bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* cloud,
+                     const render::AttenuationBuffer& buffer)
 {
     if (!ImGui::CollapsingHeader("Particles"))
         return false;

@@ -48,7 +48,7 @@ bool region_editor(geometry::FillRegionSpec& r)
     int kind = int(r.seeds);
     // A mask comes from a file: offered only when the scene has one.
     const char* kinds = r.seeds == geometry::SeedKind::mask ? "seed points\0every basin\0valleys\0mask file\0"
-                                                             : "seed points\0every basin\0valleys\0";
+                                                            : "seed points\0every basin\0valleys\0";
     if (ImGui::Combo("seeds", &kind, kinds) && kind != int(r.seeds)) {
         r.seeds = geometry::SeedKind(kind);
         if (r.seeds == geometry::SeedKind::points && r.points.empty())

@@ -110,8 +110,8 @@ void color_legend(const char* low, const char* high, bool diverging)
             return to_u32(diverging ? diverging_color(2.0 * t - 1.0) : sequential_color(t));
         };
         const ImU32 a = color(t0), b = color(t1);
-        draw->AddRectFilledMultiColor(ImVec2(p.x + width * float(t0), p.y), ImVec2(p.x + width * float(t1), p.y + height),
-                                      a, b, b, a);
+        draw->AddRectFilledMultiColor(ImVec2(p.x + width * float(t0), p.y),
+                                      ImVec2(p.x + width * float(t1), p.y + height), a, b, b, a);
     }
     ImGui::Dummy(ImVec2(width, height));
     ImGui::TextUnformatted(low);

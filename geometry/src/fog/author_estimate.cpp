@@ -15,11 +15,11 @@ namespace {
 // an OpenMesh TriMesh in double with normals, texcoords and a property per vertex, its
 // ~2 faces and ~3 edges; the fit's per-sample stencil rows; a layer vertex kept for export
 // plus its share of the glTF buffer.
-constexpr double terrain_cell_bytes = 420.0;     // heights, mask, target grids, mesh + AABB for export
-constexpr double sample_bytes = 260.0;           // (face, u, v) + 16..20 stencil weights
-constexpr double patch_bytes = 4096.0;           // per-face stencils, control mesh, normal equations
+constexpr double terrain_cell_bytes = 420.0;  // heights, mask, target grids, mesh + AABB for export
+constexpr double sample_bytes = 260.0;        // (face, u, v) + 16..20 stencil weights
+constexpr double patch_bytes = 4096.0;        // per-face stencils, control mesh, normal equations
 constexpr double tessellation_vertex_bytes = 260.0;
-constexpr double layer_vertex_bytes = 96.0;      // LayerVertex (40) + glTF floats (28) + OBJ/PLY buffers
+constexpr double layer_vertex_bytes = 96.0;  // LayerVertex (40) + glTF floats (28) + OBJ/PLY buffers
 constexpr double mib = 1024.0 * 1024.0;
 
 }  // namespace

@@ -103,9 +103,12 @@ glm::dvec3 BaseSurface::evaluate(int face, double u, double v, glm::dvec3* du, g
 
 FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
 {
-    for (auto [v, name] : {std::pair{o.offset, "offset"}, {o.smoothing_length, "smoothing"},
-                           {o.altitude, "altitude"}, {o.clearance, "clearance"},
-                           {o.thickness, "thickness"}, {o.smoothness, "smoothness"}})
+    for (auto [v, name] : {std::pair{o.offset, "offset"},
+                           {o.smoothing_length, "smoothing"},
+                           {o.altitude, "altitude"},
+                           {o.clearance, "clearance"},
+                           {o.thickness, "thickness"},
+                           {o.smoothness, "smoothness"}})
         require_finite(v, name);
     if (o.smoothness < 0.0)
         throw InputError("", "smoothness", "must be >= 0");
@@ -172,26 +175,26 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
         sys[f].L.assign(n * n, 0.0);
         sys[f].r.assign(n, 0.0);
         for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
-                stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
-                glm::dvec2 xy(0.0);
-                for (std::size_t k = 0; k < n; ++k)
-                    xy += fw.w[k] * rel[S[k]];
-                xy += origin;
-                sample_terrain[id] = terrain.height(xy.x, xy.y);
-                sample_target[id] = target_at(xy.x, xy.y);
-                if (!has_data(hf, xy.x, xy.y)) {
-                    ++rep.nodata_samples;
-                    continue;
-                }
-                sample_state[id] = 1;
-                ++valid_samples;
-                // Blanket: fit the upper envelope of the target and terrain + clearance, so the
-                // constraint iterations below start close to feasible.
-                const double fit_to = o.mode == FitMode::blanket
-                                          ? std::max(sample_target[id], sample_terrain[id] + o.clearance)
-                                          : sample_target[id];
-                add_row(sys[f], fw.w, alpha[f], fit_to);
+            stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
+            glm::dvec2 xy(0.0);
+            for (std::size_t k = 0; k < n; ++k)
+                xy += fw.w[k] * rel[S[k]];
+            xy += origin;
+            sample_terrain[id] = terrain.height(xy.x, xy.y);
+            sample_target[id] = target_at(xy.x, xy.y);
+            if (!has_data(hf, xy.x, xy.y)) {
+                ++rep.nodata_samples;
+                continue;
             }
+            sample_state[id] = 1;
+            ++valid_samples;
+            // Blanket: fit the upper envelope of the target and terrain + clearance, so the
+            // constraint iterations below start close to feasible.
+            const double fit_to = o.mode == FitMode::blanket
+                ? std::max(sample_target[id], sample_terrain[id] + o.clearance)
+                : sample_target[id];
+            add_row(sys[f], fw.w, alpha[f], fit_to);
+        }
         if (o.smoothness <= 0.0)
             continue;
         for (int qb = 0; qb < 3; ++qb)
@@ -244,10 +247,10 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
         for (std::size_t id = 0; id < sample_state.size(); ++id)
             below += (sample_state[id] & 1) && sample_terrain[id] < sample_target[id];
         if (below == 0)
-            throw InputError("", "altitude",
-                             (o.altitude_grid ? std::string("the fog top")
-                                              : "the lake altitude " + num(o.altitude) + " m") +
-                                 " is below the terrain everywhere in the footprint: no fog");
+            throw InputError(
+                "", "altitude",
+                (o.altitude_grid ? std::string("the fog top") : "the lake altitude " + num(o.altitude) + " m") +
+                    " is below the terrain everywhere in the footprint: no fog");
     }
 
     // A faint pull of each control height towards the target under it keeps the system
@@ -357,25 +360,25 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
                     min_slack[f] = inf;
                 }
                 for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
-                                if (!(sample_state[id] & 1))
-                            continue;
-                        const bool was = sample_state[id] & 2;
-                        if (!was && !full)
-                            continue;
-                        stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
-                        const double need = sample_terrain[id] + o.clearance, lack = need - surface_z(f, fw.w);
-                        worst = std::max(worst, lack);
-                        if (was)
-                            raise[id] = float(std::max(0.0, double(raise[id]) + lack));
-                        const bool hold = double(raise[id]) + lack > 0.0;
-                        sample_state[id] = std::uint8_t(1 | (hold ? 2 : 0));
-                        if (hold) {
-                            add_row(sys[f], fw.w, rho * alpha[f], need + double(raise[id]));
-                            ++held;
-                        } else if (full) {
-                            min_slack[f] = std::min(min_slack[f], -lack - double(raise[id]));
-                        }
+                    if (!(sample_state[id] & 1))
+                        continue;
+                    const bool was = sample_state[id] & 2;
+                    if (!was && !full)
+                        continue;
+                    stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
+                    const double need = sample_terrain[id] + o.clearance, lack = need - surface_z(f, fw.w);
+                    worst = std::max(worst, lack);
+                    if (was)
+                        raise[id] = float(std::max(0.0, double(raise[id]) + lack));
+                    const bool hold = double(raise[id]) + lack > 0.0;
+                    sample_state[id] = std::uint8_t(1 | (hold ? 2 : 0));
+                    if (hold) {
+                        add_row(sys[f], fw.w, rho * alpha[f], need + double(raise[id]));
+                        ++held;
+                    } else if (full) {
+                        min_slack[f] = std::min(min_slack[f], -lack - double(raise[id]));
                     }
+                }
             }
             rep.active_constraints = held;
             if (worst < best_worst) {
@@ -406,17 +409,17 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
             for (int f = 0; f < nf; ++f) {
                 const auto& S = stencils_->support(f);
                 for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
-                                if (!(sample_state[id] & 1))
-                            continue;
-                        stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
-                        const double lack = sample_terrain[id] + o.clearance - surface_z(f, fw.w);
-                        if (lack <= 0.0)
-                            continue;
-                        worst = std::max(worst, lack);
-                        for (std::size_t k = 0; k < S.size(); ++k)
-                            if (fw.w[k] > 1e-12)
-                                up[S[k]] = std::max(up[S[k]], lack * (1.0 + 1e-9));
-                    }
+                    if (!(sample_state[id] & 1))
+                        continue;
+                    stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
+                    const double lack = sample_terrain[id] + o.clearance - surface_z(f, fw.w);
+                    if (lack <= 0.0)
+                        continue;
+                    worst = std::max(worst, lack);
+                    for (std::size_t k = 0; k < S.size(); ++k)
+                        if (fw.w[k] > 1e-12)
+                            up[S[k]] = std::max(up[S[k]], lack * (1.0 + 1e-9));
+                }
             }
             if (worst == 0.0)
                 break;
@@ -432,11 +435,11 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     double worst = 0.0;
     for (int f = 0; f < nf; ++f)
         for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
-                stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
-                z_all[id] = surface_z(f, fw.w);
-                if (sample_state[id] & 1)
-                    worst = std::max(worst, sample_terrain[id] + o.clearance - z_all[id]);
-            }
+            stencils_->weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
+            z_all[id] = surface_z(f, fw.w);
+            if (sample_state[id] & 1)
+                worst = std::max(worst, sample_terrain[id] + o.clearance - z_all[id]);
+        }
     if (o.mode == FitMode::blanket && worst > 0.0) {
         rep.lift = worst * (1.0 + 1e-12) + 1e-12;
         for (double& z : hts)

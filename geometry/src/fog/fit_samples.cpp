@@ -10,7 +10,7 @@ namespace kiri::geometry {
 namespace {
 
 struct FaceFrame {
-    glm::ivec2 cell{0};            // grid cell of the face (min corner index)
+    glm::ivec2 cell{0};                    // grid cell of the face (min corner index)
     glm::dvec2 c0{0.0}, e1{0.0}, e2{0.0};  // cell coordinates of corner 0 and the u, v axes
     bool affine = false;
 };
@@ -30,7 +30,7 @@ FitSamples make_fit_samples(const ControlMesh& cm, const FaceStencils& st, const
         rel[v] = glm::dvec2(p[0], p[1]) - cm.origin;
         const glm::dvec2 rest = cm.grid_origin + h * glm::dvec2(cm.grid[v]) - cm.origin;
         at_rest[v] = glm::dvec2(std::abs(rest.x - rel[v].x), std::abs(rest.y - rel[v].y)) == glm::dvec2(0.0) ||
-                     (std::abs(rest.x - rel[v].x) < 1e-9 * h && std::abs(rest.y - rel[v].y) < 1e-9 * h);
+            (std::abs(rest.x - rel[v].x) < 1e-9 * h && std::abs(rest.y - rel[v].y) < 1e-9 * h);
     }
     // Faces by grid cell, and each face's (u, v) <-> cell-coordinate frame.
     glm::ivec2 lo(1 << 30), hi(-(1 << 30));

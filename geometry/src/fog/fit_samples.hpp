@@ -17,7 +17,7 @@ struct FitSamples {
     std::vector<std::size_t> face_begin;  // samples of face f: [face_begin[f], face_begin[f+1])
     std::vector<glm::dvec2> uv;
     long long grid_vertex_samples = 0;
-    long long unresolved = 0;             // grid vertices near the border whose (u, v) Newton missed
+    long long unresolved = 0;  // grid vertices near the border whose (u, v) Newton missed
 };
 
 //! (u, v) of every terrain grid vertex inside the control mesh (closed form on affine faces,

@@ -21,9 +21,9 @@ FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string
                        const std::filesystem::path& base_dir)
 {
     const Reader r{file};
-    r.only(j, p, {"footprint", "surface", "patch_size", "mode", "offset", "smoothing", "altitude", "clearance",
-                  "thickness", "smoothness", "samples_per_patch", "tessellation", "fill", "outline", "flow",
-                  "burn_off"});
+    r.only(j, p,
+           {"footprint", "surface", "patch_size", "mode", "offset", "smoothing", "altitude", "clearance", "thickness",
+            "smoothness", "samples_per_patch", "tessellation", "fill", "outline", "flow", "burn_off"});
     FogSpec s;
     s.placement = parse_placement(j, r, p, base_dir);
     if (s.placement)
@@ -94,8 +94,9 @@ FogSpec parse_fog_spec(const json& j, const std::string& file, const std::string
     if (j.contains("thickness"))
         s.fit.thickness = r.positive(j["thickness"], p + "/thickness");
     if (s.fit.mode == FitMode::blanket && s.fit.clearance > s.fit.thickness)
-        r.fail(p + "/clearance", "clearance " + std::to_string(s.fit.clearance) +
-                                     " m is larger than the fog thickness " + std::to_string(s.fit.thickness) + " m");
+        r.fail(p + "/clearance",
+               "clearance " + std::to_string(s.fit.clearance) + " m is larger than the fog thickness " +
+                   std::to_string(s.fit.thickness) + " m");
     if (j.contains("smoothness"))
         s.fit.smoothness = r.non_negative(j["smoothness"], p + "/smoothness");
     if (j.contains("samples_per_patch"))
@@ -191,12 +192,9 @@ std::string author_report_json(const FogSpec& spec, const AuthoredSurface& a)
                    {"patch_level_min", lo},
                    {"patch_level_max", hi}};
     j["tessellation"] = {{"max_error_m", a.tessellation.max_error}};
-    j["timings_s"] = {{"control_mesh", a.seconds_control_mesh},
-                      {"fit", a.seconds_fit},
-                      {"fit_target", f.seconds_target},
-                      {"fit_assemble", f.seconds_assemble},
-                      {"fit_solve", f.seconds_solve},
-                      {"tessellate", a.seconds_tessellate}};
+    j["timings_s"] = {{"control_mesh", a.seconds_control_mesh}, {"fit", a.seconds_fit},
+                      {"fit_target", f.seconds_target},         {"fit_assemble", f.seconds_assemble},
+                      {"fit_solve", f.seconds_solve},           {"tessellate", a.seconds_tessellate}};
     return j.dump(2) + "\n";
 }
 

@@ -91,7 +91,7 @@ double sample_bilinear(const Heightfield& hf, double x, double y)
     const int i = std::min(int(fx), hf.nx - 2), j = std::min(int(fy), hf.ny - 2);
     const double s = fx - i, t = fy - j;
     return (1 - t) * ((1 - s) * hf.at(i, j) + s * hf.at(i + 1, j)) +
-           t * ((1 - s) * hf.at(i, j + 1) + s * hf.at(i + 1, j + 1));
+        t * ((1 - s) * hf.at(i, j + 1) + s * hf.at(i + 1, j + 1));
 }
 
 bool has_data(const Heightfield& hf, double x, double y)

@@ -42,7 +42,7 @@ int orient(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, double eps)
 bool on_segment(glm::dvec2 a, glm::dvec2 b, glm::dvec2 p)
 {
     return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
-           p.y <= std::max(a.y, b.y);
+        p.y <= std::max(a.y, b.y);
 }
 
 bool segments_meet(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d, double eps)
@@ -51,16 +51,15 @@ bool segments_meet(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d, doubl
     const int o3 = orient(c, d, a, eps), o4 = orient(c, d, b, eps);
     if (o1 != o2 && o3 != o4 && o1 * o2 <= 0 && o3 * o4 <= 0 && (o1 || o2) && (o3 || o4))
         return true;
-    return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) ||
-           (o3 == 0 && on_segment(c, d, a)) || (o4 == 0 && on_segment(c, d, b));
+    return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) || (o3 == 0 && on_segment(c, d, a)) ||
+        (o4 == 0 && on_segment(c, d, b));
 }
 
 bool inside(const std::vector<glm::dvec2>& p, glm::dvec2 q)
 {
     bool in = false;
     for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-        if ((p[i].y > q.y) != (p[j].y > q.y) &&
-            q.x < (p[j].x - p[i].x) * (q.y - p[i].y) / (p[j].y - p[i].y) + p[i].x)
+        if ((p[i].y > q.y) != (p[j].y > q.y) && q.x < (p[j].x - p[i].x) * (q.y - p[i].y) / (p[j].y - p[i].y) + p[i].x)
             in = !in;
     }
     return in;
@@ -201,8 +200,8 @@ void validate_footprint(const Footprint& footprint, const std::string& label)
             check_apart(polys[a], polys[b], a, b, label);
 }
 
-ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrain,
-                               const ControlMeshOptions& options, const std::string& label)
+ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrain, const ControlMeshOptions& options,
+                               const std::string& label)
 {
     validate_footprint(footprint, label);
     const double h = options.patch_size;
@@ -227,9 +226,9 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
             if (q.x < hf.x0 - tol || q.x > hf.x_max() + tol || q.y < hf.y0 - tol || q.y > hf.y_max() + tol) {
                 std::ostringstream s;
                 s.precision(10);
-                s << (polys.size() > 1 ? "polygon " + std::to_string(k) + ": " : "") << "vertex " << i << " "
-                  << fmt(q) << " lies outside the terrain [" << hf.x0 << ", " << hf.x_max() << "] x [" << hf.y0
-                  << ", " << hf.y_max() << "] (footprints are not clipped)";
+                s << (polys.size() > 1 ? "polygon " + std::to_string(k) + ": " : "") << "vertex " << i << " " << fmt(q)
+                  << " lies outside the terrain [" << hf.x0 << ", " << hf.x_max() << "] x [" << hf.y0 << ", "
+                  << hf.y_max() << "] (footprints are not clipped)";
                 throw InputError(label, "footprint", s.str());
             }
         }
@@ -355,7 +354,10 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
                     int level = 2;
                     for (int c = 0; c < 4; ++c)
                         if (t[q[c]] > 0.0)
-                            level = std::min(level, corner_of[q[c]] ? 2 : out.mesh.valence(PolyMesh::VertexHandle(q[c])) == 2 ? 0 : 1);
+                            level = std::min(level,
+                                             corner_of[q[c]]                                           ? 2
+                                                 : out.mesh.valence(PolyMesh::VertexHandle(q[c])) == 2 ? 0
+                                                                                                       : 1);
                     for (int c = 0; c < 4; ++c) {
                         const int l = corner_of[q[c]] ? 2 : out.mesh.valence(PolyMesh::VertexHandle(q[c])) == 2 ? 0 : 1;
                         if (l == level || round == 11)

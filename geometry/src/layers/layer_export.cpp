@@ -149,11 +149,12 @@ void write_layers_glb(const std::filesystem::path& path, const LayerBase& base, 
         nodes.push_back({{"name", "layer " + std::to_string(layer.index)}, {"mesh", int(meshes.size()) - 1}});
         children.push_back(int(nodes.size()) - 1);
     }
-    json materials = json::array({{{"name", "fog layer"},
-                                   {"pbrMetallicRoughness",
-                                    {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
-                                   {"alphaMode", "BLEND"},
-                                   {"doubleSided", true}}});
+    json materials =
+        json::array({{{"name", "fog layer"},
+                      {"pbrMetallicRoughness",
+                       {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}},
+                      {"alphaMode", "BLEND"},
+                      {"doubleSided", true}}});
     if (terrain && terrain->n_vertices() > 0) {
         std::vector<float> positions, tnormals;
         positions.reserve(terrain->n_vertices() * 3);
@@ -166,9 +167,10 @@ void write_layers_glb(const std::filesystem::path& path, const LayerBase& base, 
         for (auto f : terrain->faces())
             for (auto v : terrain->fv_range(f))
                 tris.push_back(std::uint32_t(v.idx()));
-        materials.push_back({{"name", "terrain"},
-                             {"pbrMetallicRoughness",
-                              {{"baseColorFactor", {0.32, 0.36, 0.22, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}});
+        materials.push_back(
+            {{"name", "terrain"},
+             {"pbrMetallicRoughness",
+              {{"baseColorFactor", {0.32, 0.36, 0.22, 1.0}}, {"metallicFactor", 0.0}, {"roughnessFactor", 1.0}}}});
         json primitive = {{"attributes", {{"POSITION", b.accessor(positions, 3, "VEC3", true)}}},
                           {"indices", b.indices(tris)},
                           {"material", 1}};
@@ -193,18 +195,19 @@ void write_layers_glb(const std::filesystem::path& path, const LayerBase& base, 
                        {"godot_fog_density", engines.godot_density}};
     if (sigma > 0.0 && std::isfinite(sigma))
         fog_optics["visibility_m"] = visibility_from_extinction(sigma);
-    json gltf = {{"asset", {{"version", "2.0"}, {"generator", "kiri"}, {"extras", {{"kiri_fog_optics", fog_optics}}}}},
-                 {"scene", 0},
-                 {"scenes", json::array({{{"nodes", json::array({int(nodes.size()) - 1})}}})},
-                 {"nodes", nodes},
-                 {"meshes", meshes},
-                 {"materials", materials},
-                 {"textures", json::array({{{"sampler", 0}, {"source", 0}}})},
-                 {"images", json::array({{{"bufferView", image_view}, {"mimeType", "image/png"}}})},
-                 {"samplers", json::array({{{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 33071}, {"wrapT", 33071}}})},
-                 {"accessors", b.accessors},
-                 {"bufferViews", b.views},
-                 {"buffers", json::array({{{"byteLength", b.bin.size()}}})}};
+    json gltf = {
+        {"asset", {{"version", "2.0"}, {"generator", "kiri"}, {"extras", {{"kiri_fog_optics", fog_optics}}}}},
+        {"scene", 0},
+        {"scenes", json::array({{{"nodes", json::array({int(nodes.size()) - 1})}}})},
+        {"nodes", nodes},
+        {"meshes", meshes},
+        {"materials", materials},
+        {"textures", json::array({{{"sampler", 0}, {"source", 0}}})},
+        {"images", json::array({{{"bufferView", image_view}, {"mimeType", "image/png"}}})},
+        {"samplers", json::array({{{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 33071}, {"wrapT", 33071}}})},
+        {"accessors", b.accessors},
+        {"bufferViews", b.views},
+        {"buffers", json::array({{{"byteLength", b.bin.size()}}})}};
     std::string text = gltf.dump();
     while (text.size() % 4)
         text.push_back(' ');
@@ -263,9 +266,10 @@ void write_layers_ply(const std::filesystem::path& path, const LayerBase& base, 
     for (const LayerMesh& layer : layers)
         for (std::size_t i = 0; i < nv; ++i) {
             const LayerVertex& v = layer.vertices[i];
-            const float f[9] = {float(v.position.x),     float(v.position.y),     float(v.position.z),
-                                float(base.normal[i].x), float(base.normal[i].y), float(base.normal[i].z),
-                                float(base.atlas_uv[i].x), float(base.atlas_uv[i].y), float(exported_alpha(v, options))};
+            const float f[9] = {
+                float(v.position.x),       float(v.position.y),       float(v.position.z),
+                float(base.normal[i].x),   float(base.normal[i].y),   float(base.normal[i].z),
+                float(base.atlas_uv[i].x), float(base.atlas_uv[i].y), float(exported_alpha(v, options))};
             out.write(reinterpret_cast<const char*>(f), sizeof f);
             const std::int32_t index = layer.index;
             out.write(reinterpret_cast<const char*>(&index), 4);

@@ -10,9 +10,10 @@ LayerOptions parse_layer_options(const json& j, const std::string& file)
 {
     const JsonReader r{file};
     const std::string p = "/layers";
-    r.only(j, p, {"count", "max_count", "spacing_divisor", "narrowing", "enlargement", "enlargement_rate", "opacity",
-                  "texture_size", "fade_width", "gray", "ground_fade", "detail", "detail_scale",
-                  "dissipation_half_life", "wind", "time", "shading", "resolution"});
+    r.only(j, p,
+           {"count", "max_count", "spacing_divisor", "narrowing", "enlargement", "enlargement_rate", "opacity",
+            "texture_size", "fade_width", "gray", "ground_fade", "detail", "detail_scale", "dissipation_half_life",
+            "wind", "time", "shading", "resolution"});
     LayerOptions o;
     if (j.contains("count"))
         o.count = r.integer(j["count"], p + "/count", 1, 1000);

@@ -83,9 +83,9 @@ LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, con
     const double n = c.count;
     const double fade_in = std::clamp(n + 1.0 - i, 0.0, 1.0);
     // (2.7), or the medium's profile 1 - (1 - top_density) h, equal to it at top_density 0.1.
-    v.alpha = fade_in * (o.shading == LayerShading::medium
-                             ? 1.0 - (1.0 - o.optics.top_density) * std::min(double(i), n) / n
-                             : layer_alpha(std::min(double(i), n), n));
+    v.alpha = fade_in *
+        (o.shading == LayerShading::medium ? 1.0 - (1.0 - o.optics.top_density) * std::min(double(i), n) / n
+                                           : layer_alpha(std::min(double(i), n), n));
     v.exponent = c.spacing / (o.thickness / o.count);
     const double scale = 1.0 + i * o.enlargement_rate * c.sin_theta;
     const glm::dvec2 xy = centre + scale * (glm::dvec2(point) - centre);

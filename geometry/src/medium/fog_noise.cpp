@@ -18,7 +18,10 @@ struct Lattice {
         for (float& x : v)
             x = u(rng);
     }
-    float at(int i, int j) const { return v[std::size_t(((j % cells) + cells) % cells) * cells + ((i % cells) + cells) % cells]; }
+    float at(int i, int j) const
+    {
+        return v[std::size_t(((j % cells) + cells) % cells) * cells + ((i % cells) + cells) % cells];
+    }
     double sample(double x, double y) const  // x, y in lattice cells
     {
         const int i = int(std::floor(x)), j = int(std::floor(y));
@@ -41,7 +44,8 @@ std::vector<float> make_tile(int size)
         for (int x = 0; x < size; ++x) {
             double n = 0.0;
             for (int o = 0; o < 3; ++o)
-                n += weights[o] * octaves[o].sample(double(x) / size * octaves[o].cells, double(y) / size * octaves[o].cells);
+                n += weights[o] *
+                    octaves[o].sample(double(x) / size * octaves[o].cells, double(y) / size * octaves[o].cells);
             tile[std::size_t(y) * size + x] = float(std::fmin(std::fmax(n, 0.0), 1.0));
         }
     return tile;

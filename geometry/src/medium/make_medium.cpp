@@ -70,8 +70,8 @@ Medium make_medium(const LayerBase& base, const LayerOptions& layers, const Terr
                     continue;
                 const std::size_t k = std::size_t(j) * g.nx + i;
                 g.bottom[k] = wa * a.z + wb * b.z + wc * c.z;
-                g.coverage[k] = atlas_alpha(base.texture, wa * base.atlas_uv[ia] + wb * base.atlas_uv[ib] +
-                                                              wc * base.atlas_uv[ic]);
+                g.coverage[k] =
+                    atlas_alpha(base.texture, wa * base.atlas_uv[ia] + wb * base.atlas_uv[ib] + wc * base.atlas_uv[ic]);
             }
     }
 

@@ -10,9 +10,11 @@ MediumOptions parse_medium_options(const json& j, const std::string& file)
 {
     const JsonReader r{file};
     const std::string p = "/medium";
-    r.only(j, p, {"extinction", "visibility", "liquid_water_content", "droplet_radius", "albedo", "anisotropy",
-                  "top_density", "grid_spacing", "max_grid_side", "scattering_octaves"});
-    const int given = int(j.contains("extinction")) + int(j.contains("visibility")) + int(j.contains("liquid_water_content"));
+    r.only(j, p,
+           {"extinction", "visibility", "liquid_water_content", "droplet_radius", "albedo", "anisotropy", "top_density",
+            "grid_spacing", "max_grid_side", "scattering_octaves"});
+    const int given =
+        int(j.contains("extinction")) + int(j.contains("visibility")) + int(j.contains("liquid_water_content"));
     if (given > 1)
         r.fail(p, "give only one of extinction, visibility and liquid_water_content (each sets the extinction)");
     if (j.contains("droplet_radius") && !j.contains("liquid_water_content"))
@@ -24,7 +26,8 @@ MediumOptions parse_medium_options(const json& j, const std::string& file)
         o.extinction = extinction_from_visibility(r.positive(j["visibility"], p + "/visibility"));
     if (j.contains("liquid_water_content")) {
         const double lwc = r.positive(j["liquid_water_content"], p + "/liquid_water_content");
-        const double radius = j.contains("droplet_radius") ? r.positive(j["droplet_radius"], p + "/droplet_radius") : 7.0;
+        const double radius =
+            j.contains("droplet_radius") ? r.positive(j["droplet_radius"], p + "/droplet_radius") : 7.0;
         o.extinction = extinction_from_liquid_water(lwc, radius);
     }
     if (o.extinction > 1e3)  // a visibility of 4 mm: no fog is that dense, and the renderers' steps lose it
@@ -46,9 +49,12 @@ MediumOptions parse_medium_options(const json& j, const std::string& file)
 
 json medium_options_to_json(const MediumOptions& o)
 {
-    return {{"extinction", o.extinction},     {"albedo", o.albedo},
-            {"anisotropy", o.anisotropy},     {"top_density", o.top_density},
-            {"grid_spacing", o.grid_spacing}, {"max_grid_side", o.max_grid_side},
+    return {{"extinction", o.extinction},
+            {"albedo", o.albedo},
+            {"anisotropy", o.anisotropy},
+            {"top_density", o.top_density},
+            {"grid_spacing", o.grid_spacing},
+            {"max_grid_side", o.max_grid_side},
             {"scattering_octaves", o.scattering_octaves}};
 }
 

@@ -35,7 +35,7 @@ double extinction_from_liquid_water(double lwc_g_per_m3, double droplet_radius_u
     require_positive(lwc_g_per_m3, "liquid water content");
     require_positive(droplet_radius_um, "droplet radius");
     return 3.0 * droplet_extinction_efficiency * lwc_g_per_m3 /
-           (4.0 * water_density_g_per_m3 * droplet_radius_um * 1e-6);
+        (4.0 * water_density_g_per_m3 * droplet_radius_um * 1e-6);
 }
 
 double henyey_greenstein(double cos_theta, double g)

@@ -28,7 +28,8 @@ AttenuationVolume build_attenuation_cpu(const ParticleCloud& cloud, const LightG
     std::vector<double> sum(grid.voxel_count(), 0.0);
     const auto at = [&](int i, int j, int k) { return (std::size_t(k) * ny + j) * nx + i; };
     for (const Particle& p : cloud.particles)
-        for_each_deposit(grid, p, cloud.forward_scattering, [&](int i, int j, int k, double log_g) { sum[at(i, j, k)] += log_g; });
+        for_each_deposit(grid, p, cloud.forward_scattering,
+                         [&](int i, int j, int k, double log_g) { sum[at(i, j, k)] += log_g; });
     v.log_gamma.resize(sum.size());
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
@@ -76,7 +77,7 @@ double self_log_gamma(const LightGrid& g, const Particle& self, double forward, 
             // Depth taps at or beyond the start hold the particle (the prefix sum).
             const double depth = (z.a >= start ? 1.0 - z.t : 0.0) + (z.b >= start ? z.t : 0.0);
             sum += (di ? x.t : 1.0 - x.t) * (dj ? y.t : 1.0 - y.t) * depth *
-                   footprint_log_gain(rho, self.radius, self.optical_depth, self.albedo, forward);
+                footprint_log_gain(rho, self.radius, self.optical_depth, self.albedo, forward);
         }
     return sum;
 }
@@ -84,7 +85,8 @@ double self_log_gamma(const LightGrid& g, const Particle& self, double forward, 
 double particle_gamma(const AttenuationVolume& v, const ParticleCloud& cloud, std::size_t k)
 {
     const Particle& p = cloud.particles[k];
-    const double log_gamma = sample_log_gamma(v, p.position) - self_log_gamma(v.grid, p, cloud.forward_scattering, p.position);
+    const double log_gamma =
+        sample_log_gamma(v, p.position) - self_log_gamma(v.grid, p, cloud.forward_scattering, p.position);
     return std::exp(std::clamp(log_gamma, min_log_gamma, 0.0));
 }
 

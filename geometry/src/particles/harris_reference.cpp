@@ -40,9 +40,8 @@ std::vector<std::size_t> sun_order(const std::vector<double>& height)
 {
     std::vector<std::size_t> order(height.size());
     std::iota(order.begin(), order.end(), std::size_t(0));
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return height[a] > height[b] || (height[a] == height[b] && a < b);
-    });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return height[a] > height[b] || (height[a] == height[b] && a < b); });
     return order;
 }
 
@@ -69,7 +68,9 @@ std::vector<double> harris_light_pass(const ParticleCloud& cloud, const glm::dve
     // Columns of the light plane, cells of the largest radius; each cell lists its particles in
     // sun order, so a receiver reads the occluders before it and stops.
     const double cell = std::max(r_max, 1e-9);
-    const auto key = [](long long i, long long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(std::uint32_t(j)); };
+    const auto key = [](long long i, long long j) {
+        return (std::uint64_t(i) << 32) ^ std::uint64_t(std::uint32_t(j));
+    };
     std::unordered_map<std::uint64_t, std::vector<std::size_t>> cells;
     for (std::size_t i : order)
         cells[key((long long)std::floor(pu[i] / cell), (long long)std::floor(pv[i] / cell))].push_back(i);

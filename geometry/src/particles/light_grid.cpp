@@ -72,7 +72,8 @@ glm::dvec3 LightGrid::light_coordinates(const glm::dvec3& p) const
 glm::dvec3 LightGrid::to_grid(const glm::dvec3& p) const
 {
     const glm::dvec3 q = light_coordinates(p);
-    return {(q.x - origin.x) / voxel.x, (q.y - origin.y) / voxel.y, (q.z - shear_u * q.x - shear_v * q.y - origin.z) / voxel.z};
+    return {(q.x - origin.x) / voxel.x, (q.y - origin.y) / voxel.y,
+            (q.z - shear_u * q.x - shear_v * q.y - origin.z) / voxel.z};
 }
 
 glm::dmat4 LightGrid::world_to_texture() const

@@ -23,8 +23,9 @@ ParticleOptions parse_particle_options(const json& j, const std::string& file)
 {
     const JsonReader r{file};
     const std::string p = "/particles";
-    r.only(j, p, {"count", "spacing", "radius_scale", "radius", "albedo", "extinction", "forward_scattering", "seed",
-                  "candidates", "resolution", "format", "frame", "soft_edge"});
+    r.only(j, p,
+           {"count", "spacing", "radius_scale", "radius", "albedo", "extinction", "forward_scattering", "seed",
+            "candidates", "resolution", "format", "frame", "soft_edge"});
     if (j.contains("count") && j.contains("spacing"))
         r.fail(p, "give count or spacing, not both (each sets the number of particles)");
     ParticleOptions o;
@@ -80,9 +81,12 @@ ParticleOptions parse_particle_options(const json& j, const std::string& file)
 
 json particle_options_to_json(const ParticleOptions& o)
 {
-    json j = {{"radius_scale", o.radius_scale}, {"seed", o.seed},
-              {"candidates", o.candidates},     {"resolution", o.resolution},
-              {"format", o.half_float ? "r16f" : "r32f"}, {"frame", frame_name(o.frame)},
+    json j = {{"radius_scale", o.radius_scale},
+              {"seed", o.seed},
+              {"candidates", o.candidates},
+              {"resolution", o.resolution},
+              {"format", o.half_float ? "r16f" : "r32f"},
+              {"frame", frame_name(o.frame)},
               {"soft_edge", o.soft_edge}};
     if (o.spacing > 0.0)
         j["spacing"] = o.spacing;

@@ -30,7 +30,8 @@ void validate_particle_options(const ParticleOptions& o, const std::string& labe
         throw InputError(label, p + "spacing", "must be a finite number >= 0 (metres; 0: use count)");
     if (!(o.radius_scale > 0.0) || !(o.radius_scale <= 100.0))
         throw InputError(label, p + "radius_scale", "must be in (0, 100]");
-    if (!(o.radius_min >= 0.0) || !std::isfinite(o.radius_min) || !(o.radius_max >= 0.0) || !std::isfinite(o.radius_max))
+    if (!(o.radius_min >= 0.0) || !std::isfinite(o.radius_min) || !(o.radius_max >= 0.0) ||
+        !std::isfinite(o.radius_max))
         throw InputError(label, p + "radius", "must be finite numbers >= 0 (metres; 0: automatic)");
     if (o.radius_min > 0.0 && o.radius_max > 0.0 && o.radius_min > o.radius_max)
         throw InputError(label, p + "radius", "the minimum is above the maximum");
@@ -39,7 +40,8 @@ void validate_particle_options(const ParticleOptions& o, const std::string& labe
     if (!(o.extinction >= 0.0) || !std::isfinite(o.extinction) || o.extinction > 1e3)
         throw InputError(label, p + "extinction", "must be in [0, 1000] (1/m; 0: the medium's)");
     if (!(o.forward_scattering <= 1.0) || std::isnan(o.forward_scattering))
-        throw InputError(label, p + "forward_scattering", "must be in [0, 1] (or absent: from the medium's anisotropy)");
+        throw InputError(label, p + "forward_scattering",
+                         "must be in [0, 1] (or absent: from the medium's anisotropy)");
     if (!(o.candidates >= 1.0 && o.candidates <= 50.0))
         throw InputError(label, p + "candidates", "must be in [1, 50]");
     if (o.resolution < 16 || o.resolution > 512)
@@ -70,7 +72,8 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
         const std::size_t give_up = std::max<std::size_t>(wanted, 1000) * 2000;
         for (std::size_t t = 0; candidates.size() < wanted; ++t) {
             if (t > give_up)
-                throw InputError(label, "/particles", "the medium's fog is too thin to sample (almost every point is empty)");
+                throw InputError(label, "/particles",
+                                 "the medium's fog is too thin to sample (almost every point is empty)");
             const glm::dvec3 p = box.min + extent * glm::dvec3(uniform(rng), uniform(rng), uniform(rng));
             double d = medium.density(p);
             if (weight && d > 0.0)  // a share of the Medium: still below d_max
@@ -89,8 +92,8 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
         const double integral = box_volume * d_max * double(hits) / double(trials);
         const double n = std::round(integral / std::pow(options.spacing, 3.0));
         if (n > max_particles)
-            throw LimitError(label, "/particles/spacing", "gives " + std::to_string(std::llround(n)) +
-                                                              " particles, above the limit of 2000000");
+            throw LimitError(label, "/particles/spacing",
+                             "gives " + std::to_string(std::llround(n)) + " particles, above the limit of 2000000");
         count = std::size_t(std::max(n, 1.0));
     }
     const double wanted = std::ceil(double(count) * options.candidates);
@@ -109,8 +112,8 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     ParticleCloud cloud;
     cloud.anisotropy = medium.options().anisotropy;
     cloud.scattering_octaves = medium.options().scattering_octaves;
-    cloud.forward_scattering = options.forward_scattering >= 0.0 ? options.forward_scattering
-                                                                 : forward_scattering_fraction(cloud.anisotropy);
+    cloud.forward_scattering =
+        options.forward_scattering >= 0.0 ? options.forward_scattering : forward_scattering_fraction(cloud.anisotropy);
     cloud.density_integral = integral;
     cloud.spacing = spacing_full;
     cloud.candidate_count = candidates.size();

@@ -11,9 +11,9 @@ namespace kiri::geometry {
 namespace {
 
 using detail::FloodItem;
-using detail::RadixHeap;
 using detail::key_value;
 using detail::order_key;
+using detail::RadixHeap;
 
 std::string num(double v)
 {
@@ -173,9 +173,9 @@ FogFill fill_fog(const Heightfield& hf, const FillOptions& o, const std::string&
     }
     if (seeds.empty())
         throw InputError(label, "top",
-                         "the fog top " + num(o.top / unit) + " m is at or below every seed (the lowest seed's ground is " +
-                             num(lowest / unit) + " m" + (lift > 0.0 ? ", plus min_thickness " + num(lift / unit) + " m" : "") +
-                             "): no fog");
+                         "the fog top " + num(o.top / unit) +
+                             " m is at or below every seed (the lowest seed's ground is " + num(lowest / unit) + " m" +
+                             (lift > 0.0 ? ", plus min_thickness " + num(lift / unit) + " m" : "") + "): no fog");
 
     FogFill f;
     f.nx = hf.nx;

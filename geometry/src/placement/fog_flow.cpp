@@ -10,9 +10,9 @@
 namespace kiri::geometry {
 namespace {
 
-constexpr double kDrag = 1.5e-3;        // C_d of the wind on the fog's top
+constexpr double kDrag = 1.5e-3;  // C_d of the wind on the fog's top
 constexpr double kGravity = 9.81;
-constexpr double kTheta = 280.0;        // K, a cool night's potential temperature
+constexpr double kTheta = 280.0;  // K, a cool night's potential temperature
 
 // Bilinear sample of a cell-centred field at grid coordinates (fx, fy), clamped to the grid.
 template <class T>
@@ -24,7 +24,7 @@ double bilinear(const std::vector<T>& a, int nx, int ny, double fx, double fy)
     const double s = fx - i, t = fy - j;
     const std::size_t k = std::size_t(j) * nx + i;
     return (1 - t) * ((1 - s) * double(a[k]) + s * double(a[k + 1])) +
-           t * ((1 - s) * double(a[k + nx]) + s * double(a[k + nx + 1]));
+        t * ((1 - s) * double(a[k + nx]) + s * double(a[k + nx + 1]));
 }
 
 void check(bool ok, const std::string& label, const char* key, const std::string& why)

@@ -150,8 +150,9 @@ void write_mask_png(const std::filesystem::path& path, const Heightfield& g, con
     if (!mem || !png)
         throw IoError(path.string(), "mask", "GDAL has no PNG driver");
     Dataset src(mem->Create("", g.nx, g.ny, 1, GDT_Byte, nullptr));
-    if (!src || src->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, g.nx, g.ny, data.data(), g.nx, g.ny, GDT_Byte, 0, 0,
-                                                nullptr) != CE_None)
+    if (!src ||
+        src->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, g.nx, g.ny, data.data(), g.nx, g.ny, GDT_Byte, 0, 0, nullptr) !=
+            CE_None)
         throw IoError(path.string(), "mask", "cannot build the image" + QuietGdal::last());
     // No georeferencing in the PNG (no .aux.xml beside it): the mask is a plain picture.
     char** options = CSLSetNameValue(nullptr, "WORLDFILE", "NO");
@@ -177,8 +178,9 @@ std::vector<std::uint8_t> read_mask(const std::filesystem::path& path, const Hei
     const int w = ds->GetRasterXSize(), h = ds->GetRasterYSize();
     if (w != g.nx || h != g.ny)
         throw InputError(label, field,
-                         "the mask " + path.filename().string() + " is " + std::to_string(w) + " x " + std::to_string(h) +
-                             " pixels, the terrain " + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " cells");
+                         "the mask " + path.filename().string() + " is " + std::to_string(w) + " x " +
+                             std::to_string(h) + " pixels, the terrain " + std::to_string(g.nx) + " x " +
+                             std::to_string(g.ny) + " cells");
     std::vector<double> raw(std::size_t(w) * h);
     if (ds->GetRasterBand(1)->RasterIO(GF_Read, 0, 0, w, h, raw.data(), w, h, GDT_Float64, 0, 0, nullptr) != CE_None)
         throw InputError(label, field, "cannot read the mask " + path.string() + QuietGdal::last());

@@ -237,7 +237,8 @@ bool respects(const Footprint& f, const Heightfield& g, const std::vector<std::u
             if (a.y == b.y)
                 continue;
             const double lo = std::min(a.y, b.y), hi = std::max(a.y, b.y);
-            const int j0 = std::max(0, int(std::ceil((lo - g.y0) / g.dy))), j1 = std::min(ny - 1, int(std::floor((hi - g.y0) / g.dy)));
+            const int j0 = std::max(0, int(std::ceil((lo - g.y0) / g.dy))),
+                      j1 = std::min(ny - 1, int(std::floor((hi - g.y0) / g.dy)));
             for (int j = j0; j <= j1; ++j) {
                 const double y = g.y_of(j);
                 if (y < lo || y >= hi)  // half-open: a vertex on the line counts once
@@ -268,14 +269,16 @@ bool respects(const Footprint& f, const Heightfield& g, const std::vector<std::u
 
 }  // namespace
 
-MaskOutline mask_outline(const Heightfield& g, std::vector<std::uint8_t> mask, const std::vector<std::uint8_t>& growable,
-                         const OutlineOptions& o, const std::string& label)
+MaskOutline mask_outline(const Heightfield& g, std::vector<std::uint8_t> mask,
+                         const std::vector<std::uint8_t>& growable, const OutlineOptions& o, const std::string& label)
 {
     const int nx = g.nx, ny = g.ny;
     if (mask.size() != g.size() || (!growable.empty() && growable.size() != g.size()))
-        throw InputError(label, "mask", "the mask does not have the terrain's " + std::to_string(nx) + " x " +
-                                            std::to_string(ny) + " cells");
-    if (!(o.margin >= 0.0) || !(o.tolerance >= 0.0) || !(o.min_area >= 0.0) || !std::isfinite(o.margin + o.tolerance + o.min_area))
+        throw InputError(
+            label, "mask",
+            "the mask does not have the terrain's " + std::to_string(nx) + " x " + std::to_string(ny) + " cells");
+    if (!(o.margin >= 0.0) || !(o.tolerance >= 0.0) || !(o.min_area >= 0.0) ||
+        !std::isfinite(o.margin + o.tolerance + o.min_area))
         throw InputError(label, "mask", "margin, tolerance and min_area must be finite and >= 0");
     const std::vector<std::uint8_t> required = mask;
     if (o.margin > 0.0 && !growable.empty())

@@ -72,7 +72,7 @@ PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double pa
     if (spec.regions.empty())
         throw InputError(label, "/fog/fill", "needs at least one region (an object with a top and seeds)");
     PlacedFog out;
-    std::vector<double> profile_bottom;   // per cell, the regions' blended medium bottom
+    std::vector<double> profile_bottom;  // per cell, the regions' blended medium bottom
     std::vector<std::uint8_t> profiled;
     for (std::size_t r = 0; r < spec.regions.size(); ++r) {
         const FillRegionSpec& region = spec.regions[r];
@@ -83,12 +83,8 @@ PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double pa
         fo.max_thickness = region.max_thickness;
         fo.message_scale = spec.exaggeration;
         switch (region.seeds) {
-        case SeedKind::points:
-            fo.seeds.points = region.points;
-            break;
-        case SeedKind::all:
-            fo.seeds.all_basins = true;
-            break;
+        case SeedKind::points: fo.seeds.points = region.points; break;
+        case SeedKind::all: fo.seeds.all_basins = true; break;
         case SeedKind::valleys: {
             const auto t0 = std::chrono::steady_clock::now();
             ValleyMap v = scoped(label, prefix, [&] { return analyse_valleys(hf, region.valleys); });
@@ -101,9 +97,7 @@ PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double pa
                 out.valleys = std::move(v);
             break;
         }
-        case SeedKind::mask:
-            fo.seeds.mask = read_mask(region.mask_path, hf, label, prefix + "/seeds/mask");
-            break;
+        case SeedKind::mask: fo.seeds.mask = read_mask(region.mask_path, hf, label, prefix + "/seeds/mask"); break;
         }
         auto t0 = std::chrono::steady_clock::now();
         FogFill fill = scoped(label, prefix, [&] { return fill_fog(hf, fo); });
@@ -177,8 +171,8 @@ PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double pa
     out.medium_bottom = hf.z;
     for (std::size_t k = 0; k < hf.size(); ++k)
         if (out.columns.mask[k])
-            out.medium_bottom[k] = std::min(out.columns.bottom[k],
-                                            profiled.empty() || !profiled[k] ? out.columns.bottom[k] : profile_bottom[k]);
+            out.medium_bottom[k] = std::min(
+                out.columns.bottom[k], profiled.empty() || !profiled[k] ? out.columns.bottom[k] : profile_bottom[k]);
 
     // The lake target and where the footprint may grow: ground the fog top passes under.
     std::vector<std::uint8_t> growable(hf.size(), 0);

@@ -7,7 +7,8 @@ namespace {
 
 using json = nlohmann::json;
 
-FillRegionSpec read_region(const json& j, const JsonReader& r, const std::string& p, const std::filesystem::path& base_dir)
+FillRegionSpec read_region(const json& j, const JsonReader& r, const std::string& p,
+                           const std::filesystem::path& base_dir)
 {
     r.only(j, p, {"top", "seeds", "valleys", "min_thickness", "max_thickness", "profile"});
     FillRegionSpec s;
@@ -15,7 +16,8 @@ FillRegionSpec read_region(const json& j, const JsonReader& r, const std::string
         r.fail(p + "/top", "missing: the fog-top altitude (metres of the DEM), the inversion the fog fills up to");
     s.top = r.number(j["top"], p + "/top");
     if (!j.contains("seeds"))
-        r.fail(p + "/seeds", "missing: seed points [[x, y], ...] (local metres), \"all\", \"valleys\" or {\"mask\": FILE}");
+        r.fail(p + "/seeds",
+               "missing: seed points [[x, y], ...] (local metres), \"all\", \"valleys\" or {\"mask\": FILE}");
     const json& seeds = j["seeds"];
     const std::string sp = p + "/seeds";
     if (seeds.is_array()) {
@@ -51,7 +53,8 @@ FillRegionSpec read_region(const json& j, const JsonReader& r, const std::string
             if (!v["radii"].is_array() || v["radii"].empty() || v["radii"].size() > 8)
                 r.fail(vp + "/radii", "expected an array of 1 to 8 radii (metres)");
             for (std::size_t k = 0; k < v["radii"].size(); ++k)
-                s.valleys.radii.push_back(r.in_range(v["radii"][k], vp + "/radii/" + std::to_string(k), 0.0, 1e7, true));
+                s.valleys.radii.push_back(
+                    r.in_range(v["radii"][k], vp + "/radii/" + std::to_string(k), 0.0, 1e7, true));
         }
     }
     if (j.contains("min_thickness"))
@@ -67,8 +70,9 @@ FillRegionSpec read_region(const json& j, const JsonReader& r, const std::string
 
 FlowOptions read_flow(const json& j, const JsonReader& r, const std::string& p, bool& evaporation_given)
 {
-    r.only(j, p, {"wind", "duration", "time_step", "coupling", "inversion_strength", "spread", "max_speed",
-                  "evaporation_depth", "min_thickness"});
+    r.only(j, p,
+           {"wind", "duration", "time_step", "coupling", "inversion_strength", "spread", "max_speed",
+            "evaporation_depth", "min_thickness"});
     FlowOptions o;
     if (!j.contains("wind"))
         r.fail(p + "/wind", "missing: the wind [east, north] in m/s");
@@ -147,9 +151,10 @@ std::optional<PlacementSpec> parse_placement(const json& fog, const JsonReader& 
     }
     for (const char* key : {"mode", "footprint", "altitude", "thickness", "offset", "smoothing", "clearance"})
         if (fog.contains(key))
-            r.fail(p + "/" + key,
-                   std::string("a fill sets this itself (a lake at the fog top over the footprint the terrain gives): ") +
-                       "leave it out, or leave out /fog/fill");
+            r.fail(
+                p + "/" + key,
+                std::string("a fill sets this itself (a lake at the fog top over the footprint the terrain gives): ") +
+                    "leave it out, or leave out /fog/fill");
     PlacementSpec s;
     const json& fill = fog["fill"];
     const std::string fp = p + "/fill";
@@ -186,21 +191,15 @@ void placement_to_json(const PlacementSpec& s, json& fog)
         json j;
         j["top"] = g.top;
         switch (g.seeds) {
-        case SeedKind::points:
-            j["seeds"] = point_array(g.points);
-            break;
-        case SeedKind::all:
-            j["seeds"] = "all";
-            break;
+        case SeedKind::points: j["seeds"] = point_array(g.points); break;
+        case SeedKind::all: j["seeds"] = "all"; break;
         case SeedKind::valleys:
             j["seeds"] = "valleys";
             j["valleys"] = {{"threshold", g.valleys.threshold}};
             if (!g.valleys.radii.empty())
                 j["valleys"]["radii"] = g.valleys.radii;
             break;
-        case SeedKind::mask:
-            j["seeds"] = {{"mask", g.mask_path.string()}};
-            break;
+        case SeedKind::mask: j["seeds"] = {{"mask", g.mask_path.string()}}; break;
         }
         j["min_thickness"] = g.min_thickness;
         j["max_thickness"] = g.max_thickness;
@@ -216,17 +215,22 @@ void placement_to_json(const PlacementSpec& s, json& fog)
     fog["outline"] = outline;
     if (s.flow) {
         const FlowOptions& o = *s.flow;
-        fog["flow"] = {{"wind", {o.wind.x, o.wind.y}}, {"duration", o.duration}, {"time_step", o.time_step},
-                       {"coupling", o.coupling},       {"inversion_strength", o.inversion_strength},
-                       {"spread", o.spread},           {"max_speed", o.max_speed},
+        fog["flow"] = {{"wind", {o.wind.x, o.wind.y}},
+                       {"duration", o.duration},
+                       {"time_step", o.time_step},
+                       {"coupling", o.coupling},
+                       {"inversion_strength", o.inversion_strength},
+                       {"spread", o.spread},
+                       {"max_speed", o.max_speed},
                        {"min_thickness", o.min_thickness}};
         if (s.evaporation_given)
             fog["flow"]["evaporation_depth"] = o.evaporation_depth;
     }
     if (s.burn_off) {
         const BurnOffOptions& o = *s.burn_off;
-        fog["burn_off"] = {{"time", o.time},           {"day_of_year", o.day_of_year}, {"burn_rate", o.burn_rate},
-                           {"lift_rate", o.lift_rate}, {"min_thickness", o.min_thickness}, {"step_minutes", o.step_minutes}};
+        fog["burn_off"] = {
+            {"time", o.time},           {"day_of_year", o.day_of_year},     {"burn_rate", o.burn_rate},
+            {"lift_rate", o.lift_rate}, {"min_thickness", o.min_thickness}, {"step_minutes", o.step_minutes}};
         if (s.latitude_given)
             fog["burn_off"]["latitude"] = o.latitude;
     }

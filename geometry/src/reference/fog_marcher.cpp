@@ -103,7 +103,8 @@ void FogMarcher::march_view(const glm::dvec3& o, const glm::dvec3& w, double t_e
                 dt = b - t;
             double sm = 0.0;
             if (in_shell) {
-                const double s1 = sigma_medium(o + w * (t + gauss_lo * dt)), s2 = sigma_medium(o + w * (t + gauss_hi * dt));
+                const double s1 = sigma_medium(o + w * (t + gauss_lo * dt)),
+                             s2 = sigma_medium(o + w * (t + gauss_hi * dt));
                 sm = 0.5 * (s1 + s2);
                 sigma_estimate = std::max(s1, s2);
             } else {
@@ -177,7 +178,8 @@ double FogMarcher::sun_optical_depth(const glm::dvec3& p, MarchScratch& s) const
             dt = std::max(dt, 1e-7 * (1.0 + t));
             if (t + dt > iv.t1 || iv.t1 - (t + dt) < 1e-9 * dt)
                 dt = iv.t1 - t;
-            const double s1 = sigma_medium(p + sun_ * (t + gauss_lo * dt)), s2 = sigma_medium(p + sun_ * (t + gauss_hi * dt));
+            const double s1 = sigma_medium(p + sun_ * (t + gauss_lo * dt)),
+                         s2 = sigma_medium(p + sun_ * (t + gauss_hi * dt));
             tau += 0.5 * (s1 + s2) * dt;
             sigma_estimate = std::max(s1, s2);
             t += dt;
@@ -219,7 +221,7 @@ void FogMarcher::place_knots(const glm::dvec3& o, const glm::dvec3& w, MarchScra
         if (haze && w.z != 0.0)
             spacing = std::min(spacing, 0.25 * fog_.height_fog.scale_height / std::abs(w.z));
         const bool due = i == 0 || i + 1 == s.steps.size() || st.tau_before - last_tau >= o_.knot_optical_step ||
-                         st.t - last_t >= spacing;
+            st.t - last_t >= spacing;
         if (!due)
             continue;
         s.knots.push_back(sun_knot(o, w, st.t, s));
@@ -284,7 +286,8 @@ glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s) co
     const glm::dvec3 n = terrain_->normal(p.x, p.y);
     const double height01 =
         std::clamp((p.z - terrain_->z_min()) / std::max(terrain_->z_max() - terrain_->z_min(), 1e-3), 0.0, 1.0);
-    const glm::dvec3 valley(0.16, 0.26, 0.10), slope(0.30, 0.32, 0.15), upland(0.42, 0.40, 0.28), rock(0.40, 0.36, 0.32);
+    const glm::dvec3 valley(0.16, 0.26, 0.10), slope(0.30, 0.32, 0.15), upland(0.42, 0.40, 0.28),
+        rock(0.40, 0.36, 0.32);
     glm::dvec3 base = height01 < 0.5 ? mix(valley, slope, height01 * 2.0) : mix(slope, upland, height01 * 2.0 - 1.0);
     base = mix(base, rock, smoothstep(0.18, 0.55, 1.0 - n.z));
     double direct = std::max(glm::dot(n, sun_), 0.0);
@@ -353,12 +356,14 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
             }
         }
         const int octaves = light_.scattering_octaves;
-        const double sun_m = st.sigma_medium > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_m, tau_sun, octaves) : 0.0;
-        const double sun_h = st.sigma_height > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_h, tau_sun, octaves) : 0.0;
+        const double sun_m =
+            st.sigma_medium > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_m, tau_sun, octaves) : 0.0;
+        const double sun_h =
+            st.sigma_height > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_h, tau_sun, octaves) : 0.0;
         // J of fog_lighting.hpp (pi sun: the sun's irradiance) per medium, times its extinction.
         const glm::dvec3 sun = std::numbers::pi * visible * light_.sun_radiance;
         const glm::dvec3 source = albedo_m * st.sigma_medium * (sun * sun_m + light_.ambient) +
-                                  albedo_h * st.sigma_height * (sun * sun_h + light_.ambient);
+            albedo_h * st.sigma_height * (sun * sun_h + light_.ambient);
         const double sigma = st.sigma_medium + st.sigma_height;
         r.inscatter += std::exp(-st.tau_before) * source * step_weight(sigma, st.dt);
         tau = st.tau_before + sigma * st.dt;

@@ -77,7 +77,8 @@ void shell_intervals(const Medium& medium, const glm::dvec3& o, const glm::dvec3
             if (!(e > a))
                 continue;
             const double t = 0.5 * (a + e);
-            const bool inside = top[0] + t * (top[1] + t * top[2]) >= 0.0 && floor[0] + t * (floor[1] + t * floor[2]) >= 0.0;
+            const bool inside =
+                top[0] + t * (top[1] + t * top[2]) >= 0.0 && floor[0] + t * (floor[1] + t * floor[2]) >= 0.0;
             if (!inside)
                 continue;
             if (!out.empty() && out.back().t1 >= a - 1e-12 * (1.0 + std::abs(a)))

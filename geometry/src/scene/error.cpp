@@ -19,7 +19,6 @@ std::string join_message(const std::string& file, const std::string& field, cons
 InputError::InputError(std::string file, std::string field, std::string reason)
     : Error(join_message(file, field, reason)), file_(std::move(file)), field_(std::move(field)),
       reason_(std::move(reason))
-{
-}
+{}
 
 }  // namespace kiri

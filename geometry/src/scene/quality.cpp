@@ -38,10 +38,10 @@ json quality_preset(Quality q)
         double particle_share;
     };
     static constexpr Preset presets[] = {
-        {8, 0.25, 4000, 64, 80, 45, 32, 12, 0.0},        // low: no particles
-        {12, 0.5, 10000, 96, 120, 68, 48, 16, 0.4},      // medium
-        {15, 0.5, 20000, 128, 160, 90, 64, 24, 0.5},     // high: the sections' defaults
-        {30, 1.0, 60000, 192, 240, 135, 96, 32, 0.5},    // ultra
+        {8, 0.25, 4000, 64, 80, 45, 32, 12, 0.0},      // low: no particles
+        {12, 0.5, 10000, 96, 120, 68, 48, 16, 0.4},    // medium
+        {15, 0.5, 20000, 128, 160, 90, 64, 24, 0.5},   // high: the sections' defaults
+        {30, 1.0, 60000, 192, 240, 135, 96, 32, 0.5},  // ultra
     };
     const Preset& p = presets[int(q)];
     return {{"layers", {{"count", p.layers}, {"resolution", p.layer_resolution}}},

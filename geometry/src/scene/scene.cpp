@@ -81,8 +81,8 @@ SunSpec read_sun(const Reader& r, const json& j)
     SunSpec s;
     if (j.contains("direction")) {
         s.direction = r.vec3(j["direction"], "/sun/direction");
-        const double len = std::sqrt(s.direction.x * s.direction.x + s.direction.y * s.direction.y +
-                                     s.direction.z * s.direction.z);
+        const double len =
+            std::sqrt(s.direction.x * s.direction.x + s.direction.y * s.direction.y + s.direction.z * s.direction.z);
         if (!(len > 0.0))
             r.fail("/sun/direction", "must not be the zero vector");
         // Dividing a unit vector by its computed length can move its last bits; leaving
@@ -142,8 +142,9 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
         throw InputError(file_label, "", "malformed JSON: " + strip_exception_id(e.what()) + " (not a finite number)");
     }
     const Reader r{file_label};
-    r.only(root, "", {"terrain", "cameras", "sun", "image", "fog", "layers", "medium", "particles", "froxel", "combined",
-                      "quality"});
+    r.only(root, "",
+           {"terrain", "cameras", "sun", "image", "fog", "layers", "medium", "particles", "froxel", "combined",
+            "quality"});
     std::optional<Quality> quality;
     if (root.contains("quality")) {
         const json& q = root["quality"];
@@ -216,7 +217,8 @@ std::string scene_to_json(const Scene& scene)
     root["terrain"] = t;
     json cams = json::array();
     for (const CameraSpec& c : scene.cameras)
-        cams.push_back({{"name", c.name}, {"position", arr(c.position)}, {"target", arr(c.target)}, {"fov", c.fov_y_deg}});
+        cams.push_back(
+            {{"name", c.name}, {"position", arr(c.position)}, {"target", arr(c.target)}, {"fov", c.fov_y_deg}});
     if (!cams.empty())
         root["cameras"] = cams;
     root["sun"] = {{"direction", arr(scene.sun.direction)},
@@ -254,15 +256,15 @@ CameraSpec Scene::camera(std::string_view name, const glm::dvec3& lo, const glm:
     // No camera: look at the terrain's centre from the south-west, 35 degrees down, far enough
     // for the whole extent to fit a 45 degree view.
     const glm::dvec3 centre = 0.5 * (lo + hi);
-    const double radius = 0.5 * std::sqrt((hi.x - lo.x) * (hi.x - lo.x) + (hi.y - lo.y) * (hi.y - lo.y) +
-                                          (hi.z - lo.z) * (hi.z - lo.z));
+    const double radius =
+        0.5 * std::sqrt((hi.x - lo.x) * (hi.x - lo.x) + (hi.y - lo.y) * (hi.y - lo.y) + (hi.z - lo.z) * (hi.z - lo.z));
     const double distance = std::max(radius, 1.0) / std::sin(22.5 * M_PI / 180.0);
     const double down = 35.0 * M_PI / 180.0;
     CameraSpec c;
     c.name = "auto";
     c.target = centre;
-    c.position = centre + distance * glm::dvec3(-std::cos(down) * std::sqrt(0.5), -std::cos(down) * std::sqrt(0.5),
-                                                std::sin(down));
+    c.position = centre +
+        distance * glm::dvec3(-std::cos(down) * std::sqrt(0.5), -std::cos(down) * std::sqrt(0.5), std::sin(down));
     c.fov_y_deg = 45.0;
     return c;
 }

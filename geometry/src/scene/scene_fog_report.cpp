@@ -106,9 +106,9 @@ json placement(const Scene& scene, const SceneFog& fog)
                            {"volume_before_m3", b.volume_before_m3 / e},
                            {"volume_after_m3", b.volume_after_m3 / e}};
     }
-    out["timings_s"] = {{"valleys", p.seconds_valleys},      {"fill", p.seconds_fill},
+    out["timings_s"] = {{"valleys", p.seconds_valleys},           {"fill", p.seconds_fill},
                         {"flood_levels", p.seconds_flood_levels}, {"flow", p.seconds_flow},
-                        {"burn_off", p.seconds_burn_off},    {"outline", p.seconds_outline}};
+                        {"burn_off", p.seconds_burn_off},         {"outline", p.seconds_outline}};
     return out;
 }
 

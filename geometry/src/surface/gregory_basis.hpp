@@ -32,10 +32,7 @@
 namespace kiri::geometry::detail {
 
 //! Index of P_ijk in the 20-point array (see kiri/geometry/gregory_patch.hpp).
-constexpr int gregory_index(int i, int j, int k)
-{
-    return k == 0 ? j * 4 + i : 16 + (j - 1) * 2 + (i - 1);
-}
+constexpr int gregory_index(int i, int j, int k) { return k == 0 ? j * 4 + i : 16 + (j - 1) * 2 + (i - 1); }
 
 //! B^3_i(t) = C(3,i) t^i (1-t)^(3-i) and its first two derivatives (REFERENCE 1.1, corrected).
 //! T is double or a GCC vector of doubles (the batch path's lanes).
@@ -157,9 +154,8 @@ KIRI_ALWAYS_INLINE void gregory_visit(T u, T v, Emit&& emit)
 //! Array form of gregory_visit: weight of point k goes to w[k * stride] (and wu, wv, ...).
 //! Pointers of orders above `Order` are not touched.
 template <int Order>
-inline void gregory_basis(double u, double v, std::size_t stride, double* w, double* wu = nullptr,
-                          double* wv = nullptr, double* wuu = nullptr, double* wuv = nullptr,
-                          double* wvv = nullptr)
+inline void gregory_basis(double u, double v, std::size_t stride, double* w, double* wu = nullptr, double* wv = nullptr,
+                          double* wuu = nullptr, double* wuv = nullptr, double* wvv = nullptr)
 {
     gregory_visit<Order>(u, v, [&](int k, const double* d) {
         const std::size_t o = std::size_t(k) * stride;

@@ -66,9 +66,9 @@ public:
     {
         for (auto f : m_.faces())
             if (m_.valence(f) != 4)
-                throw InputError("", "control mesh/face " + std::to_string(f.idx()),
-                                 "the Gregory network needs quads (this face has " + std::to_string(m_.valence(f)) +
-                                     " vertices)");
+                throw InputError(
+                    "", "control mesh/face " + std::to_string(f.idx()),
+                    "the Gregory network needs quads (this face has " + std::to_string(m_.valence(f)) + " vertices)");
         const int nv = int(m_.n_vertices());
         p_.resize(nv);
         c_.assign(nv, 0.0);
@@ -255,9 +255,9 @@ private:
         // Corner a at patch position (ci, cj), its edge to a+1 along direction (du, dv).
         const int ci[4] = {0, 3, 3, 0}, cj[4] = {0, 0, 3, 3};
         for (int a = 0; a < 4; ++a) {
-            const HH fwd = hc[a];                                            // a -> a+1
-            const HH prv = hc[(a + 3) % 4];                                  // a-1 -> a
-            const HH bwd = m_.opposite_halfedge_handle(prv);                 // a -> a-1
+            const HH fwd = hc[a];                             // a -> a+1
+            const HH prv = hc[(a + 3) % 4];                   // a-1 -> a
+            const HH bwd = m_.opposite_halfedge_handle(prv);  // a -> a-1
             const int v = m_.from_vertex_handle(fwd).idx();
             P[idx(ci[a], cj[a], 0)] = p_[v];
             // Unit steps along the patch towards a+1 and towards a-1.
@@ -301,9 +301,9 @@ private:
     }
 
     const PolyMesh& m_;
-    std::vector<Comb> p_;   // per vertex: limit position
-    std::vector<double> c_; // per vertex: cos of the angle between consecutive edges
-    std::vector<Comb> ep_;  // per outgoing halfedge: the edge point at its from-vertex
+    std::vector<Comb> p_;    // per vertex: limit position
+    std::vector<double> c_;  // per vertex: cos of the angle between consecutive edges
+    std::vector<Comb> ep_;   // per outgoing halfedge: the edge point at its from-vertex
 };
 
 }  // namespace

@@ -28,10 +28,10 @@ using OpenSubdiv::Far::PatchParam;
 // corners counter-clockwise from (0,0)).
 constexpr int kFromOsd[20] = {
     // P_ij0, j*4 + i
-    0, 1, 7, 5,     // j = 0: b00 b10 b20 b30
-    2, 3, 9, 6,     // j = 1: b01 P110 P210 b31
-    16, 19, 13, 12, // j = 2: b02 P120 P220 b32
-    15, 17, 11, 10, // j = 3: b03 b13 b23 b33
+    0, 1, 7, 5,      // j = 0: b00 b10 b20 b30
+    2, 3, 9, 6,      // j = 1: b01 P110 P210 b31
+    16, 19, 13, 12,  // j = 2: b02 P120 P220 b32
+    15, 17, 11, 10,  // j = 3: b03 b13 b23 b33
     // P111, P211, P121, P221
     4, 8, 18, 14};
 
@@ -48,8 +48,8 @@ void opensubdiv_gregory_weights(double u, double v, std::span<double, 20> w, std
 {
     static const PatchParam param = base_param();
     double a[20], b[20], c[20];
-    OpenSubdiv::Far::internal::EvaluatePatchBasis<double>(PatchDescriptor::GREGORY_BASIS, param, u, v, a, b, c,
-                                                          nullptr, nullptr, nullptr);
+    OpenSubdiv::Far::internal::EvaluatePatchBasis<double>(PatchDescriptor::GREGORY_BASIS, param, u, v, a, b, c, nullptr,
+                                                          nullptr, nullptr);
     for (int k = 0; k < 20; ++k) {
         w[k] = a[kFromOsd[k]];
         wu[k] = b[kFromOsd[k]];
@@ -73,8 +73,8 @@ void evaluate_into_opensubdiv(const GregoryPatch& patch, std::span<const double>
         q[kFromOsd[k]] = P[k];
     for (std::size_t i = 0; i < n; ++i) {
         double a[20], b[20], c[20];
-        OpenSubdiv::Far::internal::EvaluatePatchBasis<double>(PatchDescriptor::GREGORY_BASIS, param, u[i], v[i], a,
-                                                              b, c, nullptr, nullptr, nullptr);
+        OpenSubdiv::Far::internal::EvaluatePatchBasis<double>(PatchDescriptor::GREGORY_BASIS, param, u[i], v[i], a, b,
+                                                              c, nullptr, nullptr, nullptr);
         glm::dvec3 p(0.0), du(0.0), dv(0.0);
         for (int k = 0; k < 20; ++k) {
             p += a[k] * q[k];

@@ -44,10 +44,9 @@ KIRI_ALWAYS_INLINE V clamp_lanes(V t)
 // the four interior Q_ij (gregory_corner, the shared formula), run the bicubic Bezier sums
 // over the 4 x 4 net of Q, then add the terms of the derivatives of the blends.
 template <int L>
-KIRI_ALWAYS_INLINE void blocks_impl(const double* __restrict X, const double* __restrict Y,
-                                    const double* __restrict Z, const double* __restrict u,
-                                    const double* __restrict v, std::size_t n, double* const* __restrict dst,
-                                    const double* add)
+KIRI_ALWAYS_INLINE void blocks_impl(const double* __restrict X, const double* __restrict Y, const double* __restrict Z,
+                                    const double* __restrict u, const double* __restrict v, std::size_t n,
+                                    double* const* __restrict dst, const double* add)
 {
     using V = typename LanesOf<L>::type;
     const double* P[3] = {X, Y, Z};
@@ -108,9 +107,9 @@ void blocks_sse2(const double* X, const double* Y, const double* Z, const double
 
 // KIRI_GREGORY_NO_AVX2: build without the AVX2 path (to measure the SSE2 one).
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(KIRI_GREGORY_NO_AVX2)
-__attribute__((target("avx2,fma"))) void blocks_avx2(const double* X, const double* Y, const double* Z,
-                                                     const double* u, const double* v, std::size_t n,
-                                                     double* const* dst, const double* add)
+__attribute__((target("avx2,fma"))) void blocks_avx2(const double* X, const double* Y, const double* Z, const double* u,
+                                                     const double* v, std::size_t n, double* const* dst,
+                                                     const double* add)
 {
     blocks_impl<4>(X, Y, Z, u, v, n, dst, add);
 }
@@ -207,10 +206,7 @@ void PatchSamples::resize(std::size_t n, bool normals)
         c->resize(normals ? n : 0);
 }
 
-PatchSampleSpans PatchSamples::spans()
-{
-    return {px, py, pz, dux, duy, duz, dvx, dvy, dvz, nx, ny, nz};
-}
+PatchSampleSpans PatchSamples::spans() { return {px, py, pz, dux, duy, duz, dvx, dvy, dvz, nx, ny, nz}; }
 
 void evaluate_into(const GregoryPatch& patch, std::span<const double> u, std::span<const double> v,
                    const PatchSampleSpans& out)
@@ -251,8 +247,8 @@ void evaluate_into(const GregoryPatch& patch, std::span<const double> u, std::sp
     for (std::size_t i = 0; i < n; ++i) {
         const glm::dvec3 du(out.dux[i], out.duy[i], out.duz[i]), dv(out.dvx[i], out.dvy[i], out.dvz[i]);
         const glm::dvec3 c = glm::cross(du, dv);
-        const glm::dvec3 nn = normalisable(c, du, dv) ? glm::normalize(c)
-                                                      : unit_normal(patch, clamp01(u[i]), clamp01(v[i]), du, dv);
+        const glm::dvec3 nn =
+            normalisable(c, du, dv) ? glm::normalize(c) : unit_normal(patch, clamp01(u[i]), clamp01(v[i]), du, dv);
         out.nx[i] = nn.x;
         out.ny[i] = nn.y;
         out.nz[i] = nn.z;

@@ -47,8 +47,8 @@ void Surface::set_control_points(std::span<const glm::dvec3> points)
 void Surface::check_face(int face) const
 {
     if (face < 0 || face >= num_faces())
-        throw InputError("", "face", "face " + std::to_string(face) + " out of range [0, " +
-                                         std::to_string(num_faces()) + ")");
+        throw InputError("", "face",
+                         "face " + std::to_string(face) + " out of range [0, " + std::to_string(num_faces()) + ")");
 }
 
 }  // namespace kiri::geometry

@@ -48,8 +48,8 @@ std::vector<PatchSides> patch_sides(const PolyMesh& m)
         for (auto v : m.fv_range(f))
             ps.corner[k++] = v.idx();
         for (int s = 0; s < 4; ++s) {
-            const auto he = m.find_halfedge(PolyMesh::VertexHandle(ps.corner[s]),
-                                            PolyMesh::VertexHandle(ps.corner[(s + 1) % 4]));
+            const auto he =
+                m.find_halfedge(PolyMesh::VertexHandle(ps.corner[s]), PolyMesh::VertexHandle(ps.corner[(s + 1) % 4]));
             const auto e = m.edge_handle(he);
             ps.edge[s] = e.idx();
             ps.forward[s] = he == m.halfedge_handle(e, 0);
@@ -65,9 +65,15 @@ struct Built {
 
 double triangle_error(const BaseSurface& surface, int f, const glm::dvec2 uv[3], const glm::dvec3 p[3])
 {
-    static const double bary[10][3] = {{1 / 3.0, 1 / 3.0, 1 / 3.0}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5},
-                                       {4 / 6.0, 1 / 6.0, 1 / 6.0}, {1 / 6.0, 4 / 6.0, 1 / 6.0},
-                                       {1 / 6.0, 1 / 6.0, 4 / 6.0}, {0.25, 0.75, 0}, {0, 0.25, 0.75},
+    static const double bary[10][3] = {{1 / 3.0, 1 / 3.0, 1 / 3.0},
+                                       {0.5, 0.5, 0},
+                                       {0, 0.5, 0.5},
+                                       {0.5, 0, 0.5},
+                                       {4 / 6.0, 1 / 6.0, 1 / 6.0},
+                                       {1 / 6.0, 4 / 6.0, 1 / 6.0},
+                                       {1 / 6.0, 1 / 6.0, 4 / 6.0},
+                                       {0.25, 0.75, 0},
+                                       {0, 0.25, 0.75},
                                        {0.75, 0, 0.25}};
     double e = 0.0;
     for (const auto& b : bary) {
@@ -248,8 +254,8 @@ Tessellation tessellate(const BaseSurface& surface, const TessellationOptions& o
         for (int f = 0; f < nf; ++f)
             if (b.face_error[f] > o.tolerance && out.patch_level[f] < o.max_level) {
                 const double ratio = std::sqrt(b.face_error[f] / o.tolerance);
-                out.patch_level[f] = std::min(o.max_level, std::max(out.patch_level[f] + 1,
-                                                                    int(std::ceil(out.patch_level[f] * ratio))));
+                out.patch_level[f] =
+                    std::min(o.max_level, std::max(out.patch_level[f] + 1, int(std::ceil(out.patch_level[f] * ratio))));
                 refined = true;
             }
         if (!refined) {

@@ -68,9 +68,9 @@ struct Raster {
     double gt[6] = {0, 1, 0, 0, 0, -1};
     bool geographic = false;
     std::string crs_wkt, crs_name;
-    double dx_m = 1.0, dy_m = 1.0;      // cell size in metres
-    bool flip_rows = true;               // source row 0 is the north edge
-    bool flip_cols = false;              // source column 0 is the east edge
+    double dx_m = 1.0, dy_m = 1.0;          // cell size in metres
+    bool flip_rows = true;                  // source row 0 is the north edge
+    bool flip_cols = false;                 // source column 0 is the east edge
     double centre_x = 0.0, centre_y = 0.0;  // source-CRS coordinates of the data's centre
     double z_scale = 1.0, z_offset = 0.0;   // metres = z_offset + z_scale * raw
     std::optional<double> nodata;
@@ -206,10 +206,10 @@ Samples read_samples(const Raster& r, const GdalErrors& errors)
 {
     const std::size_t w = std::size_t(r.width), h = std::size_t(r.height);
     std::vector<double> raw(w * h);
-    if (r.band->RasterIO(GF_Read, 0, 0, r.width, r.height, raw.data(), r.width, r.height, GDT_Float64, 0, 0,
-                         nullptr) != CE_None)
-        throw InputError(r.file, "data", "cannot read the raster values (truncated or corrupt file?)" +
-                                             errors.suffix());
+    if (r.band->RasterIO(GF_Read, 0, 0, r.width, r.height, raw.data(), r.width, r.height, GDT_Float64, 0, 0, nullptr) !=
+        CE_None)
+        throw InputError(r.file, "data",
+                         "cannot read the raster values (truncated or corrupt file?)" + errors.suffix());
     Samples s;
     s.z.resize(w * h);
     s.valid.resize(w * h);
@@ -332,7 +332,7 @@ Heightfield resample(const Heightfield& source, int nx, int ny)
             const int si = std::min(int(fx), source.nx - 2);
             const double tx = fx - si;
             const double z = (1 - ty) * ((1 - tx) * source.at(si, sj) + tx * source.at(si + 1, sj)) +
-                             ty * ((1 - tx) * source.at(si, sj + 1) + tx * source.at(si + 1, sj + 1));
+                ty * ((1 - tx) * source.at(si, sj + 1) + tx * source.at(si + 1, sj + 1));
             const std::size_t k = std::size_t(j) * nx + i;
             out.z[k] = z;
             // A sample is as valid as the source sample nearest to it.

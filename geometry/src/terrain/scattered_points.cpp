@@ -65,8 +65,8 @@ std::vector<glm::dvec3> read_xyz_points(const std::filesystem::path& path)
             continue;
         const std::string field = "line " + std::to_string(number);
         if (tokens.size() != 3)
-            throw InputError(file, field, "expected 3 numbers (x y z), found " + std::to_string(tokens.size()) +
-                                              " values");
+            throw InputError(file, field,
+                             "expected 3 numbers (x y z), found " + std::to_string(tokens.size()) + " values");
         double v[3];
         for (int k = 0; k < 3; ++k)
             if (!parse_number(tokens[k], v[k]))

@@ -37,9 +37,10 @@ FroxelOptions parse_froxel_options(const json& j, const std::string& file)
 {
     const JsonReader r{file};
     const std::string p = "/froxel";
-    r.only(j, p, {"size", "distribution", "power", "log2_scale", "near", "far", "fog_aware", "temporal",
-                  "history_weight", "density_samples", "sun_steps", "pixel_steps", "terrain_shadows", "fog_shadows",
-                  "shadow_map_size", "esm_sharpness", "height_fog"});
+    r.only(j, p,
+           {"size", "distribution", "power", "log2_scale", "near", "far", "fog_aware", "temporal", "history_weight",
+            "density_samples", "sun_steps", "pixel_steps", "terrain_shadows", "fog_shadows", "shadow_map_size",
+            "esm_sharpness", "height_fog"});
     FroxelOptions o;
     if (j.contains("size")) {
         const json& s = j["size"];

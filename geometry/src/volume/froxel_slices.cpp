@@ -24,8 +24,7 @@ double slice_depth(const FroxelOptions& o, double s, double a, double b)
         const double c = o.log2_scale;
         return a + c * std::expm1(s * std::log1p((b - a) / c));
     }
-    case SliceDistribution::power:
-        return a + (b - a) * std::pow(s, o.power);
+    case SliceDistribution::power: return a + (b - a) * std::pow(s, o.power);
     }
     return a + (b - a) * s;
 }
@@ -47,8 +46,7 @@ double slice_coordinate(const FroxelOptions& o, double d, double a, double b)
         const double c = o.log2_scale;
         return std::clamp(std::log1p((d - a) / c) / std::log1p((b - a) / c), 0.0, 1.0);
     }
-    case SliceDistribution::power:
-        return std::clamp(std::pow((d - a) / (b - a), 1.0 / o.power), 0.0, 1.0);
+    case SliceDistribution::power: return std::clamp(std::pow((d - a) / (b - a), 1.0 / o.power), 0.0, 1.0);
     }
     return (d - a) / (b - a);
 }

@@ -89,7 +89,8 @@ VdbExportReport write_medium_vdb(const Medium& m, const std::filesystem::path& p
             for (int k = int(std::floor(lo / v)); k <= int(std::ceil(hi / v)); ++k) {
                 double sum = 0.0;
                 for (int s = 0; s < 8; ++s)
-                    sum += m.extinction({i * v + ((s & 1) ? q : -q), j * v + ((s & 2) ? q : -q), k * v + ((s & 4) ? q : -q)});
+                    sum += m.extinction(
+                        {i * v + ((s & 1) ? q : -q), j * v + ((s & 2) ? q : -q), k * v + ((s & 4) ? q : -q)});
                 if (sum > 0.0)
                     accessor.setValue(openvdb::Coord(i, j, k), float(sum / 8.0));
             }

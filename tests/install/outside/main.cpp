@@ -29,9 +29,9 @@ int main()
     camera.target = {0.0, 0.0, 0.0};
     const glm::dvec2 px = kiri::render::project_to_pixel(camera, camera.target, 100, 50);
 
-    std::printf("height %.6f patch %.6f %.6f %.6f pixel %.3f %.3f\n", h, p.position.x, p.position.y, p.position.z,
-                px.x, px.y);
+    std::printf("height %.6f patch %.6f %.6f %.6f pixel %.3f %.3f\n", h, p.position.x, p.position.y, p.position.z, px.x,
+                px.y);
     const bool ok = std::abs(h - 1.75) < 1e-12 && std::abs(p.position.x - 0.75) < 1e-12 &&
-                    std::abs(p.position.y - 1.5) < 1e-12 && std::abs(px.x - 50.0) < 1e-9 && std::abs(px.y - 25.0) < 1e-9;
+        std::abs(p.position.y - 1.5) < 1e-12 && std::abs(px.x - 50.0) < 1e-9 && std::abs(px.y - 25.0) < 1e-9;
     return ok ? 0 : 1;
 }

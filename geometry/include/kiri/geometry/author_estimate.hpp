@@ -11,10 +11,10 @@
 namespace kiri::geometry {
 
 struct AuthorEstimate {
-    double patches = 0.0;               //!< upper bound: cells of the footprint's bounding box
-    double samples = 0.0;               //!< fit samples: terrain vertices under the fog + per patch
-    double tessellation_vertices = 0.0; //!< patches x (level + 1)^2 (the finest level if adaptive)
-    double layer_vertices = 0.0;        //!< tessellation vertices x (layers + 1)
+    double patches = 0.0;                //!< upper bound: cells of the footprint's bounding box
+    double samples = 0.0;                //!< fit samples: terrain vertices under the fog + per patch
+    double tessellation_vertices = 0.0;  //!< patches x (level + 1)^2 (the finest level if adaptive)
+    double layer_vertices = 0.0;         //!< tessellation vertices x (layers + 1)
     double terrain_mib = 0.0, fit_mib = 0.0, tessellation_mib = 0.0, layers_mib = 0.0;
     double total_mib() const { return terrain_mib + fit_mib + tessellation_mib + layers_mib; }
     //! "about 412 MiB (terrain 53, fit 21, tessellation 26, layers 312)"

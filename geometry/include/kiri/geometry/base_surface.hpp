@@ -24,15 +24,15 @@ enum class FitMode {
 
 struct FitOptions {
     FitMode mode = FitMode::blanket;
-    double offset = 60.0;            //!< blanket: metres above the smoothed terrain
-    double smoothing_length = 400.0; //!< blanket: sigma (m) of the target's Gaussian (fog_target.hpp)
-    double altitude = 0.0;           //!< lake: altitude of the fog top (m)
+    double offset = 60.0;             //!< blanket: metres above the smoothed terrain
+    double smoothing_length = 400.0;  //!< blanket: sigma (m) of the target's Gaussian (fog_target.hpp)
+    double altitude = 0.0;            //!< lake: altitude of the fog top (m)
     //! Lake: when set, the fog top at each point is this grid's bilinear height (m) instead of
     //! the flat altitude: fog placed by the terrain whose top is not flat (wind-blown, or
     //! regions with different tops; fog_placement.hpp). Must be finite everywhere.
     std::shared_ptr<const Heightfield> altitude_grid;
-    double clearance = 10.0;         //!< blanket: hard minimum height above the terrain (m), >= 0
-    double thickness = 200.0;        //!< fog thickness (m); a clearance above it is refused
+    double clearance = 10.0;   //!< blanket: hard minimum height above the terrain (m), >= 0
+    double thickness = 200.0;  //!< fog thickness (m); a clearance above it is refused
     //! Weight of the thin-plate energy against the data term: E = sum_faces [ mean_samples
     //! (z - target)^2 + smoothness h^4 mean_quadrature (z_xx^2 + 2 z_xy^2 + z_yy^2) ], h the
     //! patch size, so it is dimensionless and independent of the patch and sample counts.
@@ -46,22 +46,22 @@ struct FitOptions {
 
 //! Fit figures over the samples that have terrain data (issue 4 "report").
 struct FitReport {
-    double max_deviation = 0.0;   //!< max |surface - target| (m)
-    double rms_deviation = 0.0;   //!< (m)
+    double max_deviation = 0.0;  //!< max |surface - target| (m)
+    double rms_deviation = 0.0;  //!< (m)
     //! min (surface - terrain) over the samples (m); >= clearance in blanket mode. The samples
     //! include every terrain grid vertex, where the piecewise-linear terrain peaks; between
     //! them the surface can only come closer where it is convex (a few % of the clearance on
     //! the tests' terrains).
     double min_clearance = 0.0;
-    double local_lift = 0.0;      //!< largest control-vertex raise of the local guarantee step (m)
-    double lift = 0.0;            //!< uniform lift of the final guarantee step (m)
-    double fog_fraction = 0.0;    //!< share of samples with the terrain below the surface
+    double local_lift = 0.0;    //!< largest control-vertex raise of the local guarantee step (m)
+    double lift = 0.0;          //!< uniform lift of the final guarantee step (m)
+    double fog_fraction = 0.0;  //!< share of samples with the terrain below the surface
     long long samples = 0;
     long long grid_vertex_samples = 0;  //!< of which terrain grid vertices
-    long long nodata_samples = 0; //!< samples over nodata cells (left out of data and constraint)
-    long long active_constraints = 0;  //!< samples held at terrain + clearance (blanket)
-    int iterations = 0;           //!< active-set solves
-    bool samples_reused = false;  //!< the sample layout of the previous fit (same terrain grid)
+    long long nodata_samples = 0;       //!< samples over nodata cells (left out of data and constraint)
+    long long active_constraints = 0;   //!< samples held at terrain + clearance (blanket)
+    int iterations = 0;                 //!< active-set solves
+    bool samples_reused = false;        //!< the sample layout of the previous fit (same terrain grid)
     int samples_per_patch = 0;
     double seconds_target = 0.0, seconds_assemble = 0.0, seconds_solve = 0.0;
 };

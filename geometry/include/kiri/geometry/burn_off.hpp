@@ -18,26 +18,26 @@ namespace kiri::geometry {
 glm::dvec3 sun_direction(double latitude_deg, int day_of_year, double solar_hour);
 
 struct BurnOffOptions {
-    double time = 9.0;           //!< local solar time (hours, 0..24) at which the fog is shown
-    int day_of_year = 300;       //!< 1..366 (300: late October, the valley-fog season)
-    double latitude = 45.0;      //!< degrees north, -90..90
+    double time = 9.0;       //!< local solar time (hours, 0..24) at which the fog is shown
+    int day_of_year = 300;   //!< 1..366 (300: late October, the valley-fog season)
+    double latitude = 45.0;  //!< degrees north, -90..90
     //! Metres of fog thickness evaporated from below per hour by full sun on ground facing it,
     //! as it reaches the ground through the fog (>= 0).
     double burn_rate = 120.0;
     //! Metres per hour the lifted base (a flat level, from the lowest fog bottom) rises per hour
     //! of full sun on level ground (>= 0): the heated, mixed air under the fog.
     double lift_rate = 60.0;
-    double extinction = 0.02;   //!< sigma (1/m) of the fog, > 0 (a scene takes its medium's)
-    double anisotropy = 0.8;    //!< Henyey-Greenstein g of the droplets, [0, 1) (the medium's)
-    double min_thickness = 1.0;         //!< metres: thinner fog counts as gone
-    double step_minutes = 10.0;         //!< integration step (minutes, > 0)
+    double extinction = 0.02;    //!< sigma (1/m) of the fog, > 0 (a scene takes its medium's)
+    double anisotropy = 0.8;     //!< Henyey-Greenstein g of the droplets, [0, 1) (the medium's)
+    double min_thickness = 1.0;  //!< metres: thinner fog counts as gone
+    double step_minutes = 10.0;  //!< integration step (minutes, > 0)
 };
 
 struct BurnOffReport {
-    double sunrise_hour = 0.0;      //!< first step with the sun above the horizon (24 if none)
-    double sun_elevation_deg = 0.0; //!< at `time`
-    double lifted_base = 0.0;       //!< altitude of the lifted base at `time` (metres)
-    double sun_hours_level = 0.0;   //!< integral of max(0, sun z) from midnight to `time` (hours)
+    double sunrise_hour = 0.0;       //!< first step with the sun above the horizon (24 if none)
+    double sun_elevation_deg = 0.0;  //!< at `time`
+    double lifted_base = 0.0;        //!< altitude of the lifted base at `time` (metres)
+    double sun_hours_level = 0.0;    //!< integral of max(0, sun z) from midnight to `time` (hours)
     std::size_t cells_before = 0, cells_after = 0;
     double volume_before_m3 = 0.0, volume_after_m3 = 0.0;
 };

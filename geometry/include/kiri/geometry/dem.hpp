@@ -48,15 +48,15 @@ struct DemOptions {
 
 //! Summary of a raster, as `kiri info` prints it.
 struct DemInfo {
-    std::string driver;                       //!< GDAL driver short name, e.g. "GTiff"
-    int width = 0, height = 0;                //!< cells along x (columns) and y (rows)
-    double cell_dx_m = 0.0, cell_dy_m = 0.0;  //!< cell size in metres
+    std::string driver;                         //!< GDAL driver short name, e.g. "GTiff"
+    int width = 0, height = 0;                  //!< cells along x (columns) and y (rows)
+    double cell_dx_m = 0.0, cell_dy_m = 0.0;    //!< cell size in metres
     double extent_x_m = 0.0, extent_y_m = 0.0;  //!< width * cell_dx_m, height * cell_dy_m
-    double z_min = 0.0, z_max = 0.0;          //!< elevation range of the valid cells (metres)
-    std::size_t nodata_count = 0;             //!< cells that are nodata, NaN or Inf
-    bool geographic = false;                  //!< source cells are degrees
-    std::string crs_name;                     //!< empty when the raster has no CRS
-    double centre_x = 0.0, centre_y = 0.0;    //!< data centre in the source CRS (lon/lat or E/N)
+    double z_min = 0.0, z_max = 0.0;            //!< elevation range of the valid cells (metres)
+    std::size_t nodata_count = 0;               //!< cells that are nodata, NaN or Inf
+    bool geographic = false;                    //!< source cells are degrees
+    std::string crs_name;                       //!< empty when the raster has no CRS
+    double centre_x = 0.0, centre_y = 0.0;      //!< data centre in the source CRS (lon/lat or E/N)
 };
 
 //! Loads a raster into local metres. Nodata cells and NaN/Inf are masked (valid = 0) and

@@ -26,7 +26,7 @@ struct FillSeeds {
 };
 
 struct FillOptions {
-    double top = 0.0;            //!< fog-top altitude (metres, the heightfield's heights)
+    double top = 0.0;  //!< fog-top altitude (metres, the heightfield's heights)
     FillSeeds seeds;
     //! The flood passes, and fog lies, only where top - ground > min_thickness (metres, >= 0):
     //! a thinner sheet neither counts as fog nor carries it over a saddle.
@@ -46,10 +46,10 @@ struct FogFill {
     int nx = 0, ny = 0;
     double top = 0.0;
     std::vector<std::uint8_t> mask;
-    std::vector<double> thickness;   //!< metres; 0 where there is no fog
-    std::size_t cells = 0;           //!< fog cells
-    double area_m2 = 0.0;            //!< cells * dx * dy
-    double volume_m3 = 0.0;          //!< sum of thickness * dx * dy
+    std::vector<double> thickness;  //!< metres; 0 where there is no fog
+    std::size_t cells = 0;          //!< fog cells
+    double area_m2 = 0.0;           //!< cells * dx * dy
+    double volume_m3 = 0.0;         //!< sum of thickness * dx * dy
     double max_thickness = 0.0, mean_thickness = 0.0;
     //! Whether a higher top would spill over a saddle into another basin below the top (not
     //! yet fogged); then spill_level is the lowest such top (the saddle's ground, plus
@@ -57,8 +57,8 @@ struct FogFill {
     bool spills = false;
     double spill_level = 0.0;
     glm::dvec2 spill_point{0.0};
-    bool touches_border = false;     //!< fog reaches the grid's edge (it would go on beyond the DEM)
-    int seed_cells = 0;              //!< seed cells below the top (that started the flood)
+    bool touches_border = false;  //!< fog reaches the grid's edge (it would go on beyond the DEM)
+    int seed_cells = 0;           //!< seed cells below the top (that started the flood)
 };
 
 //! Cells below `top` connected to a seed through cells below `top` (8-neighbours), with the
@@ -75,8 +75,8 @@ FogFill fill_fog(const Heightfield& terrain, const FillOptions& options, const s
 //! For every cell, the lowest fog top at which the seeds' fog reaches it: the minimax ground
 //! height over all 8-connected paths from a seed (the seed's own ground for a seed cell).
 struct FloodLevels {
-    std::vector<double> level;           //!< metres; 0 where not reached
-    std::vector<std::uint8_t> reached;   //!< 0 where no path exists (walled in by nodata)
+    std::vector<double> level;          //!< metres; 0 where not reached
+    std::vector<std::uint8_t> reached;  //!< 0 where no path exists (walled in by nodata)
 };
 //! Priority-flood from the seeds without a top (the whole grid). With all_basins the level is
 //! the ground itself. Same errors as fill_fog (the top is not used).
@@ -84,6 +84,7 @@ FloodLevels flood_levels(const Heightfield& terrain, const FillSeeds& seeds, con
 
 //! The seed cells of `seeds` on this grid (index j * nx + i), in order, duplicates removed.
 //! \throw InputError as fill_fog.
-std::vector<std::uint32_t> seed_cells(const Heightfield& terrain, const FillSeeds& seeds, const std::string& label = {});
+std::vector<std::uint32_t> seed_cells(const Heightfield& terrain, const FillSeeds& seeds,
+                                      const std::string& label = {});
 
 }  // namespace kiri::geometry

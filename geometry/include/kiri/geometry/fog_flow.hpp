@@ -17,17 +17,17 @@
 namespace kiri::geometry {
 
 struct FlowOptions {
-    glm::dvec2 wind{0.0};        //!< m/s above the inversion, towards (x east, y north)
-    double duration = 3600.0;    //!< seconds of flow, >= 0
-    double time_step = 60.0;     //!< seconds, > 0; any value is stable (accuracy only)
-    double coupling = 0.5;       //!< share of the wind speed the fog's top layer and the stream move with, [0, 1]
+    glm::dvec2 wind{0.0};      //!< m/s above the inversion, towards (x east, y north)
+    double duration = 3600.0;  //!< seconds of flow, >= 0
+    double time_step = 60.0;   //!< seconds, > 0; any value is stable (accuracy only)
+    double coupling = 0.5;     //!< share of the wind speed the fog's top layer and the stream move with, [0, 1]
     //! Inversion strength (K): the potential temperature jump at the fog top. The wind's stress
     //! tilts a pool's top by s = C_d |wind|^2 / (g' H) (C_d = 1.5e-3, g' = 9.81 dtheta / 280 K,
     //! H the pool's mean depth): about 2 m per km for 5 m/s over 100 m of fog under 5 K.
     double inversion_strength = 5.0;
     //! Gravity flow of the stream down the terrain: spread * slope m/s, at most max_speed.
     double spread = 10.0;
-    double max_speed = 3.0;      //!< m/s, > 0
+    double max_speed = 3.0;  //!< m/s, > 0
     //! Metres of descent that evaporate all but 1/e of the stream (it warms as it sinks, so its
     //! liquid water evaporates: about LWC / (9.8 K/km * 0.45 g/m^3/K), 45 m for 0.2 g/m^3;
     //! fog_placement.hpp derives it from the medium's extinction); 0 = no evaporation.
@@ -39,11 +39,11 @@ struct FlowReport {
     int steps = 0;
     int pools = 0;
     double volume_before_m3 = 0.0, volume_after_m3 = 0.0;
-    double outflow_m3 = 0.0;       //!< carried past the grid's border
+    double outflow_m3 = 0.0;  //!< carried past the grid's border
     double evaporated_m3 = 0.0;
-    double spilled_m3 = 0.0;       //!< over the pools' rims, in all
-    double stream_m3 = 0.0;        //!< outside the pools at the end
-    double max_tilt_m = 0.0;       //!< the largest rise of a pool's top above its mean (set-up)
+    double spilled_m3 = 0.0;           //!< over the pools' rims, in all
+    double stream_m3 = 0.0;            //!< outside the pools at the end
+    double max_tilt_m = 0.0;           //!< the largest rise of a pool's top above its mean (set-up)
     double evaporation_depth_m = 0.0;  //!< the depth used
 };
 
@@ -51,9 +51,9 @@ struct FlowReport {
 struct FlowPool {
     std::vector<std::uint32_t> cells, rim;  //!< rim: cells outside, next to the pool
     glm::dvec2 centroid{0.0};
-    double volume = 0.0;   //!< m^3
-    double level = 0.0;    //!< top at the centroid (m)
-    double slope = 0.0;    //!< set-up tilt along the wind (m/m)
+    double volume = 0.0;  //!< m^3
+    double level = 0.0;   //!< top at the centroid (m)
+    double slope = 0.0;   //!< set-up tilt along the wind (m/m)
 };
 
 //! The state of the flow between steps.
@@ -62,8 +62,8 @@ struct FlowState {
     std::vector<std::uint32_t> pool_of;  //!< per cell: pool index + 1, 0 outside the pools
     std::vector<double> stream;          //!< thickness of the moving fog outside the pools (m)
     double outflow_m3 = 0.0, evaporated_m3 = 0.0, spilled_m3 = 0.0, max_tilt_m = 0.0;
-    std::vector<double> next, moved;     //!< scratch of flow_step (it allocates nothing else)
-    std::vector<float> u, v;             //!< the stream's velocity per cell (terrain and wind only)
+    std::vector<double> next, moved;  //!< scratch of flow_step (it allocates nothing else)
+    std::vector<float> u, v;          //!< the stream's velocity per cell (terrain and wind only)
 };
 
 //! Pools from the fog columns (their thickness), an empty stream, the stream's velocities.

@@ -49,11 +49,11 @@ struct PlacementSpec {
     double margin = -1.0;
     double tolerance = 0.0;
     double min_area = 0.0;
-    std::optional<FlowOptions> flow;       //!< applied first (the night's wind)
-    bool evaporation_given = false;        //!< flow.evaporation_depth from the scene, not the medium
+    std::optional<FlowOptions> flow;         //!< applied first (the night's wind)
+    bool evaporation_given = false;          //!< flow.evaporation_depth from the scene, not the medium
     std::optional<BurnOffOptions> burn_off;  //!< then the morning's sun
-    bool latitude_given = false;           //!< burn_off.latitude from the scene, not the DEM
-    double exaggeration = 1.0;             //!< heights are stretched by this (for messages)
+    bool latitude_given = false;             //!< burn_off.latitude from the scene, not the DEM
+    double exaggeration = 1.0;               //!< heights are stretched by this (for messages)
 };
 
 //! Metres of descent that evaporate all but 1/e of fog of extinction sigma (1/m): its liquid
@@ -64,14 +64,14 @@ double evaporation_depth_for(double extinction);
 
 //! What place_fog computed, kept for the maps and the report.
 struct PlacedFog {
-    FogColumns columns;              //!< the fog after flow and burn-off
+    FogColumns columns;  //!< the fog after flow and burn-off
     ColumnFigures figures;
-    std::vector<FogFill> fills;      //!< per region, as filled
+    std::vector<FogFill> fills;        //!< per region, as filled
     std::optional<ValleyMap> valleys;  //!< of the first region seeded by valleys
     std::optional<FloodLevels> flood;  //!< of the first region seeded by points
     std::optional<FlowReport> flow;
     std::optional<BurnOffReport> burn_off;
-    double latitude = 0.0;           //!< used by the burn-off
+    double latitude = 0.0;  //!< used by the burn-off
     MaskOutline outline;
     //! The top is one flat altitude (fit: lake at `top`); otherwise `top_grid` is the lake
     //! target: the fog's top where there is fog, just under the ground elsewhere.
@@ -88,7 +88,8 @@ struct PlacedFog {
 //! Fills every region, merges them, lets the flow and the burn-off act, and outlines the fog.
 //! `patch_size` sets the outline's defaults. Errors name "/fog/fill[/K]/<key>",
 //! "/fog/flow/<key>", "/fog/burn_off/<key>" with label as the file.
-PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double patch_size, const std::string& label = {});
+PlacedFog place_fog(const Terrain& terrain, const PlacementSpec& spec, double patch_size,
+                    const std::string& label = {});
 
 //! The latitude (degrees) of the terrain's centre when its source raster has a CRS GDAL can
 //! transform to WGS 84; `fallback` otherwise.

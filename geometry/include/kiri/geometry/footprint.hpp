@@ -42,28 +42,28 @@ void validate_footprint(const Footprint& footprint, const std::string& label = {
 //! Boundary vertices are then moved onto the polygon (its corners first, then the closest
 //! border point), backing off where a quad would fold, so the mesh conforms to the border.
 struct ControlMesh {
-    PolyMesh mesh;                    //!< quads, counter-clockwise seen from above (+z)
-    std::vector<glm::ivec2> grid;     //!< grid index (i, j) of each vertex (topology only)
-    double patch_size = 0.0;          //!< metres
-    glm::dvec2 origin{0.0};           //!< local frame of the fit: footprint bounding-box centre
-    glm::dvec2 grid_origin{0.0};      //!< position of grid index (0, 0) before snapping
+    PolyMesh mesh;                 //!< quads, counter-clockwise seen from above (+z)
+    std::vector<glm::ivec2> grid;  //!< grid index (i, j) of each vertex (topology only)
+    double patch_size = 0.0;       //!< metres
+    glm::dvec2 origin{0.0};        //!< local frame of the fit: footprint bounding-box centre
+    glm::dvec2 grid_origin{0.0};   //!< position of grid index (0, 0) before snapping
     int boundary_vertices = 0;
-    int snapped_vertices = 0;         //!< boundary vertices lying on the polygon after snapping
+    int snapped_vertices = 0;  //!< boundary vertices lying on the polygon after snapping
 
     int num_faces() const { return static_cast<int>(mesh.n_faces()); }
     int num_vertices() const { return static_cast<int>(mesh.n_vertices()); }
 };
 
 struct ControlMeshOptions {
-    double patch_size = 500.0;        //!< metres, > 0
-    bool conform_to_border = true;    //!< snap boundary vertices onto the polygon
-    int max_faces = 1 << 20;          //!< LimitError above this, before allocating
+    double patch_size = 500.0;      //!< metres, > 0
+    bool conform_to_border = true;  //!< snap boundary vertices onto the polygon
+    int max_faces = 1 << 20;        //!< LimitError above this, before allocating
 };
 
 //! Builds the control mesh; vertex heights are the terrain's height under each vertex.
 //! \throw InputError (invalid footprint, footprint not inside the terrain's extent: kiri does
 //!        not clip, it names the first vertex outside), LimitError (too many faces).
-ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrain,
-                               const ControlMeshOptions& options, const std::string& label = {});
+ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrain, const ControlMeshOptions& options,
+                               const std::string& label = {});
 
 }  // namespace kiri::geometry

@@ -19,25 +19,25 @@ enum class SliceDistribution {
 struct FroxelOptions {
     int width = 160, height = 90, slices = 64;  //!< froxels across, down and in depth
     SliceDistribution distribution = SliceDistribution::exponential;
-    double power = 2.0;       //!< exponent of the power distribution, > 0
-    double log2_scale = 32.0; //!< metres, > 0: where the log2 distribution turns logarithmic
-    double near = 1.0;        //!< metres, > 0: the volume's first depth (standard slicing)
-    double far = 0.0;         //!< metres: the volume's last depth; 0 = the far side of the scene
+    double power = 2.0;        //!< exponent of the power distribution, > 0
+    double log2_scale = 32.0;  //!< metres, > 0: where the log2 distribution turns logarithmic
+    double near = 1.0;         //!< metres, > 0: the volume's first depth (standard slicing)
+    double far = 0.0;          //!< metres: the volume's last depth; 0 = the far side of the scene
     //! Fog-aware slicing: each tile's slices span only the depths where its rays are in the
     //! Medium's shell (entry and exit of the rasterised shell, clipped by the terrain), so a
     //! thin layer gets all the slices instead of a fraction of one.
     bool fog_aware = true;
-    bool temporal = true;          //!< Halton-jittered samples blended with the reprojected history
-    double history_weight = 0.9;   //!< [0, 0.99]: weight of the (clamped) history
-    int density_samples = 2;       //!< samples of the density per froxel, spread over its depth, 1..16
-    int sun_steps = 12;            //!< steps of the sun's optical depth through the Medium, 1..64
+    bool temporal = true;         //!< Halton-jittered samples blended with the reprojected history
+    double history_weight = 0.9;  //!< [0, 0.99]: weight of the (clamped) history
+    int density_samples = 2;      //!< samples of the density per froxel, spread over its depth, 1..16
+    int sun_steps = 12;           //!< steps of the sun's optical depth through the Medium, 1..64
     //! Fog-aware apply: steps along each pixel's own stretch of the Medium's shell, 1..256.
     int pixel_steps = 24;
-    bool terrain_shadows = true;   //!< the terrain's shadow map (ESM) darkens the fog and the ground
-    bool fog_shadows = true;       //!< the fog dims the sun on its way (the lighting model's tau_sun)
-    int shadow_map_size = 1024;    //!< texels a side of the light-space terrain shadow map, 64..8192
-    double esm_sharpness = 4.0;    //!< ESM exponent per shadow-map texel of depth, > 0
-    HeightFog height_fog;          //!< optional global height fog
+    bool terrain_shadows = true;  //!< the terrain's shadow map (ESM) darkens the fog and the ground
+    bool fog_shadows = true;      //!< the fog dims the sun on its way (the lighting model's tau_sun)
+    int shadow_map_size = 1024;   //!< texels a side of the light-space terrain shadow map, 64..8192
+    double esm_sharpness = 4.0;   //!< ESM exponent per shadow-map texel of depth, > 0
+    HeightFog height_fog;         //!< optional global height fog
 };
 
 //! \throw InputError(label, "/froxel/<key>", reason) for options out of range.

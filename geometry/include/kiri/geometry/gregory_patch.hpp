@@ -61,7 +61,7 @@ private:
 //! One evaluated point.
 struct PatchPoint {
     glm::dvec3 position{0.0};
-    glm::dvec3 du{0.0}, dv{0.0};  //!< exact dS/du, dS/dv
+    glm::dvec3 du{0.0}, dv{0.0};       //!< exact dS/du, dS/dv
     glm::dvec3 normal{0.0, 0.0, 1.0};  //!< unit normal, see unit_normal()
 };
 
@@ -78,8 +78,7 @@ PatchPoint evaluate(const GregoryPatch& patch, double u, double v);
 
 //! The 20 Gregory weights at (u, v) in storage order (REFERENCE 1.1) and their exact first
 //! derivatives: S = sum_k w[k] P_k. Sums to 1 (partition of unity); wu, wv sum to 0.
-void gregory_weights(double u, double v, std::span<double, 20> w, std::span<double, 20> wu,
-                     std::span<double, 20> wv);
+void gregory_weights(double u, double v, std::span<double, 20> w, std::span<double, 20> wu, std::span<double, 20> wv);
 
 //! Structure-of-arrays views of a batch's results. Position and first-derivative spans must
 //! all be at least the batch size; the normal spans may be empty (not computed).

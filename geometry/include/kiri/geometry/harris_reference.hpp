@@ -31,7 +31,8 @@ struct HarrisStats {
 //! through a grid over the plane perpendicular to the light (cells of the largest radius), so
 //! the cost is N times the particles in a column, not N^2. \throw std::invalid_argument for a
 //! zero or non-finite light.
-std::vector<double> harris_light_pass(const ParticleCloud& cloud, const glm::dvec3& light, HarrisStats* stats = nullptr);
+std::vector<double> harris_light_pass(const ParticleCloud& cloud, const glm::dvec3& light,
+                                      HarrisStats* stats = nullptr);
 
 //! The same by testing every pair, O(N^2): the index's oracle (equal results, bit for bit).
 std::vector<double> harris_light_pass_quadratic(const ParticleCloud& cloud, const glm::dvec3& light);

@@ -15,11 +15,11 @@
 namespace kiri::geometry {
 
 struct HeightFog {
-    double extinction = 0.0;      //!< sigma_t (1/m) at and below `base`; 0: no height fog
-    double base = 0.0;            //!< world z (m) where the falloff starts
-    double scale_height = 100.0;  //!< m, > 0: the density falls by e every scale_height
-    double albedo = 0.99;         //!< [0, 1]
-    double anisotropy = 0.6;      //!< Henyey-Greenstein g, (-1, 1)
+    double extinction = 0.0;                                   //!< sigma_t (1/m) at and below `base`; 0: no height fog
+    double base = 0.0;                                         //!< world z (m) where the falloff starts
+    double scale_height = 100.0;                               //!< m, > 0: the density falls by e every scale_height
+    double albedo = 0.99;                                      //!< [0, 1]
+    double anisotropy = 0.6;                                   //!< Henyey-Greenstein g, (-1, 1)
     glm::dvec2 min{-std::numeric_limits<double>::infinity()};  //!< horizontal extent (x, y)
     glm::dvec2 max{std::numeric_limits<double>::infinity()};
 

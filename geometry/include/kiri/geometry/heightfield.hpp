@@ -10,12 +10,12 @@ namespace kiri::geometry {
 //! Where the local frame sits on Earth, kept so that 2D products (fog maps) can be written
 //! back with the input's georeferencing.
 struct GeoReference {
-    std::string crs_wkt;          //!< source CRS as WKT; empty when the raster had none
-    bool geographic = false;      //!< source cells were degrees (converted to metres at load)
-    double origin_x = 0.0;        //!< source-CRS coordinate of local (0,0): lon or easting
-    double origin_y = 0.0;        //!< source-CRS coordinate of local (0,0): lat or northing
+    std::string crs_wkt;                           //!< source CRS as WKT; empty when the raster had none
+    bool geographic = false;                       //!< source cells were degrees (converted to metres at load)
+    double origin_x = 0.0;                         //!< source-CRS coordinate of local (0,0): lon or easting
+    double origin_y = 0.0;                         //!< source-CRS coordinate of local (0,0): lat or northing
     double geotransform[6] = {0, 1, 0, 0, 0, -1};  //!< GDAL geotransform of the source raster
-    int source_width = 0;         //!< source raster size (pixels), before any flip
+    int source_width = 0;                          //!< source raster size (pixels), before any flip
     int source_height = 0;
 };
 
@@ -24,10 +24,10 @@ struct GeoReference {
 //! whatever the source's row order. World frame: local metres, x east, y north, z up,
 //! origin near the centre of the data (DESIGN "world frame").
 struct Heightfield {
-    int nx = 0, ny = 0;           //!< samples along x (columns) and y (rows)
-    double dx = 1.0, dy = 1.0;    //!< sample spacing in metres, both > 0
-    double x0 = 0.0, y0 = 0.0;    //!< local position of sample (0, 0) (south-west)
-    std::vector<double> z;        //!< nx * ny heights in metres; finite everywhere
+    int nx = 0, ny = 0;               //!< samples along x (columns) and y (rows)
+    double dx = 1.0, dy = 1.0;        //!< sample spacing in metres, both > 0
+    double x0 = 0.0, y0 = 0.0;        //!< local position of sample (0, 0) (south-west)
+    std::vector<double> z;            //!< nx * ny heights in metres; finite everywhere
     std::vector<std::uint8_t> valid;  //!< 1 where the source had data, 0 where nodata was filled
     GeoReference georef;
 

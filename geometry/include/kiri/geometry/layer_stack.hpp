@@ -67,15 +67,15 @@ struct LayerOptions {
     //! Metres added to the base's height: a fog lake's fitted surface is its top, so its stack
     //! starts one thickness below (author_scene_fog sets -thickness in lake mode).
     double base_offset = 0.0;
-    int max_count = 120;             //!< most layers the narrowing may add (>= count)
-    double opacity = 0.12;           //!< a layer's alpha where a_i = 1, at the reference spacing, [0, 0.999]
+    int max_count = 120;    //!< most layers the narrowing may add (>= count)
+    double opacity = 0.12;  //!< a layer's alpha where a_i = 1, at the reference spacing, [0, 0.999]
     LayerTextureOptions texture;
-    double ground_fade = 20.0;       //!< metres: a layer fades out this close to the ground (renderer)
-    double detail = 0.6;             //!< strength of the world-space noise in the alpha, [0, 1] (renderer)
-    double detail_scale = 1500.0;    //!< metres: size of the noise's largest features (renderer)
+    double ground_fade = 20.0;           //!< metres: a layer fades out this close to the ground (renderer)
+    double detail = 0.6;                 //!< strength of the world-space noise in the alpha, [0, 1] (renderer)
+    double detail_scale = 1500.0;        //!< metres: size of the noise's largest features (renderer)
     double dissipation_half_life = 0.0;  //!< seconds; 0: no dissipation (top layers thin faster)
-    glm::dvec2 wind{0.0};            //!< m/s: drift of the detail texture
-    double time = 0.0;               //!< seconds since the scene's start
+    glm::dvec2 wind{0.0};                //!< m/s: drift of the detail texture
+    double time = 0.0;                   //!< seconds since the scene's start
     LayerShading shading = LayerShading::medium;
     //! Resolution of the layer pass relative to the frame, [1/8, 1] (renderer: the layers are
     //! smooth, half resolution costs a quarter and barely shows; `kiri bench --stage layers`).
@@ -94,9 +94,9 @@ struct LayerVertex {
 
 //! Per-vertex quantities of the stack at base point p (normal n) for an eye.
 struct LayerColumn {
-    double spacing = 0.0;   //!< r: narrowed (2.8), never below T0 / max_count
-    double count = 0.0;     //!< n = T0 / r: real-valued (2.9), so layers fade in without popping
-    double sin_theta = 0.0; //!< of (2.10)
+    double spacing = 0.0;    //!< r: narrowed (2.8), never below T0 / max_count
+    double count = 0.0;      //!< n = T0 / r: real-valued (2.9), so layers fade in without popping
+    double sin_theta = 0.0;  //!< of (2.10)
 };
 LayerColumn layer_column(const LayerOptions& options, const glm::dvec3& eye, const glm::dvec3& point,
                          const glm::dvec3& normal);
@@ -110,10 +110,10 @@ double layer_dissipation(const LayerOptions& options, int i, double n);
 //! triangles, plus the centre of enlargement. Built once per fitted surface.
 struct LayerBase {
     std::vector<glm::dvec3> position, normal;
-    std::vector<glm::dvec2> atlas_uv;        //!< into `texture`
-    std::vector<std::uint32_t> triangles;    //!< 3 indices each, counter-clockwise from above
-    glm::dvec2 centre{0.0};                  //!< footprint centroid (x, y)
-    glm::dvec3 min{0.0}, max{0.0};           //!< bounds of the base
+    std::vector<glm::dvec2> atlas_uv;      //!< into `texture`
+    std::vector<std::uint32_t> triangles;  //!< 3 indices each, counter-clockwise from above
+    glm::dvec2 centre{0.0};                //!< footprint centroid (x, y)
+    glm::dvec3 min{0.0}, max{0.0};         //!< bounds of the base
     LayerTexture texture;
 };
 //! \throw InputError (label names the scene) on bad options.

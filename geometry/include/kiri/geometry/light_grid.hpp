@@ -27,11 +27,11 @@ namespace kiri::geometry {
 struct LightGrid {
     glm::dvec3 light{0.0, 0.0, 1.0};  //!< L, towards the sun, unit
     glm::dvec3 u_axis{1.0, 0.0, 0.0}, v_axis{0.0, 1.0, 0.0};
-    double shear_u = 0.0, shear_v = 0.0;  //!< a, b of w' = w - a u - b v
-    glm::dvec3 origin{0.0};               //!< (u0, v0, w0)
-    glm::dvec3 voxel{1.0};                //!< (du, dv, dw), metres
-    std::array<int, 3> size{1, 1, 1};     //!< voxels along u, v, w'
-    LightFrame frame = LightFrame::light; //!< what was chosen (never automatic)
+    double shear_u = 0.0, shear_v = 0.0;   //!< a, b of w' = w - a u - b v
+    glm::dvec3 origin{0.0};                //!< (u0, v0, w0)
+    glm::dvec3 voxel{1.0};                 //!< (du, dv, dw), metres
+    std::array<int, 3> size{1, 1, 1};      //!< voxels along u, v, w'
+    LightFrame frame = LightFrame::light;  //!< what was chosen (never automatic)
 
     std::size_t voxel_count() const { return std::size_t(size[0]) * size[1] * size[2]; }
     //! (u, v, w) of a world point.

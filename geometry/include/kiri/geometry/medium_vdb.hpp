@@ -15,8 +15,8 @@
 namespace kiri::geometry {
 
 struct VdbExportOptions {
-    double voxel_size = 0.0;                //!< metres; 0: from the medium (at most about max_voxels)
-    long long max_voxels = 8'000'000;       //!< refuse grids above this many active voxels (estimate)
+    double voxel_size = 0.0;           //!< metres; 0: from the medium (at most about max_voxels)
+    long long max_voxels = 8'000'000;  //!< refuse grids above this many active voxels (estimate)
 };
 
 struct VdbExportReport {

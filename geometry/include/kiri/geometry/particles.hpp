@@ -17,10 +17,10 @@
 namespace kiri::geometry {
 
 struct Particle {
-    glm::dvec3 position{0.0};   //!< centre, world metres
-    double radius = 1.0;        //!< metres: the footprint is zero beyond it
-    double optical_depth = 0.5; //!< tau_k: optical depth of the ray through the centre (may be +inf: opaque)
-    double albedo = 0.99;       //!< a_k in [0, 1]
+    glm::dvec3 position{0.0};    //!< centre, world metres
+    double radius = 1.0;         //!< metres: the footprint is zero beyond it
+    double optical_depth = 0.5;  //!< tau_k: optical depth of the ray through the centre (may be +inf: opaque)
+    double albedo = 0.99;        //!< a_k in [0, 1]
 };
 
 //! How the attenuation buffer's voxel grid is oriented (light_grid.hpp). Its columns always run
@@ -32,21 +32,21 @@ enum class LightFrame { automatic, light, sheared };
 
 //! The scene's "particles" section (docs/particles.md).
 struct ParticleOptions {
-    int count = 20000;               //!< particles to sample; ignored when spacing > 0
-    double spacing = 0.0;            //!< metres between particles at full density; 0: use count
-    double radius_scale = 1.5;       //!< radius = radius_scale * local spacing, clamped to the range
-    double radius_min = 0.0;         //!< metres; 0: radius_scale * the spacing at full density
-    double radius_max = 0.0;         //!< metres; 0: twice that (densities below 1/8 get no larger particles)
-    double albedo = -1.0;            //!< [0, 1]; < 0: the Medium's albedo
-    double extinction = 0.0;         //!< 1/m the particles carry at full density; 0: the Medium's
+    int count = 20000;                 //!< particles to sample; ignored when spacing > 0
+    double spacing = 0.0;              //!< metres between particles at full density; 0: use count
+    double radius_scale = 1.5;         //!< radius = radius_scale * local spacing, clamped to the range
+    double radius_min = 0.0;           //!< metres; 0: radius_scale * the spacing at full density
+    double radius_max = 0.0;           //!< metres; 0: twice that (densities below 1/8 get no larger particles)
+    double albedo = -1.0;              //!< [0, 1]; < 0: the Medium's albedo
+    double extinction = 0.0;           //!< 1/m the particles carry at full density; 0: the Medium's
     double forward_scattering = -1.0;  //!< p(l,l)/4pi of Shimada (7), [0, 1]; < 0: from the Medium's g
-    std::uint64_t seed = 1;          //!< the same seed gives the same particles
-    double candidates = 5.0;         //!< sample elimination starts from candidates * count points, >= 1
+    std::uint64_t seed = 1;            //!< the same seed gives the same particles
+    double candidates = 5.0;           //!< sample elimination starts from candidates * count points, >= 1
     // The attenuation buffer and the billboards (render).
-    int resolution = 128;            //!< voxels per side of the attenuation buffer, [16, 512]
-    bool half_float = true;          //!< R16F (true) or R32F storage of log Gamma
+    int resolution = 128;    //!< voxels per side of the attenuation buffer, [16, 512]
+    bool half_float = true;  //!< R16F (true) or R32F storage of log Gamma
     LightFrame frame = LightFrame::automatic;
-    double soft_edge = 40.0;         //!< metres over which a billboard fades out in front of the terrain
+    double soft_edge = 40.0;  //!< metres over which a billboard fades out in front of the terrain
 };
 
 //! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.
@@ -57,7 +57,7 @@ struct ParticleCloud {
     //! p(l,l)/4pi of (7): the fraction of the light a particle scatters that stays in the sun's
     //! beam (Harris's forward-scattering term), in [0, 1].
     double forward_scattering = 0.2;
-    double anisotropy = 0.8;  //!< Henyey-Greenstein g towards the eye (the Medium's)
+    double anisotropy = 0.8;     //!< Henyey-Greenstein g towards the eye (the Medium's)
     int scattering_octaves = 3;  //!< the Medium's multiple-scattering octaves (fog_lighting.hpp)
     //! What the sampler found (for reports): the Medium's integral of density (m^3), the mean
     //! spacing at full density and the number of candidates drawn.

@@ -54,10 +54,10 @@ struct ReferenceView {
 };
 
 struct ReferenceOptions {
-    double optical_step = 0.02;       //!< largest optical depth of one step along a view ray
-    double knot_optical_step = 0.1;   //!< sun-term knots: at most this optical depth apart
-    double shadow_optical_step = 0.05; //!< steps of the sun's optical depth
-    double feature_fraction = 0.25;   //!< steps at most this fraction of the medium's features
+    double optical_step = 0.02;         //!< largest optical depth of one step along a view ray
+    double knot_optical_step = 0.1;     //!< sun-term knots: at most this optical depth apart
+    double shadow_optical_step = 0.05;  //!< steps of the sun's optical depth
+    double feature_fraction = 0.25;     //!< steps at most this fraction of the medium's features
     double shadow_feature_fraction = 1.0;
     double min_transmittance = 1e-5;  //!< the view ray stops when T falls below
     double sun_cutoff = 12.0;         //!< T_sun is 0 beyond this optical depth (6e-6)
@@ -68,16 +68,16 @@ struct ReferenceOptions {
 struct RayFog {
     glm::dvec3 inscatter{0.0};  //!< radiance the fog adds
     double transmittance = 1.0;
-    double distance = 0.0;      //!< where the ray ended: the terrain, the depth limit or 1e6 m
+    double distance = 0.0;  //!< where the ray ended: the terrain, the depth limit or 1e6 m
     bool hit_terrain = false;
-    glm::dvec3 surface{0.0};    //!< radiance of what ends the ray: lit terrain, or sky
-    int steps = 0;              //!< fine steps taken (cost)
+    glm::dvec3 surface{0.0};  //!< radiance of what ends the ray: lit terrain, or sky
+    int steps = 0;            //!< fine steps taken (cost)
     int sun_knots = 0;
 };
 
 struct ReferenceImage {
     int width = 0, height = 0;
-    std::vector<glm::dvec3> inscatter;   //!< row-major, row 0 at the top
+    std::vector<glm::dvec3> inscatter;  //!< row-major, row 0 at the top
     std::vector<double> transmittance;
     std::vector<glm::dvec3> background;  //!< the surface's radiance (terrain or sky), unfogged
     std::vector<double> depth;           //!< view depth of the terrain hit, +inf for sky
@@ -88,9 +88,8 @@ struct ReferenceImage {
 };
 
 //! The fog along origin + t dir (dir unit) up to t_max, with the terrain (may be null) ending it.
-RayFog reference_ray(const FogVolume& fog, const Heightfield* terrain, const glm::dvec3& origin,
-                     const glm::dvec3& dir, double t_max, const FogLighting& light,
-                     const ReferenceOptions& options = {});
+RayFog reference_ray(const FogVolume& fog, const Heightfield* terrain, const glm::dvec3& origin, const glm::dvec3& dir,
+                     double t_max, const FogLighting& light, const ReferenceOptions& options = {});
 
 //! The reference image of `view`. Pixels run in parallel (options.threads).
 ReferenceImage render_reference_fog(const FogVolume& fog, const Heightfield* terrain, const ReferenceView& view,

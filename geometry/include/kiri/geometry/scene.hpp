@@ -21,10 +21,10 @@
 namespace kiri::geometry {
 
 struct TerrainSpec {
-    std::filesystem::path path;       //!< resolved against the scene file's folder
-    double exaggeration = 1.0;        //!< vertical exaggeration, > 0
-    double cell_size = 0.0;           //!< metres per cell, for rasters without georeferencing
-    double vertical_scale = 1.0;      //!< metres per raster unit (PNG heightmaps)
+    std::filesystem::path path;   //!< resolved against the scene file's folder
+    double exaggeration = 1.0;    //!< vertical exaggeration, > 0
+    double cell_size = 0.0;       //!< metres per cell, for rasters without georeferencing
+    double vertical_scale = 1.0;  //!< metres per raster unit (PNG heightmaps)
     double vertical_offset = 0.0;
 };
 
@@ -32,14 +32,14 @@ struct CameraSpec {
     std::string name = "default";
     glm::dvec3 position{0.0, -5000.0, 3000.0};  //!< local metres
     glm::dvec3 target{0.0, 0.0, 500.0};
-    double fov_y_deg = 45.0;                    //!< vertical field of view, (0, 180)
+    double fov_y_deg = 45.0;  //!< vertical field of view, (0, 180)
 };
 
 struct SunSpec {
     glm::dvec3 direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised on load), z > -1
     glm::dvec3 color{1.0, 0.96, 0.9};
     double intensity = 3.0;
-    glm::dvec3 ambient{0.25, 0.3, 0.38};   //!< sky ambient radiance
+    glm::dvec3 ambient{0.25, 0.3, 0.38};  //!< sky ambient radiance
 };
 
 struct ImageSpec {
@@ -47,17 +47,17 @@ struct ImageSpec {
 };
 
 struct Scene {
-    std::filesystem::path file;   //!< where it was loaded from (for messages); may be empty
+    std::filesystem::path file;  //!< where it was loaded from (for messages); may be empty
     TerrainSpec terrain;
     std::vector<CameraSpec> cameras;  //!< may be empty: renderers then frame the terrain
     SunSpec sun;
     ImageSpec image;
-    std::optional<FogSpec> fog;       //!< the "fog" section (docs/scene.md), if any
-    LayerOptions layers;              //!< the "layers" section (defaults when absent)
-    MediumOptions medium;             //!< the "medium" section (defaults when absent)
-    ParticleOptions particles;        //!< the "particles" section (defaults when absent)
-    FroxelOptions froxel;             //!< the "froxel" section (defaults when absent)
-    FogPartition combined;            //!< the "combined" section: each renderer's share in combined mode
+    std::optional<FogSpec> fog;  //!< the "fog" section (docs/scene.md), if any
+    LayerOptions layers;         //!< the "layers" section (defaults when absent)
+    MediumOptions medium;        //!< the "medium" section (defaults when absent)
+    ParticleOptions particles;   //!< the "particles" section (defaults when absent)
+    FroxelOptions froxel;        //!< the "froxel" section (defaults when absent)
+    FogPartition combined;       //!< the "combined" section: each renderer's share in combined mode
     //! The "quality" key (quality.hpp): the preset applied under the scene's own keys; kept so
     //! that a saved scene names it.
     std::optional<Quality> quality;
@@ -71,8 +71,7 @@ struct Scene {
 //! \throw InputError "FILE: /json/pointer: reason" on any problem.
 Scene load_scene(const std::filesystem::path& path);
 //! Parses JSON text; file_label names it in messages, base_dir resolves relative paths.
-Scene parse_scene(std::string_view json_text, const std::string& file_label,
-                  const std::filesystem::path& base_dir);
+Scene parse_scene(std::string_view json_text, const std::string& file_label, const std::filesystem::path& base_dir);
 //! Writes the scene back as JSON that parse_scene reads to an equal Scene.
 std::string scene_to_json(const Scene& scene);
 

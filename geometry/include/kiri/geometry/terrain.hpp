@@ -12,7 +12,7 @@
 namespace kiri::geometry {
 
 struct RayHit {
-    double t = 0.0;          //!< distance along the (normalised) direction
+    double t = 0.0;  //!< distance along the (normalised) direction
     glm::dvec3 point{0.0};
     glm::dvec3 normal{0.0, 0.0, 1.0};  //!< unit normal of the hit triangle, z >= 0
 };

@@ -10,9 +10,9 @@
 namespace kiri::geometry {
 
 struct TessellationOptions {
-    int level = 8;             //!< uniform: N x N cells per patch (the source used 4..10), >= 1
-    double tolerance = 0.0;    //!< > 0: adaptive, max distance to the exact surface (m)
-    int max_level = 64;        //!< adaptive: the finest level a patch may get
+    int level = 8;           //!< uniform: N x N cells per patch (the source used 4..10), >= 1
+    double tolerance = 0.0;  //!< > 0: adaptive, max distance to the exact surface (m)
+    int max_level = 64;      //!< adaptive: the finest level a patch may get
 };
 
 //! The triangles and, per vertex: position, unit normal, (u, v) of its patch in the texture

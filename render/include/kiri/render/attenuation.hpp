@@ -16,7 +16,7 @@
 namespace kiri::render {
 
 struct AttenuationOptions {
-    int resolution = 128;  //!< voxels per side, 16..1024 (Shimada: 128^3, 256^3, 384^3)
+    int resolution = 128;    //!< voxels per side, 16..1024 (Shimada: 128^3, 256^3, 384^3)
     bool half_float = true;  //!< R16F, else R32F storage of log Gamma
     geometry::LightFrame frame = geometry::LightFrame::automatic;
     int depth_resolution = 0;  //!< slices along the light when > 0 (else `resolution`)
@@ -54,17 +54,17 @@ public:
     //! Builds now, whatever changed (benchmarks).
     void rebuild(const glm::dvec3& light, const AttenuationOptions& options);
 
-    int rebuild_count() const;           //!< builds since construction
-    double last_build_ms() const;        //!< wall time of the last build (CPU setup + GPU, finished)
+    int rebuild_count() const;     //!< builds since construction
+    double last_build_ms() const;  //!< wall time of the last build (CPU setup + GPU, finished)
     const AttenuationBuildTimes& last_build_times() const;
     const geometry::LightGrid& grid() const;
-    std::size_t texture_bytes() const;   //!< the log Gamma texture
-    std::size_t scratch_bytes() const;   //!< the fixed-point sums and the scanned floats (8 bytes a voxel)
-    double fixed_point_scale() const;    //!< units per 1.0 of log G in the accumulator
+    std::size_t texture_bytes() const;  //!< the log Gamma texture
+    std::size_t scratch_bytes() const;  //!< the fixed-point sums and the scanned floats (8 bytes a voxel)
+    double fixed_point_scale() const;   //!< units per 1.0 of log G in the accumulator
     //! Whether the last build packed two columns to a 32-bit word (16-bit magnitudes, half the
     //! atomics), chosen when its scale still resolves log G to 1.2e-4.
     bool packed_deposit() const;
-    unsigned texture() const;            //!< GL name of the 3D texture (GL_LINEAR, clamp to edge)
+    unsigned texture() const;  //!< GL name of the 3D texture (GL_LINEAR, clamp to edge)
     //! The particles on the GPU: an SSBO of (x, y, z relative to particle_centre(), radius,
     //! tau, albedo, 0, 0) floats per particle, sorted by radius; particle_order()[k] is the
     //! cloud index of entry k. Uploaded when the particles change, not per build.
@@ -84,9 +84,9 @@ private:
 };
 
 struct HarrisGlStats {
-    double seconds = 0.0;   //!< sort + the light pass, finished
-    int buffer_size = 0;    //!< side of the light buffer (pixels)
-    double pixel_m = 0.0;   //!< metres per light-buffer pixel
+    double seconds = 0.0;  //!< sort + the light pass, finished
+    int buffer_size = 0;   //!< side of the light buffer (pixels)
+    double pixel_m = 0.0;  //!< metres per light-buffer pixel
 };
 
 //! Harris & Lastra's light pass on the GPU as the source describes it (REFERENCE 2.1 and 5):

@@ -16,8 +16,8 @@ struct FogError {
     double worst_relative = 0.0;
     double mean_transmittance_error = 0.0;  //!< mean |T - T_ref| over the fog pixels
     double mean_inscatter_relative = 0.0;   //!< the fog alone: mean |Y_in - Y_in,ref| / Y_in,ref
-    int fog_pixels = 0;          //!< pixels compared: the reference's fog changes them by > 1 %
-    int silhouette_pixels = 0;   //!< left out: the two see different surfaces (depths differ > 1 %)
+    int fog_pixels = 0;                     //!< pixels compared: the reference's fog changes them by > 1 %
+    int silhouette_pixels = 0;              //!< left out: the two see different surfaces (depths differ > 1 %)
 };
 
 //! Over the pixels whose reference surface lies between view depths min_depth and max_depth

@@ -16,7 +16,7 @@ public:
 };
 
 struct ContextOptions {
-    bool debug = true;          //!< KHR_debug messages routed to the log
+    bool debug = true;               //!< KHR_debug messages routed to the log
     bool throw_on_gl_error = false;  //!< tests: a GL error message throws kiri::Error
 };
 

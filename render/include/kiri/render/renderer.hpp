@@ -22,7 +22,7 @@ struct LayerBase;
 struct LayerOptions;
 struct FroxelOptions;
 struct FogPartition;
-}
+}  // namespace kiri::geometry
 
 namespace kiri::render {
 
@@ -47,10 +47,10 @@ struct PassTime {
 
 //! What the froxel fog did in a frame.
 struct FroxelStats {
-    bool enabled = false;    //!< set_froxel_fog was called
-    bool visible = false;    //!< the fog was in view (fog off-screen costs nothing)
-    bool updated = false;    //!< its passes ran this frame (not for a static view and fog)
-    int updates = 0;         //!< frames whose passes ran since set_froxel_fog
+    bool enabled = false;  //!< set_froxel_fog was called
+    bool visible = false;  //!< the fog was in view (fog off-screen costs nothing)
+    bool updated = false;  //!< its passes ran this frame (not for a static view and fog)
+    int updates = 0;       //!< frames whose passes ran since set_froxel_fog
     int shadow_map_updates = 0;
 };
 
@@ -65,10 +65,10 @@ struct FrameStats {
     //! sky, terrain, layers, resolve, and overlays when any overlay is visible.
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
-    int uploads = 0;  //!< GPU resources (re)built during this frame
-    int layers = 0;   //!< fog layers above the base drawn (0: none, or culled off-screen)
-    int particles = 0;              //!< particle billboards drawn
-    int attenuation_rebuilds = 0;   //!< attenuation buffer builds during this frame (0 when nothing changed)
+    int uploads = 0;               //!< GPU resources (re)built during this frame
+    int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
+    int particles = 0;             //!< particle billboards drawn
+    int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
     FroxelStats froxel;
 };
 
