@@ -12,7 +12,7 @@ file(WRITE "${OUTPUT}.new" "// Generated from render/shaders by cmake/EmbedShade
 #include <string_view>
 #include <unordered_map>
 
-#include \"kiri/geometry/error.hpp\"
+#include \"kiri/geometry/core/error.hpp\"
 
 namespace kiri::render::detail {
 

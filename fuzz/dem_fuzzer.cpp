@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <string_view>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
 {

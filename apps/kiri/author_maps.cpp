@@ -1,6 +1,6 @@
 #include "author_maps.hpp"
 
-#include "kiri/geometry/fog_maps.hpp"
+#include "kiri/geometry/placement/fog_maps.hpp"
 
 namespace kiri::cli {
 

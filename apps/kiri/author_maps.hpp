@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::cli {
 

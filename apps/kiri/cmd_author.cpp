@@ -13,16 +13,16 @@
 
 #include "author_maps.hpp"
 #include "commands.hpp"
-#include "kiri/geometry/author_estimate.hpp"
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_spec.hpp"
-#include "kiri/geometry/layer_export.hpp"
-#include "kiri/geometry/particles.hpp"
-#include "kiri/geometry/medium_vdb.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/scene/author_estimate.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/scene/fog_spec.hpp"
+#include "kiri/geometry/layers/layer_export.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+#include "kiri/geometry/volume/medium_vdb.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::cli {
 namespace {

@@ -11,7 +11,7 @@
 #include "bench/bench.hpp"
 #include "bench/report.hpp"
 #include "commands.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::cli {
 namespace {

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "kiri/geometry/dem.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
 
 namespace kiri::cli {
 

@@ -8,12 +8,12 @@
 #include <string>
 
 #include "commands.hpp"
-#include "kiri/geometry/particles.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/reference_fog.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/renderer.hpp"
 #include "kiri/render/scene_rendering.hpp"

@@ -3,7 +3,7 @@
 #include <unistd.h>
 
 #include "commands.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::cli {
 

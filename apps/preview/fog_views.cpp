@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kiri/geometry/fog_target.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/fog/fog_target.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::preview {
 namespace {

@@ -10,10 +10,10 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "kiri/geometry/base_surface.hpp"
-#include "kiri/geometry/fog_placement.hpp"
-#include "kiri/geometry/layer_stack.hpp"
-#include "kiri/geometry/tessellate.hpp"
+#include "kiri/geometry/fog/base_surface.hpp"
+#include "kiri/geometry/placement/fog_placement.hpp"
+#include "kiri/geometry/layers/layer_stack.hpp"
+#include "kiri/geometry/fog/tessellate.hpp"
 #include "kiri/render/overlay_mesh.hpp"
 
 namespace kiri::preview {

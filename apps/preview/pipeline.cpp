@@ -3,10 +3,10 @@
 #include <exception>
 #include <utility>
 
-#include "kiri/geometry/author_estimate.hpp"
-#include "kiri/geometry/fill_medium.hpp"
-#include "kiri/geometry/fog_partition.hpp"
-#include "kiri/geometry/fog_spec.hpp"
+#include "kiri/geometry/scene/author_estimate.hpp"
+#include "kiri/geometry/placement/fill_medium.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
+#include "kiri/geometry/scene/fog_spec.hpp"
 
 namespace kiri::preview {
 namespace {

@@ -25,10 +25,10 @@
 #include <thread>
 
 #include "fog_views.hpp"
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/particles.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::preview {
 

@@ -13,8 +13,8 @@
 #include <cstdio>
 
 #include "camera_path.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/image.hpp"
 #include "kiri/render/scene_rendering.hpp"
 #include "scene_file.hpp"

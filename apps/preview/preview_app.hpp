@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 #include "kiri/render/renderer.hpp"
 #include "kiri/render/window_context.hpp"
 #include "orbit_camera.hpp"

@@ -3,7 +3,7 @@
 #include <fstream>
 #include <system_error>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::preview {
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <string>
 
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 
 namespace kiri::preview {
 

@@ -1,5 +1,5 @@
 // Library (inserted after #version): one particle's footprint and the attenuation buffer's
-// lookup, the GPU copy of geometry/include/kiri/geometry/particle_footprint.hpp and of
+// lookup, the GPU copy of geometry/include/kiri/geometry/particles/particle_footprint.hpp and of
 // sample_log_gamma / self_log_gamma in attenuation_cpu.hpp (a GL test checks they agree).
 
 const float kFootprintSigma = 0.4;

@@ -5,8 +5,8 @@
 #include <cstring>
 
 #include "gl_objects.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "particle_gpu.hpp"
 #include "shader_program.hpp"

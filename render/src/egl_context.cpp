@@ -5,7 +5,7 @@
 #include <string>
 
 #include "gl_debug.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "kiri/render/gl_context.hpp"
 
 namespace kiri::render {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::render {
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::render::detail {
 namespace {

@@ -1,7 +1,7 @@
 #pragma once
 // The Medium and the height fog on the GPU for froxel_medium.glsl: the grids as one RGBA32F
 // texture (floor, bottom, top, coverage), the shared noise tile in float, and the uniforms.
-#include "kiri/geometry/height_fog.hpp"
+#include "kiri/geometry/volume/height_fog.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::geometry {

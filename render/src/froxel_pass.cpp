@@ -8,8 +8,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/fog_lighting.hpp"
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/medium/fog_lighting.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 #include "terrain_pass.hpp"
 
 namespace kiri::render::detail {

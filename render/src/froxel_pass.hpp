@@ -17,7 +17,7 @@
 #include "froxel_medium.hpp"
 #include "froxel_shell.hpp"
 #include "froxel_tile_bounds.hpp"
-#include "kiri/geometry/froxel_options.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
 #include "kiri/render/renderer.hpp"
 #include "pass_timer.hpp"
 #include "shader_program.hpp"

@@ -5,7 +5,7 @@
 #include <atomic>
 #include <cstdio>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "kiri/render/gl_context.hpp"
 
 namespace kiri::render {

@@ -8,7 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "gl_objects.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "shader_program.hpp"
 

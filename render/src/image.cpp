@@ -6,7 +6,7 @@
 #include <system_error>
 #include <unistd.h>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::render {
 

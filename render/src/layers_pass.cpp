@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "froxel_pass.hpp"
-#include "kiri/geometry/heightfield.hpp"
+#include "kiri/geometry/terrain/heightfield.hpp"
 #include "noise_texture.hpp"
 
 namespace kiri::render::detail {

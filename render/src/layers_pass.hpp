@@ -5,7 +5,7 @@
 #include <glm/vec3.hpp>
 
 #include "frame_context.hpp"
-#include "kiri/geometry/layer_stack.hpp"
+#include "kiri/geometry/layers/layer_stack.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::geometry {

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::render::detail {
 

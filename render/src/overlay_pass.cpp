@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::render::detail {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstring>
 #include <limits>
 
-#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
 
 namespace kiri::render::detail {
 

@@ -7,8 +7,8 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
-#include "kiri/geometry/light_grid.hpp"
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/particles/light_grid.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {

@@ -7,7 +7,7 @@
 
 #include "frame_context.hpp"
 #include "froxel_pass.hpp"
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
 #include "shader_program.hpp"

@@ -3,7 +3,7 @@
 #include <cstring>
 #include <string>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::render::detail {
 namespace {

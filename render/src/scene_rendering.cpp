@@ -1,7 +1,7 @@
 #include "kiri/render/scene_rendering.hpp"
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_partition.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
 
 namespace kiri::render {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "froxel_pass.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::render::detail {
 namespace {

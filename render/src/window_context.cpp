@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "gl_debug.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::render {
 namespace {

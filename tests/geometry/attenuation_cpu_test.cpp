@@ -10,9 +10,9 @@
 #include <glm/geometric.hpp>
 #include <random>
 
-#include "kiri/geometry/attenuation_cpu.hpp"
-#include "kiri/geometry/harris_reference.hpp"
-#include "kiri/geometry/light_grid.hpp"
+#include "kiri/geometry/particles/attenuation_cpu.hpp"
+#include "kiri/geometry/particles/harris_reference.hpp"
+#include "kiri/geometry/particles/light_grid.hpp"
 #include "particle_test_clouds.hpp"
 
 using namespace kiri::geometry;

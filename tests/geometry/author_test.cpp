@@ -6,8 +6,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/fog_spec.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/scene/fog_spec.hpp"
 
 using namespace kiri::geometry;
 

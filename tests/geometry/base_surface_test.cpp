@@ -7,10 +7,10 @@
 #include <glm/geometric.hpp>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/base_surface.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_target.hpp"
-#include "kiri/geometry/surface.hpp"
+#include "kiri/geometry/fog/base_surface.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/fog/fog_target.hpp"
+#include "kiri/geometry/surface/surface.hpp"
 #include "surface/face_stencil.hpp"
 
 using namespace kiri::geometry;

@@ -7,8 +7,8 @@
 #include <glm/geometric.hpp>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/burn_off.hpp"
-#include "kiri/geometry/fog_fill.hpp"
+#include "kiri/geometry/placement/burn_off.hpp"
+#include "kiri/geometry/placement/fog_fill.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;

@@ -15,8 +15,8 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace fs = std::filesystem;
 using namespace kiri::geometry;

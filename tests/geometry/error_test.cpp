@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 TEST(InputError, MessageJoinsFileFieldReason)
 {

@@ -6,8 +6,8 @@
 #include <random>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_fill.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/fog_fill.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;

@@ -6,10 +6,10 @@
 #include <cstring>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_columns.hpp"
-#include "kiri/geometry/fog_fill.hpp"
-#include "kiri/geometry/fog_flow.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/fog_columns.hpp"
+#include "kiri/geometry/placement/fog_fill.hpp"
+#include "kiri/geometry/placement/fog_flow.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;

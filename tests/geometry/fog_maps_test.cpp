@@ -10,10 +10,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_maps.hpp"
-#include "kiri/geometry/fog_placement.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/fog_maps.hpp"
+#include "kiri/geometry/placement/fog_placement.hpp"
 #include "temp_path.hpp"
 
 using namespace kiri::geometry;

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_partition.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
 
 namespace kiri::geometry {
 namespace {

@@ -6,11 +6,11 @@
 #include <filesystem>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fill_medium.hpp"
-#include "kiri/geometry/fog_placement.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/fill_medium.hpp"
+#include "kiri/geometry/placement/fog_placement.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include "fog/fog_spec_json.hpp"
-#include "kiri/geometry/error.hpp"
+#include "scene/fog_spec_json.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 using namespace kiri::geometry;
 using nlohmann::json;

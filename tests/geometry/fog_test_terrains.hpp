@@ -3,7 +3,7 @@
 #include <cmath>
 #include <functional>
 
-#include "kiri/geometry/heightfield.hpp"
+#include "kiri/geometry/terrain/heightfield.hpp"
 
 namespace kiri::test {
 

@@ -6,8 +6,8 @@
 #include <glm/geometric.hpp>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/footprint.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/fog/footprint.hpp"
 
 using namespace kiri::geometry;
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/froxel_options.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 
 using namespace kiri::geometry;
 

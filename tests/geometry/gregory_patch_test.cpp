@@ -7,9 +7,9 @@
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/gregory_opensubdiv.hpp"
-#include "kiri/geometry/gregory_patch.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/surface/gregory_opensubdiv.hpp"
+#include "kiri/geometry/surface/gregory_patch.hpp"
 
 using namespace kiri::geometry;
 

@@ -9,8 +9,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/harris_reference.hpp"
-#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/particles/harris_reference.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
 #include "particle_test_clouds.hpp"
 
 using namespace kiri::geometry;

@@ -7,9 +7,9 @@
 #include <glm/geometric.hpp>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/layer_stack.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/layers/layer_stack.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 
 using namespace kiri::geometry;
 using kiri::InputError;

@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/mask_outline.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/mask_outline.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;

@@ -1,4 +1,4 @@
-// The Medium (geometry/include/kiri/geometry/medium.hpp): optics conversions, the shared noise,
+// The Medium (geometry/include/kiri/geometry/medium/medium.hpp): optics conversions, the shared noise,
 // the density field against its formula, and the medium of a fitted fog against its layers.
 #include <gtest/gtest.h>
 
@@ -7,10 +7,10 @@
 #include <stdexcept>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_lighting.hpp"
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_lighting.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 
 using namespace kiri::geometry;
 using kiri::InputError;

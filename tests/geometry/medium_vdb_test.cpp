@@ -7,9 +7,9 @@
 
 #include <openvdb/openvdb.h>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/medium_vdb.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/volume/medium_vdb.hpp"
 #include "temp_path.hpp"
 
 using namespace kiri::geometry;

@@ -7,9 +7,9 @@
 #include <limits>
 #include <numbers>
 
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/particle_footprint.hpp"
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 
 using namespace kiri::geometry;
 

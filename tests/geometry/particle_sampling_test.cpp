@@ -11,11 +11,11 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_partition.hpp"
-#include "kiri/geometry/particle_footprint.hpp"
-#include "kiri/geometry/particles.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 #include "particle_test_clouds.hpp"
 #include "temp_path.hpp"
 

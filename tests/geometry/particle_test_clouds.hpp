@@ -4,8 +4,8 @@
 #include <random>
 #include <vector>
 
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 
 namespace kiri::test {
 

@@ -9,8 +9,8 @@
 #include <glm/geometric.hpp>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/reference_fog.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
 
 using namespace kiri::geometry;
 

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <random>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/scattered_points.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/terrain/scattered_points.hpp"
 
 namespace fs = std::filesystem;
 using namespace kiri::geometry;

@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/surface.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/surface/surface.hpp"
 #include "surface/face_stencil.hpp"
 #include "surface_test_meshes.hpp"
 

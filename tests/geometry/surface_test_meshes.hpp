@@ -4,7 +4,7 @@
 #include <random>
 #include <vector>
 
-#include "kiri/geometry/mesh.hpp"
+#include "kiri/geometry/terrain/mesh.hpp"
 
 namespace kiri::test {
 

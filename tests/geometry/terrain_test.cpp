@@ -10,7 +10,7 @@
 #include <glm/geometric.hpp>
 #include <glm/vec2.hpp>
 
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 using kiri::geometry::Heightfield;
 using kiri::geometry::Terrain;

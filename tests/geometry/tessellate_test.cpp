@@ -8,8 +8,8 @@
 #include <glm/geometric.hpp>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/tessellate.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/fog/tessellate.hpp"
 
 using namespace kiri::geometry;
 

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "fog_test_terrains.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/valley_analysis.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/valley_analysis.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "cli/kiri_runner.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 #include "kiri/render/image.hpp"
 #include "temp_path.hpp"
 

@@ -10,9 +10,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "kiri/geometry/reference_fog.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
 #include "kiri/render/fog_error.hpp"
 #include "kiri/render/scene_rendering.hpp"
 #include "render/render_fixture.hpp"

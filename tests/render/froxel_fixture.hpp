@@ -8,9 +8,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/froxel_options.hpp"
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/reference_fog.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/render/fog_error.hpp"
 #include "kiri/render/renderer.hpp"
 #include "kiri/render/scene_rendering.hpp"

@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "render/froxel_fixture.hpp"
 
 namespace {

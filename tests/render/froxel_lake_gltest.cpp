@@ -1,7 +1,7 @@
 // The froxel fog against the CPU reference on the bundled fog lake over Jacksboro (label slow:
 // the reference of a 320 x 180 view takes seconds).
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
 #include "render/froxel_fixture.hpp"
 
 namespace {

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "kiri/render/image.hpp"
 
 namespace fs = std::filesystem;

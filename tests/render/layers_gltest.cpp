@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "kiri/geometry/fog_lighting.hpp"
-#include "kiri/geometry/fog_spec.hpp"
-#include "kiri/geometry/layer_stack.hpp"
+#include "kiri/geometry/medium/fog_lighting.hpp"
+#include "kiri/geometry/scene/fog_spec.hpp"
+#include "kiri/geometry/layers/layer_stack.hpp"
 #include "kiri/render/camera.hpp"
 #include "kiri/render/renderer.hpp"
 #include "render/render_fixture.hpp"

@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "kiri/render/renderer.hpp"
 #include "render/render_fixture.hpp"
 

@@ -12,8 +12,8 @@
 #include <glm/geometric.hpp>
 
 #include "geometry/particle_test_clouds.hpp"
-#include "kiri/geometry/attenuation_cpu.hpp"
-#include "kiri/geometry/harris_reference.hpp"
+#include "kiri/geometry/particles/attenuation_cpu.hpp"
+#include "kiri/geometry/particles/harris_reference.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
 #include "render/render_fixture.hpp"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <memory>
 
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/gl_context.hpp"
 
 namespace kiri::test {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "bench/bench.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::bench {
 namespace {

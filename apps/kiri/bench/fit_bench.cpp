@@ -3,8 +3,8 @@
 #include <string>
 
 #include "bench/bench.hpp"
-#include "kiri/geometry/base_surface.hpp"
-#include "kiri/geometry/dem.hpp"
+#include "kiri/geometry/fog/base_surface.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
 
 namespace {
 using namespace kiri::geometry;

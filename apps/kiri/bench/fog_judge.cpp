@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::bench {
 

@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "kiri/geometry/reference_fog.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/fog_error.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/image.hpp"

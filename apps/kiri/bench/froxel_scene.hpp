@@ -4,11 +4,11 @@
 #include <filesystem>
 #include <memory>
 
-#include "kiri/geometry/froxel_options.hpp"
-#include "kiri/geometry/reference_fog.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/camera.hpp"
 #include "kiri/render/fog_error.hpp"
 #include "kiri/render/gl_context.hpp"

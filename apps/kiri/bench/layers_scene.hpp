@@ -4,9 +4,9 @@
 #include <filesystem>
 #include <memory>
 
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/camera.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/renderer.hpp"

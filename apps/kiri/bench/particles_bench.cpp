@@ -14,9 +14,9 @@
 #include "bench/bench.hpp"
 #include "bench/particles_scene.hpp"
 #include "bench/report.hpp"
-#include "kiri/geometry/harris_reference.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/particles/harris_reference.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
 

@@ -10,10 +10,10 @@
 #include "bench/bench.hpp"
 #include "bench/particles_scene.hpp"
 #include "bench/report.hpp"
-#include "kiri/geometry/harris_reference.hpp"
-#include "kiri/geometry/particle_footprint.hpp"
-#include "kiri/geometry/scene_fog.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/particles/harris_reference.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::bench {
 namespace {

@@ -11,9 +11,9 @@
 
 #include <glm/vec3.hpp>
 
-#include "kiri/geometry/medium.hpp"
-#include "kiri/geometry/particles.hpp"
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/gl_context.hpp"
 

@@ -7,10 +7,10 @@
 #include <string>
 
 #include "bench/bench.hpp"
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/fog_columns.hpp"
-#include "kiri/geometry/fog_fill.hpp"
-#include "kiri/geometry/fog_flow.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/placement/fog_columns.hpp"
+#include "kiri/geometry/placement/fog_fill.hpp"
+#include "kiri/geometry/placement/fog_flow.hpp"
 
 namespace {
 

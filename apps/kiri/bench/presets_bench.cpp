@@ -8,7 +8,7 @@
 
 #include "bench/bench.hpp"
 #include "bench/fog_judge.hpp"
-#include "kiri/geometry/quality.hpp"
+#include "kiri/geometry/scene/quality.hpp"
 
 namespace kiri::bench {
 namespace {

@@ -7,7 +7,7 @@
 #include <map>
 #include <sstream>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::bench {
 namespace {

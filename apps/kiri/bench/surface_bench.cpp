@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "bench/bench.hpp"
-#include "kiri/geometry/gregory_opensubdiv.hpp"
-#include "kiri/geometry/gregory_patch.hpp"
-#include "kiri/geometry/mesh.hpp"
-#include "kiri/geometry/surface.hpp"
+#include "kiri/geometry/surface/gregory_opensubdiv.hpp"
+#include "kiri/geometry/surface/gregory_patch.hpp"
+#include "kiri/geometry/terrain/mesh.hpp"
+#include "kiri/geometry/surface/surface.hpp"
 
 namespace {
 

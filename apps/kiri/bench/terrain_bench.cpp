@@ -13,8 +13,8 @@
 #include <glm/vec2.hpp>
 
 #include "bench/bench.hpp"
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace {
 

@@ -4,9 +4,9 @@
 #include <string>
 
 #include "bench/bench.hpp"
-#include "kiri/geometry/base_surface.hpp"
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/tessellate.hpp"
+#include "kiri/geometry/fog/base_surface.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/fog/tessellate.hpp"
 
 namespace {
 using namespace kiri::geometry;

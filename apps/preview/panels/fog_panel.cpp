@@ -7,7 +7,7 @@
 
 #include <imgui.h>
 
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 #include "panels/panels.hpp"
 #include "panels/widgets.hpp"
 

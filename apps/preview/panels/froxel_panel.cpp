@@ -4,7 +4,7 @@
 // and combined render modes.
 #include <imgui.h>
 
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 #include "panels/panels.hpp"
 #include "panels/widgets.hpp"
 

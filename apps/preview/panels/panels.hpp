@@ -5,7 +5,7 @@
 // changed) and applies the per-frame values (sun, layer look) at once.
 #include <string>
 
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 #include "kiri/render/renderer.hpp"
 #include "pipeline.hpp"
 

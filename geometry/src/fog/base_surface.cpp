@@ -1,4 +1,4 @@
-#include "kiri/geometry/base_surface.hpp"
+#include "kiri/geometry/fog/base_surface.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,8 +9,8 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_target.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/fog/fog_target.hpp"
 #include "fog/fit_samples.hpp"
 #include "surface/face_stencil.hpp"
 

@@ -7,8 +7,8 @@
 
 #include <glm/vec2.hpp>
 
-#include "kiri/geometry/footprint.hpp"
-#include "kiri/geometry/heightfield.hpp"
+#include "kiri/geometry/fog/footprint.hpp"
+#include "kiri/geometry/terrain/heightfield.hpp"
 #include "surface/face_stencil.hpp"
 
 namespace kiri::geometry {

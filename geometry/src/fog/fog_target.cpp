@@ -1,4 +1,4 @@
-#include "kiri/geometry/fog_target.hpp"
+#include "kiri/geometry/fog/fog_target.hpp"
 
 #include <algorithm>
 #include <cmath>

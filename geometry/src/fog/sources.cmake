@@ -4,7 +4,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/fog/fog_target.cpp
   src/fog/base_surface.cpp
   src/fog/fit_samples.cpp
-  src/fog/author.cpp
-  src/fog/author_estimate.cpp
-  src/fog/fog_spec_json.cpp
+  src/fog/tessellate.cpp
 )

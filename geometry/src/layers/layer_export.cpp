@@ -1,4 +1,4 @@
-#include "kiri/geometry/layer_export.hpp"
+#include "kiri/geometry/layers/layer_export.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <stb_image_write.h>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/layer_stack.hpp"
+#include "kiri/geometry/layers/layer_stack.hpp"
 
 namespace kiri::geometry {
 

@@ -1,4 +1,4 @@
-#include "kiri/geometry/layer_stack.hpp"
+#include "kiri/geometry/layers/layer_stack.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

@@ -1,9 +1,9 @@
-#include "kiri/geometry/layer_texture.hpp"
+#include "kiri/geometry/layers/layer_texture.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

@@ -3,6 +3,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/layers/layer_formulas.cpp
   src/layers/layer_stack.cpp
   src/layers/layer_texture.cpp
-  src/layers/layer_options_json.cpp
   src/layers/layer_export.cpp
 )

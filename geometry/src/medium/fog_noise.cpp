@@ -3,7 +3,7 @@
 #include <mutex>
 #include <random>
 
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {

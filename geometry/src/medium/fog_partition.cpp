@@ -1,9 +1,9 @@
-#include "kiri/geometry/fog_partition.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 

@@ -1,8 +1,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {

@@ -2,8 +2,8 @@
 #include <cmath>
 #include <limits>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {

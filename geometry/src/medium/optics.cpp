@@ -3,7 +3,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -48,7 +48,7 @@ double henyey_greenstein(double cos_theta, double g)
 
 }  // namespace kiri::geometry
 
-#include "kiri/geometry/fog_lighting.hpp"
+#include "kiri/geometry/medium/fog_lighting.hpp"
 
 namespace kiri::geometry {
 

@@ -1,4 +1,4 @@
-#include "kiri/geometry/attenuation_cpu.hpp"
+#include "kiri/geometry/particles/attenuation_cpu.hpp"
 
 #include <algorithm>
 #include <cmath>

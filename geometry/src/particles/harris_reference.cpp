@@ -1,4 +1,4 @@
-#include "kiri/geometry/harris_reference.hpp"
+#include "kiri/geometry/particles/harris_reference.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
 
 namespace kiri::geometry {
 namespace {

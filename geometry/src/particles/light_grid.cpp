@@ -1,4 +1,4 @@
-#include "kiri/geometry/light_grid.hpp"
+#include "kiri/geometry/particles/light_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

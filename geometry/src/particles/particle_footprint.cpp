@@ -1,9 +1,9 @@
-#include "kiri/geometry/particle_footprint.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
 
 #include <algorithm>
 #include <numbers>
 
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 
 namespace kiri::geometry {
 namespace {

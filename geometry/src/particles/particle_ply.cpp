@@ -4,8 +4,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 
 namespace kiri::geometry {
 namespace {

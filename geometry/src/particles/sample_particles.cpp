@@ -2,9 +2,9 @@
 #include <cmath>
 #include <random>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/particle_footprint.hpp"
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 #include "particles/sample_elimination.hpp"
 
 namespace kiri::geometry {

@@ -3,7 +3,6 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/particles/particle_footprint.cpp
   src/particles/sample_elimination.cpp
   src/particles/sample_particles.cpp
-  src/particles/particle_options_json.cpp
   src/particles/particle_ply.cpp
   src/particles/light_grid.cpp
   src/particles/harris_reference.cpp

@@ -1,4 +1,4 @@
-#include "kiri/geometry/burn_off.hpp"
+#include "kiri/geometry/placement/burn_off.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

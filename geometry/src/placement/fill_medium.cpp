@@ -1,9 +1,9 @@
-#include "kiri/geometry/fill_medium.hpp"
+#include "kiri/geometry/placement/fill_medium.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 

@@ -1,8 +1,8 @@
-#include "kiri/geometry/fog_columns.hpp"
+#include "kiri/geometry/placement/fog_columns.hpp"
 
 #include <algorithm>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 

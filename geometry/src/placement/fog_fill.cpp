@@ -1,10 +1,10 @@
-#include "kiri/geometry/fog_fill.hpp"
+#include "kiri/geometry/placement/fog_fill.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "placement/radix_heap.hpp"
 
 namespace kiri::geometry {

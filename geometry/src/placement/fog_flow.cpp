@@ -1,11 +1,11 @@
-#include "kiri/geometry/fog_flow.hpp"
+#include "kiri/geometry/placement/fog_flow.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

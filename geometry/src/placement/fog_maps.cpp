@@ -1,6 +1,6 @@
 // GDAL adapter of the fog maps: GDAL stays inside geometry/src (STYLE, "CGAL, OpenSubdiv and
 // GDAL each stay behind a small adapter").
-#include "kiri/geometry/fog_maps.hpp"
+#include "kiri/geometry/placement/fog_maps.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,8 +12,8 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_placement.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/fog_placement.hpp"
 
 namespace kiri::geometry {
 namespace {

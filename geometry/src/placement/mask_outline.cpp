@@ -1,11 +1,11 @@
-#include "kiri/geometry/mask_outline.hpp"
+#include "kiri/geometry/placement/mask_outline.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

@@ -3,9 +3,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_maps.hpp"
-#include "kiri/geometry/fog_placement.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/fog_maps.hpp"
+#include "kiri/geometry/placement/fog_placement.hpp"
 
 namespace kiri::geometry {
 namespace {

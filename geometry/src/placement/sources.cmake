@@ -9,6 +9,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/placement/burn_off.cpp
   src/placement/fog_flow.cpp
   src/placement/placement.cpp
-  src/placement/placement_json.cpp
   src/placement/fill_medium.cpp
 )

@@ -1,10 +1,10 @@
-#include "kiri/geometry/valley_analysis.hpp"
+#include "kiri/geometry/placement/valley_analysis.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fog_target.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/fog/fog_target.hpp"
 
 namespace kiri::geometry {
 

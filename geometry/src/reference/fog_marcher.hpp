@@ -3,7 +3,7 @@
 #include <memory>
 #include <vector>
 
-#include "kiri/geometry/reference_fog.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
 #include "reference/heightfield_ray.hpp"
 #include "reference/shell_intervals.hpp"
 

@@ -5,7 +5,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "kiri/geometry/heightfield.hpp"
+#include "kiri/geometry/terrain/heightfield.hpp"
 #include "reference/grid_walk.hpp"
 
 namespace kiri::geometry::detail {

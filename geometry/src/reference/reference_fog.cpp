@@ -1,4 +1,4 @@
-#include "kiri/geometry/reference_fog.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
 
 #include <algorithm>
 #include <atomic>

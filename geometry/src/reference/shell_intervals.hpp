@@ -6,7 +6,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "kiri/geometry/medium.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry::detail {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "scene/json_reader.hpp"
+#include "core/json_reader.hpp"
 
 namespace kiri::geometry {
 

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "kiri/geometry/fog_partition.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
 
 namespace kiri::geometry {
 

@@ -1,4 +1,4 @@
-#include "kiri/geometry/quality.hpp"
+#include "kiri/geometry/scene/quality.hpp"
 
 #include <nlohmann/json.hpp>
 

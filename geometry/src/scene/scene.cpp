@@ -1,4 +1,4 @@
-#include "kiri/geometry/scene.hpp"
+#include "kiri/geometry/scene/scene.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,16 +8,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "fog/fog_spec_json.hpp"
-#include "layers/layer_options_json.hpp"
-#include "medium/medium_options_json.hpp"
-#include "particles/particle_options_json.hpp"
+#include "scene/fog_spec_json.hpp"
+#include "scene/layer_options_json.hpp"
+#include "scene/medium_options_json.hpp"
+#include "scene/particle_options_json.hpp"
 #include "scene/fog_partition_json.hpp"
-#include "volume/froxel_options_json.hpp"
-#include "scene/json_reader.hpp"
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/terrain.hpp"
+#include "scene/froxel_options_json.hpp"
+#include "core/json_reader.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::geometry {
 namespace {

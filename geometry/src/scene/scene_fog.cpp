@@ -1,10 +1,10 @@
-#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
 
 #include <chrono>
 
-#include "kiri/geometry/author_estimate.hpp"
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/fill_medium.hpp"
+#include "kiri/geometry/scene/author_estimate.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/placement/fill_medium.hpp"
 
 namespace kiri::geometry {
 

@@ -3,8 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "kiri/geometry/fill_medium.hpp"
-#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/placement/fill_medium.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
 
 namespace kiri::geometry {
 namespace {

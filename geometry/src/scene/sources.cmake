@@ -1,9 +1,16 @@
 # Sources of geometry/src/scene (paths relative to geometry/)
 list(APPEND KIRI_GEOMETRY_SOURCES
-  src/scene/error.cpp
   src/scene/scene.cpp
   src/scene/quality.cpp
   src/scene/fog_partition_json.cpp
   src/scene/scene_fog.cpp
   src/scene/scene_fog_report.cpp
+  src/scene/author.cpp
+  src/scene/author_estimate.cpp
+  src/scene/fog_spec_json.cpp
+  src/scene/froxel_options_json.cpp
+  src/scene/layer_options_json.cpp
+  src/scene/medium_options_json.cpp
+  src/scene/particle_options_json.cpp
+  src/scene/placement_json.cpp
 )

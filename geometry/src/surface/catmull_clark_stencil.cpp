@@ -3,7 +3,7 @@
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "surface/face_stencil.hpp"
 #include "surface/osd_refiner.hpp"
 

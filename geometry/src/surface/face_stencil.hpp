@@ -6,7 +6,7 @@
 #include <memory>
 #include <vector>
 
-#include "kiri/geometry/mesh.hpp"
+#include "kiri/geometry/terrain/mesh.hpp"
 
 namespace kiri::geometry {
 

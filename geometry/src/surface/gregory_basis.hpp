@@ -31,7 +31,7 @@
 
 namespace kiri::geometry::detail {
 
-//! Index of P_ijk in the 20-point array (see kiri/geometry/gregory_patch.hpp).
+//! Index of P_ijk in the 20-point array (see kiri/geometry/surface/gregory_patch.hpp).
 constexpr int gregory_index(int i, int j, int k) { return k == 0 ? j * 4 + i : 16 + (j - 1) * 2 + (i - 1); }
 
 //! B^3_i(t) = C(3,i) t^i (1-t)^(3-i) and its first two derivatives (REFERENCE 1.1, corrected).

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

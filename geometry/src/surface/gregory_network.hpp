@@ -7,8 +7,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "kiri/geometry/gregory_patch.hpp"
-#include "kiri/geometry/mesh.hpp"
+#include "kiri/geometry/surface/gregory_patch.hpp"
+#include "kiri/geometry/terrain/mesh.hpp"
 
 namespace kiri::geometry {
 
@@ -26,7 +26,7 @@ struct GregoryNetworkMap {
 
 //! Patch of face f: corner k of its vertex list (OpenMesh fv order) at (0,0), (1,0), (1,1),
 //! (0,1) of the patch. Rules (LSNC for the interior; ours on the boundary, documented in
-//! kiri/geometry/surface.hpp). \throw InputError on a face that is not a quad, an isolated or
+//! kiri/geometry/surface/surface.hpp). \throw InputError on a face that is not a quad, an isolated or
 //! non-manifold vertex.
 GregoryNetworkMap build_gregory_network(const PolyMesh& mesh);
 

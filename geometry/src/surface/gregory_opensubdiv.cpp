@@ -1,9 +1,9 @@
-#include "kiri/geometry/gregory_opensubdiv.hpp"
+#include "kiri/geometry/surface/gregory_opensubdiv.hpp"
 
 #include <opensubdiv/far/patchDescriptor.h>
 #include <opensubdiv/far/patchParam.h>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 // Exported by libosdCPU (explicit instantiation) but declared in far/patchBasis.h, which
 // Debian does not install: the basis behind PatchTable::EvaluateBasis.

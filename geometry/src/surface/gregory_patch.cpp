@@ -1,11 +1,11 @@
-#include "kiri/geometry/gregory_patch.hpp"
+#include "kiri/geometry/surface/gregory_patch.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "surface/gregory_basis.hpp"
 
 // Lanes are passed only between always-inlined functions; the ABI note does not apply.

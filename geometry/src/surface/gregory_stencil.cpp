@@ -1,6 +1,6 @@
 // The fit's view of the Gregory network: weights of the mesh vertices = the 20 Gregory
 // weights (gregory_basis, the one source, with exact second derivatives) times the LSNC map
-// of the face (gregory_network.cpp; boundary rules in kiri/geometry/surface.hpp).
+// of the face (gregory_network.cpp; boundary rules in kiri/geometry/surface/surface.hpp).
 #include <cstdint>
 
 #include "surface/face_stencil.hpp"

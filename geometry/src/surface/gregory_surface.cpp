@@ -1,8 +1,8 @@
 // The Gregory network behind the Surface interface.
 #include <algorithm>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/surface.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/surface/surface.hpp"
 #include "surface/gregory_basis.hpp"
 #include "surface/gregory_network.hpp"
 

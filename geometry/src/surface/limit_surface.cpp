@@ -6,8 +6,8 @@
 #include <opensubdiv/bfr/refinerSurfaceFactory.h>
 #include <opensubdiv/bfr/surface.h>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/surface.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/surface/surface.hpp"
 #include "surface/osd_refiner.hpp"
 
 namespace kiri::geometry {

@@ -5,7 +5,7 @@
 
 #include <opensubdiv/far/topologyRefiner.h>
 
-#include "kiri/geometry/mesh.hpp"
+#include "kiri/geometry/terrain/mesh.hpp"
 
 namespace kiri::geometry {
 

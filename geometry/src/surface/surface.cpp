@@ -1,11 +1,11 @@
-#include "kiri/geometry/surface.hpp"
+#include "kiri/geometry/surface/surface.hpp"
 
 #include <cmath>
 #include <string>
 
 #include <glm/geometric.hpp>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 

@@ -1,5 +1,5 @@
 // DEM loading through GDAL: one adapter, so GDAL stays inside geometry/src/terrain.
-#include "kiri/geometry/dem.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "terrain/geodesy.hpp"
 #include "terrain/nodata_fill.hpp"
 

@@ -1,6 +1,6 @@
 // Scattered elevation points -> heightfield through a CGAL 2D Delaunay triangulation.
 // CGAL stays in this file (a separate translation unit from the AABB tree: each costs ~30 s).
-#include "kiri/geometry/scattered_points.hpp"
+#include "kiri/geometry/terrain/scattered_points.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -14,8 +14,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Projection_traits_xy_3.h>
 
-#include "kiri/geometry/dem.hpp"
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "terrain/nodata_fill.hpp"
 
 namespace kiri::geometry {

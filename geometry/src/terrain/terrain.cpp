@@ -1,4 +1,4 @@
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -4,7 +4,7 @@
 #include <memory>
 #include <optional>
 
-#include "kiri/geometry/terrain.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::geometry {
 

@@ -1,8 +1,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "kiri/geometry/error.hpp"
-#include "kiri/geometry/froxel_options.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
 
 namespace kiri::geometry {
 namespace {

@@ -1,10 +1,10 @@
-#include "kiri/geometry/height_fog.hpp"
+#include "kiri/geometry/volume/height_fog.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

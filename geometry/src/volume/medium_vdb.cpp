@@ -1,5 +1,5 @@
 // The only file of kiri that includes OpenVDB (a heavy header set): medium_vdb.hpp.
-#include "kiri/geometry/medium_vdb.hpp"
+#include "kiri/geometry/volume/medium_vdb.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 
 #include <openvdb/openvdb.h>
 
-#include "kiri/geometry/error.hpp"
+#include "kiri/geometry/core/error.hpp"
 
 namespace kiri::geometry {
 namespace {

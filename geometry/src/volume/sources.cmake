@@ -2,8 +2,6 @@
 # (height fog, froxel options and slice distributions, the OpenVDB export)
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/volume/height_fog.cpp
-  src/volume/fog_lighting.cpp
   src/volume/froxel_slices.cpp
-  src/volume/froxel_options_json.cpp
   src/volume/medium_vdb.cpp
 )

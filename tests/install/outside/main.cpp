@@ -3,8 +3,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include <kiri/geometry/gregory_patch.hpp>
-#include <kiri/geometry/terrain.hpp>
+#include <kiri/geometry/surface/gregory_patch.hpp>
+#include <kiri/geometry/terrain/terrain.hpp>
 #include <kiri/render/camera.hpp>
 
 int main()

@@ -10,8 +10,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "kiri/geometry/light_grid.hpp"
-#include "kiri/geometry/particles.hpp"
+#include "kiri/geometry/particles/light_grid.hpp"
+#include "kiri/geometry/particles/particles.hpp"
 
 namespace kiri::render {
 

@@ -5,7 +5,7 @@
 //! of luminance, over the pixels the fog changes by more than 1 %.
 #include <cmath>
 
-#include "kiri/geometry/reference_fog.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/render/renderer.hpp"
 
 namespace kiri::render {

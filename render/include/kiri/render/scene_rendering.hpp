@@ -7,12 +7,12 @@
 #include <optional>
 #include <string_view>
 
-#include "kiri/geometry/fog_lighting.hpp"
-#include "kiri/geometry/froxel_options.hpp"
-#include "kiri/geometry/particles.hpp"
-#include "kiri/geometry/reference_fog.hpp"
-#include "kiri/geometry/scene.hpp"
-#include "kiri/geometry/scene_fog.hpp"
+#include "kiri/geometry/medium/fog_lighting.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_fog.hpp"
 #include "kiri/render/renderer.hpp"
 
 namespace kiri::render {

@@ -1,0 +1,111 @@
+#pragma once
+//! \file base_surface.hpp
+//! The fog's base surface: a smooth surface over the quad control mesh (Gregory patch network
+//! or Catmull-Clark limit), fitted to a target over the terrain (issue 4, REFERENCE 1.2).
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/fog/footprint.hpp"
+#include "kiri/geometry/surface/surface.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
+
+namespace kiri::geometry {
+
+class FaceStencils;
+struct FitSamples;
+
+enum class FitMode {
+    blanket,  //!< smoothed terrain + offset, never below terrain + clearance
+    lake,     //!< flat at `altitude`; passes under the ridges, fog only where terrain is below
+};
+
+struct FitOptions {
+    FitMode mode = FitMode::blanket;
+    double offset = 60.0;             //!< blanket: metres above the smoothed terrain
+    double smoothing_length = 400.0;  //!< blanket: sigma (m) of the target's Gaussian (fog_target.hpp)
+    double altitude = 0.0;            //!< lake: altitude of the fog top (m)
+    //! Lake: when set, the fog top at each point is this grid's bilinear height (m) instead of
+    //! the flat altitude: fog placed by the terrain whose top is not flat (wind-blown, or
+    //! regions with different tops; fog_placement.hpp). Must be finite everywhere.
+    std::shared_ptr<const Heightfield> altitude_grid;
+    double clearance = 10.0;   //!< blanket: hard minimum height above the terrain (m), >= 0
+    double thickness = 200.0;  //!< fog thickness (m); a clearance above it is refused
+    //! Weight of the thin-plate energy against the data term: E = sum_faces [ mean_samples
+    //! (z - target)^2 + smoothness h^4 mean_quadrature (z_xx^2 + 2 z_xy^2 + z_yy^2) ], h the
+    //! patch size, so it is dimensionless and independent of the patch and sample counts.
+    //! 0 = plain least squares. Planes are fitted exactly at any value.
+    double smoothness = 0.05;
+    //! Samples: every terrain grid vertex under the control mesh, plus this many cell-centred
+    //! (u, v) samples per patch side (so each patch has data on coarse terrains); 0 = 4.
+    int samples_per_patch = 0;
+    int max_active_set_iterations = 50;
+};
+
+//! Fit figures over the samples that have terrain data (issue 4 "report").
+struct FitReport {
+    double max_deviation = 0.0;  //!< max |surface - target| (m)
+    double rms_deviation = 0.0;  //!< (m)
+    //! min (surface - terrain) over the samples (m); >= clearance in blanket mode. The samples
+    //! include every terrain grid vertex, where the piecewise-linear terrain peaks; between
+    //! them the surface can only come closer where it is convex (a few % of the clearance on
+    //! the tests' terrains).
+    double min_clearance = 0.0;
+    double local_lift = 0.0;    //!< largest control-vertex raise of the local guarantee step (m)
+    double lift = 0.0;          //!< uniform lift of the final guarantee step (m)
+    double fog_fraction = 0.0;  //!< share of samples with the terrain below the surface
+    long long samples = 0;
+    long long grid_vertex_samples = 0;  //!< of which terrain grid vertices
+    long long nodata_samples = 0;       //!< samples over nodata cells (left out of data and constraint)
+    long long active_constraints = 0;   //!< samples held at terrain + clearance (blanket)
+    int iterations = 0;                 //!< active-set solves
+    bool samples_reused = false;        //!< the sample layout of the previous fit (same terrain grid)
+    int samples_per_patch = 0;
+    double seconds_target = 0.0, seconds_assemble = 0.0, seconds_solve = 0.0;
+};
+
+//! Surface over a control mesh. The topology and the per-face stencils are built once in the
+//! constructor; fit() and set_heights() change only the control heights (STYLE 5).
+class BaseSurface {
+public:
+    BaseSurface(ControlMesh control, SurfaceKind kind);
+    ~BaseSurface();
+    BaseSurface(BaseSurface&&) noexcept;
+    BaseSurface& operator=(BaseSurface&&) noexcept;
+
+    SurfaceKind kind() const { return kind_; }
+    const ControlMesh& control() const { return control_; }
+    int num_patches() const { return control_.num_faces(); }
+
+    //! Fits the control heights to the target of options over the terrain.
+    //! \throw InputError (bad options, clearance above thickness, a lake below all terrain,
+    //!        no sample with data).
+    FitReport fit(const Terrain& terrain, const FitOptions& options);
+
+    std::vector<double> heights() const;
+    void set_heights(const std::vector<double>& z);
+
+    //! Point and first derivatives of patch `face` at (u, v) in [0,1]^2; corner k of the face's
+    //! vertex list (OpenMesh fv order) sits at (0,0), (1,0), (1,1), (0,1).
+    glm::dvec3 evaluate(int face, double u, double v, glm::dvec3* du = nullptr, glm::dvec3* dv = nullptr) const;
+    //! The surface itself (surface.hpp), kept in step with the control heights.
+    const Surface& surface() const { return *surface_; }
+
+    //! The linear map behind evaluate() (internal type, see geometry/src/surface).
+    const FaceStencils& stencils() const { return *stencils_; }
+
+private:
+    ControlMesh control_;
+    SurfaceKind kind_;
+    std::unique_ptr<FaceStencils> stencils_;  // the fit's linear map
+    std::unique_ptr<Surface> surface_;        // evaluation (surface module)
+    // The samples' (face, u, v) depend on the terrain's grid, not its heights: kept for refits.
+    std::shared_ptr<const FitSamples> samples_;
+    std::vector<double> samples_key_;
+};
+
+const char* to_string(FitMode mode);
+
+}  // namespace kiri::geometry

@@ -1,0 +1,138 @@
+#pragma once
+//! \file layer_stack.hpp
+//! The view-dependent stack of translucent layers over the fog's base surface (REFERENCE 1.3):
+//! spacing (2.6), alpha (2.7), narrowing as the eye approaches (2.8) with layers added to keep
+//! the thickness (2.9), and enlargement of upper layers (2.10).
+//!
+//! Over a network of patches the source's per-patch values (O, L, theta) would open cracks
+//! between neighbouring patches' layers, so kiri evaluates them per vertex of the base
+//! tessellation: L is the distance from the eye to the vertex, theta the angle between the
+//! line vertex-eye and the base surface's tangent plane there (continuous over G1 patches),
+//! and the enlargement is about one centre for the whole stack (the footprint's centroid).
+//! For a single patch and the eye over O these are the source's values; shared edge vertices
+//! carry equal inputs, so every layer is crack-free. See docs/layers.md.
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/layers/layer_texture.hpp"
+#include "kiri/geometry/medium/medium_options.hpp"
+#include "kiri/geometry/fog/tessellate.hpp"
+
+namespace kiri::geometry {
+
+// ---- The source's formulas, exactly as REFERENCE 1.3 reads them --------------------------
+
+//! (2.6) r = L / 200 (divisor configurable). L >= 0.
+double layer_spacing(double eye_distance, double divisor = 200.0);
+//! (2.7) a_i = 1 - 0.9 i / l for 0 <= i <= l; l = 0 gives the base alone, a_0 = 1.
+double layer_alpha(double i, double l);
+//! (2.8) the spacing narrowed by R = m / L0 when the eye moved m towards O from the reference
+//! distance L0: r' = r0 (1 - R). R is clamped to [0, 1] (moving away does not widen the
+//! spacing; reaching O gives 0), so r' is continuous in the eye position.
+double narrowed_spacing(double r0, double moved, double reference_distance);
+//! (2.9) the number of layers n at spacing r' for the reference thickness T0 = r0 l0: the
+//! largest n with r' n <= T0 (relative tolerance 1e-12, so r' = r0 gives l0), at least
+//! `min_count`, at most `max_count`.
+int layer_count_for_thickness(double spacing, double thickness, int min_count, int max_count);
+//! (2.10) P_k = 1 + (k / 1000) sin(theta); `rate` replaces 1/1000.
+double layer_scale(double k, double theta, double rate = 1e-3);
+//! theta of (2.10): the angle in [0, pi/2] between the line from `point` to `eye` and the plane
+//! through `point` with unit normal `normal`; 0 when the eye is at the point.
+double elevation_angle(const glm::dvec3& eye, const glm::dvec3& point, const glm::dvec3& normal);
+
+// ---- The stack ------------------------------------------------------------------------------
+
+//! How a layer is lit and how opaque it is.
+enum class LayerShading {
+    //! The source's: a gray texture, alpha = opacity a_i per layer (corrected for the spacing),
+    //! lit by an ad hoc sun and sky term.
+    source,
+    //! From the medium (medium.hpp, docs/medium.md): each layer is the slab of fog it stands for,
+    //! of optical depth sigma_t r / |cos(view, normal)|, scattering albedo (sun HG(g) T_sun +
+    //! ambient), T_sun through the fog above it. The layers then converge to the same fog the
+    //! volume renderers draw as layers are added.
+    medium,
+};
+
+struct LayerOptions {
+    int count = 15;                  //!< l0: layers above the base at the reference view (source: 15)
+    double thickness = 200.0;        //!< T0 = r0 l0 (world metres); the scene takes fog.thickness
+    double spacing_divisor = 200.0;  //!< 200 of (2.6): the reference distance is L0 = 200 T0 / l0
+    bool narrowing = true;           //!< (2.8) + (2.9): spacing narrows and layers are added near the eye
+    bool enlargement = true;         //!< (2.10)
+    double enlargement_rate = 1e-3;  //!< 1/1000 of (2.10)
+    //! Metres added to the base's height: a fog lake's fitted surface is its top, so its stack
+    //! starts one thickness below (author_scene_fog sets -thickness in lake mode).
+    double base_offset = 0.0;
+    int max_count = 120;    //!< most layers the narrowing may add (>= count)
+    double opacity = 0.12;  //!< a layer's alpha where a_i = 1, at the reference spacing, [0, 0.999]
+    LayerTextureOptions texture;
+    double ground_fade = 20.0;           //!< metres: a layer fades out this close to the ground (renderer)
+    double detail = 0.6;                 //!< strength of the world-space noise in the alpha, [0, 1] (renderer)
+    double detail_scale = 1500.0;        //!< metres: size of the noise's largest features (renderer)
+    double dissipation_half_life = 0.0;  //!< seconds; 0: no dissipation (top layers thin faster)
+    glm::dvec2 wind{0.0};                //!< m/s: drift of the detail texture
+    double time = 0.0;                   //!< seconds since the scene's start
+    LayerShading shading = LayerShading::medium;
+    //! Resolution of the layer pass relative to the frame, [1/8, 1] (renderer: the layers are
+    //! smooth, half resolution costs a quarter and barely shows; `kiri bench --stage layers`).
+    double resolution = 0.5;
+    //! The fog's optics for LayerShading::medium (world_layer_options copies the scene's medium).
+    MediumOptions optics;
+};
+
+//! What a layer vertex needs, evaluated per vertex for one eye (the GPU mirrors this in
+//! render/shaders/layers.vert).
+struct LayerVertex {
+    glm::dvec3 position{0.0};  //!< after offset (z) and enlargement (x, y about the centre)
+    double alpha = 0.0;        //!< w_i a_i: (2.7) with the recomputed count, faded in as layers are added
+    double exponent = 1.0;     //!< r / r0: the opacity correction 1 - (1 - alpha opacity t)^exponent
+};
+
+//! Per-vertex quantities of the stack at base point p (normal n) for an eye.
+struct LayerColumn {
+    double spacing = 0.0;    //!< r: narrowed (2.8), never below T0 / max_count
+    double count = 0.0;      //!< n = T0 / r: real-valued (2.9), so layers fade in without popping
+    double sin_theta = 0.0;  //!< of (2.10)
+};
+LayerColumn layer_column(const LayerOptions& options, const glm::dvec3& eye, const glm::dvec3& point,
+                         const glm::dvec3& normal);
+//! Layer i (0 = base) of the column at `point` with enlargement about `centre` (x, y).
+LayerVertex layer_vertex(const LayerOptions& options, const LayerColumn& column, int i, const glm::dvec3& point,
+                         const glm::dvec2& centre);
+//! Dissipation factor of layer i of n at options.time: 0.5^(t / half_life (1 + i / n)).
+double layer_dissipation(const LayerOptions& options, int i, double n);
+
+//! The base tessellation prepared for layers: positions, normals, atlas coordinates and
+//! triangles, plus the centre of enlargement. Built once per fitted surface.
+struct LayerBase {
+    std::vector<glm::dvec3> position, normal;
+    std::vector<glm::dvec2> atlas_uv;      //!< into `texture`
+    std::vector<std::uint32_t> triangles;  //!< 3 indices each, counter-clockwise from above
+    glm::dvec2 centre{0.0};                //!< footprint centroid (x, y)
+    glm::dvec3 min{0.0}, max{0.0};         //!< bounds of the base
+    LayerTexture texture;
+};
+//! \throw InputError (label names the scene) on bad options.
+LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessellation, const LayerOptions& options,
+                          const std::string& label = {});
+
+//! \throw InputError(label, "layers/...", reason) for options outside their documented ranges.
+void validate_layer_options(const LayerOptions& options, const std::string& label = {});
+
+//! How many layers above the base an eye needs: ceil of the largest column count over the
+//! base's vertices (the top partial layer is faded in), at most options.max_count.
+int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye);
+
+//! One layer as a mesh: the base's triangles with LayerVertex data.
+struct LayerMesh {
+    int index = 0;  //!< 0 = base
+    std::vector<LayerVertex> vertices;
+};
+//! Every layer for an eye, bottom to top (export, tests; the renderer does this on the GPU).
+std::vector<LayerMesh> build_layers(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye);
+
+}  // namespace kiri::geometry

@@ -1,0 +1,52 @@
+#pragma once
+//! \file attenuation_cpu.hpp
+//! The 3D attenuation buffer (Shimada 2008, REFERENCE 2.3-2.4) computed on the CPU, with exactly
+//! the GPU's discretisation (render/src/attenuation_buffer.cpp): the oracle of the GL pass and the
+//! subject of the unit tests that compare the buffer with the exact Harris pass.
+//!
+//! Each voxel holds log Gamma = sum of log G_i over the particles whose shadow cylinder holds the
+//! voxel's centre. The cylinder of particle i is its disc perpendicular to the light swept away
+//! from the sun: in column (c_u, c_v) at distance rho from the particle's axis (rho < r, the true
+//! chord of the disc in each row of columns) it holds log G_i(rho) from the slice
+//! shadow_start(w_i) on. It is written as its first voxel (the deposit) and extended along the
+//! column by a prefix sum, which writes every voxel of the cylinder in O(footprint) instead of
+//! O(footprint x length). Sums are order independent: no sorting.
+//!
+//! Reading: trilinear interpolation of log Gamma (GL_LINEAR, clamp to edge), minus what the buffer
+//! holds of the particle being lit itself (Harris's particle is not lit through itself), then exp.
+#include <cstddef>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/particles/light_grid.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+
+namespace kiri::geometry {
+
+//! log Gamma never goes below this (the GPU's exp() of float underflows soon after).
+constexpr double min_log_gamma = -80.0;
+
+struct AttenuationVolume {
+    LightGrid grid;
+    std::vector<float> log_gamma;  //!< voxel (i, j, k) at (k size[1] + j) size[0] + i
+};
+
+//! Builds the buffer in double, stored as float.
+AttenuationVolume build_attenuation_cpu(const ParticleCloud& cloud, const LightGrid& grid);
+
+//! The voxels of particle p's footprint: calls fn(i, j, k, log_g) for every column (i, j) within
+//! its radius whose shadow starts inside the grid (k = max(shadow_start, 0)).
+template <typename Fn>
+void for_each_deposit(const LightGrid& grid, const Particle& p, double forward, Fn&& fn);
+
+//! log Gamma at world point p, trilinear with clamp to edge, as the GPU's sampler reads it.
+double sample_log_gamma(const AttenuationVolume& volume, const glm::dvec3& p);
+//! What the buffer's trilinear read at world point q holds of particle `self`'s own cylinder.
+double self_log_gamma(const LightGrid& grid, const Particle& self, double forward, const glm::dvec3& q);
+//! Gamma of particle k at its centre: exp(sample - self), in (0, 1].
+double particle_gamma(const AttenuationVolume& volume, const ParticleCloud& cloud, std::size_t k);
+
+}  // namespace kiri::geometry
+
+#include "kiri/geometry/particles/attenuation_cpu_impl.hpp"

@@ -1,0 +1,94 @@
+#pragma once
+//! \file particles.hpp
+//! The fog as a cloud of particles (Harris 2001, Shimada 2008 = REFERENCE 2): each particle is a
+//! sphere of radius r whose optical depth along a ray at distance rho from its centre is
+//! tau f(rho / r), f a Gaussian footprint (particle_footprint.hpp). The particles are sampled
+//! inside the Medium, blue noise with a density that follows the Medium's, and carry together
+//! the Medium's extinction, so they draw the same fog as the layers and the froxels.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/medium/medium.hpp"
+
+namespace kiri::geometry {
+
+struct Particle {
+    glm::dvec3 position{0.0};    //!< centre, world metres
+    double radius = 1.0;         //!< metres: the footprint is zero beyond it
+    double optical_depth = 0.5;  //!< tau_k: optical depth of the ray through the centre (may be +inf: opaque)
+    double albedo = 0.99;        //!< a_k in [0, 1]
+};
+
+//! How the attenuation buffer's voxel grid is oriented (light_grid.hpp). Its columns always run
+//! along the light; its slices are perpendicular to the light (`light`, Shimada's layout) or
+//! tilted to the plane that fits the particles best (`sheared`: flat fog under a low sun fills
+//! the grid instead of a thin oblique sheet of it); `automatic` takes the one with fewer slices
+//! spent on empty space.
+enum class LightFrame { automatic, light, sheared };
+
+//! The scene's "particles" section (docs/particles.md).
+struct ParticleOptions {
+    int count = 20000;                 //!< particles to sample; ignored when spacing > 0
+    double spacing = 0.0;              //!< metres between particles at full density; 0: use count
+    double radius_scale = 1.5;         //!< radius = radius_scale * local spacing, clamped to the range
+    double radius_min = 0.0;           //!< metres; 0: radius_scale * the spacing at full density
+    double radius_max = 0.0;           //!< metres; 0: twice that (densities below 1/8 get no larger particles)
+    double albedo = -1.0;              //!< [0, 1]; < 0: the Medium's albedo
+    double extinction = 0.0;           //!< 1/m the particles carry at full density; 0: the Medium's
+    double forward_scattering = -1.0;  //!< p(l,l)/4pi of Shimada (7), [0, 1]; < 0: from the Medium's g
+    std::uint64_t seed = 1;            //!< the same seed gives the same particles
+    double candidates = 5.0;           //!< sample elimination starts from candidates * count points, >= 1
+    // The attenuation buffer and the billboards (render).
+    int resolution = 128;    //!< voxels per side of the attenuation buffer, [16, 512]
+    bool half_float = true;  //!< R16F (true) or R32F storage of log Gamma
+    LightFrame frame = LightFrame::automatic;
+    double soft_edge = 40.0;  //!< metres over which a billboard fades out in front of the terrain
+};
+
+//! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.
+void validate_particle_options(const ParticleOptions& options, const std::string& label = {});
+
+struct ParticleCloud {
+    std::vector<Particle> particles;
+    //! p(l,l)/4pi of (7): the fraction of the light a particle scatters that stays in the sun's
+    //! beam (Harris's forward-scattering term), in [0, 1].
+    double forward_scattering = 0.2;
+    double anisotropy = 0.8;     //!< Henyey-Greenstein g towards the eye (the Medium's)
+    int scattering_octaves = 3;  //!< the Medium's multiple-scattering octaves (fog_lighting.hpp)
+    //! What the sampler found (for reports): the Medium's integral of density (m^3), the mean
+    //! spacing at full density and the number of candidates drawn.
+    double density_integral = 0.0, spacing = 0.0;
+    std::size_t candidate_count = 0;
+};
+
+//! Harris's read-back solid angle (0.09 sr, REFERENCE 5): the forward cone whose scattered light
+//! stays in the beam.
+constexpr double harris_forward_solid_angle = 0.09;
+//! The fraction of Henyey-Greenstein scattering (anisotropy g) that goes into the forward cone of
+//! `solid_angle` steradians: (1 - g^2) / (2 g) ((1 - g)^-1 - (1 + g^2 - 2 g mu0)^-1/2),
+//! mu0 = 1 - solid_angle / 2pi; solid_angle / 4pi for g = 0. g = 0.8: 0.228.
+double forward_scattering_fraction(double g, double solid_angle = harris_forward_solid_angle);
+
+//! Samples the particles of a Medium: candidates drawn with probability proportional to the
+//! density, thinned to the count by sample elimination (Yuksel 2015) with distances measured in
+//! units of the local spacing, so the result is blue noise whose density still follows the
+//! Medium. Each particle carries the same share of the Medium's extinction integral:
+//! tau_k = extinction * density_integral / (count * footprint_area(r_k)). Deterministic for a seed
+//! (the same seed, options and Medium give bit-identical particles).
+//! With a weight w(p) in [0, 1] the particles stand for the share w d of the Medium (combined
+//! rendering, fog_partition.hpp: they draw the top band, the other renderers the rest).
+//! \throw InputError on bad options; LimitError above 2e6 particles or 2e7 candidates.
+using DensityWeight = std::function<double(const glm::dvec3&)>;
+ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {},
+                               const DensityWeight& weight = {});
+
+//! Binary little-endian PLY of the particles: x y z (float), radius, optical_depth, albedo,
+//! with the forward-scattering fraction and the anisotropy in comments. Written atomically.
+//! \throw IoError naming the path.
+void write_particles_ply(const std::string& path, const ParticleCloud& cloud);
+
+}  // namespace kiri::geometry

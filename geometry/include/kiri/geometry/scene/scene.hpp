@@ -1,0 +1,94 @@
+#pragma once
+//! \file scene.hpp
+//! The scene file (JSON): what a user authors. Later stages extend this schema; every key
+//! is documented in docs/scene.md. Unknown keys are errors.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/scene/fog_spec.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
+#include "kiri/geometry/scene/quality.hpp"
+#include "kiri/geometry/layers/layer_stack.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/particles/particles.hpp"
+
+namespace kiri::geometry {
+
+struct TerrainSpec {
+    std::filesystem::path path;   //!< resolved against the scene file's folder
+    double exaggeration = 1.0;    //!< vertical exaggeration, > 0
+    double cell_size = 0.0;       //!< metres per cell, for rasters without georeferencing
+    double vertical_scale = 1.0;  //!< metres per raster unit (PNG heightmaps)
+    double vertical_offset = 0.0;
+};
+
+struct CameraSpec {
+    std::string name = "default";
+    glm::dvec3 position{0.0, -5000.0, 3000.0};  //!< local metres
+    glm::dvec3 target{0.0, 0.0, 500.0};
+    double fov_y_deg = 45.0;  //!< vertical field of view, (0, 180)
+};
+
+struct SunSpec {
+    glm::dvec3 direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised on load), z > -1
+    glm::dvec3 color{1.0, 0.96, 0.9};
+    double intensity = 3.0;
+    glm::dvec3 ambient{0.25, 0.3, 0.38};  //!< sky ambient radiance
+};
+
+struct ImageSpec {
+    int width = 1280, height = 720;
+};
+
+struct Scene {
+    std::filesystem::path file;  //!< where it was loaded from (for messages); may be empty
+    TerrainSpec terrain;
+    std::vector<CameraSpec> cameras;  //!< may be empty: renderers then frame the terrain
+    SunSpec sun;
+    ImageSpec image;
+    std::optional<FogSpec> fog;  //!< the "fog" section (docs/scene.md), if any
+    LayerOptions layers;         //!< the "layers" section (defaults when absent)
+    MediumOptions medium;        //!< the "medium" section (defaults when absent)
+    ParticleOptions particles;   //!< the "particles" section (defaults when absent)
+    FroxelOptions froxel;        //!< the "froxel" section (defaults when absent)
+    FogPartition combined;       //!< the "combined" section: each renderer's share in combined mode
+    //! The "quality" key (quality.hpp): the preset applied under the scene's own keys; kept so
+    //! that a saved scene names it.
+    std::optional<Quality> quality;
+
+    //! The camera called name; the first when name is empty; a view framing `terrain_bounds`
+    //! (min, max) from the south-west when the scene has no camera and name is empty.
+    //! \throw InputError naming /cameras if a named camera is absent.
+    CameraSpec camera(std::string_view name, const glm::dvec3& terrain_min, const glm::dvec3& terrain_max) const;
+};
+
+//! \throw InputError "FILE: /json/pointer: reason" on any problem.
+Scene load_scene(const std::filesystem::path& path);
+//! Parses JSON text; file_label names it in messages, base_dir resolves relative paths.
+Scene parse_scene(std::string_view json_text, const std::string& file_label, const std::filesystem::path& base_dir);
+//! Writes the scene back as JSON that parse_scene reads to an equal Scene.
+std::string scene_to_json(const Scene& scene);
+
+class Terrain;
+//! Loads the scene's terrain in world units: heights in metres times the vertical
+//! exaggeration, so every stage (fit, layers, renderers) sees the same exaggerated ground.
+Terrain load_scene_terrain(const Scene& scene);
+
+//! The scene's fog section in world units: its vertical quantities (lake altitude, offset,
+//! clearance, thickness) are written in metres of the DEM and stretched here by the vertical
+//! exaggeration, like the terrain. \throw InputError naming /fog when the scene has none.
+FogSpec world_fog_spec(const Scene& scene);
+//! The scene's layer options in world units: thickness = fog.thickness and ground_fade
+//! stretched by the exaggeration. \throw InputError naming /layers on options out of range.
+LayerOptions world_layer_options(const Scene& scene);
+//! The scene's froxel options in world units: the height fog's base and scale height stretched
+//! by the exaggeration. \throw InputError naming /froxel on options out of range.
+FroxelOptions world_froxel_options(const Scene& scene);
+
+}  // namespace kiri::geometry
