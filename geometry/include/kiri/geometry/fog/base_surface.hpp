@@ -42,6 +42,7 @@ struct FitOptions {
     //! (u, v) samples per patch side (so each patch has data on coarse terrains); 0 = 4.
     int samples_per_patch = 0;
     int max_active_set_iterations = 50;
+    bool operator==(const FitOptions&) const = default;
 };
 
 //! Fit figures over the samples that have terrain data (issue 4 "report").

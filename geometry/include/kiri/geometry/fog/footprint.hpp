@@ -20,6 +20,7 @@ struct Footprint {
     //! Further simple polygons; no two polygons touch or lie inside one another. The control
     //! mesh covers their union.
     std::vector<std::vector<glm::dvec2>> more;
+    bool operator==(const Footprint&) const = default;
 };
 
 //! polygon followed by more (the non-empty ones).
@@ -58,6 +59,7 @@ struct ControlMeshOptions {
     double patch_size = 500.0;      //!< metres, > 0
     bool conform_to_border = true;  //!< snap boundary vertices onto the polygon
     int max_faces = 1 << 20;        //!< LimitError above this, before allocating
+    bool operator==(const ControlMeshOptions&) const = default;
 };
 
 //! Builds the control mesh; vertex heights are the terrain's height under each vertex.

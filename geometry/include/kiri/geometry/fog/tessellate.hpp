@@ -13,6 +13,7 @@ struct TessellationOptions {
     int level = 8;           //!< uniform: N x N cells per patch (the source used 4..10), >= 1
     double tolerance = 0.0;  //!< > 0: adaptive, max distance to the exact surface (m)
     int max_level = 64;      //!< adaptive: the finest level a patch may get
+    bool operator==(const TessellationOptions&) const = default;
 };
 
 //! The triangles and, per vertex: position, unit normal, (u, v) of its patch in the texture

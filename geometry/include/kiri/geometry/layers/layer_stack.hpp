@@ -82,6 +82,7 @@ struct LayerOptions {
     double resolution = 0.5;
     //! The fog's optics for LayerShading::medium (world_layer_options copies the scene's medium).
     MediumOptions optics;
+    bool operator==(const LayerOptions&) const = default;
 };
 
 //! What a layer vertex needs, evaluated per vertex for one eye (the GPU mirrors this in

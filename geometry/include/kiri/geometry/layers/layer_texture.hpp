@@ -18,6 +18,7 @@ struct LayerTextureOptions {
     int resolution = 64;      //!< texels per tile side, [4, 1024]
     double fade_width = 0.5;  //!< fraction of a patch over which alpha falls to 0 at the border, (0, 1]
     double gray = 0.92;       //!< the texture's gray level, [0, 1]
+    bool operator==(const LayerTextureOptions&) const = default;
 };
 
 //! Bits 0..3: the patch's sides v = 0, u = 1, v = 1, u = 0 lie on the footprint's border.

@@ -23,6 +23,7 @@ struct FogPartition {
     double near_end = 1600.0;     //!< metres: the layers draw all the fog farther
     double particle_share = 0.5;  //!< the particles' share at the shell's top, [0, 1]
     double particle_band = 0.35;  //!< the top fraction of the shell the particles share, (0, 1]
+    bool operator==(const FogPartition&) const = default;
 };
 
 //! Quintic smooth step of x from a to b (0 below, 1 above; C2): a == b gives a step at a.

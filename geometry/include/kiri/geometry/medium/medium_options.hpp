@@ -13,6 +13,7 @@ struct MediumOptions {
     double grid_spacing = 0.0;   //!< metres between grid samples; 0 = the terrain's spacing
     int max_grid_side = 1024;    //!< the grid is coarsened to at most this many samples per side
     int scattering_octaves = 3;  //!< 1: single scattering; more: multiple scattering (fog_lighting.hpp), [1, 8]
+    bool operator==(const MediumOptions&) const = default;
 };
 
 }  // namespace kiri::geometry

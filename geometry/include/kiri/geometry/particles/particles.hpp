@@ -47,6 +47,7 @@ struct ParticleOptions {
     bool half_float = true;  //!< R16F (true) or R32F storage of log Gamma
     LightFrame frame = LightFrame::automatic;
     double soft_edge = 40.0;  //!< metres over which a billboard fades out in front of the terrain
+    bool operator==(const ParticleOptions&) const = default;
 };
 
 //! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.

@@ -31,6 +31,7 @@ struct BurnOffOptions {
     double anisotropy = 0.8;     //!< Henyey-Greenstein g of the droplets, [0, 1) (the medium's)
     double min_thickness = 1.0;  //!< metres: thinner fog counts as gone
     double step_minutes = 10.0;  //!< integration step (minutes, > 0)
+    bool operator==(const BurnOffOptions&) const = default;
 };
 
 struct BurnOffReport {

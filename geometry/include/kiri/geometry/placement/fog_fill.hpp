@@ -23,6 +23,7 @@ struct FillSeeds {
     //! Every cell below the top is fog: every basin reaching below the inversion is seeded
     //! (points and mask are then ignored).
     bool all_basins = false;
+    bool operator==(const FillSeeds&) const = default;
 };
 
 struct FillOptions {
@@ -37,6 +38,7 @@ struct FillOptions {
     //! Heights in error messages are divided by this (a scene's vertical exaggeration, by which
     //! its heights were stretched), so they read in the metres the user wrote.
     double message_scale = 1.0;
+    bool operator==(const FillOptions&) const = default;
 };
 
 //! The fog of a fill. Cell k = j * nx + i is fog when mask[k] = 1; its column spans

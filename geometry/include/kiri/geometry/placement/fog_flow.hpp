@@ -33,6 +33,7 @@ struct FlowOptions {
     //! fog_placement.hpp derives it from the medium's extinction); 0 = no evaporation.
     double evaporation_depth = 45.0;
     double min_thickness = 1.0;  //!< metres: thinner fog counts as gone in the result
+    bool operator==(const FlowOptions&) const = default;
 };
 
 struct FlowReport {

@@ -40,6 +40,7 @@ struct FillRegionSpec {
     //! column, densest at the column's own bottom) to 1 (fill: by absolute altitude, densest at
     //! the region's lowest bottom, the same at a given altitude across the region).
     double profile = 1.0;
+    bool operator==(const FillRegionSpec&) const = default;
 };
 
 struct PlacementSpec {
@@ -54,6 +55,7 @@ struct PlacementSpec {
     std::optional<BurnOffOptions> burn_off;  //!< then the morning's sun
     bool latitude_given = false;             //!< burn_off.latitude from the scene, not the DEM
     double exaggeration = 1.0;               //!< heights are stretched by this (for messages)
+    bool operator==(const PlacementSpec&) const = default;
 };
 
 //! Metres of descent that evaporate all but 1/e of fog of extinction sigma (1/m): its liquid

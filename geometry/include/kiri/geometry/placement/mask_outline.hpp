@@ -22,6 +22,7 @@ struct OutlineOptions {
     double tolerance = 0.0;
     //! Components (4-connected, after growing) of less area (m^2) are dropped.
     double min_area = 0.0;
+    bool operator==(const OutlineOptions&) const = default;
 };
 
 struct MaskOutline {

@@ -20,6 +20,7 @@ struct ValleyOptions {
     //! The one parameter: a cell is a candidate where its index exceeds this (standard
     //! deviations below its surroundings, averaged over the radii). 1 keeps valley floors.
     double threshold = 1.0;
+    bool operator==(const ValleyOptions&) const = default;
 };
 
 struct ValleyMap {

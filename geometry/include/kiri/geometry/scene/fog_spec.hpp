@@ -24,6 +24,7 @@ struct FogSpec {
     //! the footprint and the lake target come from place_fog (placed_fog_spec). The stages
     //! below place it themselves while `footprint` is empty.
     std::optional<PlacementSpec> placement;
+    bool operator==(const FogSpec&) const = default;
 };
 
 //! spec with the placed fog's footprint and lake target: mode lake at the flat top (or over

@@ -26,6 +26,7 @@ struct TerrainSpec {
     double cell_size = 0.0;       //!< metres per cell, for rasters without georeferencing
     double vertical_scale = 1.0;  //!< metres per raster unit (PNG heightmaps)
     double vertical_offset = 0.0;
+    bool operator==(const TerrainSpec&) const = default;
 };
 
 struct CameraSpec {
@@ -33,6 +34,7 @@ struct CameraSpec {
     glm::dvec3 position{0.0, -5000.0, 3000.0};  //!< local metres
     glm::dvec3 target{0.0, 0.0, 500.0};
     double fov_y_deg = 45.0;  //!< vertical field of view, (0, 180)
+    bool operator==(const CameraSpec&) const = default;
 };
 
 struct SunSpec {
@@ -40,10 +42,12 @@ struct SunSpec {
     glm::dvec3 color{1.0, 0.96, 0.9};
     double intensity = 3.0;
     glm::dvec3 ambient{0.25, 0.3, 0.38};  //!< sky ambient radiance
+    bool operator==(const SunSpec&) const = default;
 };
 
 struct ImageSpec {
     int width = 1280, height = 720;
+    bool operator==(const ImageSpec&) const = default;
 };
 
 struct Scene {
@@ -66,6 +70,7 @@ struct Scene {
     //! (min, max) from the south-west when the scene has no camera and name is empty.
     //! \throw InputError naming /cameras if a named camera is absent.
     CameraSpec camera(std::string_view name, const glm::dvec3& terrain_min, const glm::dvec3& terrain_max) const;
+    bool operator==(const Scene&) const = default;
 };
 
 //! \throw InputError "FILE: /json/pointer: reason" on any problem.

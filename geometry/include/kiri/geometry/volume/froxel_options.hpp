@@ -38,6 +38,7 @@ struct FroxelOptions {
     int shadow_map_size = 1024;   //!< texels a side of the light-space terrain shadow map, 64..8192
     double esm_sharpness = 4.0;   //!< ESM exponent per shadow-map texel of depth, > 0
     HeightFog height_fog;         //!< optional global height fog
+    bool operator==(const FroxelOptions&) const = default;
 };
 
 //! \throw InputError(label, "/froxel/<key>", reason) for options out of range.

@@ -31,6 +31,7 @@ struct HeightFog {
     //! The integral of sigma_t along origin + t dir for t in [t0, t1] (dir need not be unit;
     //! t1 may be +inf when dir.z > 0). Exact, no cancellation for nearly level segments.
     double optical_depth(const glm::dvec3& origin, const glm::dvec3& dir, double t0, double t1) const;
+    bool operator==(const HeightFog&) const = default;
 };
 
 //! \throw InputError(label, "/froxel/height_fog/<key>", reason) for values out of range.
