@@ -1,18 +1,19 @@
 #include "author_maps.hpp"
 
 #include "kiri/geometry/placement/fog_maps.hpp"
+#include "kiri/geometry/scene/author_report.hpp"
 
 namespace kiri::cli {
 
 using namespace kiri::geometry;
 
-std::vector<MapFile> placement_maps(const Scene& scene, const Terrain& terrain, const SceneFog& fog)
+std::vector<MapFile> placement_maps(const Scene& scene, const Terrain& terrain, const PlacedFog* placed)
 {
     std::vector<MapFile> maps;
-    if (!fog.placed)
+    if (!placed)
         return maps;
     // Captured by reference: the scene, terrain and fog outlive the writes.
-    const PlacedFog& p = *fog.placed;
+    const PlacedFog& p = *placed;
     const Heightfield& hf = terrain.heightfield();
     const double to_dem = 1.0 / scene.terrain.exaggeration;
     const auto meta = optics_metadata(scene.medium);

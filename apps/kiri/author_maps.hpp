@@ -1,12 +1,12 @@
 #pragma once
-// The 2D maps `kiri author` writes for fog placed by the terrain (issue 10).
+// The 2D maps `kiri author` writes for fog placed by the terrain.
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/placement/fog_placement.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::cli {
@@ -20,6 +20,6 @@ struct MapFile {
 //! georeferencing, the optics in their metadata), fog_mask.png, and flood_level.tif for seed
 //! points or valleys.png + valley_index.tif for automatic seeding; none without a placement.
 std::vector<MapFile> placement_maps(const geometry::Scene& scene, const geometry::Terrain& terrain,
-                                    const geometry::SceneFog& fog);
+                                    const geometry::PlacedFog* placed);
 
 }  // namespace kiri::cli

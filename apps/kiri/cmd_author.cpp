@@ -1,6 +1,6 @@
 // `kiri author SCENE.json -o DIR`: the fog base surface of a scene as OBJ and PLY, its layers,
 // its medium as OpenVDB (medium.vdb) and DIR/report.json with the fit figures, counts and
-// timings (issue 4). Every file is written
+// timings. Every file is written
 // under a temporary name and renamed into place, so DIR never holds a half-written result.
 #include <chrono>
 #include <cstdio>
@@ -20,7 +20,8 @@
 #include "kiri/geometry/layers/layer_export.hpp"
 #include "kiri/geometry/particles/particles.hpp"
 #include "kiri/geometry/volume/medium_vdb.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/author_report.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/scene/scene.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
@@ -55,22 +56,22 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     const Scene scene = load_scene(scene_path);
     if (!scene.fog)
         throw InputError(scene_path.string(), "/fog", "the scene has no fog section to author");
-    const auto t0 = std::chrono::steady_clock::now();
-    const Terrain terrain = load_scene_terrain(scene);
-    const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // The estimate comes before any large allocation; above the limit author_scene_fog refuses.
+    Pipeline pipeline;
+    const std::shared_ptr<const Terrain> loaded = pipeline.run(scene, {Stage::terrain}).terrain;
+    const Terrain& terrain = *loaded;
+    // The estimate comes before any large allocation; above the limit the pipeline refuses.
     const AuthorEstimate estimate = estimate_author(world_fog_spec(scene), terrain.heightfield(), scene.layers.count);
     check_author_estimate(estimate, scene_path.string());
     std::printf("kiri author: %s\n", estimate.summary().c_str());
     std::fflush(stdout);
-    const SceneFog fog = author_scene_fog(scene, terrain);
-    const AuthoredSurface& a = fog.authored;
-    // The layers are view dependent: exported as the scene's first camera sees them.
+    // The layers are view dependent: exported as the scene's first camera sees them. The
+    // particles are the whole fog (the scene's "particles" section, docs/particles.md).
     const Bounds3 bounds = terrain.bounds();
-    const glm::dvec3 eye = scene.camera("", bounds.min, bounds.max).position;
-    const std::vector<LayerMesh> layers = build_layers(fog.base, fog.layers, eye);
-    // The same fog as particles (the scene's "particles" section, docs/particles.md).
-    const ParticleCloud particles = sample_particles(fog.medium, scene.particles, scene_path.string());
+    PipelineTarget target{Stage::exports, ParticleSet::whole, scene.camera("", bounds.min, bounds.max).position};
+    const PipelineProducts& fog = pipeline.run(scene, target);
+    const Tessellation& tessellation = *fog.tessellation;
+    const std::vector<LayerMesh>& layers = *fog.exports;
+    const ParticleCloud& particles = *fog.particles;
 
     std::error_code ec;
     fs::create_directories(out_dir, ec);
@@ -85,19 +86,19 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
                                                         {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"},
                                                         {out_dir / (stem + "particles.ply"), out_dir / "particles.ply"},
                                                         {out_dir / (stem + "vdb"), out_dir / "medium.vdb"}};
-    const std::vector<MapFile> maps = placement_maps(scene, terrain, fog);
+    const std::vector<MapFile> maps = placement_maps(scene, terrain, fog.placed.get());
     for (const MapFile& m : maps)
         files.push_back({out_dir / (stem + m.name), out_dir / m.name});
     VdbExportReport vdb;
     try {
-        write_mesh_file(a.tessellation.mesh, files[0].first, false);
-        write_mesh_file(a.tessellation.mesh, files[1].first, true);
-        write_text(scene_fog_report_json(scene, fog, load_s), files[2].first);
-        write_layers_glb(files[3].first, fog.base, layers, fog.layers, &terrain.mesh());
-        write_layers_obj(files[4].first, fog.base, layers);
-        write_layers_ply(files[5].first, fog.base, layers, fog.layers);
+        write_mesh_file(tessellation.mesh, files[0].first, false);
+        write_mesh_file(tessellation.mesh, files[1].first, true);
+        write_text(author_report_json(scene, fog, pipeline.stages()), files[2].first);
+        write_layers_glb(files[3].first, *fog.layer_base, layers, fog.layers, &terrain.mesh());
+        write_layers_obj(files[4].first, *fog.layer_base, layers);
+        write_layers_ply(files[5].first, *fog.layer_base, layers, fog.layers);
         write_particles_ply(files[6].first.string(), particles);
-        vdb = write_medium_vdb(fog.medium, files[7].first);
+        vdb = write_medium_vdb(*fog.medium, files[7].first);
         for (std::size_t m = 0; m < maps.size(); ++m)
             maps[m].write(files[8 + m].first);
         for (const auto& [tmp, final_path] : files) {
@@ -110,6 +111,7 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
             fs::remove(tmp, ec);
         throw;
     }
+    const FitReport& fit = fog.surface->fit;
     if (fog.placed) {
         const ColumnFigures& c = fog.placed->figures;
         const double e = scene.terrain.exaggeration;
@@ -122,9 +124,9 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     std::printf(
         "%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
         "%zu layers, %zu particles, medium %zu voxels of %.3g m -> %s\n",
-        scene_path.filename().string().c_str(), a.surface.num_patches(), a.tessellation.mesh.n_faces(),
-        a.fit.max_deviation, a.fit.rms_deviation, a.fit.min_clearance, layers.size(), particles.particles.size(),
-        vdb.active_voxels, vdb.voxel_size, out_dir.string().c_str());
+        scene_path.filename().string().c_str(), fog.surface->patches, tessellation.mesh.n_faces(), fit.max_deviation,
+        fit.rms_deviation, fit.min_clearance, layers.size(), particles.particles.size(), vdb.active_voxels,
+        vdb.voxel_size, out_dir.string().c_str());
     return 0;
 }
 }  // namespace

@@ -8,15 +8,12 @@
 #include <string>
 
 #include "commands.hpp"
-#include "kiri/geometry/particles/particles.hpp"
-#include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
-#include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
-#include "kiri/geometry/terrain/terrain.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/renderer.hpp"
 #include "kiri/render/scene_rendering.hpp"
+#include "kiri/render/tone_map.hpp"
 
 namespace kiri::cli {
 namespace {
@@ -27,25 +24,17 @@ struct RenderArgs {
     bool timings = false;
 };
 
-void render_reference(const geometry::Scene& scene, const geometry::Terrain& terrain, const render::Camera& camera,
-                      int width, int height, const std::string& out)
+void render_reference(const geometry::Scene& scene, const geometry::PipelineProducts& products,
+                      const render::Camera& camera, int width, int height, const std::string& out)
 {
+    const geometry::Terrain& terrain = *products.terrain;
     const geometry::FroxelOptions options = render::scene_froxel_options(scene, terrain);
-    std::optional<geometry::SceneFog> fog;
-    if (scene.fog)
-        fog = geometry::author_scene_fog(scene, terrain);
+    const geometry::Medium* medium = products.medium.get();
     const geometry::ReferenceView view = render::reference_view(camera, width, height, options.far);
-    const geometry::FogLighting light = render::scene_fog_lighting(scene, fog ? &fog->medium : nullptr, options);
-    const geometry::ReferenceImage r = geometry::render_reference_fog(
-        {fog ? &fog->medium : nullptr, options.height_fog}, &terrain.heightfield(), view, light);
-    render::Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * height * 4, 255)};
-    for (std::size_t k = 0; k < r.inscatter.size(); ++k) {
-        const glm::dvec3 c = r.composed(k);
-        for (int ch = 0; ch < 3; ++ch)
-            image.rgba[4 * k + std::size_t(ch)] =
-                std::uint8_t(std::lround(255.0 * std::pow(1.0 - std::exp(-c[ch] * 0.7), 1.0 / 2.2)));
-    }
-    render::write_png_atomic(out, image);
+    const geometry::FogLighting light = render::scene_fog_lighting(scene, medium, options);
+    const geometry::ReferenceImage r =
+        geometry::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, light);
+    render::write_png_atomic(out, render::tone_mapped(r));
 }
 
 void run(const RenderArgs& a)
@@ -53,35 +42,29 @@ void run(const RenderArgs& a)
     const auto start = std::chrono::steady_clock::now();
     check_output_file(a.out);
     const geometry::Scene scene = geometry::load_scene(a.scene);
-    const geometry::Terrain terrain = geometry::load_scene_terrain(scene);
-    const geometry::Bounds3 bounds = terrain.bounds();
+    const bool reference = a.mode == "reference";  // the CPU judge: slow, no GL
+    render::FogMode mode = render::default_mode(scene);
+    if (reference)
+        mode = render::FogMode::froxel;  // the reference draws the Medium and the height fog
+    else if (a.mode != "auto")
+        render::parse_fog_mode(a.mode, mode);  // CLI11 checked the name
+    const geometry::PipelineProducts products = geometry::author_scene(scene, render::pipeline_target(mode, scene));
+    const geometry::Bounds3 bounds = products.terrain->bounds();
     const render::Camera camera = render::to_camera(scene.camera(a.camera, bounds.min, bounds.max));
     const int width = a.width > 0 ? a.width : scene.image.width;
     const int height = a.height > 0 ? a.height : scene.image.height;
 
-    if (a.mode == "reference") {  // the CPU judge: slow, no GL
-        render_reference(scene, terrain, camera, width, height, a.out);
+    if (reference) {
+        render_reference(scene, products, camera, width, height, a.out);
         std::printf("%s\n", a.out.c_str());
         std::fprintf(stderr, "kiri render: %dx%d, mode reference, %.2f s\n", width, height,
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         return;
     }
+    const render::SceneRendering rendering(scene, products, mode);
     const auto context = render::create_headless_context();
     render::Renderer renderer;
-    renderer.set_terrain(terrain);
-    renderer.set_sun(render::to_sun(scene.sun));
-    // "auto" draws what the scene has: its fog combined (docs/combined.md) when it has fog.
-    render::FogMode mode = render::FogMode::terrain;
-    if (a.mode == "auto") {
-        if (scene.fog || geometry::world_froxel_options(scene).height_fog.enabled())
-            mode = render::FogMode::combined;
-    } else {
-        render::parse_fog_mode(a.mode, mode);  // CLI11 checked the name
-    }
-    std::optional<geometry::SceneFog> fog;
-    if (mode != render::FogMode::terrain && scene.fog)
-        fog = geometry::author_scene_fog(scene, terrain);
-    const render::SceneRendering rendering(scene, terrain, fog ? &*fog : nullptr, mode);
+    renderer.set_terrain(*products.terrain);
     rendering.apply(renderer);
     // A still picture: the froxels' temporal filter's jittered frames first (its 16-frame
     // Halton cycle), so the lighting's shadow edges are averaged over each froxel, not aliased.
@@ -102,7 +85,7 @@ void run(const RenderArgs& a)
                          t.cpu_ms);
         std::fprintf(stderr, "kiri render: frame %.2f ms\n", stats.frame_ms);
     }
-    if (const auto& particles = rendering.particles()) {
+    if (const geometry::ParticleCloud* particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();
         const auto& size = b.grid().size;
         std::fprintf(

@@ -28,22 +28,6 @@ struct FogViews {
     render::OverlayMesh control_mesh;         //!< lines of the fitted control mesh
 };
 
-//! The fog as the window uses it; every part is immutable once published.
-struct FogProducts {
-    std::shared_ptr<const geometry::LayerBase> base;  //!< for the layer pass
-    double base_offset = 0.0;                         //!< world m added to the base (lake: -thickness)
-    //! Fog placed by the terrain: what place_fog computed (null otherwise), and the layer stack's
-    //! thickness it sets (world m: the deepest fog), which replaces the scene's.
-    std::shared_ptr<const geometry::PlacedFog> placed;
-    double placed_thickness = 0.0;
-    std::shared_ptr<const FogViews> views;
-    geometry::FitReport fit;
-    int patches = 0;
-    std::size_t triangles = 0;
-    double tessellation_error = 0.0;
-    glm::dvec3 min{0.0}, max{0.0};  //!< bounds of the fitted surface
-};
-
 //! fit: the world-unit options the surface was fitted with (the deviation's target).
 std::shared_ptr<const FogViews> make_fog_views(const geometry::BaseSurface& surface,
                                                const geometry::Tessellation& tessellation,

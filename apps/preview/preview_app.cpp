@@ -25,10 +25,6 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-using render::particle_style;
-using render::scene_froxel_options;
-using render::to_sun;
-
 bool same(const render::Camera& a, const render::Camera& b)
 {
     return a.position == b.position && a.target == b.target && a.fov_y_deg == b.fov_y_deg;
@@ -69,8 +65,8 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     ui_.view.fog = !args.no_fog;
     // "auto" is kiri render's default: combined (every renderer its share of the fog).
     if (args.mode == "auto")
-        ui_.view.mode = ViewOptions::Mode::combined;
-    else if (!parse_mode(args.mode, ui_.view.mode))
+        ui_.view.mode = render::FogMode::combined;
+    else if (!render::parse_fog_mode(args.mode, ui_.view.mode) || ui_.view.mode == render::FogMode::terrain)
         throw Error("--mode: '" + args.mode + "' is not layers, particles, froxel or combined");
     ui_.view.show_panel = ui_.view.show_stats = !args.no_ui;
     apply_view_args(args.views, ui_.view);
@@ -91,10 +87,34 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     request();
 }
 
+render::FogMode PreviewApp::drawn_mode() const
+{
+    const render::FogMode mode = ui_.view.mode;
+    if (!ui_.view.fog)
+        return render::FogMode::terrain;
+    if (!scene_.fog && (mode == render::FogMode::layers || mode == render::FogMode::particles))
+        return render::FogMode::terrain;
+    if (!scene_.fog && !geometry::world_froxel_options(scene_).height_fog.enabled())
+        return render::FogMode::terrain;
+    return mode;
+}
+
+geometry::PipelineTarget PreviewApp::pipeline_target() const
+{
+    geometry::PipelineTarget target = render::pipeline_target(drawn_mode(), scene_);
+    if (target.up_to < geometry::Stage::layer_base)
+        target.up_to = geometry::Stage::layer_base;
+    return target;
+}
+
 void PreviewApp::request()
 {
-    requested_needs_ = ui_.view.needs();
-    pipeline_.request(scene_, requested_needs_);
+    requested_target_ = pipeline_target();
+    // The fog's time plays per frame (SceneRendering moves the Medium in time): the pipeline
+    // makes it at time 0, so playing never remakes it.
+    geometry::Scene at_rest = scene_;
+    at_rest.layers.time = 0.0;
+    pipeline_.request(at_rest, requested_target_);
 }
 
 PreviewApp::~PreviewApp()
@@ -135,27 +155,16 @@ void PreviewApp::apply(Products p)
         report(p.error, true);
     else if (ui_.message_is_error)
         report("");
-    if (p.terrain && p.terrain != terrain_) {
-        // The renderer keeps the terrain by reference: the new one goes in before the old goes.
-        const auto old = std::exchange(terrain_, p.terrain);
-        renderer_->set_terrain(*terrain_);
-        apply_live_options();  // the sun, also for a scene without fog
-        scene_dirty_ = true;
-    }
-    if (p.fog != fog_ || p.medium != medium_ || p.particles != particles_) {
-        // The renderer keeps them by reference: the old ones go once the new ones are in.
-        const auto old_fog = std::exchange(fog_, p.fog);
-        const auto old_medium = std::exchange(medium_, p.medium);
-        std::unique_ptr<geometry::Medium> old_live;
-        if (medium_ != old_medium)
-            old_live = std::exchange(live_medium_, medium_ ? std::make_unique<geometry::Medium>(*medium_) : nullptr);
-        const auto old_particles = std::exchange(particles_, p.particles);
-        apply_live_options();
-        if (fog_ != old_fog)
-            update_overlays();
-        scene_dirty_ = true;
-    }
-    if (!camera_placed_ && terrain_) {
+    // The renderer keeps the terrain and the fog by reference: the old products go once the
+    // new ones are in.
+    const Products old = std::exchange(shown_, std::move(p));
+    if (shown_.fog.terrain && shown_.fog.terrain != old.fog.terrain)
+        renderer_->set_terrain(*shown_.fog.terrain);
+    apply_live_options();
+    if (shown_.views != old.views)
+        update_overlays();
+    scene_dirty_ = true;
+    if (!camera_placed_ && shown_.fog.terrain) {
         place_camera(args_.camera);
         camera_placed_ = true;
     }
@@ -163,59 +172,24 @@ void PreviewApp::apply(Products p)
 
 void PreviewApp::apply_live_options()
 {
-    renderer_->set_sun(to_sun(scene_.sun));
-    renderer_->set_layer_resolution(scene_.layers.resolution);
-    const ViewOptions& v = ui_.view;
-    // Combined: each renderer draws its share of the one Medium (as SceneRendering sets it up).
-    std::optional<geometry::FogPartition> partition;
-    if (v.fog && v.mode == ViewOptions::Mode::combined) {
-        partition = scene_.combined;
-        if (!particles_)
-            partition->particle_share = 0.0;  // none drawn: nobody else may leave their share out
-    }
-    renderer_->set_fog_partition(partition);
-    if (particles_ && v.draws_particles())
-        renderer_->set_particles(*particles_, particle_style(scene_.particles));
-    else
-        renderer_->clear_particles();
-    froxels_on_ = false;
-    if (terrain_ && v.draws_froxels()) {
-        try {
-            const geometry::FroxelOptions options = scene_froxel_options(scene_, *terrain_);
-            // The medium while the fog has one (a scene without fog: the height fog alone).
-            geometry::Medium* medium = fog_ ? live_medium_.get() : nullptr;
-            if (medium && medium->detail().time != scene_.layers.time)
-                medium->set_time(scene_.layers.time);
-            if (medium || options.height_fog.enabled()) {
-                renderer_->set_froxel_fog(medium, options);
-                froxels_on_ = true;
-            }
-        } catch (const std::exception& e) {
-            report(e.what(), true);
-        }
-    }
-    if (!froxels_on_)
-        renderer_->clear_froxel_fog();
-    if (!fog_ || !v.draws_layers()) {
-        renderer_->clear_layers();
+    if (!shown_.fog.terrain)
         return;
-    }
     try {
-        geometry::LayerOptions o = geometry::world_layer_options(scene_);
-        o.base_offset = fog_->base_offset;  // the base was built with it
-        if (fog_->placed)                   // the placed fog sets the stack's depth
-            o.thickness = fog_->placed_thickness;
-        layer_options_ = o;
+        if (rendering_)
+            rendering_->update(scene_, shown_.fog, drawn_mode());
+        else
+            rendering_.emplace(scene_, shown_.fog, drawn_mode());
     } catch (const std::exception& e) {
-        report(e.what(), true);  // the last valid options stay
+        report(e.what(), true);  // the last valid rendering stays
     }
-    renderer_->set_layers(*fog_->base, layer_options_);
+    if (rendering_)
+        rendering_->apply(*renderer_);
 }
 
 void PreviewApp::update_overlays()
 {
     const ViewOptions& v = ui_.view;
-    const FogViews* views = fog_ ? fog_->views.get() : nullptr;
+    const FogViews* views = shown_.views.get();
     if (!views) {
         for (const char* name : {surface_overlay, triangles_overlay, patches_overlay, control_overlay})
             renderer_->remove_overlay(name);
@@ -238,7 +212,7 @@ void PreviewApp::update_overlays()
         renderer_->set_overlay(triangles_overlay, triangles);
         renderer_->set_overlay(patches_overlay, views->patch_borders);
         renderer_->set_overlay(control_overlay, views->control_mesh);
-        uploaded_views_ = fog_->views;
+        uploaded_views_ = shown_.views;
     }
     const glm::vec4 shaded =
         v.surface == ViewOptions::Surface::shaded ? glm::vec4(0.85f, 0.9f, 1.0f, 1.0f) : glm::vec4(1.0f);
@@ -257,7 +231,7 @@ void PreviewApp::update_overlays()
 
 void PreviewApp::place_camera(const std::string& name)
 {
-    const geometry::Bounds3 b = terrain_->bounds();
+    const geometry::Bounds3 b = shown_.fog.terrain->bounds();
     const geometry::CameraSpec c = scene_.camera(name, b.min, b.max);
     camera_.look(c.position, c.target, c.fov_y_deg);
 }
@@ -276,22 +250,23 @@ void PreviewApp::draw_panel()
         ImGui::Begin("kiri");
         ImGui::PushItemWidth(ImGui::GetWindowWidth() * 0.5f);  // room for the labels
         // Stages that feed the pipeline, then what applies per frame.
+        const geometry::PipelineProducts* fog = shown_.fog.has_fog() ? &shown_.fog : nullptr;
         edited |= terrain_panel(scene_);
-        edited |= fog_panel(scene_, terrain_.get(), fog_.get());
-        edited |= placement_panel(scene_, terrain_.get(), fog_.get());
+        edited |= fog_panel(scene_, shown_.fog.terrain.get(), fog);
+        edited |= placement_panel(scene_, shown_.fog.terrain.get(), fog);
         edited |= layers_panel(scene_, view);
         edited |= medium_panel(scene_);
-        edited |= particles_panel(scene_, particles_.get(), renderer_->attenuation());
+        edited |= particles_panel(scene_, shown_.fog.particles.get(), renderer_->attenuation());
         edited |= froxel_panel(scene_, renderer_->last_stats().froxel);
         edited |= sun_panel(scene_);
-        view_changed |= view_panel(view, fog_ ? fog_->views.get() : nullptr);
+        view_changed |= view_panel(view, shown_.views.get());
         camera_panel(scene_, ui_);
         file_panel(ui_);
         ImGui::PopItemWidth();
         ImGui::End();
     }
     // Stages whose inputs did not change are kept; a new mode may need the medium or particles.
-    if (edited || view.needs() != requested_needs_)
+    if (edited || pipeline_target() != requested_target_)
         request();
     if (edited || view_changed) {
         apply_live_options();
@@ -301,17 +276,18 @@ void PreviewApp::draw_panel()
     }
     if (view.show_stats) {
         const render::AttenuationBuffer& buffer = renderer_->attenuation();
-        const FogCounts counts{froxels_on_, particles_ && view.draws_particles() ? particles_->particles.size() : 0,
-                               buffer.rebuild_count(), buffer.last_build_ms()};
+        const geometry::ParticleCloud* cloud = rendering_ ? rendering_->particles() : nullptr;
+        const FogCounts counts{froxels_on(), cloud ? cloud->particles.size() : 0, buffer.rebuild_count(),
+                               buffer.last_build_ms()};
         stats_overlay(times_, renderer_->last_stats(), counts, pipeline_.status());
     }
 }
 
 void PreviewApp::do_actions()
 {
-    if (ui_.bookmark >= 0 && terrain_)
+    if (ui_.bookmark >= 0 && shown_.fog.terrain)
         place_camera(scene_.cameras.at(std::size_t(ui_.bookmark)).name);
-    if (ui_.reset_camera && terrain_)
+    if (ui_.reset_camera && shown_.fog.terrain)
         place_camera(args_.camera);
     if (ui_.focus_fog)
         focus_fog();
@@ -321,12 +297,15 @@ void PreviewApp::do_actions()
 
 void PreviewApp::focus_fog()
 {
-    if (!fog_) {
+    if (!shown_.fog.has_fog()) {
         report("no fog to focus on");
         return;
     }
-    const glm::dvec3 centre = 0.5 * (fog_->min + fog_->max);
-    const double radius = 0.5 * glm::length(fog_->max - fog_->min);
+    // The fitted surface's bounds (the layer base less its offset).
+    const glm::dvec3 offset(0.0, 0.0, shown_.fog.layers.base_offset);
+    const glm::dvec3 lo = shown_.fog.layer_base->min - offset, hi = shown_.fog.layer_base->max - offset;
+    const glm::dvec3 centre = 0.5 * (lo + hi);
+    const double radius = 0.5 * glm::length(hi - lo);
     const render::Camera c = camera_.camera();
     const glm::dvec3 direction = glm::normalize(c.target - c.position);
     const double distance = radius / std::tan(c.fov_y_deg * M_PI / 360.0);
@@ -349,7 +328,7 @@ void PreviewApp::add_camera()
 
 bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
 {
-    if (!terrain_) {  // the first job is still running
+    if (!shown_.fog.terrain) {  // the first job is still running
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
         glViewport(0, 0, fb_w, fb_h);
         glClearColor(0.12f, 0.13f, 0.15f, 1.0f);
@@ -375,7 +354,7 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
         ++times_.scene_frames;
         // The froxels' temporal filter refines a still view over its next frames (16 jittered
         // ones); the pass itself stops once it has them, and so does the redrawing.
-        scene_dirty_ = froxels_on_ && renderer_->last_stats().froxel.updated && scene_.froxel.temporal;
+        scene_dirty_ = froxels_on() && renderer_->last_stats().froxel.updated && scene_.froxel.temporal;
         last_frame_reduced_ = reduced;
     } else {
         ++times_.reused_frames;
@@ -398,18 +377,17 @@ int PreviewApp::run()
         pipeline_.wait_idle();
         if (auto p = pipeline_.take())
             apply(std::move(*p));
-        if (!terrain_ || ui_.message_is_error)
+        if (!shown_.fog.terrain || ui_.message_is_error)
             throw Error(ui_.message.empty() ? "the scene could not be prepared" : ui_.message);
         // A still picture, as kiri render makes it: the froxels' temporal filter gets its
-        // jittered frames first (SceneRendering::warmup_frames).
-        if (froxels_on_ && scene_.froxel.temporal) {
-            int w = 0, h = 0;
-            window_->framebuffer_size(w, h);
-            const render::Camera c = camera_path_.empty() ? camera_.camera() : camera_on_path(camera_path_, 0.0);
-            for (int i = 0; i < 15; ++i)
-                renderer_->draw(c, std::max(1, int(std::lround(w * ui_.view.render_scale))),
-                                std::max(1, int(std::lround(h * ui_.view.render_scale))));
-        }
+        // jittered frames first.
+        const int warmup = rendering_ ? rendering_->warmup_frames() : 0;
+        int w = 0, h = 0;
+        window_->framebuffer_size(w, h);
+        const render::Camera c = camera_path_.empty() ? camera_.camera() : camera_on_path(camera_path_, 0.0);
+        for (int i = 0; i < warmup; ++i)
+            renderer_->draw(c, std::max(1, int(std::lround(w * ui_.view.render_scale))),
+                            std::max(1, int(std::lround(h * ui_.view.render_scale))));
     }
     int frame = 0;
     std::vector<double> scene_ms;
@@ -476,10 +454,10 @@ int PreviewApp::run()
                 std::fprintf(stderr, "kiri-preview: %d frames of %dx%d, 3D view %.1f ms mean (%.1f..%.1f)\n", frame,
                              times_.scene_width, times_.scene_height, sum / double(scene_ms.size()), *lo, *hi);
             }
-            if (particles_ && ui_.view.draws_particles())
+            if (const geometry::ParticleCloud* cloud = rendering_ ? rendering_->particles() : nullptr)
                 std::fprintf(stderr, "kiri-preview: %zu particles, attenuation buffer builds per frame:%s\n",
-                             particles_->particles.size(), rebuilds.c_str());
-            if (froxels_on_)
+                             cloud->particles.size(), rebuilds.c_str());
+            if (froxels_on())
                 std::fprintf(stderr, "kiri-preview: froxel passes run per frame:%s\n", froxel_runs.c_str());
             return 0;
         }

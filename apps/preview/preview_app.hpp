@@ -11,6 +11,7 @@
 
 #include "kiri/geometry/scene/scene.hpp"
 #include "kiri/render/renderer.hpp"
+#include "kiri/render/scene_rendering.hpp"
 #include "kiri/render/window_context.hpp"
 #include "orbit_camera.hpp"
 #include "panels/panels.hpp"
@@ -41,19 +42,12 @@ private:
     std::unique_ptr<render::WindowContext> window_;
     std::unique_ptr<render::Renderer> renderer_;
     Pipeline pipeline_;
-    // What the window shows, from the last finished job.
-    std::shared_ptr<const geometry::Terrain> terrain_;
-    std::shared_ptr<const FogProducts> fog_;
+    // What the window shows, from the last finished job, and how the renderer draws it.
+    Products shown_;
+    std::optional<render::SceneRendering> rendering_;
     std::shared_ptr<const FogViews> uploaded_views_;
-    std::shared_ptr<const geometry::Medium> medium_;
-    //! The froxels' copy of it, whose time follows the layers' (wind drift and dissipation move
-    //! when time plays); replaced only with a new medium, so the renderer keeps its shell.
-    std::unique_ptr<geometry::Medium> live_medium_;
-    std::shared_ptr<const geometry::ParticleCloud> particles_;
-    Needs requested_needs_;    // what the last request asked the pipeline for
-    bool froxels_on_ = false;  // froxel fog set on the renderer
+    geometry::PipelineTarget requested_target_;  // what the last request asked the pipeline for
     ViewOptions::Surface uploaded_surface_ = ViewOptions::Surface::hidden;
-    geometry::LayerOptions layer_options_;
     OrbitCamera camera_;
     bool camera_placed_ = false;
     std::vector<render::Camera> camera_path_;
@@ -67,8 +61,16 @@ private:
     float ui_scale_ = 1.0f;
     //! Queues the scene with what the render mode needs.
     void request();
+    //! The mode drawn: the view's, or the terrain alone when the fog is hidden or the scene has
+    //! nothing of it to draw.
+    render::FogMode drawn_mode() const;
+    //! What the pipeline makes for the view: the fog's surface and layers always (the views of
+    //! the surface need them), and what the render mode draws.
+    geometry::PipelineTarget pipeline_target() const;
+    bool froxels_on() const { return rendering_ && rendering_->draws_froxels(); }
     void scale_ui_to_monitor();
     void apply(Products products);
+    //! The rendering of the current scene and products, applied to the renderer.
     void apply_live_options();
     void update_overlays();
     bool handle_input(double seconds);  // true while the camera moves

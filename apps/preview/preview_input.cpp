@@ -73,7 +73,7 @@ void PreviewApp::handle_key(int key, int mods)
     if (pressed(GLFW_KEY_T))
         ui_.view.show_stats = !ui_.view.show_stats;
     if (pressed(GLFW_KEY_M)) {  // the next render mode
-        ui_.view.mode = ViewOptions::Mode((int(ui_.view.mode) + 1) % 4);
+        ui_.view.mode = next_fog_mode(ui_.view.mode);
         ui_.mode_changed = true;
     }
     for (int i = 0; i < 9 && i < int(scene_.cameras.size()); ++i)

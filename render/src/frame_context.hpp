@@ -5,6 +5,7 @@
 
 #include "kiri/render/camera.hpp"
 #include "kiri/render/renderer.hpp"
+#include "kiri/render/tone_map.hpp"
 
 namespace kiri::render::detail {
 
@@ -18,8 +19,8 @@ struct FrameContext {
     glm::vec3 sun_radiance{1.0f};
     glm::vec3 ambient{0.3f};
     glm::vec3 sky_zenith{0.3f}, sky_horizon{0.8f};
-    float exposure = 0.7f;
-    float haze_density = 1.0f / 150000.0f;  // 1/m: the far side of a 30 km DEM is ~20% hazed
+    float exposure = float(display_exposure);  // tone_map.hpp
+    float haze_density = 1.0f / 150000.0f;     // 1/m: the far side of a 30 km DEM is ~20% hazed
     //! Combined mode: each fog renderer draws its share of the Medium (fog_partition.hpp).
     bool partitioned = false;
     glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band

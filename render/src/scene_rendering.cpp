@@ -4,6 +4,24 @@
 #include "kiri/geometry/medium/fog_partition.hpp"
 
 namespace kiri::render {
+namespace {
+
+// The time the scene's fog is drawn at (wind drift and dissipation).
+double scene_time(const geometry::Scene& scene) { return scene.layers.time; }
+
+bool has_haze(const geometry::Scene& scene) { return geometry::world_froxel_options(scene).height_fog.enabled(); }
+
+void check_mode(const geometry::Scene& scene, FogMode mode)
+{
+    const std::string label = scene.file.string();
+    if ((mode == FogMode::layers || mode == FogMode::particles) && !scene.fog)
+        throw InputError(label, "/fog", std::string("mode ") + to_string(mode) + " needs a fog section");
+    if ((mode == FogMode::froxel || mode == FogMode::combined) && !scene.fog && !has_haze(scene))
+        throw InputError(label, "/fog",
+                         std::string("mode ") + to_string(mode) + " needs a fog section or a froxel height fog");
+}
+
+}  // namespace
 
 const char* to_string(FogMode mode)
 {
@@ -24,6 +42,34 @@ bool parse_fog_mode(std::string_view name, FogMode& out)
             return true;
         }
     return false;
+}
+
+geometry::PipelineTarget pipeline_target(FogMode mode, const geometry::Scene& scene)
+{
+    geometry::PipelineTarget target;
+    target.up_to = geometry::Stage::layer_base;
+    target.particles = geometry::ParticleSet::none;
+    switch (mode) {
+    case FogMode::terrain: target.up_to = geometry::Stage::terrain; break;
+    case FogMode::layers: break;
+    case FogMode::froxel: target.up_to = geometry::Stage::medium; break;
+    case FogMode::particles:
+        target.up_to = geometry::Stage::particles;
+        target.particles = geometry::ParticleSet::whole;
+        break;
+    case FogMode::combined:
+        // The particles stand for their share of the Medium only: its top band.
+        target.up_to = geometry::Stage::particles;
+        target.particles =
+            scene.combined.particle_share > 0.0 ? geometry::ParticleSet::top_band : geometry::ParticleSet::none;
+        break;
+    }
+    return target;
+}
+
+FogMode default_mode(const geometry::Scene& scene)
+{
+    return scene.fog || has_haze(scene) ? FogMode::combined : FogMode::terrain;
 }
 
 Camera to_camera(const geometry::CameraSpec& c)
@@ -81,55 +127,89 @@ geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geo
     return light;
 }
 
-SceneRendering::SceneRendering(const geometry::Scene& scene, const geometry::Terrain& terrain,
-                               const geometry::SceneFog* fog, FogMode mode)
-    : mode_(mode), scene_(scene), fog_(fog), froxel_(scene_froxel_options(scene, terrain))
+int warmup_frames(bool draws_froxels, const geometry::FroxelOptions& froxel)
 {
-    const std::string label = scene.file.string();
-    const bool haze = froxel_.height_fog.enabled();
-    if ((mode == FogMode::layers || mode == FogMode::particles) && !fog)
-        throw InputError(label, "/fog", std::string("mode ") + to_string(mode) + " needs a fog section");
-    if ((mode == FogMode::froxel || mode == FogMode::combined) && !fog && !haze)
-        throw InputError(label, "/fog",
-                         std::string("mode ") + to_string(mode) + " needs a fog section or a froxel height fog");
-    if (mode == FogMode::particles)
-        particles_ = geometry::sample_particles(fog->medium, scene.particles, label);
-    if (mode == FogMode::combined && fog && scene.combined.particle_share > 0.0) {
-        // The particles stand for their share of the Medium only: its top band.
-        const geometry::Medium& medium = fog->medium;
-        const geometry::FogPartition partition = scene.combined;
-        particles_ = geometry::sample_particles(medium, scene.particles, label, [&](const glm::dvec3& p) {
-            return geometry::particle_share(partition, medium.height_fraction(p));
-        });
-    }
+    return draws_froxels && froxel.temporal ? 15 : 0;
 }
 
-bool SceneRendering::draws_froxels() const { return mode_ == FogMode::froxel || (mode_ == FogMode::combined); }
+SceneRendering::SceneRendering(const geometry::Scene& scene, const geometry::PipelineProducts& products, FogMode mode)
+{
+    update(scene, products, mode);
+}
+
+void SceneRendering::update(const geometry::Scene& scene, const geometry::PipelineProducts& products, FogMode mode)
+{
+    check_mode(scene, mode);
+    // Everything that can throw first: a failed update keeps the last good rendering.
+    const geometry::FroxelOptions froxel =
+        products.terrain ? scene_froxel_options(scene, *products.terrain) : geometry::world_froxel_options(scene);
+    const geometry::LayerOptions layers =
+        products.has_fog() ? geometry::fog_layer_options(scene, products.fog) : geometry::LayerOptions{};
+    if (products.medium != products_.medium)
+        timed_medium_.reset();
+    const double time = scene_time(scene);
+    if (products.medium && products.medium->detail().time != time) {
+        if (!timed_medium_)  // one copy per Medium, moved in time from then on
+            timed_medium_ = std::make_shared<geometry::Medium>(*products.medium);
+        timed_medium_->set_time(time);
+    } else {
+        timed_medium_.reset();
+    }
+    mode_ = mode;
+    scene_ = scene;
+    products_ = products;
+    froxel_ = froxel;
+    layers_ = layers;
+}
+
+bool SceneRendering::draws_layers() const
+{
+    return products_.has_fog() && (mode_ == FogMode::layers || mode_ == FogMode::combined);
+}
+
+bool SceneRendering::draws_froxels() const
+{
+    // The Medium while the fog has one, else the height fog alone.
+    return (mode_ == FogMode::froxel || mode_ == FogMode::combined) && (medium() || froxel_.height_fog.enabled());
+}
+
+const geometry::ParticleCloud* SceneRendering::particles() const
+{
+    return mode_ == FogMode::particles || mode_ == FogMode::combined ? products_.particles.get() : nullptr;
+}
+
+const geometry::Medium* SceneRendering::medium() const
+{
+    if ((mode_ != FogMode::froxel && mode_ != FogMode::combined) || !products_.has_fog())
+        return nullptr;
+    return timed_medium_ ? timed_medium_.get() : products_.medium.get();
+}
 
 void SceneRendering::apply(Renderer& renderer) const
 {
+    renderer.set_sun(to_sun(scene_.sun));
     renderer.set_layer_resolution(scene_.layers.resolution);
     if (draws_layers())
-        renderer.set_layers(fog_->base, fog_->layers);
+        renderer.set_layers(*products_.layer_base, layers_);
     else
         renderer.clear_layers();
-    if (particles_)
-        renderer.set_particles(*particles_, particle_style(scene_.particles));
+    if (const geometry::ParticleCloud* cloud = particles())
+        renderer.set_particles(*cloud, particle_style(scene_.particles));
     else
         renderer.clear_particles();
     if (draws_froxels())
-        renderer.set_froxel_fog(fog_ ? &fog_->medium : nullptr, froxel_);
+        renderer.set_froxel_fog(medium(), froxel_);
     else
         renderer.clear_froxel_fog();
     std::optional<geometry::FogPartition> partition;
     if (mode_ == FogMode::combined) {
         partition = scene_.combined;
-        if (!particles_)
+        if (!particles())
             partition->particle_share = 0.0;  // no particles drawn: nobody else may leave their share out
     }
     renderer.set_fog_partition(partition);
 }
 
-int SceneRendering::warmup_frames() const { return draws_froxels() && froxel_.temporal ? 15 : 0; }
+int SceneRendering::warmup_frames() const { return render::warmup_frames(draws_froxels(), froxel_); }
 
 }  // namespace kiri::render

@@ -1,4 +1,4 @@
-// author_base_surface on the real Jacksboro DEM (data/terrains), the path `kiri author` takes.
+// The authoring pipeline on the real Jacksboro DEM (data/terrains), the path `kiri author` takes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,16 +6,20 @@
 
 #include <nlohmann/json.hpp>
 
-#include "kiri/geometry/terrain/dem.hpp"
-#include "kiri/geometry/scene/fog_spec.hpp"
+#include "kiri/geometry/scene/author_report.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 
 using namespace kiri::geometry;
 
 namespace {
-const Terrain& jacksboro()
+// The DEM at its own heights with `fog` over it.
+Scene jacksboro(const FogSpec& fog)
 {
-    static const Terrain t(load_dem(KIRI_DATA_DIR "/terrains/jacksboro_fault_dem.tif"));
-    return t;
+    Scene scene;
+    scene.file = "jacksboro.json";
+    scene.terrain.path = KIRI_DATA_DIR "/terrains/jacksboro_fault_dem.tif";
+    scene.fog = fog;
+    return scene;
 }
 
 // The tessellated surface's height at every terrain grid vertex it covers (linear on its
@@ -48,13 +52,16 @@ std::vector<double> raster(const TriMesh& m, const Heightfield& hf)
 
 TEST(Author, JacksboroBlanketHugsTheRidgesWithoutDippingIntoThem)
 {
-    const Terrain& t = jacksboro();
     FogSpec spec;
     spec.margin = 500.0;
-    const AuthoredSurface a = author_base_surface(t, spec, "jacksboro.json");
-    EXPECT_GE(a.fit.min_clearance, spec.fit.clearance);
-    EXPECT_GT(a.fit.grid_vertex_samples, 120000);
-    const auto z = raster(a.tessellation.mesh, t.heightfield());
+    const Scene scene = jacksboro(spec);
+    Pipeline pipeline;
+    const PipelineProducts& a = pipeline.run(scene);
+    const Terrain& t = *a.terrain;
+    const FitReport& fit = a.surface->fit;
+    EXPECT_GE(fit.min_clearance, spec.fit.clearance);
+    EXPECT_GT(fit.grid_vertex_samples, 120000);
+    const auto z = raster(a.tessellation->mesh, t.heightfield());
     double min_clear = 1e300, covered = 0, close = 0;
     for (std::size_t k = 0; k < z.size(); ++k)
         if (!std::isnan(z[k])) {
@@ -65,27 +72,27 @@ TEST(Author, JacksboroBlanketHugsTheRidgesWithoutDippingIntoThem)
         }
     EXPECT_GT(covered, 0.9 * double(z.size()));
     // The triangles lie within the tessellation error of the surface.
-    EXPECT_GE(min_clear, spec.fit.clearance - a.tessellation.max_error - 1e-6);
+    EXPECT_GE(min_clear, spec.fit.clearance - a.tessellation->max_error - 1e-6);
     EXPECT_GT(close / covered, 0.01) << "the blanket never comes near the ridges";
-    const auto report = nlohmann::json::parse(author_report_json(spec, a));
-    EXPECT_EQ(report["fit"]["min_clearance_m"].get<double>(), a.fit.min_clearance);
-    EXPECT_EQ(report["counts"]["triangles"].get<std::size_t>(), a.tessellation.mesh.n_faces());
+    const auto report = nlohmann::json::parse(author_report_json(scene, a, pipeline.stages()));
+    EXPECT_EQ(report["fit"]["min_clearance_m"].get<double>(), fit.min_clearance);
+    EXPECT_EQ(report["counts"]["triangles"].get<std::size_t>(), a.tessellation->mesh.n_faces());
     EXPECT_EQ(report["fog"]["mode"], "blanket");
 }
 
 TEST(Author, JacksboroLakeFillsTheValleys)
 {
-    const Terrain& t = jacksboro();
     FogSpec spec;
     spec.margin = 500.0;
     spec.fit.mode = FitMode::lake;
     spec.fit.altitude = 420.0;
-    const AuthoredSurface a = author_base_surface(t, spec);
-    for (auto v : a.tessellation.mesh.vertices())
-        ASSERT_NEAR(a.tessellation.mesh.point(v)[2], 420.0, 1e-9);
+    const PipelineProducts a = author_scene(jacksboro(spec));
+    const Terrain& t = *a.terrain;
+    for (auto v : a.tessellation->mesh.vertices())
+        ASSERT_NEAR(a.tessellation->mesh.point(v)[2], 420.0, 1e-9);
     // Fog where the terrain is below 420 m: the samples' fraction matches the DEM's own.
     const auto& z = t.heightfield().z;
     const double below = double(std::count_if(z.begin(), z.end(), [](double h) { return h < 420.0; })) / z.size();
-    EXPECT_NEAR(a.fit.fog_fraction, below, 0.03);
-    EXPECT_GT(a.fit.fog_fraction, 0.1);
+    EXPECT_NEAR(a.surface->fit.fog_fraction, below, 0.03);
+    EXPECT_GT(a.surface->fit.fog_fraction, 0.1);
 }

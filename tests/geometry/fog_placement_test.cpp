@@ -10,7 +10,7 @@
 #include "kiri/geometry/placement/fill_medium.hpp"
 #include "kiri/geometry/placement/fog_placement.hpp"
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 
 using namespace kiri::geometry;
 using kiri::test::make_heightfield;
@@ -29,8 +29,7 @@ std::string error_of(const std::string& fog, const std::string& extra = "")
     try {
         Scene s = parse_scene(scene_text(fog, extra), "s.json", "/d");
         s.file = "s.json";
-        const Terrain t = load_scene_terrain(s);
-        author_scene_fog(s, t);
+        author_scene(s, {Stage::medium});
     } catch (const kiri::InputError& e) {
         return e.what();
     }
@@ -160,8 +159,8 @@ TEST(FogPlacement, PlacedFogGivesTheFootprintAndTheLakeTarget)
     EXPECT_DOUBLE_EQ(s.fit.thickness, 99.0);
     EXPECT_FALSE(s.fit.altitude_grid);
     // The fit reproduces the flat top (a plane is fitted exactly).
-    const AuthoredSurface a = author_base_surface(t, s);
-    EXPECT_LT(a.fit.max_deviation, 1e-6);
+    BaseSurface surface = fog_control_surface(t, s);
+    EXPECT_LT(fit_fog_surface(surface, t, s).max_deviation, 1e-6);
     // Regions may overlap: the same basin from two seeds with different tops gives a top grid.
     FillRegionSpec r2 = r;
     r2.top = 180.0;

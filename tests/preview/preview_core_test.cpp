@@ -16,7 +16,7 @@
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/medium/fog_partition.hpp"
 #include "kiri/geometry/scene/fog_spec.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 #include "orbit_camera.hpp"
 #include "pipeline.hpp"
@@ -27,7 +27,6 @@ namespace fs = std::filesystem;
 namespace g = kiri::geometry;
 using kiri::preview::Pipeline;
 using kiri::preview::Products;
-using kiri::preview::Stage;
 
 namespace {
 
@@ -40,209 +39,58 @@ g::Scene small_scene()
     return s;
 }
 
-Products run(Pipeline& p, const g::Scene& s)
+Products run(Pipeline& p, const g::Scene& s, const g::PipelineTarget& target = {})
 {
-    p.request(s);
+    p.request(s, target);
     p.wait_idle();
     std::optional<Products> r = p.take();
     EXPECT_TRUE(r.has_value());
     return r ? std::move(*r) : Products{};
 }
 
-double mean_height(const kiri::preview::FogProducts& fog)
-{
-    double sum = 0.0;
-    for (const glm::vec3& q : fog.views->surface.positions)
-        sum += q.z;
-    return sum / double(fog.views->surface.positions.size());
-}
-
-int runs(const Pipeline& p, Stage stage) { return p.status().stages[std::size_t(stage)].runs; }
-
-// Runs per stage so far: terrain, control mesh, fit, tessellation, layer base, views.
-std::array<int, 6> runs(const Pipeline& p)
-{
-    std::array<int, 6> out{};
-    int i = 0;
-    for (Stage stage :
-         {Stage::terrain, Stage::control_mesh, Stage::fit, Stage::tessellation, Stage::layer_base, Stage::views})
-        out[std::size_t(i++)] = runs(p, stage);
-    return out;
-}
-
-// Runs of the stages after the views: placement, medium, particles.
-std::array<int, 3> fog_runs(const Pipeline& p)
-{
-    return {runs(p, Stage::placement), runs(p, Stage::medium), runs(p, Stage::particles)};
-}
-
-Products run(Pipeline& p, const g::Scene& s, kiri::preview::Needs needs)
-{
-    p.request(s, needs);
-    p.wait_idle();
-    std::optional<Products> r = p.take();
-    EXPECT_TRUE(r.has_value());
-    return r ? std::move(*r) : Products{};
-}
+int runs(const Pipeline& p, int stage) { return p.status().stages[std::size_t(stage)].runs; }
+int runs(const Pipeline& p, g::Stage stage) { return runs(p, int(stage)); }
 
 }  // namespace
 
-TEST(PreviewPipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
+// The authoring pipeline's own recomputation is tested in tests/geometry/pipeline_test.cpp; here
+// the preview's thread around it: its counts, its views, its errors and its queue.
+TEST(PreviewPipeline, CountsTheStagesItRanAndRemakesTheViewsWithTheTessellation)
 {
     Pipeline p;
     g::Scene s = small_scene();
     const Products first = run(p, s);
     ASSERT_TRUE(first.error.empty()) << first.error;
-    ASSERT_TRUE(first.terrain && first.fog);
-    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 1, 1, 1, 1, 1}));
+    ASSERT_TRUE(first.fog.has_fog() && first.views);
+    EXPECT_EQ(runs(p, g::Stage::fit), 1);
+    EXPECT_EQ(runs(p, kiri::preview::views_stage), 1);
+    EXPECT_TRUE(first.rebuilt[std::size_t(g::Stage::fit)]);
+    EXPECT_EQ(first.views->surface.positions.size(), first.fog.tessellation->mesh.n_vertices());
 
-    // Sun and the layers' look apply per frame: nothing runs, the same products come back.
-    s.sun.intensity = 1.0;
+    // A per-frame edit runs nothing and keeps the views.
     s.layers.opacity = 0.3;
-    s.cameras.pop_back();
     const Products same = run(p, s);
-    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 1, 1, 1, 1, 1}));
-    EXPECT_EQ(same.terrain, first.terrain);
-    EXPECT_EQ(same.fog, first.fog);
+    EXPECT_EQ(runs(p, g::Stage::fit), 1);
+    EXPECT_EQ(runs(p, kiri::preview::views_stage), 1);
+    EXPECT_EQ(same.views, first.views);
+    EXPECT_FALSE(same.rebuilt[std::size_t(g::Stage::fit)]);
 
-    // Tessellation: the fitted surface is kept; (6/4)^2 as many triangles.
-    s.fog->tessellation.level = 6;
-    const Products finer = run(p, s);
-    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 1, 1, 2, 2, 2}));
-    EXPECT_EQ(finer.fog->triangles * 16, first.fog->triangles * 36);
-    EXPECT_EQ(finer.fog->fit.rms_deviation, first.fog->fit.rms_deviation);
-
-    // A fit option refits the same control mesh.
-    s.fog->fit.offset = 120.0;
-    const Products refit = run(p, s);
-    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 1, 2, 3, 3, 3}));
-    EXPECT_EQ(refit.fog->patches, first.fog->patches);
-    // The refit (same control mesh, samples reused) is the fit `kiri author` makes from scratch.
-    const g::AuthoredSurface direct = g::author_base_surface(*refit.terrain, g::world_fog_spec(s));
-    EXPECT_NEAR(refit.fog->fit.rms_deviation, direct.fit.rms_deviation, 1e-9 * direct.fit.rms_deviation);
-    EXPECT_NEAR(refit.fog->fit.max_deviation, direct.fit.max_deviation, 1e-9 * direct.fit.max_deviation);
-    EXPECT_NEAR(refit.fog->fit.min_clearance, direct.fit.min_clearance, 1e-9);
-    EXPECT_GT(mean_height(*refit.fog), mean_height(*finer.fog));
-
-    // The layer texture only rebuilds the layer base.
+    // The layer texture: a new layer base over the same surface, the same views.
     s.layers.texture.fade_width = 0.25;
     const Products texture = run(p, s);
-    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 1, 2, 3, 4, 3}));
-    EXPECT_EQ(texture.fog->views, refit.fog->views);
-    EXPECT_NE(texture.fog->base, refit.fog->base);
+    EXPECT_EQ(runs(p, g::Stage::layer_base), 2);
+    EXPECT_EQ(runs(p, kiri::preview::views_stage), 1);
+    EXPECT_EQ(texture.views, first.views);
 
-    // The footprint rebuilds the control mesh and what follows.
-    s.fog->margin = 4000.0;
-    const Products smaller = run(p, s);
-    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 2, 3, 4, 5, 4}));
-    EXPECT_LT(smaller.fog->patches, refit.fog->patches);
-
-    // The exaggeration reloads the terrain and everything on it.
-    s.terrain.exaggeration = 2.0;
-    const Products steeper = run(p, s);
-    EXPECT_EQ(runs(p), (std::array<int, 6>{2, 3, 4, 5, 6, 5}));
-    EXPECT_NEAR(steeper.terrain->bounds().max.z / smaller.terrain->bounds().max.z, 2.0 / 1.5, 1e-12);
-    EXPECT_TRUE(steeper.error.empty()) << steeper.error;
-}
-
-TEST(PreviewPipeline, FogPlacedByTheTerrainIsWhatKiriAuthorMakes)
-{
-    Pipeline p;
-    g::Scene s = g::load_scene(fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_fill.json");
-    ASSERT_TRUE(s.fog && s.fog->placement);
-    const Products first = run(p, s, {.medium = true});
-    ASSERT_TRUE(first.error.empty()) << first.error;
-    ASSERT_TRUE(first.fog && first.fog->placed && first.medium);
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{1, 1, 0}));
-    EXPECT_EQ(first.particles, nullptr);  // not asked for
-
-    // The same placement, lake fit, layer stack and medium as `kiri author` (author_scene_fog).
-    const g::SceneFog direct = g::author_scene_fog(s, *first.terrain);
-    ASSERT_TRUE(direct.placed);
-    EXPECT_EQ(first.fog->placed->figures.cells, direct.placed->figures.cells);
-    EXPECT_DOUBLE_EQ(first.fog->placed->figures.volume_m3, direct.placed->figures.volume_m3);
-    EXPECT_DOUBLE_EQ(first.fog->placed_thickness, direct.layers.thickness);
-    EXPECT_DOUBLE_EQ(first.fog->base_offset, direct.layers.base_offset);
-    EXPECT_EQ(first.fog->triangles, direct.authored.tessellation.mesh.n_faces());
-    EXPECT_NEAR(first.fog->fit.rms_deviation, direct.authored.fit.rms_deviation,
-                1e-9 * (1.0 + direct.authored.fit.rms_deviation));
-    EXPECT_EQ(first.medium->grid().nx, direct.medium.grid().nx);
-    EXPECT_NEAR(first.medium->shell_volume(), direct.medium.shell_volume(), 1e-9 * direct.medium.shell_volume());
-
-    // A tessellation edit keeps the placement and the medium; the medium's optics only remake it.
+    // A new tessellation: new views of it.
     s.fog->tessellation.level = 6;
-    run(p, s, {.medium = true});
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{1, 2, 0}));  // the layer base changed under it
-    s.medium.albedo = 0.9;
-    const Products albedo = run(p, s, {.medium = true});
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{1, 3, 0}));
-    EXPECT_DOUBLE_EQ(albedo.medium->options().albedo, 0.9);
-
-    // A higher fog top places the fog again: more of it, deeper, and everything after reruns.
-    const std::array<int, 6> before = runs(p);
-    s.fog->placement->regions.at(0).top += 40.0;
-    const Products higher = run(p, s, {.medium = true});
-    ASSERT_TRUE(higher.error.empty()) << higher.error;
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{2, 4, 0}));
-    EXPECT_EQ(runs(p)[1], before[1] + 1);  // control mesh
-    EXPECT_GT(higher.fog->placed->figures.volume_m3, first.fog->placed->figures.volume_m3);
-    EXPECT_NEAR(higher.fog->placed_thickness, first.fog->placed_thickness + 40.0 * s.terrain.exaggeration, 1e-6);
-}
-
-TEST(PreviewPipeline, TheParticleCountResamplesOnlyTheParticles)
-{
-    Pipeline p;
-    g::Scene s = small_scene();
-    s.particles.count = 3000;
-    const Products first = run(p, s, {.medium = true, .particles = true});
-    ASSERT_TRUE(first.error.empty()) << first.error;
-    ASSERT_TRUE(first.particles && first.medium);
-    EXPECT_EQ(first.particles->particles.size(), 3000u);
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 1}));
-    // The particles `kiri author` samples from the same scene, bit for bit.
-    const g::SceneFog direct = g::author_scene_fog(s, *first.terrain);
-    const g::ParticleCloud cloud = g::sample_particles(direct.medium, s.particles);
-    ASSERT_EQ(cloud.particles.size(), first.particles->particles.size());
-    EXPECT_EQ(cloud.particles[1234].position, first.particles->particles[1234].position);
-    EXPECT_EQ(cloud.particles[1234].optical_depth, first.particles->particles[1234].optical_depth);
-
-    s.particles.count = 4000;
-    const Products more = run(p, s, {.medium = true, .particles = true});
-    EXPECT_EQ(runs(p), (std::array<int, 6>{1, 1, 1, 1, 1, 1}));
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 2}));
-    EXPECT_EQ(more.medium, first.medium);
-    EXPECT_EQ(more.particles->particles.size(), 4000u);
-
-    // The attenuation buffer's options apply per frame: nothing is resampled.
-    s.particles.resolution = 256;
-    s.particles.half_float = false;
-    const Products finer = run(p, s, {.medium = true, .particles = true});
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 2}));
-    EXPECT_EQ(finer.particles, more.particles);
-
-    // A mode without particles gets none and runs nothing; back to particles, the same ones.
-    const Products layers = run(p, s, {});
-    EXPECT_EQ(layers.particles, nullptr);
-    EXPECT_EQ(layers.medium, nullptr);
-    const Products again = run(p, s, {.medium = true, .particles = true});
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 2}));
-    EXPECT_EQ(again.particles, more.particles);
-
-    // Combined: the particles stand for the top band's share of the medium (as SceneRendering
-    // samples them); a zero share gives none.
-    const Products shared = run(p, s, {.medium = true, .particles = true, .particle_share = true});
-    EXPECT_EQ(fog_runs(p), (std::array<int, 3>{0, 1, 3}));
-    ASSERT_TRUE(shared.particles);
-    const g::Medium& m = *shared.medium;
-    const g::ParticleCloud top = g::sample_particles(
-        m, s.particles, {}, [&](const glm::dvec3& q) { return g::particle_share(s.combined, m.height_fraction(q)); });
-    ASSERT_EQ(top.particles.size(), shared.particles->particles.size());
-    EXPECT_EQ(top.particles[77].position, shared.particles->particles[77].position);
-    EXPECT_NE(top.particles[77].position, more.particles->particles[77].position);
-    s.combined.particle_share = 0.0;
-    const Products none = run(p, s, {.medium = true, .particles = true, .particle_share = true});
-    EXPECT_EQ(none.particles, nullptr);
-    EXPECT_TRUE(none.error.empty()) << none.error;
+    const Products finer = run(p, s);
+    EXPECT_EQ(runs(p, g::Stage::tessellation), 2);
+    EXPECT_EQ(runs(p, kiri::preview::views_stage), 2);
+    EXPECT_NE(finer.views, first.views);
+    EXPECT_EQ(finer.views->surface.positions.size(), finer.fog.tessellation->mesh.n_vertices());
+    EXPECT_STREQ(kiri::preview::stage_name(kiri::preview::views_stage), "views");
+    EXPECT_STREQ(kiri::preview::stage_name(int(g::Stage::control_mesh)), "control mesh");
 }
 
 TEST(PreviewPipeline, AFailedEditKeepsTheLastGoodFogAndNamesTheProblem)
@@ -250,21 +98,35 @@ TEST(PreviewPipeline, AFailedEditKeepsTheLastGoodFogAndNamesTheProblem)
     Pipeline p;
     g::Scene s = small_scene();
     const Products good = run(p, s);
-    ASSERT_TRUE(good.fog);
+    ASSERT_TRUE(good.fog.has_fog());
     s.fog->fit.mode = g::FitMode::lake;
     s.fog->fit.altitude = 100.0;  // below the lowest ground (236 m)
     const Products bad = run(p, s);
     EXPECT_NE(bad.error.find("fit: "), std::string::npos) << bad.error;
     EXPECT_NE(bad.error.find("/fog"), std::string::npos) << bad.error;
-    EXPECT_EQ(bad.fog, good.fog);
-    EXPECT_EQ(bad.terrain, good.terrain);
+    EXPECT_EQ(bad.fog.layer_base, good.fog.layer_base);
+    EXPECT_EQ(bad.fog.terrain, good.fog.terrain);
+    EXPECT_EQ(bad.views, good.views);
     s.fog->fit.altitude = 500.0;
     const Products fixed = run(p, s);
     EXPECT_TRUE(fixed.error.empty()) << fixed.error;
-    ASSERT_TRUE(fixed.fog);
-    EXPECT_NE(fixed.fog, good.fog);
-    // A lake's layers hang one thickness below its top.
-    EXPECT_DOUBLE_EQ(fixed.fog->base_offset, -s.fog->fit.thickness * s.terrain.exaggeration);
+    EXPECT_NE(fixed.fog.layer_base, good.fog.layer_base);
+}
+
+TEST(PreviewPipeline, TheModesTargetGivesTheMediumAndParticlesOnlyWhenAskedFor)
+{
+    Pipeline p;
+    g::Scene s = small_scene();
+    s.particles.count = 2000;
+    const Products layers = run(p, s);
+    EXPECT_EQ(layers.fog.medium, nullptr);
+    EXPECT_EQ(layers.fog.particles, nullptr);
+    EXPECT_EQ(runs(p, g::Stage::medium), 0);
+    const Products particles = run(p, s, {g::Stage::particles, g::ParticleSet::whole});
+    ASSERT_TRUE(particles.fog.medium && particles.fog.particles);
+    EXPECT_EQ(particles.fog.particles->particles.size(), 2000u);
+    EXPECT_EQ(runs(p, g::Stage::medium), 1);
+    EXPECT_EQ(runs(p, g::Stage::particles), 1);
 }
 
 TEST(PreviewPipeline, TheLatestRequestWins)
@@ -273,7 +135,7 @@ TEST(PreviewPipeline, TheLatestRequestWins)
     g::Scene s = small_scene();
     for (int level : {2, 3, 5}) {
         s.fog->tessellation.level = level;
-        p.request(s);
+        p.request(s, {});
     }
     p.wait_idle();
     const std::optional<Products> last = p.take();

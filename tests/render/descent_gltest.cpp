@@ -12,7 +12,7 @@
 
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/render/fog_error.hpp"
 #include "kiri/render/scene_rendering.hpp"
 #include "render/render_fixture.hpp"
@@ -58,11 +58,12 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
     // Stills: without the temporal filter each frame is final at once (its convergence and
     // history rejection are FroxelGl's tests), so every frame is one draw.
     scene.froxel.temporal = false;
-    const g::Terrain terrain = g::load_scene_terrain(scene);
-    const g::SceneFog fog = g::author_scene_fog(scene, terrain);
+    const g::PipelineProducts fog = g::author_scene(scene, pipeline_target(FogMode::combined, scene));
+    const g::Terrain& terrain = *fog.terrain;
+    const g::Medium& medium = *fog.medium;
     // Over a valley south of the centre, looking north-east and down.
     const double x = -2000.0, y = -3000.0;
-    const g::MediumColumn c = fog.medium.column(x, y);
+    const g::MediumColumn c = medium.column(x, y);
     ASSERT_GT(c.coverage, 0.5);
     ASSERT_GT(c.top - c.bottom, 100.0);
     const double ground = terrain.height(x, y);
@@ -84,10 +85,10 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
         r->set_terrain(terrain);
         r->set_sun(sun);
     }
-    const SceneRendering combined(scene, terrain, &fog, FogMode::combined);
+    const SceneRendering combined(scene, fog, FogMode::combined);
     combined.apply(fogged);
     const g::FroxelOptions& froxel = combined.froxel_options();
-    const g::FogLighting light = scene_fog_lighting(scene, &fog.medium, froxel);
+    const g::FogLighting light = scene_fog_lighting(scene, &medium, froxel);
     for (Frame& f : path) {
         Camera camera;
         camera.position = {x, y, c.bottom + f.height};
@@ -102,7 +103,7 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
         const double gl_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         const g::ReferenceView view = reference_view(camera, width, height, froxel.far);
         const g::ReferenceImage ref =
-            g::render_reference_fog({&fog.medium, froxel.height_fog}, &terrain.heightfield(), view, light);
+            g::render_reference_fog({&medium, froxel.height_fog}, &terrain.heightfield(), view, light);
         const FogError e = compare_frames(with_fog, without, ref);
         f.error = e.mean_relative;
         f.p99 = e.p99_relative;

@@ -1,7 +1,7 @@
 // The froxel fog against the CPU reference on the bundled fog lake over Jacksboro (label slow:
 // the reference of a 320 x 180 view takes seconds).
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "render/froxel_fixture.hpp"
 
 namespace {
@@ -13,8 +13,8 @@ TEST_F(FroxelGl, JacksboroFogLake)
     // The bundled lake scene: fog filling the valleys to the 460 m contour, ridges rising
     // through it, the sun low in the west; its first camera.
     const g::Scene scene = g::load_scene(std::string(KIRI_DATA_DIR) + "/scenes/jacksboro_lake.json");
-    const g::Terrain terrain = g::load_scene_terrain(scene);
-    const g::SceneFog fog = g::author_scene_fog(scene, terrain);
+    const g::PipelineProducts fog = g::author_scene(scene, {g::Stage::medium});
+    const g::Terrain& terrain = *fog.terrain;
     const g::Bounds3 b = terrain.bounds();
     const g::CameraSpec cam = scene.camera("", b.min, b.max);
     Camera c;
@@ -29,7 +29,7 @@ TEST_F(FroxelGl, JacksboroFogLake)
     g::FroxelOptions o = small(160, 90);
     o.far = 60000.0;
     o.shadow_map_size = scene.froxel.shadow_map_size;  // 4096: narrow valleys in the low sun's shadow
-    const Compared r = compare(terrain, &fog.medium, o, c, 320, 180, light);
+    const Compared r = compare(terrain, fog.medium.get(), o, c, 320, 180, light);
     EXPECT_GT(r.error.fog_pixels, 5000);
     // The lake's medium is dense (visibility 150 m, three scattering octaves): the fog's sunlit
     // skin is metres deep and the narrow valleys' shadows are finer than the shadow map, so

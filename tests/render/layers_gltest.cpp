@@ -32,7 +32,10 @@ protected:
         spec.fit.mode = g::FitMode::lake;
         spec.fit.altitude = 150.0;
         spec.tessellation.level = 6;
-        authored() = std::make_unique<g::AuthoredSurface>(g::author_base_surface(*hill(), spec));
+        g::BaseSurface surface = g::fog_control_surface(*hill(), spec);
+        g::fit_fog_surface(surface, *hill(), spec);
+        g::Tessellation tessellation = g::tessellate(surface, spec.tessellation);
+        authored() = std::make_unique<Authored>(Authored{std::move(surface), std::move(tessellation)});
     }
     static void TearDownTestSuite()
     {
@@ -44,9 +47,14 @@ protected:
         static std::unique_ptr<g::Terrain> t;
         return t;
     }
-    static std::unique_ptr<g::AuthoredSurface>& authored()
+    // The lake's fitted surface and its tessellation.
+    struct Authored {
+        g::BaseSurface surface;
+        g::Tessellation tessellation;
+    };
+    static std::unique_ptr<Authored>& authored()
     {
-        static std::unique_ptr<g::AuthoredSurface> a;
+        static std::unique_ptr<Authored> a;
         return a;
     }
     static g::LayerOptions options(double base_offset = -100.0)

@@ -12,6 +12,7 @@
 #include "bench/fog_judge.hpp"
 #include "bench/froxel_scene.hpp"
 #include "kiri/render/image.hpp"
+#include "kiri/render/tone_map.hpp"
 
 namespace kiri::bench {
 namespace {
@@ -62,12 +63,11 @@ void agreement(Context& c)
     json base = source.root;
     base["froxel"].erase("height_fog");  // the Medium alone: only the froxels would draw the haze
     const geometry::Scene scene = source.parse(base);
-    const geometry::Terrain terrain = geometry::load_scene_terrain(scene);
     const int w = c.quick() ? 160 : 320, h = c.quick() ? 90 : 180;
     const std::string camera = "ridge";  // low over the valleys: fog from the foreground to the horizon
-    FogJudge judge(scene, terrain, camera, w, h);
+    FogJudge judge(scene, camera, w, h);
     std::printf("  reference %dx%d (camera %s): %.1f s\n", w, h, camera.c_str(), judge.reference_seconds());
-    render::write_png_atomic(c.out_dir() / "agreement_reference.png", tone_mapped(judge.reference()));
+    render::write_png_atomic(c.out_dir() / "agreement_reference.png", render::tone_mapped(judge.reference()));
 
     std::ofstream md(c.out_dir() / "agreement.md");
     md << "Camera " << camera << ", " << w << "x" << h << ", the Medium alone (no height fog); reference "

@@ -24,19 +24,19 @@ geometry::Scene SceneJson::parse(const nlohmann::json& varied) const
     return geometry::parse_scene(varied.dump(), file.string(), file.parent_path());
 }
 
-FogJudge::FogJudge(const geometry::Scene& base, const geometry::Terrain& terrain, const std::string& camera, int width,
-                   int height)
-    : terrain_(terrain), width_(width), height_(height)
+FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int width, int height)
+    : width_(width), height_(height)
 {
+    const geometry::PipelineProducts& fog = pipeline_.run(base, {geometry::Stage::medium});
+    const geometry::Terrain& terrain = *fog.terrain;
     const geometry::Bounds3 b = terrain.bounds();
     camera_ = render::to_camera(base.camera(camera, b.min, b.max));
     const geometry::FroxelOptions froxel = render::scene_froxel_options(base, terrain);
-    const geometry::SceneFog fog = geometry::author_scene_fog(base, terrain);
     // The view ends where the froxel volume does (0: nowhere).
     const geometry::ReferenceView view = render::reference_view(camera_, width, height, froxel.far);
     const auto start = std::chrono::steady_clock::now();
-    reference_ = geometry::render_reference_fog({&fog.medium, froxel.height_fog}, &terrain.heightfield(), view,
-                                                render::scene_fog_lighting(base, &fog.medium, froxel));
+    reference_ = geometry::render_reference_fog({fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
+                                                render::scene_fog_lighting(base, fog.medium.get(), froxel));
     reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     context_ = render::create_headless_context();
     renderer_ = std::make_unique<render::Renderer>();
@@ -48,12 +48,12 @@ FogJudge::~FogJudge() = default;
 
 void FogJudge::prepare(const geometry::Scene& scene, render::FogMode mode)
 {
-    rendering_.reset();  // it refers to the fog and the scene replaced here
-    scene_ = scene;
-    fog_ = geometry::author_scene_fog(*scene_, terrain_);
-    rendering_.emplace(*scene_, terrain_, &*fog_, mode);
+    rendering_.emplace(scene, pipeline_.run(scene, render::pipeline_target(mode, scene)), mode);
+    renderer_->set_terrain(*rendering_->products().terrain);  // uploads only when it changed
     rendering_->apply(*renderer_);
 }
+
+const geometry::Terrain& FogJudge::terrain() const { return *pipeline_.products().terrain; }
 
 double FogJudge::frame_ms(int width, int height, int frames)
 {

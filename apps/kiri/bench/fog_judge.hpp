@@ -12,8 +12,7 @@
 
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
-#include "kiri/geometry/terrain/terrain.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/render/fog_error.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/image.hpp"
@@ -34,14 +33,14 @@ class FogJudge {
 public:
     //! The reference of `base`'s fog (its Medium, and its froxel height fog when the scene has
     //! one) seen from `camera` at width x height. Timed: reference_seconds().
-    FogJudge(const geometry::Scene& base, const geometry::Terrain& terrain, const std::string& camera, int width,
-             int height);
+    FogJudge(const geometry::Scene& base, const std::string& camera, int width, int height);
     ~FogJudge();
     double reference_seconds() const { return reference_.seconds; }
+    const geometry::Terrain& terrain() const;
     const geometry::ReferenceImage& reference() const { return reference_; }
 
-    //! Sets the renderer up for `scene` in `mode`; its fog authored anew (the layers depend on
-    //! the scene's keys; the Medium is the reference's).
+    //! Sets the renderer up for `scene` in `mode`; its fog authored by the judge's pipeline (only
+    //! the stages whose inputs the scene changed run again).
     void prepare(const geometry::Scene& scene, render::FogMode mode);
     //! Median Renderer draw time (ms) of `frames` frames at width x height while the view moves
     //! by a millimetre a frame (the froxels rerun their passes, as in a moving view).
@@ -54,14 +53,12 @@ public:
 private:
     const render::RadianceImage& without_fog(bool terrain_shadows);
 
-    const geometry::Terrain& terrain_;
+    geometry::Pipeline pipeline_;
     render::Camera camera_;
     int width_, height_;
     geometry::ReferenceImage reference_;
     std::unique_ptr<render::GlContext> context_;
     std::unique_ptr<render::Renderer> renderer_;
-    std::optional<geometry::Scene> scene_;
-    std::optional<geometry::SceneFog> fog_;
     std::optional<render::SceneRendering> rendering_;
     render::Image last_image_;
     std::optional<render::RadianceImage> plain_[2];  //!< without fog: [terrain shadows off, on]

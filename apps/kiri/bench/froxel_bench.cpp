@@ -13,6 +13,7 @@
 
 #include "bench/bench.hpp"
 #include "bench/froxel_scene.hpp"
+#include "kiri/render/tone_map.hpp"
 
 namespace kiri::bench {
 namespace {
@@ -35,12 +36,12 @@ void lake(Context& c)
     const geometry::ReferenceView view = s.view(w, h, base);
     geometry::ReferenceImage reference;
     const Measured ref = c.measure([&] {
-        reference = geometry::render_reference_fog({&s.fog.medium, base.height_fog}, &s.terrain.heightfield(), view,
+        reference = geometry::render_reference_fog({&s.medium, base.height_fog}, &s.terrain.heightfield(), view,
                                                    s.lighting(base));
     });
     const std::string size = std::to_string(w) + "x" + std::to_string(h);
     c.add({"reference (CPU)", size, ref.seconds * 1e3, ref.seconds, "", 0.0, 0.0, ref.peak_rss_mb});
-    render::write_png_atomic(c.out_dir() / "froxel_lake_reference.png", tone_mapped(reference));
+    render::write_png_atomic(c.out_dir() / "froxel_lake_reference.png", render::tone_mapped(reference));
 
     struct Result {
         geometry::FroxelOptions options;
@@ -88,7 +89,7 @@ void lake(Context& c)
         run("fog-aware, pixel steps", o);
     }
     // The picture at the default options.
-    s.renderer->set_froxel_fog(&s.fog.medium, base);
+    s.renderer->set_froxel_fog(&s.medium, base);
     render::write_png_atomic(c.out_dir() / "froxel_lake.png", s.renderer->render(s.camera, w, h));
 
     std::ofstream md(c.out_dir() / "froxel_table.md");

@@ -7,7 +7,7 @@
 #include "kiri/geometry/volume/froxel_options.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/camera.hpp"
 #include "kiri/render/fog_error.hpp"
@@ -19,8 +19,9 @@ namespace kiri::bench {
 
 struct FroxelBenchScene {
     geometry::Scene scene;
-    geometry::Terrain terrain;
-    geometry::SceneFog fog;
+    geometry::PipelineProducts products;  //!< the scene's fog up to its Medium
+    const geometry::Terrain& terrain;
+    geometry::Medium medium;  //!< the products' Medium, its time nudged by frame_seconds
     std::unique_ptr<render::GlContext> context;
     std::unique_ptr<render::Renderer> renderer;
     render::Camera camera;
@@ -37,8 +38,5 @@ struct FroxelBenchScene {
     //! The fog of one frame against the reference.
     render::FogError error(const geometry::FroxelOptions& options, const geometry::ReferenceImage& reference);
 };
-
-//! The reference tone-mapped like the shaders (exposure 0.7, gamma 2.2).
-render::Image tone_mapped(const geometry::ReferenceImage& reference);
 
 }  // namespace kiri::bench

@@ -26,25 +26,25 @@ const std::map<int, std::vector<double>> source_fps = {
 void figures(Context& c, LayerBenchScene& s)
 {
     const int w = 960, h = 540;
-    auto shot = [&](const geometry::SceneFog& fog, const render::Camera& camera, const std::string& name) {
-        s.renderer->set_layers(fog.base, fog.layers);
+    auto shot = [&](const LayerFog& fog, const render::Camera& camera, const std::string& name) {
+        s.renderer->set_layers(*fog.base, fog.layers);
         render::write_png_atomic(c.out_dir() / name, s.renderer->render(camera, w, h));
     };
     {
-        geometry::SceneFog fog = s.fog(8, 15);
+        LayerFog fog = s.fog(8, 15);
         fog.layers.narrowing = false;
         shot(fog, s.side_near(), "layers_side_fixed_spacing.png");
         fog.layers.narrowing = true;
         shot(fog, s.side_near(), "layers_side_narrowed.png");
         // The source's case: a texture whose outline is sharp, seen from above.
-        geometry::SceneFog sharp = s.fog(8, 15, 0.06);
+        LayerFog sharp = s.fog(8, 15, 0.06);
         sharp.layers.enlargement = false;
         shot(sharp, s.top(), "layers_top_no_scale.png");
         sharp.layers.enlargement = true;
         shot(sharp, s.top(), "layers_top_scaled.png");
     }
     for (int count : {15, 30}) {
-        const geometry::SceneFog fog = s.fog(8, count);
+        const LayerFog fog = s.fog(8, count);
         shot(fog, s.oblique(), "layers_" + std::to_string(count) + ".png");
     }
     std::printf("  figures: %s/layers_*.png\n", c.out_dir().string().c_str());
@@ -71,9 +71,9 @@ void table(Context& c)
        << "|---|---|---|---|---|---|\n";
     for (int level : levels) {
         for (int count : counts) {
-            geometry::SceneFog fog = s.fog(level, count);
+            LayerFog fog = s.fog(level, count);
             fog.layers.narrowing = false;  // the source's table: a fixed number of layers
-            s.renderer->set_layers(fog.base, fog.layers);
+            s.renderer->set_layers(*fog.base, fog.layers);
             const double t = s.frame_seconds(s.oblique(), w, h, frames);
             const int drawn = s.renderer->last_stats().layers;
             const double cover = changed_fraction(bare, s.renderer->render(s.oblique(), w, h));
@@ -89,9 +89,9 @@ void table(Context& c)
     // The hardest cell (10x10, 50 layers) drawn at full resolution into the multisampled
     // frame (the plain way) and at reduced resolution with depth-aware upsampling.
     {
-        geometry::SceneFog fog = s.fog(10, 50);
+        LayerFog fog = s.fog(10, 50);
         fog.layers.narrowing = false;
-        s.renderer->set_layers(fog.base, fog.layers);
+        s.renderer->set_layers(*fog.base, fog.layers);
         s.renderer->set_layer_resolution(1.0, true);
         const double t_plain = s.frame_seconds(s.oblique(), w, h, frames);
         const render::Image plain = s.renderer->render(s.oblique(), w, h);
@@ -120,8 +120,8 @@ void table(Context& c)
         s.renderer->set_layer_resolution(0.5);
     }
     // Culling: the same stack off-screen costs (almost) nothing over the terrain alone.
-    geometry::SceneFog fog = s.fog(10, 50);
-    s.renderer->set_layers(fog.base, fog.layers);
+    LayerFog fog = s.fog(10, 50);
+    s.renderer->set_layers(*fog.base, fog.layers);
     const double away_fog = s.frame_seconds(s.away(), w, h, frames);
     s.renderer->clear_layers();
     const double away_bare = s.frame_seconds(s.away(), w, h, frames);
@@ -138,21 +138,21 @@ void error_curve(Context& c)
     LayerBenchScene s(c.data_dir());
     const int w = 640, h = 360, frames = c.quick() ? 3 : 9;
     auto stack = [&](int count) {
-        geometry::SceneFog fog = s.fog(8, count);
+        LayerFog fog = s.fog(8, count);
         fog.layers.narrowing = false;
         fog.layers.opacity = 1.0 - std::pow(1.0 - s.scene.layers.opacity, 15.0 / count);
         fog.layers.detail = 0.0;         // the noise varies per layer; compare the medium itself
         fog.layers.enlargement = false;  // (2.10) grows with the layer index: 400 layers would be 40 % wider
         return fog;
     };
-    const geometry::SceneFog fine = stack(400);
-    s.renderer->set_layers(fine.base, fine.layers);
+    const LayerFog fine = stack(400);
+    s.renderer->set_layers(*fine.base, fine.layers);
     const render::Image limit = s.renderer->render(s.oblique(), w, h);
     for (int count : {5, 10, 15, 20, 30, 50, 80, 120, 200}) {
         if (c.quick() && count > 50)
             break;
-        const geometry::SceneFog fog = stack(count);
-        s.renderer->set_layers(fog.base, fog.layers);
+        const LayerFog fog = stack(count);
+        s.renderer->set_layers(*fog.base, fog.layers);
         const double t = s.frame_seconds(s.oblique(), w, h, frames);
         const double e = mean_abs_difference(limit, s.renderer->render(s.oblique(), w, h));
         c.add({"layers (640x360)", "layers=" + std::to_string(count), double(count), t,

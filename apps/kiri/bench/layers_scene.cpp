@@ -5,32 +5,42 @@
 #include <cmath>
 #include <vector>
 
+#include "kiri/render/scene_rendering.hpp"
+
 namespace kiri::bench {
 
 namespace {
 constexpr double half_size = 1500.0;  // metres: the fog covers [-1500, 1500]^2
 }
 
-LayerBenchScene::LayerBenchScene(const std::filesystem::path& data_dir)
-    : scene(geometry::load_scene(data_dir / "scenes/jacksboro.json")), terrain(geometry::load_scene_terrain(scene))
+namespace {
+geometry::Scene bench_scene(const std::filesystem::path& data_dir)
 {
+    geometry::Scene scene = geometry::load_scene(data_dir / "scenes/jacksboro.json");
     scene.fog->footprint = geometry::rectangle_footprint({-half_size, -half_size}, {half_size, half_size});
     scene.fog->patch_size = 1000.0;
+    return scene;
+}
+}  // namespace
+
+LayerBenchScene::LayerBenchScene(const std::filesystem::path& data_dir)
+    : scene(bench_scene(data_dir)), terrain(*pipeline.run(scene, {geometry::Stage::terrain}).terrain)
+{
     context = render::create_headless_context();
     renderer = std::make_unique<render::Renderer>();
     renderer->set_terrain(terrain);
-    const auto& s = scene.sun;
-    renderer->set_sun({s.direction, s.color, s.intensity, s.ambient});
+    renderer->set_sun(render::to_sun(scene.sun));
 }
 
-geometry::SceneFog LayerBenchScene::fog(int level, int count, double fade_width) const
+LayerFog LayerBenchScene::fog(int level, int count, double fade_width)
 {
     geometry::Scene copy = scene;
     copy.layers.texture.fade_width = fade_width;
     copy.fog->tessellation.level = level;
     copy.layers.count = count;
     copy.layers.max_count = std::max(copy.layers.max_count, count);
-    return geometry::author_scene_fog(copy, terrain);
+    const geometry::PipelineProducts& fog = pipeline.run(copy, {geometry::Stage::layer_base});
+    return {fog.layer_base, fog.layers};
 }
 
 namespace {

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/camera.hpp"
 #include "kiri/render/gl_context.hpp"
@@ -13,15 +13,22 @@
 
 namespace kiri::bench {
 
+//! A layer stack to draw: its base and its options (world units).
+struct LayerFog {
+    std::shared_ptr<const geometry::LayerBase> base;
+    geometry::LayerOptions layers;
+};
+
 struct LayerBenchScene {
     geometry::Scene scene;
-    geometry::Terrain terrain;
+    geometry::Pipeline pipeline;  //!< keeps the terrain and redoes only what each fog changes
+    const geometry::Terrain& terrain;
     std::unique_ptr<render::GlContext> context;
     std::unique_ptr<render::Renderer> renderer;
 
     explicit LayerBenchScene(const std::filesystem::path& data_dir);
     //! The fog at tessellation `level` with `count` layers (options applied on top).
-    geometry::SceneFog fog(int level, int count, double fade_width = 0.5) const;
+    LayerFog fog(int level, int count, double fade_width = 0.5);
     //! Oblique view, the stack filling about two thirds of a 16:9 frame.
     render::Camera oblique() const;
     render::Camera side_near() const;

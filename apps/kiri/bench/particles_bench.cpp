@@ -15,7 +15,7 @@
 #include "bench/particles_scene.hpp"
 #include "bench/report.hpp"
 #include "kiri/geometry/particles/harris_reference.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
@@ -74,8 +74,9 @@ void figures(Context& c, ParticleBenchScene& s)
     side.target = {0.0, 0.0, 2300.0};
     render::write_png_atomic(c.out_dir() / "particles_cumulus_side.png", r.render(side, 960, 540));
     // The default scene's fog as particles, from its camera and towards the sun.
-    const geometry::SceneFog fog = geometry::author_scene_fog(s.scene, terrain);
-    const geometry::ParticleCloud cloud = geometry::sample_particles(fog.medium, s.scene.particles);
+    const geometry::PipelineProducts fog =
+        geometry::author_scene(s.scene, {geometry::Stage::particles, geometry::ParticleSet::whole});
+    const geometry::ParticleCloud& cloud = *fog.particles;
     r.set_particles(cloud);
     const geometry::CameraSpec spec = s.scene.camera("", terrain.bounds().min, terrain.bounds().max);
     render::Camera view;

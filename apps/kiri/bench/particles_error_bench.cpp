@@ -12,7 +12,7 @@
 #include "bench/report.hpp"
 #include "kiri/geometry/particles/harris_reference.hpp"
 #include "kiri/geometry/particles/particle_footprint.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::bench {
@@ -98,13 +98,12 @@ void curves(Context& c)
 
     // The default scene's fog: a 300 m sheet over 30 km under a 19 degree sun.
     {
-        const geometry::Terrain terrain = geometry::load_scene_terrain(s.scene);
-        const geometry::SceneFog fog = geometry::author_scene_fog(s.scene, terrain);
-        const geometry::ParticleCloud cloud = ParticleBenchScene::sample(fog.medium, n);
+        const geometry::PipelineProducts fog = geometry::author_scene(s.scene, {geometry::Stage::medium});
+        const geometry::ParticleCloud cloud = ParticleBenchScene::sample(*fog.medium, n);
         const std::vector<double> exact = geometry::harris_light_pass(cloud, s.sun);
         render::AttenuationBuffer b;
         b.set_particles(cloud);
-        md << "\nThe default scene's fog (" << n << " particles, extinction " << fog.medium.options().extinction
+        md << "\nThe default scene's fog (" << n << " particles, extinction " << fog.medium->options().extinction
            << " 1/m), R16F:\n\n| resolution | frame | voxel (m) | build (ms) | mean error | max error |\n|---|---|---|---|---|---|\n";
         for (int res : {128, 256, 384}) {
             if (c.quick() && res > 128)

@@ -17,9 +17,8 @@ void presets(Context& c)
 {
     SceneJson source(c.data_dir() / "scenes/jacksboro.json");
     const geometry::Scene scene = source.parse(source.root);
-    const geometry::Terrain terrain = geometry::load_scene_terrain(scene);
     const int w = c.quick() ? 160 : 320, h = c.quick() ? 90 : 180;
-    FogJudge judge(scene, terrain, "", w, h);
+    FogJudge judge(scene, "", w, h);
     std::printf("  reference %dx%d (first camera): %.1f s\n", w, h, judge.reference_seconds());
     std::vector<std::pair<int, int>> sizes = {{640, 360}};
     if (!c.quick())

@@ -86,18 +86,19 @@ bool footprint_editor(geometry::FogSpec& f, const geometry::Terrain* terrain)
     return false;
 }
 
-void fit_figures(const FogProducts& fog)
+void fit_figures(const geometry::PipelineProducts& fog)
 {
-    const geometry::FitReport& r = fog.fit;
-    ImGui::TextDisabled("%d patches, %zu triangles, %d solves", fog.patches, fog.triangles, r.iterations);
+    const geometry::FitReport& r = fog.surface->fit;
+    ImGui::TextDisabled("%d patches, %zu triangles, %d solves", fog.surface->patches, fog.tessellation->mesh.n_faces(),
+                        r.iterations);
     ImGui::TextDisabled("(world m) deviation max %.1f, rms %.1f", r.max_deviation, r.rms_deviation);
     ImGui::TextDisabled("min clearance %.1f m, fog over %.0f%% of samples", r.min_clearance, 100.0 * r.fog_fraction);
-    ImGui::TextDisabled("tessellation error %.2f m", fog.tessellation_error);
+    ImGui::TextDisabled("tessellation error %.2f m", fog.tessellation->max_error);
 }
 
 }  // namespace
 
-bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog)
+bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const geometry::PipelineProducts* fog)
 {
     if (!ImGui::CollapsingHeader("Fog surface", ImGuiTreeNodeFlags_DefaultOpen))
         return false;

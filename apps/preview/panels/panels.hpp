@@ -7,6 +7,7 @@
 
 #include "kiri/geometry/scene/scene.hpp"
 #include "kiri/render/renderer.hpp"
+#include "kiri/render/scene_rendering.hpp"
 #include "pipeline.hpp"
 
 namespace kiri::preview {
@@ -14,35 +15,24 @@ namespace kiri::preview {
 //! What is drawn (not part of the scene).
 struct ViewOptions {
     enum class Surface { hidden, shaded, deviation, clearance };
-    //! How the fog is drawn: its layer stack, particles lit through the attenuation buffer,
-    //! froxel volumetric fog, or all of them together.
-    enum class Mode { layers, particles, froxel, combined };
     bool fog = true;  //!< the fog, drawn as `mode` says
-    Mode mode = Mode::layers;
+    //! How the fog is drawn (render/scene_rendering.hpp): its layer stack, particles lit through
+    //! the attenuation buffer, froxel volumetric fog, or all of them together (not terrain).
+    render::FogMode mode = render::FogMode::layers;
     Surface surface = Surface::hidden;  //!< the fitted base surface as a translucent mesh
     float surface_opacity = 0.6f;
     bool tessellation = false;  //!< the surface's triangles as lines
     bool patches = false;       //!< patch borders
     bool control_mesh = false;
-    bool play_time = false;           //!< advance the layers' time (wind, dissipation) in real time
+    bool play_time = false;           //!< advance the fog's time (wind, dissipation) in real time
     float render_scale = 1.0f;        //!< of the window's framebuffer
     bool reduce_while_moving = true;  //!< render at moving_scale while the camera moves
     float moving_scale = 0.5f;
     bool show_panel = true, show_stats = true;
-
-    bool draws_layers() const { return fog && (mode == Mode::layers || mode == Mode::combined); }
-    bool draws_particles() const { return fog && (mode == Mode::particles || mode == Mode::combined); }
-    bool draws_froxels() const { return fog && (mode == Mode::froxel || mode == Mode::combined); }
-    //! What the pipeline has to make for this view.
-    Needs needs() const
-    {
-        return {draws_froxels() || draws_particles(), draws_particles(), fog && mode == Mode::combined};
-    }
 };
 
-const char* mode_name(ViewOptions::Mode mode);
-//! Returns false when `name` is no mode.
-bool parse_mode(const std::string& name, ViewOptions::Mode& mode);
+//! The render modes the view cycles through (M), in order.
+render::FogMode next_fog_mode(render::FogMode mode);
 
 //! What the user asked for this frame (buttons and keys), and text fields that persist.
 struct UiState {
@@ -70,13 +60,13 @@ struct FrameTimes {
 };
 
 bool terrain_panel(geometry::Scene& scene);
-bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog);
+bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const geometry::PipelineProducts* fog);
 bool sun_panel(geometry::Scene& scene);
 bool layers_panel(geometry::Scene& scene, ViewOptions& view);
 bool medium_panel(geometry::Scene& scene);
 //! Fog placed by the terrain (the fog section's fill, outline, flow and burn_off keys), with
 //! the last placement's figures; only for a scene whose fog has them.
-bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog);
+bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const geometry::PipelineProducts* fog);
 //! The scene's "particles" section: sampling (the pipeline resamples) and the attenuation
 //! buffer and billboards (applied on the next frame); figures of the cloud and the buffer.
 //! The scene's "froxel" section: the grid, slicing, filtering, shadows, height fog (all applied

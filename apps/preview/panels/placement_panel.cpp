@@ -140,7 +140,7 @@ void figures(const geometry::PlacedFog& placed, double exaggeration)
 
 }  // namespace
 
-bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const FogProducts* fog)
+bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const geometry::PipelineProducts* fog)
 {
     if (!scene.fog)
         return false;

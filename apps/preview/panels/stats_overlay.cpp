@@ -53,7 +53,7 @@ void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, con
         for (int i = 0; i < stage_count; ++i) {
             ImGui::TableNextRow();
             ImGui::TableNextColumn();
-            ImGui::TextUnformatted(stage_name(Stage(i)));
+            ImGui::TextUnformatted(stage_name(i));
             ImGui::TableNextColumn();
             ImGui::Text("%5d", pipeline.stages[i].runs);
             ImGui::TableNextColumn();
@@ -65,7 +65,7 @@ void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, con
         char label[96];
         std::snprintf(label, sizeof label, "%s %.1f s", stage_name(pipeline.stage), pipeline.stage_seconds);
         // Stages done out of all of them: coarse, but it moves and names what runs.
-        ImGui::ProgressBar(float(int(pipeline.stage) + 0.5f) / float(stage_count), ImVec2(260.0f, 0.0f), label);
+        ImGui::ProgressBar(float(pipeline.stage + 0.5f) / float(stage_count), ImVec2(260.0f, 0.0f), label);
     } else {
         ImGui::TextDisabled("up to date (edit %llu)", static_cast<unsigned long long>(pipeline.finished));
     }

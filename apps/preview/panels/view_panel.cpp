@@ -9,20 +9,9 @@
 
 namespace kiri::preview {
 
-const char* mode_name(ViewOptions::Mode mode)
+render::FogMode next_fog_mode(render::FogMode mode)
 {
-    static const char* names[] = {"layers", "particles", "froxel", "combined"};
-    return names[int(mode)];
-}
-
-bool parse_mode(const std::string& name, ViewOptions::Mode& mode)
-{
-    for (int i = 0; i < 4; ++i)
-        if (name == mode_name(ViewOptions::Mode(i))) {
-            mode = ViewOptions::Mode(i);
-            return true;
-        }
-    return false;
+    return mode == render::FogMode::combined ? render::FogMode::layers : render::FogMode(int(mode) + 1);
 }
 
 bool view_panel(ViewOptions& view, const FogViews* views)
@@ -31,10 +20,11 @@ bool view_panel(ViewOptions& view, const FogViews* views)
         return false;
     bool changed = ImGui::Checkbox("fog", &view.fog);
     ImGui::SameLine();
-    int mode = int(view.mode);
+    // The combo lists the fog's modes, from layers (FogMode 1) on.
+    int mode = int(view.mode) - int(render::FogMode::layers);
     ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
     changed |= ImGui::Combo("render mode (M)", &mode, "layers\0particles\0froxel\0combined\0");
-    view.mode = ViewOptions::Mode(mode);
+    view.mode = render::FogMode(mode + int(render::FogMode::layers));
     int surface = int(view.surface);
     changed |= ImGui::Combo("base surface", &surface,
                             "hidden\0shaded\0deviation from the fit's target\0height above the terrain\0");

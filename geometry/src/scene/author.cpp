@@ -1,16 +1,10 @@
 #include <algorithm>
-#include <chrono>
 
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/scene/fog_spec.hpp"
 
 namespace kiri::geometry {
 namespace {
-double since(std::chrono::steady_clock::time_point t0)
-{
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // A spec whose fog the terrain places, not yet placed: placed here (callers that keep the
 // PlacedFog, like author_scene_fog, place it once and pass the placed spec).
 FogSpec resolve(const Terrain& terrain, const FogSpec& spec, const std::string& label)
@@ -61,21 +55,6 @@ FitReport fit_fog_surface(BaseSurface& surface, const Terrain& terrain, const Fo
             throw;
         throw InputError(label, e.field().empty() ? "/fog" : "/fog/" + e.field(), e.reason());
     }
-}
-
-AuthoredSurface author_base_surface(const Terrain& terrain, const FogSpec& unplaced, const std::string& label)
-{
-    const FogSpec spec = resolve(terrain, unplaced, label);
-    auto t0 = std::chrono::steady_clock::now();
-    AuthoredSurface out{fog_control_surface(terrain, spec, label), {}, {}};
-    out.seconds_control_mesh = since(t0);
-    t0 = std::chrono::steady_clock::now();
-    out.fit = fit_fog_surface(out.surface, terrain, spec, label);
-    out.seconds_fit = since(t0);
-    t0 = std::chrono::steady_clock::now();
-    out.tessellation = tessellate(out.surface, spec.tessellation);
-    out.seconds_tessellate = since(t0);
-    return out;
 }
 
 }  // namespace kiri::geometry

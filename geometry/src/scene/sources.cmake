@@ -3,8 +3,7 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/scene/scene.cpp
   src/scene/quality.cpp
   src/scene/fog_partition_json.cpp
-  src/scene/scene_fog.cpp
-  src/scene/scene_fog_report.cpp
+  src/scene/author_report.cpp
   src/scene/author.cpp
   src/scene/author_estimate.cpp
   src/scene/fog_spec_json.cpp
@@ -13,4 +12,6 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/scene/medium_options_json.cpp
   src/scene/particle_options_json.cpp
   src/scene/placement_json.cpp
+  src/scene/stage_inputs.cpp
+  src/scene/pipeline.cpp
 )

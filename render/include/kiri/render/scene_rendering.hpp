@@ -1,18 +1,18 @@
 #pragma once
 //! \file scene_rendering.hpp
-//! One place that turns a scene and a render mode into what the Renderer draws, so `kiri
-//! render`, `kiri bench` and the preview agree: terrain, layers, particles, froxel, or combined
-//! (docs/combined.md: every renderer draws its share of the one Medium, froxels near, layers
-//! far, particles in the top band, set_fog_partition).
+//! One place that turns a scene, the pipeline's products and a render mode into what the
+//! Renderer draws, so `kiri render`, `kiri bench` and the preview agree: terrain, layers,
+//! particles, froxel, or combined (docs/combined.md: every renderer draws its share of the one
+//! Medium, froxels near, layers far, particles in the top band, set_fog_partition).
+#include <memory>
 #include <optional>
 #include <string_view>
 
 #include "kiri/geometry/medium/fog_lighting.hpp"
-#include "kiri/geometry/volume/froxel_options.hpp"
-#include "kiri/geometry/particles/particles.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/scene/scene.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "kiri/geometry/volume/froxel_options.hpp"
 #include "kiri/render/renderer.hpp"
 
 namespace kiri::render {
@@ -22,6 +22,12 @@ enum class FogMode { terrain, layers, particles, froxel, combined };
 const char* to_string(FogMode mode);
 //! False for any other name.
 bool parse_fog_mode(std::string_view name, FogMode& out);
+
+//! What a mode asks of the pipeline: how far a run goes and which particles it samples.
+geometry::PipelineTarget pipeline_target(FogMode mode, const geometry::Scene& scene);
+//! The mode `kiri render` draws by default: combined when the scene has fog (a fog section or a
+//! froxel height fog), else terrain.
+FogMode default_mode(const geometry::Scene& scene);
 
 Camera to_camera(const geometry::CameraSpec& camera);
 SunLight to_sun(const geometry::SunSpec& sun);
@@ -35,34 +41,47 @@ geometry::ReferenceView reference_view(const Camera& camera, int width, int heig
 geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
                                          const geometry::FroxelOptions& froxel);
 
-//! What a mode needs besides the scene's fog: the particles it sampled (combined: only the
-//! particles' share of the Medium) and the froxel options. The renderer keeps references into
-//! it and into `fog`, so both must outlive its use by the renderer.
+//! Frames a still picture draws before its final one: the froxels' temporal filter's jittered
+//! cycle (15 of its 16 frames) when froxels with temporal filtering are drawn, else 0.
+int warmup_frames(bool draws_froxels, const geometry::FroxelOptions& froxel);
+
+//! A scene drawn in one mode from the pipeline's products (pipeline_target(mode, scene)). It
+//! keeps the products it was given, so what the renderer refers to lives as long as it does.
 class SceneRendering {
 public:
-    //! fog: the scene's fog (author_scene_fog), null when the scene has none.
     //! \throw InputError naming the scene when the mode needs fog the scene does not have.
-    SceneRendering(const geometry::Scene& scene, const geometry::Terrain& terrain, const geometry::SceneFog* fog,
-                   FogMode mode);
+    SceneRendering(const geometry::Scene& scene, const geometry::PipelineProducts& products, FogMode mode);
 
-    //! Sets the renderer up for the mode: what it draws, and clears the rest.
+    //! The same rendering for an edited scene or newer products (the preview): what did not
+    //! change is kept, e.g. the Medium at the scene's time (wind and dissipation play without a
+    //! new Medium). \throw InputError as the constructor.
+    void update(const geometry::Scene& scene, const geometry::PipelineProducts& products, FogMode mode);
+
+    //! Sets the renderer up for the mode: what it draws, and clears the rest. Parts the products
+    //! do not have yet (a medium still being made) are left out.
     void apply(Renderer& renderer) const;
-    //! Frames to draw before a still picture is final: the froxels' temporal filter's jittered
-    //! cycle (15 of its 16 frames) when the mode draws froxels with it, else 0.
+    //! Frames to draw before a still picture is final (warmup_frames).
     int warmup_frames() const;
 
     FogMode mode() const { return mode_; }
-    bool draws_layers() const { return fog_ && (mode_ == FogMode::layers || mode_ == FogMode::combined); }
+    bool draws_layers() const;
     bool draws_froxels() const;
-    const std::optional<geometry::ParticleCloud>& particles() const { return particles_; }
+    bool draws_particles() const { return particles() != nullptr; }
+    //! The particles drawn (null: none).
+    const geometry::ParticleCloud* particles() const;
+    //! The Medium the froxels draw, at the scene's time (null: none).
+    const geometry::Medium* medium() const;
     const geometry::FroxelOptions& froxel_options() const { return froxel_; }
+    const geometry::PipelineProducts& products() const { return products_; }
 
 private:
-    FogMode mode_;
-    const geometry::Scene& scene_;
-    const geometry::SceneFog* fog_;
+    FogMode mode_ = FogMode::terrain;
+    geometry::Scene scene_;
+    geometry::PipelineProducts products_;
     geometry::FroxelOptions froxel_;
-    std::optional<geometry::ParticleCloud> particles_;
+    geometry::LayerOptions layers_;
+    //! The products' Medium moved to the scene's time when the two differ (else null).
+    std::shared_ptr<geometry::Medium> timed_medium_;
 };
 
 }  // namespace kiri::render

@@ -31,16 +31,8 @@ struct FogSpec {
 //! placed.top_grid), thickness the fog's greatest (at least 1 m).
 FogSpec placed_fog_spec(const FogSpec& spec, const PlacedFog& placed);
 
-//! Everything `kiri author` computes, with the time of each stage.
-struct AuthoredSurface {
-    BaseSurface surface;
-    FitReport fit;
-    Tessellation tessellation;
-    double seconds_control_mesh = 0.0, seconds_fit = 0.0, seconds_tessellate = 0.0;
-};
-
-// The stages of author_base_surface, apart, for callers that redo only what changed (the
-// preview refits the same control mesh when only the fit options changed).
+// The fog's surface stages (the Pipeline, pipeline.hpp, runs them in order and keeps each
+// product until its inputs change).
 
 //! The spec's footprint polygon, or the terrain's extent less the margin when it has none.
 //! \throw InputError(label, "/fog/margin") when the margin leaves nothing.
@@ -51,13 +43,4 @@ BaseSurface fog_control_surface(const Terrain& terrain, const FogSpec& spec, con
 FitReport fit_fog_surface(BaseSurface& surface, const Terrain& terrain, const FogSpec& spec,
                           const std::string& label = {});
 
-//! Footprint -> control mesh -> fit -> tessellation. label names the scene in messages.
-//! \throw InputError as the stages do, with label as the file.
-AuthoredSurface author_base_surface(const Terrain& terrain, const FogSpec& spec, const std::string& label = {});
-
-}  // namespace kiri::geometry
-
-namespace kiri::geometry {
-//! report.json of `kiri author`: the spec, the fit figures (FitReport), counts and timings.
-std::string author_report_json(const FogSpec& spec, const AuthoredSurface& authored);
 }  // namespace kiri::geometry

@@ -1,10 +1,11 @@
-// report.json of `kiri author` for a scene: the fit's report plus the optics and the placement.
+#include "kiri/geometry/scene/author_report.hpp"
+
+#include <algorithm>
 #include <cmath>
 
 #include <nlohmann/json.hpp>
 
-#include "kiri/geometry/placement/fill_medium.hpp"
-#include "kiri/geometry/scene/scene_fog.hpp"
+#include "scene/fog_spec_json.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -38,9 +39,8 @@ json optics(const MediumOptions& m)
               {"godot_fog_density", e.godot_density}}}};
 }
 
-json placement(const Scene& scene, const SceneFog& fog)
+json placement(const Scene& scene, const PlacedFog& p)
 {
-    const PlacedFog& p = *fog.placed;
     const double e = scene.terrain.exaggeration;
     const PlacementSpec& spec = *scene.fog->placement;
     json regions = json::array();
@@ -112,16 +112,60 @@ json placement(const Scene& scene, const SceneFog& fog)
     return out;
 }
 
+// The fit, the counts and the tessellation of the authored base surface.
+void surface_report(const PipelineProducts& products, const std::array<StageRecord, stage_count>& stages, json& j)
+{
+    const SurfaceSummary& s = *products.surface;
+    const FitReport& f = s.fit;
+    const Tessellation& t = *products.tessellation;
+    const auto& levels = t.patch_level;
+    int lo = levels.empty() ? 0 : levels[0], hi = lo;
+    for (int l : levels) {
+        lo = std::min(lo, l);
+        hi = std::max(hi, l);
+    }
+    j["fit"] = {{"max_deviation_m", f.max_deviation},
+                {"rms_deviation_m", f.rms_deviation},
+                {"min_clearance_m", f.min_clearance},
+                {"local_lift_m", f.local_lift},
+                {"lift_m", f.lift},
+                {"fog_fraction", f.fog_fraction},
+                {"samples", f.samples},
+                {"grid_vertex_samples", f.grid_vertex_samples},
+                {"nodata_samples", f.nodata_samples},
+                {"active_constraints", f.active_constraints},
+                {"iterations", f.iterations},
+                {"samples_per_patch", f.samples_per_patch}};
+    j["counts"] = {{"patches", s.patches},
+                   {"control_vertices", s.control_vertices},
+                   {"snapped_boundary_vertices", s.snapped_boundary_vertices},
+                   {"boundary_vertices", s.boundary_vertices},
+                   {"triangles", t.mesh.n_faces()},
+                   {"vertices", t.mesh.n_vertices()},
+                   {"patch_level_min", lo},
+                   {"patch_level_max", hi}};
+    j["tessellation"] = {{"max_error_m", t.max_error}};
+    const auto seconds = [&](Stage stage) { return stages[std::size_t(stage)].seconds; };
+    j["timings_s"] = {{"load_terrain", seconds(Stage::terrain)},
+                      {"control_mesh", seconds(Stage::control_mesh)},
+                      {"fit", seconds(Stage::fit)},
+                      {"fit_target", f.seconds_target},
+                      {"fit_assemble", f.seconds_assemble},
+                      {"fit_solve", f.seconds_solve},
+                      {"tessellate", seconds(Stage::tessellation)}};
+}
+
 }  // namespace
 
-std::string scene_fog_report_json(const Scene& scene, const SceneFog& fog, double seconds_load_terrain)
+std::string author_report_json(const Scene& scene, const PipelineProducts& products,
+                               const std::array<StageRecord, stage_count>& stages)
 {
-    json j = json::parse(author_report_json(*scene.fog, fog.authored));
-    if (seconds_load_terrain >= 0.0)
-        j["timings_s"]["load_terrain"] = seconds_load_terrain;
+    json j;
+    j["fog"] = fog_spec_to_json(*scene.fog);
+    surface_report(products, stages, j);
     j["optics"] = optics(scene.medium);
-    if (fog.placed && scene.fog && scene.fog->placement)
-        j["placement"] = placement(scene, fog);
+    if (products.placed && scene.fog->placement)
+        j["placement"] = placement(scene, *products.placed);
     return j.dump(2) + "\n";
 }
 

@@ -1,0 +1,282 @@
+// The authoring pipeline (scene/pipeline.hpp): each stage runs again only when its inputs
+// changed, an incremental run makes what a fresh one makes, a failed stage keeps the last good
+// products, and the targets of the render modes get what they draw and nothing more.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <concepts>
+#include <filesystem>
+
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
+#include "kiri/geometry/scene/pipeline.hpp"
+
+namespace fs = std::filesystem;
+using namespace kiri::geometry;
+
+static_assert(std::equality_comparable<Scene>, "stage inputs compare scene parts by value");
+
+namespace {
+
+// The default scene with big patches and a coarse tessellation: the same stages, faster.
+Scene small_scene()
+{
+    Scene s = load_scene(fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json");
+    s.fog->patch_size = 3000.0;
+    s.fog->tessellation.level = 4;
+    return s;
+}
+
+// Runs so far of every stage, in the pipeline's order.
+std::array<int, stage_count> runs(const Pipeline& p)
+{
+    std::array<int, stage_count> out{};
+    for (int i = 0; i < stage_count; ++i)
+        out[std::size_t(i)] = p.stages()[std::size_t(i)].runs;
+    return out;
+}
+
+using Runs = std::array<int, stage_count>;
+
+const PipelineTarget with_medium{Stage::medium};
+const PipelineTarget with_particles{Stage::particles, ParticleSet::whole};
+
+// Equal products of an incremental run and a fresh one: bit for bit, not within a tolerance.
+void expect_same_fog(const PipelineProducts& a, const PipelineProducts& b)
+{
+    ASSERT_TRUE(a.has_fog() && b.has_fog());
+    EXPECT_EQ(a.fog, b.fog);
+    EXPECT_EQ(a.layers, b.layers);
+    EXPECT_EQ(a.surface->patches, b.surface->patches);
+    EXPECT_EQ(a.tessellation->mesh.n_faces(), b.tessellation->mesh.n_faces());
+    EXPECT_EQ(a.layer_base->position, b.layer_base->position);
+    EXPECT_EQ(a.layer_base->atlas_uv, b.layer_base->atlas_uv);
+    ASSERT_EQ(a.medium != nullptr, b.medium != nullptr);
+    if (a.medium) {
+        EXPECT_EQ(a.medium->grid().top, b.medium->grid().top);
+        EXPECT_EQ(a.medium->grid().coverage, b.medium->grid().coverage);
+    }
+}
+
+}  // namespace
+
+TEST(Pipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
+{
+    Pipeline p;
+    Scene s = small_scene();
+    const PipelineProducts first = p.run(s);
+    ASSERT_TRUE(first.has_fog());
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 0, 0, 0}));
+    EXPECT_TRUE(p.ran(Stage::fit));
+
+    // The sun, the cameras and the layers' look apply per frame: nothing runs, the same products.
+    s.sun.intensity = 1.0;
+    s.layers.opacity = 0.3;
+    s.cameras.pop_back();
+    const PipelineProducts same = p.run(s);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 0, 0, 0}));
+    EXPECT_FALSE(p.ran(Stage::fit));
+    EXPECT_EQ(same.terrain, first.terrain);
+    EXPECT_EQ(same.layer_base, first.layer_base);
+    EXPECT_EQ(same.layers.opacity, 0.3);  // the options are the scene's of this run
+
+    // Tessellation: the fitted surface is kept; (6/4)^2 as many triangles.
+    s.fog->tessellation.level = 6;
+    const PipelineProducts finer = p.run(s);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 2, 2, 0, 0, 0}));
+    EXPECT_EQ(finer.tessellation->mesh.n_faces() * 16, first.tessellation->mesh.n_faces() * 36);
+    EXPECT_EQ(finer.surface, first.surface);
+
+    // A fit option refits the same control mesh, which gives what a fresh fit gives.
+    s.fog->fit.offset = 120.0;
+    const PipelineProducts refit = p.run(s);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 2, 3, 3, 0, 0, 0}));
+    EXPECT_EQ(refit.surface->patches, first.surface->patches);
+    const PipelineProducts fresh = author_scene(s);
+    EXPECT_NEAR(refit.surface->fit.rms_deviation, fresh.surface->fit.rms_deviation,
+                1e-9 * fresh.surface->fit.rms_deviation);
+    EXPECT_NEAR(refit.surface->fit.min_clearance, fresh.surface->fit.min_clearance, 1e-9);
+
+    // The layer texture only rebuilds the layer base.
+    s.layers.texture.fade_width = 0.25;
+    const PipelineProducts texture = p.run(s);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 2, 3, 4, 0, 0, 0}));
+    EXPECT_EQ(texture.tessellation, refit.tessellation);
+    EXPECT_NE(texture.layer_base, refit.layer_base);
+
+    // The footprint rebuilds the control mesh and what follows.
+    s.fog->margin = 4000.0;
+    const PipelineProducts smaller = p.run(s);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 2, 3, 4, 5, 0, 0, 0}));
+    EXPECT_LT(smaller.surface->patches, refit.surface->patches);
+
+    // The exaggeration reloads the terrain and everything on it.
+    s.terrain.exaggeration = 2.0;
+    const PipelineProducts steeper = p.run(s);
+    EXPECT_EQ(runs(p), (Runs{2, 0, 3, 4, 5, 6, 0, 0, 0}));
+    EXPECT_NEAR(steeper.terrain->bounds().max.z / smaller.terrain->bounds().max.z, 2.0 / 1.5, 1e-12);
+}
+
+TEST(Pipeline, AnIncrementalRunMakesWhatAFreshRunMakes)
+{
+    // Edits that rerun a middle stage, then the medium: every product equals a fresh pipeline's.
+    Pipeline p;
+    Scene s = small_scene();
+    p.run(s, with_medium);
+    s.fog->tessellation.level = 5;
+    p.run(s, with_medium);
+    s.medium.albedo = 0.9;
+    s.layers.texture.gray = 0.8;
+    const PipelineProducts incremental = p.run(s, with_medium);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 2, 3, 3, 0, 0}));
+    expect_same_fog(incremental, author_scene(s, with_medium));
+}
+
+TEST(Pipeline, FogPlacedByTheTerrainPlacesOnceAndFillsTheMediumFromItsColumns)
+{
+    Pipeline p;
+    Scene s = load_scene(fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_fill.json");
+    ASSERT_TRUE(s.fog && s.fog->placement);
+    const PipelineProducts first = p.run(s, with_medium);
+    ASSERT_TRUE(first.placed && first.medium);
+    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 1, 1, 1, 0, 0}));
+    EXPECT_EQ(first.particles, nullptr);  // not asked for
+    // The layer stack is as deep as the deepest fog and hangs from the lake's top.
+    EXPECT_EQ(first.fog.fit.mode, FitMode::lake);
+    EXPECT_DOUBLE_EQ(first.layers.thickness, std::max(1.0, first.placed->figures.max_thickness));
+    EXPECT_DOUBLE_EQ(first.layers.base_offset, -first.layers.thickness);
+    expect_same_fog(first, author_scene(s, with_medium));
+
+    // A tessellation edit keeps the placement, and the medium (made from the fill's columns,
+    // not from the layer base); the medium's optics only remake it.
+    s.fog->tessellation.level = 6;
+    p.run(s, with_medium);
+    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 2, 2, 1, 0, 0}));
+    s.medium.albedo = 0.9;
+    const PipelineProducts albedo = p.run(s, with_medium);
+    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 2, 2, 2, 0, 0}));
+    EXPECT_DOUBLE_EQ(albedo.medium->options().albedo, 0.9);
+
+    // A higher fog top places the fog again: more of it, deeper, and everything after reruns.
+    s.fog->placement->regions.at(0).top += 40.0;
+    const PipelineProducts higher = p.run(s, with_medium);
+    EXPECT_EQ(runs(p), (Runs{1, 2, 2, 2, 3, 3, 3, 0, 0}));
+    EXPECT_GT(higher.placed->figures.volume_m3, first.placed->figures.volume_m3);
+    EXPECT_NEAR(higher.layers.thickness, first.layers.thickness + 40.0 * s.terrain.exaggeration, 1e-6);
+    expect_same_fog(higher, author_scene(s, with_medium));
+}
+
+TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)
+{
+    Pipeline p;
+    Scene s = small_scene();
+    s.particles.count = 3000;
+    const PipelineProducts first = p.run(s, with_particles);
+    ASSERT_TRUE(first.particles && first.medium);
+    EXPECT_EQ(first.particles->particles.size(), 3000u);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 1, 0}));
+    // What the particles are: the Medium's, sampled by its own options, bit for bit.
+    const ParticleCloud cloud = sample_particles(*first.medium, s.particles);
+    ASSERT_EQ(cloud.particles.size(), first.particles->particles.size());
+    EXPECT_EQ(cloud.particles[1234].position, first.particles->particles[1234].position);
+    EXPECT_EQ(cloud.particles[1234].optical_depth, first.particles->particles[1234].optical_depth);
+
+    s.particles.count = 4000;
+    const PipelineProducts more = p.run(s, with_particles);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0}));
+    EXPECT_EQ(more.medium, first.medium);
+    EXPECT_EQ(more.particles->particles.size(), 4000u);
+
+    // The attenuation buffer's and the billboards' options apply per frame: nothing is resampled.
+    s.particles.resolution = 256;
+    s.particles.half_float = false;
+    s.particles.soft_edge = 10.0;
+    const PipelineProducts finer = p.run(s, with_particles);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0}));
+    EXPECT_EQ(finer.particles, more.particles);
+
+    // A target without particles gets none and runs nothing; back to particles, the same ones.
+    const PipelineProducts layers = p.run(s);
+    EXPECT_EQ(layers.particles, nullptr);
+    EXPECT_EQ(layers.medium, nullptr);
+    const PipelineProducts again = p.run(s, with_particles);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0}));
+    EXPECT_EQ(again.particles, more.particles);
+
+    // Combined: the particles stand for the top band's share of the medium; a zero share gives none.
+    const PipelineProducts shared = p.run(s, {Stage::particles, ParticleSet::top_band});
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 3, 0}));
+    ASSERT_TRUE(shared.particles);
+    const Medium& m = *shared.medium;
+    const ParticleCloud top = sample_particles(
+        m, s.particles, {}, [&](const glm::dvec3& q) { return particle_share(s.combined, m.height_fraction(q)); });
+    ASSERT_EQ(top.particles.size(), shared.particles->particles.size());
+    EXPECT_EQ(top.particles[77].position, shared.particles->particles[77].position);
+    EXPECT_NE(top.particles[77].position, more.particles->particles[77].position);
+    s.combined.particle_share = 0.0;
+    EXPECT_EQ(p.run(s, {Stage::particles, ParticleSet::top_band}).particles, nullptr);
+}
+
+TEST(Pipeline, ExportsAreTheLayersTheEyeSees)
+{
+    Pipeline p;
+    const Scene s = small_scene();
+    const glm::dvec3 eye = s.cameras.front().position;
+    const PipelineProducts a = p.run(s, {Stage::exports, ParticleSet::none, eye});
+    ASSERT_TRUE(a.exports);
+    EXPECT_EQ(a.particles, nullptr);
+    EXPECT_EQ(runs(p)[std::size_t(Stage::particles)], 0);
+    const std::vector<LayerMesh> direct = build_layers(*a.layer_base, a.layers, eye);
+    ASSERT_EQ(a.exports->size(), direct.size());
+    EXPECT_EQ(a.exports->back().vertices.back().position, direct.back().vertices.back().position);
+    // Another eye remakes the exports alone.
+    p.run(s, {Stage::exports, ParticleSet::none, eye + glm::dvec3(0.0, 0.0, 500.0)});
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 0, 2}));
+}
+
+TEST(Pipeline, AFailedStageKeepsTheLastGoodProductsAndRunsAgainNextTime)
+{
+    Pipeline p;
+    Scene s = small_scene();
+    const PipelineProducts good = p.run(s);
+    s.fog->fit.mode = FitMode::lake;
+    s.fog->fit.altitude = 100.0;  // below the lowest ground (236 m)
+    try {
+        p.run(s);
+        FAIL() << "a lake below the terrain was accepted";
+    } catch (const kiri::InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("/fog"), std::string::npos) << e.what();
+    }
+    ASSERT_TRUE(p.failed_stage());
+    EXPECT_EQ(*p.failed_stage(), Stage::fit);
+    EXPECT_EQ(p.products().layer_base, good.layer_base);
+    EXPECT_EQ(p.products().terrain, good.terrain);
+    EXPECT_EQ(p.products().layers, good.layers);
+    s.fog->fit.altitude = 500.0;
+    const PipelineProducts fixed = p.run(s);
+    EXPECT_FALSE(p.failed_stage());
+    EXPECT_NE(fixed.layer_base, good.layer_base);
+    // A lake's layers hang one thickness below its top.
+    EXPECT_DOUBLE_EQ(fixed.layers.base_offset, -s.fog->fit.thickness * s.terrain.exaggeration);
+}
+
+TEST(Pipeline, ASceneWithoutFogKeepsOnlyItsTerrain)
+{
+    Pipeline p;
+    Scene s = small_scene();
+    p.run(s, with_medium);
+    s.fog.reset();
+    const PipelineProducts bare = p.run(s, with_medium);
+    EXPECT_TRUE(bare.terrain);
+    EXPECT_FALSE(bare.has_fog());
+    EXPECT_EQ(bare.medium, nullptr);
+    EXPECT_EQ(p.surface(), nullptr);
+    EXPECT_EQ(runs(p)[0], 1);  // the terrain is kept
+}
+
+TEST(Pipeline, StagesAreNamed)
+{
+    EXPECT_STREQ(to_string(Stage::terrain), "terrain");
+    EXPECT_STREQ(to_string(Stage::control_mesh), "control mesh");
+    EXPECT_STREQ(to_string(Stage::exports), "exports");
+}
