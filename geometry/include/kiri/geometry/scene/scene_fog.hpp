@@ -1,7 +1,8 @@
 #pragma once
 //! \file scene_fog.hpp
-//! A scene's fog, ready for the renderers and exporters: the fitted base surface (issue 4) and
-//! the layer stack's base and options in world units (issue 5), and the medium they describe.
+//! A scene's fog, ready for the renderers and exporters: the fitted base surface (docs/fog.md)
+//! and the layer stack's base and options in world units (docs/layers.md), and the medium they
+//! describe.
 #include <optional>
 #include <string>
 #include <utility>
@@ -20,7 +21,7 @@ struct SceneFog {
     LayerBase base;
     Medium medium;  //!< the same fog as a participating medium (medium.hpp), for every volume renderer
     double seconds_layer_base = 0.0, seconds_medium = 0.0;
-    //! Fog placed by the terrain (issue 10): what place_fog computed, for the maps and the
+    //! Fog placed by the terrain (docs/placement.md): what place_fog computed, for the maps and the
     //! report; the medium is then the fill's columns (fill_medium.hpp).
     std::optional<PlacedFog> placed;
 };
