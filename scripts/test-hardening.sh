@@ -1,5 +1,5 @@
 #!/bin/sh
-# CI's hardening jobs (issue 9, docs/hardening.md): the unit tests built with
+# CI's hardening jobs (docs/hardening.md): the unit tests built with
 # AddressSanitizer + UndefinedBehaviorSanitizer (any report fails), then a short run of each
 # libFuzzer target (KIRI_FUZZ_SECONDS each, default 30). .ci/run calls this before
 # scripts/test.sh, whose ctest summary stays the last thing CI prints.

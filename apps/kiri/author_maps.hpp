@@ -1,5 +1,5 @@
 #pragma once
-// The 2D maps `kiri author` writes for fog placed by the terrain.
+// The 2D maps `kiri author` writes for fog placed by the terrain (docs/placement.md).
 #include <filesystem>
 #include <functional>
 #include <string>

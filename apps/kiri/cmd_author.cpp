@@ -1,7 +1,7 @@
 // `kiri author SCENE.json -o DIR`: the fog base surface of a scene as OBJ and PLY, its layers,
 // its medium as OpenVDB (medium.vdb) and DIR/report.json with the fit figures, counts and
-// timings. Every file is written
-// under a temporary name and renamed into place, so DIR never holds a half-written result.
+// timings. Every file is written under a temporary name and renamed into place, so DIR never
+// holds a half-written result.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>

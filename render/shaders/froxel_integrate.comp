@@ -1,5 +1,5 @@
 #version 450 core
-// Pass 3: front to back through each tile's slices, energy-conserving (Hillaire 2015): a slice
+// Pass 3: front to back through each tile's slices, energy-conserving ([Hillaire15]): a slice
 // of extinction sigma, source S = sigma J and length l adds T (S - S exp(-sigma l)) / sigma
 // = T J (1 - exp(-sigma l)) and multiplies T by exp(-sigma l). Slice k stores (in-scattered
 // radiance, T) at its far end.

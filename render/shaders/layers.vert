@@ -1,5 +1,5 @@
 #version 450 core
-// The layer stack (REFERENCE 1.3) drawn as instances of the base tessellation: instance k is
+// The layer stack ([Thesis] 2.2.3) drawn as instances of the base tessellation: instance k is
 // layer i (bottom first or top first). Mirrors geometry::layer_column / layer_vertex
 // (geometry/src/layers/layer_stack.cpp): per-vertex spacing narrowed near the eye (2.8),
 // real-valued count keeping the thickness (2.9) with the partial top layer faded in, alpha

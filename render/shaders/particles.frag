@@ -4,7 +4,7 @@
 // Gamma at this fragment (the particle's own cylinder removed) stands for exp(-tau_sun), so
 // octave i sees Gamma^(b^i); hazed with distance like the terrain, faded out where it meets the
 // terrain (soft edge). Blended back to front, premultiplied linear radiance:
-// E_k = S_k + T_k E_(k-1) (REFERENCE (5)), S_k = (1 - T) J.
+// E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 in vec3 v_relative;
 in vec3 v_world;

@@ -1,5 +1,5 @@
 #version 450 core
-// Particle billboards (Harris's render pass, REFERENCE 2.2): a camera-facing square of the
+// Particle billboards (Harris's render pass, [Shimada08] (5)-(6)): a camera-facing square of the
 // particle's radius, drawn back to front in the order the CPU sorted (u_order).
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 layout(std430, binding = 2) readonly buffer Order { uint order[]; };

@@ -1,4 +1,4 @@
-// Library: the terrain's shadow from the sun, an exponential shadow map (Annen et al. 2008) in
+// Library: the terrain's shadow from the sun, an exponential shadow map ([Annen08]) in
 // light space, low-passed in log space (render/src/shadow_map_pass.cpp): a point at light depth
 // d behind occluders at depth o is lit exp(k (o - d)), clamped to 1. The low-pass keeps the
 // volume's shafts free of the flicker a sharp map gives.

@@ -1,5 +1,5 @@
 #pragma once
-// Froxel volumetric fog (Wronski 2014, with Hillaire's energy-conserving integration and
+// Froxel volumetric fog ([Wronski14], with [Hillaire15]'s energy-conserving integration and
 // fog-aware slicing; docs/froxel.md). A frame:
 //   prepare   is the fog in view; the sun's shadow map of the terrain (kept while the sun and
 //             the terrain stay); then the scene is drawn and resolved, and

@@ -1,4 +1,4 @@
-// The bad-input corpus (issue 9): broken rasters of every format kiri reads, scenes with wrong
+// The bad-input corpus (docs/hardening.md): broken rasters of every format kiri reads, scenes with wrong
 // types, unknown keys and values outside their documented ranges, impossible footprints and
 // outputs. One ctest case each; each must meet BadInput's contract: exit code 2, one line on
 // stderr naming the file and the field, no output or temporary file left behind.

@@ -1,4 +1,4 @@
-// `kiri author` on fog placed by the terrain (issue 10), as a user runs it: the maps, their
+// `kiri author` on fog placed by the terrain, as a user runs it: the maps, their
 // determinism, the valley mask a user can accept and feed back, one-line errors.
 #include <gtest/gtest.h>
 

@@ -238,7 +238,7 @@ TEST(BaseSurfaceFit, NearlyFlatAndCliff)
 TEST(SurfaceKinds, GregoryEqualsCatmullClarkOnARegularGrid)
 {
     // Regular interior and boundary: LSNC and the phantom boundary rules give the bicubic
-    // B-spline patches that the Catmull-Clark limit is made of (REFERENCE 5 check).
+    // B-spline patches that the Catmull-Clark limit is made of ([Loop09]).
     const Terrain t = terrain_of(kiri::test::hills);
     const Footprint fp = rectangle_footprint({-900, -900}, {900, 900});
     BaseSurface g = surface_over(t, fp, 300.0, SurfaceKind::gregory);
@@ -315,7 +315,7 @@ TEST(FogTarget, SmoothingKeepsPlanesAwayFromTheBorderAndIgnoresNodata)
 
 TEST(SurfaceKinds, AgreesWithTheSurfaceModule)
 {
-    // The fit's stencils (the linear map it solves with) and the surface module (issue 3,
+    // The fit's stencils (the linear map it solves with) and the surface module (surface.hpp,
     // which evaluate() and the tessellation use) give the same surfaces.
     const Terrain t = terrain_of(kiri::test::hills);
     const std::vector<glm::dvec2> poly = {{-900, -850}, {880, -700}, {100, 0}, {700, 800}, {-600, 650}};

@@ -1,4 +1,4 @@
-// Burn-off (issue 10): the sun's course, monotone thinning, thin edges and sunlit slopes first.
+// Burn-off: the sun's course, monotone thinning, thin edges and sunlit slopes first.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,5 +1,5 @@
 // DEM loading: the bundled Jacksboro GeoTIFF, small rasters of each format written here (by
-// GDAL or by hand) with known values, and every bad-raster case of issue 2.
+// GDAL or by hand) with known values, and every bad-raster case kiri refuses.
 #include <gtest/gtest.h>
 
 #include "temp_path.hpp"
@@ -378,7 +378,7 @@ TEST_F(Dem, ResampleKeepsTheExtentAndReproducesAPlane)
     EXPECT_THROW(resample(src, 100000, 100000), kiri::LimitError);
 }
 
-// --- Bad input (issue 2): each refused with one line naming the file and the property. ---
+// --- Bad input: each refused with one line naming the file and the property. ---
 
 TEST_F(Dem, MissingFile)
 {

@@ -1,4 +1,4 @@
-// Priority-flood fill (issue 10): analytic terrains with known answers, and a brute-force
+// Priority-flood fill ([Barnes14]): analytic terrains with known answers, and a brute-force
 // minimax oracle for the flood levels.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Flow of fog over a pass (issue 10): conservation, positivity, any time step, determinism,
+// Flow of fog over a pass: conservation, positivity, any time step, determinism,
 // the spill into the next basin, and evaporation on the way down.
 #include <gtest/gtest.h>
 

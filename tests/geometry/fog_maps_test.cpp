@@ -1,4 +1,4 @@
-// Fog maps (issue 10): GeoTIFFs carry the DEM's georeferencing and row order, masks round-trip,
+// Fog maps: GeoTIFFs carry the DEM's georeferencing and row order, masks round-trip,
 // the same input writes the same bytes.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Fog placed by the terrain from a scene (issue 10): the keys, their errors, the round trip,
+// Fog placed by the terrain from a scene: the keys, their errors, the round trip,
 // the placed footprint and lake target, the medium of a fill, the optics' conversions.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// GregoryPatch against closed forms (REFERENCE 1.1) and OpenSubdiv's GREGORY_BASIS.
+// GregoryPatch against closed forms ([Thesis] (2.1)-(2.5)) and OpenSubdiv's GREGORY_BASIS.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -46,7 +46,7 @@ glm::dvec3 bezier_curve(const glm::dvec3 b[4], double t)
     return s;
 }
 
-// The formula of REFERENCE 1.1 evaluated literally (away from the singular corners).
+// [Thesis] (2.1)-(2.5) (Bernstein basis corrected) evaluated literally (away from the singular corners).
 glm::dvec3 literal(const GregoryPatch& g, double u, double v)
 {
     glm::dvec3 s(0.0);

@@ -63,7 +63,7 @@ TEST(LayerFormulas, NarrowingFollowsTheEyeAndIsContinuous)
     EXPECT_EQ(narrowed_spacing(r0, 0.0, L0), r0);
     for (double m : {1.0, 500.0, 1000.0, 1999.0}) {
         EXPECT_NEAR(narrowed_spacing(r0, m, L0), r0 * (1.0 - m / L0), 1e-15 * r0);
-        // Straight at O: the new spacing is the new distance / 200 (REFERENCE 1.3).
+        // Straight at O: the new spacing is the new distance / 200 ([Thesis] (2.8) as docs/references.md reads it).
         EXPECT_NEAR(narrowed_spacing(r0, m, L0), layer_spacing(L0 - m), 1e-15 * r0);
     }
     EXPECT_EQ(narrowed_spacing(r0, L0, L0), 0.0);        // eye at O

@@ -1,4 +1,4 @@
-// Cell masks to footprint polygons (issue 10): exact areas of traced outlines, components,
+// Cell masks to footprint polygons: exact areas of traced outlines, components,
 // holes, diagonal contacts, the grid's border, growth into allowed cells, and the control mesh
 // built over several polygons.
 #include <gtest/gtest.h>

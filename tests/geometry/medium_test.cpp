@@ -36,7 +36,7 @@ TEST(MediumOptics, LiquidWaterContent)
     // Linear in LWC, inverse in the radius.
     EXPECT_NEAR(extinction_from_liquid_water(0.4, 7.0), 2.0 * extinction_from_liquid_water(0.2, 7.0), 1e-15);
     EXPECT_NEAR(extinction_from_liquid_water(0.2, 14.0), 0.5 * extinction_from_liquid_water(0.2, 7.0), 1e-15);
-    // Real fog (REFERENCE 6): 0.05..0.5 g/m^3 and 4..10 um give visibilities of fog (< 1 km).
+    // Real fog ([ValleyFog]): 0.05..0.5 g/m^3 and 4..10 um give visibilities of fog (< 1 km).
     EXPECT_LT(visibility_from_extinction(extinction_from_liquid_water(0.05, 10.0)), 1000.0);
     EXPECT_THROW(extinction_from_liquid_water(0.0, 7.0), std::invalid_argument);
     EXPECT_THROW(extinction_from_liquid_water(0.2, -1.0), std::invalid_argument);

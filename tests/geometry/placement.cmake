@@ -1,4 +1,4 @@
-# Tests of geometry/src/placement (issue 10)
+# Tests of geometry/src/placement (docs/placement.md)
 kiri_test(fog_fill_test SOURCES fog_fill_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(mask_outline_test SOURCES mask_outline_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(fog_flow_test SOURCES fog_flow_test.cpp LIBS kiri_geometry LABELS unit)

@@ -1,4 +1,4 @@
-// G1 Gregory networks and the OpenSubdiv limit surface behind one interface (issue 3).
+// G1 Gregory networks and the OpenSubdiv limit surface behind one interface.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Automatic seeding (issue 10): the cold-air-pool index finds the troughs and ignores units.
+// Automatic seeding: the cold-air-pool index finds the troughs and ignores units.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,4 +1,4 @@
-// Issue 11: an eye that moves through the cloud without seams. The default scene in combined
+// An eye that moves through the cloud without seams. The default scene in combined
 // mode (froxels near, layers far, particles in the top band; docs/combined.md) along a camera
 // path from far above, down through the top of the fog, into it and out below it; every frame
 // against the CPU reference ray marcher of the same fog at low resolution. Label slow: the

@@ -1,4 +1,4 @@
-// Agreement (issue 11): layers, particles, froxels and combined drawing the same Medium of the
+// Agreement: layers, particles, froxels and combined drawing the same Medium of the
 // default scene at increasing quality, each frame's error against the CPU reference ray marcher
 // against its cost, on one log-log plot. The Medium alone is judged: the scene's froxel height
 // fog, which only the froxels draw, is left out of every renderer and of the reference.

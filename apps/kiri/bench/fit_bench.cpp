@@ -1,4 +1,4 @@
-// Bench stages of the fog base-surface fit (issue 4, benchmarks 2 and 3).
+// Bench stages of the fog base-surface fit (docs/fog.md).
 #include <cstdio>
 #include <string>
 

@@ -1,4 +1,4 @@
-// The froxel fog (issue 7) against the CPU reference ray marcher: on the Jacksboro fog lake,
+// The froxel fog against the CPU reference ray marcher: on the Jacksboro fog lake,
 // froxel resolution (x, y, slices), slice distribution, fog-aware slicing and the per-pixel
 // steps against error against time, with the reference's own time in the same run; the cost
 // of fog off-screen and of a static view against the full cost; a 2 m layer at 30 m against

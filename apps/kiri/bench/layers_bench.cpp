@@ -1,4 +1,4 @@
-// The layer stack (issue 5): the source's Table 3.2 reproduced on this machine (frames per
+// The layer stack: [Thesis] Table 3.2 reproduced on this machine (frames per
 // second against tessellation and layer count at 1280x720), its figures as images (spacing
 // rule, scale rule, 15 against 30 layers), the cost of off-screen fog, and the error of a
 // finite stack against a very fine one.

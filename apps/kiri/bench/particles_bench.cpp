@@ -1,4 +1,4 @@
-// Particle clouds (issue 6): Shimada's Table 1 reproduced on this machine (precompute time of
+// Particle clouds: [Shimada08] Table 1 reproduced on this machine (precompute time of
 // Harris's light pass and of the 3D attenuation buffer at 128^3 / 256^3 / 384^3 for 9,382 /
 // 32,914 / 60,134 particles, with each one's per-particle error against the exact Harris pass),
 // the goal at 60,134 particles and 128^3, the resolution against error and time, the error
@@ -23,7 +23,7 @@
 namespace kiri::bench {
 namespace {
 
-// Table 1 of Shimada et al. 2008 (GeForce 8800 GTX, Core 2 Duo 1.83 GHz), seconds.
+// Table 1 of [Shimada08] (GeForce 8800 GTX, Core 2 Duo 1.83 GHz), seconds.
 const std::map<std::size_t, double> paper_harris = {{9382, 0.721}, {32914, 3.164}, {60134, 5.934}};
 const std::map<int, std::map<std::size_t, double>> paper_buffer = {
     {384, {{9382, 0.038}, {32914, 0.154}, {60134, 0.161}}},

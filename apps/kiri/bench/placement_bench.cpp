@@ -1,4 +1,4 @@
-// Bench stages of fog placed by the terrain (issue 10): "fill" (priority-flood fill of
+// Bench stages of fog placed by the terrain: "fill" (priority-flood fill of
 // Jacksboro's SE valleys to 460 m, and the full flood levels from the same seed, against the
 // DEM resampled from 256^2 to 4096^2; goal 4096^2 under 2 s) and "flow" (one flow step against
 // the grid size). Each row has an error beside its time.

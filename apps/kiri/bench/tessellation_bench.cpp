@@ -1,4 +1,4 @@
-// Bench stage of the base-surface tessellation (issue 4, benchmark 1): triangles against the
+// Bench stage of the base-surface tessellation: triangles against the
 // maximum distance to the exact surface, uniform levels and adaptive tolerances.
 #include <cstdio>
 #include <string>

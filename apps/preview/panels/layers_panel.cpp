@@ -1,4 +1,4 @@
-// The fog's layer stack (REFERENCE 1.3, docs/layers.md): most options apply on the next frame;
+// The fog's layer stack ([Thesis] (2.6)-(2.10), docs/layers.md): most options apply on the next frame;
 // the texture options reshape the layer base (recomputed on the worker).
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-// The source's layer formulas (REFERENCE 1.3), each exactly as printed or as read there.
+// [Thesis] (2.6)-(2.10), each exactly as printed or as docs/references.md reads it.
 #include <algorithm>
 #include <cmath>
 

@@ -1,7 +1,7 @@
 #pragma once
-// Internal: sample elimination (Yuksel 2015, "Sample Elimination for Generating Poisson Disk
-// Sample Sets"), with distances measured in units of each point's local spacing so that a
-// candidate set drawn with a varying density keeps that density while becoming blue noise.
+// Internal: sample elimination ([Yuksel15]), with distances measured in units of each point's
+// local spacing so that a candidate set drawn with a varying density keeps that density while
+// becoming blue noise.
 #include <cstddef>
 #include <vector>
 

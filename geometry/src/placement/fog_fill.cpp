@@ -56,7 +56,7 @@ void flood(const Heightfield& hf, FloodStart& start, double lift, Visit&& visit)
     std::vector<std::uint8_t>& queued = start.queued;
     RadixHeap& heap = start.heap;
     // Cells reached at the current level without climbing (pits and plateaus under it) skip the
-    // heap: their key is the smallest one, so a plain queue keeps the order (Barnes et al. 2014,
+    // heap: their key is the smallest one, so a plain queue keeps the order ([Barnes14],
     // "Priority-Flood+epsilon" / improved priority-flood).
     std::vector<FloodItem> pit;
     std::size_t pit_head = 0;

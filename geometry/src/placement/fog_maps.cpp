@@ -1,5 +1,5 @@
-// GDAL adapter of the fog maps: GDAL stays inside geometry/src (STYLE, "CGAL, OpenSubdiv and
-// GDAL each stay behind a small adapter").
+// GDAL adapter of the fog maps: GDAL stays inside geometry/src, behind a small adapter, as CGAL
+// and OpenSubdiv do.
 #include "kiri/geometry/placement/fog_maps.hpp"
 
 #include <algorithm>

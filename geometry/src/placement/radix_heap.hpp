@@ -1,5 +1,5 @@
 #pragma once
-// Internal: a monotone priority queue (radix heap, Ahuja, Mehlhorn, Orlin and Tarjan 1990) for
+// Internal: a monotone priority queue (radix heap, [Ahuja90]) for
 // the priority-flood. The flood only ever pushes keys >= the last popped one, which is what a
 // radix heap needs: keys live in 65 buckets by the highest bit in which they differ from the
 // last popped key; a pop that empties bucket 0 redistributes the lowest non-empty bucket into

@@ -1,5 +1,5 @@
 # Sources of geometry/src/placement (paths relative to geometry/): fog placed by the terrain
-# (issue 10): fill, outlines, valley analysis, maps, burn-off, flow, the scene's keys.
+# (docs/placement.md): fill, outlines, valley analysis, maps, burn-off, flow, the scene's keys.
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/placement/fog_fill.cpp
   src/placement/mask_outline.cpp

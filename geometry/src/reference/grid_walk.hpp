@@ -1,5 +1,5 @@
 #pragma once
-// Internal: the cells of a regular 2D grid that a ray crosses, in order (Amanatides-Woo). Cell
+// Internal: the cells of a regular 2D grid that a ray crosses, in order ([Amanatides87]). Cell
 // (i, j) spans [x0 + i dx, x0 + (i + 1) dx] x [y0 + j dy, y0 + (j + 1) dy], 0 <= i <= nx - 2,
 // 0 <= j <= ny - 2: the cells between the samples of a Heightfield or a MediumGrid.
 #include <algorithm>

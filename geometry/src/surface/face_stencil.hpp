@@ -32,10 +32,10 @@ protected:
 };
 
 //! Catmull-Clark limit surface through OpenSubdiv Bfr (boundary: edges and corners
-//! interpolated, VTX_BOUNDARY_EDGE_AND_CORNER; REFERENCE 5).
+//! interpolated, VTX_BOUNDARY_EDGE_AND_CORNER; [OpenSubdiv]).
 std::unique_ptr<FaceStencils> make_catmull_clark_stencils(const PolyMesh& mesh);
 
-//! Gregory patch network (Loop, Schaefer, Ni, Castano 2009; REFERENCE 1.1 and 5) over a quad
+//! Gregory patch network ([Loop09]; patches as [Thesis] (2.1)-(2.5)) over a quad
 //! mesh, as 20 control points per face that are fixed combinations of the mesh vertices.
 std::unique_ptr<FaceStencils> make_gregory_stencils(const PolyMesh& mesh);
 

@@ -1,8 +1,8 @@
 #pragma once
-// Internal: the Bernstein and Gregory weights, written once (STYLE 6). Every Gregory path
+// Internal: the Bernstein and Gregory weights, written once. Every Gregory path
 // (single point, batch, stencils of the patch network) calls gregory_basis().
 //
-// REFERENCE 1.1: S(u,v) = sum_ij B_i(u) B_j(v) Q_ij(u,v) with the corrected Bernstein basis
+// [Thesis] (2.1)-(2.5): S(u,v) = sum_ij B_i(u) B_j(v) Q_ij(u,v) with the corrected Bernstein basis
 // B^3_i(t) = C(3,i) t^i (1-t)^(3-i). Each interior Q blends two points with weights r and
 // q = 1 - r, r = x / (x + y), where (x, y) are the distances of (u, v) from the singular
 // corner of that Q (Q11: (u, v), Q21: (1-u, v), Q12: (u, 1-v), Q22: (1-u, 1-v)).
@@ -34,7 +34,7 @@ namespace kiri::geometry::detail {
 //! Index of P_ijk in the 20-point array (see kiri/geometry/surface/gregory_patch.hpp).
 constexpr int gregory_index(int i, int j, int k) { return k == 0 ? j * 4 + i : 16 + (j - 1) * 2 + (i - 1); }
 
-//! B^3_i(t) = C(3,i) t^i (1-t)^(3-i) and its first two derivatives (REFERENCE 1.1, corrected).
+//! B^3_i(t) = C(3,i) t^i (1-t)^(3-i) and its first two derivatives ([Thesis] (2.1), corrected).
 //! T is double or a GCC vector of doubles (the batch path's lanes).
 template <class T>
 struct Bernstein3 {

@@ -133,7 +133,7 @@ private:
         const Fan F = fan(vh);
         const int m = int(F.h.size());
         if (!F.boundary) {
-            // LSNC interior: Catmull-Clark limit position and tangents (REFERENCE 5).
+            // LSNC interior: Catmull-Clark limit position and tangents ([Loop09]).
             const int n = m;
             Comb p;
             p.add(v, double(n) * n / (n * (n + 5.0)));

@@ -1,8 +1,7 @@
 #pragma once
-// Internal: the G1 Gregory patch network of a quad mesh (Loop, Schaefer, Ni, Castano 2009,
-// "LSNC"; REFERENCE 5) as a linear map from the mesh vertices to the 20 points of each patch.
-// Built once per topology; positions enter only through apply() (connectivity apart from
-// coordinates, STYLE 5).
+// Internal: the G1 Gregory patch network of a quad mesh ([Loop09], "LSNC") as a linear map
+// from the mesh vertices to the 20 points of each patch. Built once per topology; positions
+// enter only through apply() (connectivity apart from coordinates).
 #include <vector>
 
 #include <glm/vec3.hpp>

@@ -24,7 +24,7 @@ namespace {
 using OpenSubdiv::Far::PatchDescriptor;
 using OpenSubdiv::Far::PatchParam;
 
-// OpenSubdiv GREGORY_BASIS index of each storage index (REFERENCE 5: 5 points per corner,
+// OpenSubdiv GREGORY_BASIS index of each storage index ([OpenSubdiv]: 5 points per corner,
 // corners counter-clockwise from (0,0)).
 constexpr int kFromOsd[20] = {
     // P_ij0, j*4 + i

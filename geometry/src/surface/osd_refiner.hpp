@@ -1,5 +1,5 @@
 #pragma once
-// Internal: the OpenSubdiv topology of a control mesh (REFERENCE 5). OpenSubdiv headers stay
+// Internal: the OpenSubdiv topology of a control mesh ([OpenSubdiv]). OpenSubdiv headers stay
 // in geometry/src.
 #include <memory>
 

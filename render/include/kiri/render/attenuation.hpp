@@ -1,6 +1,6 @@
 #pragma once
 //! \file attenuation.hpp
-//! Lighting of particle clouds on the GPU (Shimada 2008, REFERENCE 2): the 3D attenuation buffer
+//! Lighting of particle clouds on the GPU ([Shimada08]): the 3D attenuation buffer
 //! and, as the speed anchor it is measured against, Harris's light pass as he ran it (one
 //! read-back per particle). docs/particles.md describes both.
 #include <cstddef>
@@ -89,7 +89,7 @@ struct HarrisGlStats {
     double pixel_m = 0.0;  //!< metres per light-buffer pixel
 };
 
-//! Harris & Lastra's light pass on the GPU as the source describes it (REFERENCE 2.1 and 5):
+//! Harris & Lastra's light pass on the GPU as [Shimada08] (1)-(4) and [SkyWorks] describe it:
 //! particles sorted towards the sun; an orthographic light buffer perpendicular to the light,
 //! cleared to 1; for each particle, its light I_k read back from the buffer at its centre, then
 //! its footprint multiplied into the buffer (G(rho) per pixel, blending dst * src). Returns

@@ -1,6 +1,6 @@
 #pragma once
 //! \file error.hpp
-//! kiri's error policy (STYLE 10): typed exceptions at API boundaries carry the file,
+//! kiri's error policy: typed exceptions at API boundaries carry the file,
 //! the field (a JSON pointer, a raster property or a parameter name) and the reason.
 //! The CLI prints what() as one line and exits with code 2.
 #include <stdexcept>

@@ -1,7 +1,7 @@
 #pragma once
 //! \file base_surface.hpp
 //! The fog's base surface: a smooth surface over the quad control mesh (Gregory patch network
-//! or Catmull-Clark limit), fitted to a target over the terrain (issue 4, REFERENCE 1.2).
+//! or Catmull-Clark limit), fitted to a target over the terrain (docs/fog.md; [Thesis] 2.2.1).
 #include <memory>
 #include <string>
 #include <vector>
@@ -45,7 +45,7 @@ struct FitOptions {
     bool operator==(const FitOptions&) const = default;
 };
 
-//! Fit figures over the samples that have terrain data (issue 4 "report").
+//! Fit figures over the samples that have terrain data (the "fit" of report.json).
 struct FitReport {
     double max_deviation = 0.0;  //!< max |surface - target| (m)
     double rms_deviation = 0.0;  //!< (m)
@@ -68,7 +68,7 @@ struct FitReport {
 };
 
 //! Surface over a control mesh. The topology and the per-face stencils are built once in the
-//! constructor; fit() and set_heights() change only the control heights (STYLE 5).
+//! constructor; fit() and set_heights() change only the control heights.
 class BaseSurface {
 public:
     BaseSurface(ControlMesh control, SurfaceKind kind);

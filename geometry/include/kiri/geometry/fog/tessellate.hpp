@@ -1,6 +1,6 @@
 #pragma once
 //! \file tessellate.hpp
-//! Triangles from the base surface (issue 4): uniform N x N per patch, or adaptive to a
+//! Triangles from the base surface: uniform N x N per patch, or adaptive to a
 //! tolerance, crack-free between patches of different levels.
 #include <vector>
 
@@ -18,8 +18,8 @@ struct TessellationOptions {
 
 //! The triangles and, per vertex: position, unit normal, (u, v) of its patch in the texture
 //! coordinates (mesh.texcoord2D), and the patch id in the OpenMesh property named
-//! `patch_id_property` (int). Each patch has its own vertices (full per-patch UVs, REFERENCE
-//! 1.2); vertices on a shared edge or corner are evaluated once, by the patch of smallest id,
+//! `patch_id_property` (int). Each patch has its own vertices (full per-patch UVs, [Thesis]
+//! 2.2.2); vertices on a shared edge or corner are evaluated once, by the patch of smallest id,
 //! and copied, so neighbours' edge vertices coincide exactly. Each edge gets one level (the
 //! larger of its two patches'); a patch meets edges finer than itself with transition
 //! triangles (a strip between its inner ring and the edge).

@@ -1,6 +1,6 @@
 #pragma once
 //! \file layer_stack.hpp
-//! The view-dependent stack of translucent layers over the fog's base surface (REFERENCE 1.3):
+//! The view-dependent stack of translucent layers over the fog's base surface ([Thesis] 2.2.3):
 //! spacing (2.6), alpha (2.7), narrowing as the eye approaches (2.8) with layers added to keep
 //! the thickness (2.9), and enlargement of upper layers (2.10).
 //!
@@ -23,7 +23,7 @@
 
 namespace kiri::geometry {
 
-// ---- The source's formulas, exactly as REFERENCE 1.3 reads them --------------------------
+// ---- [Thesis] (2.6)-(2.10), as printed or as docs/references.md reads them ------------------
 
 //! (2.6) r = L / 200 (divisor configurable). L >= 0.
 double layer_spacing(double eye_distance, double divisor = 200.0);

@@ -1,6 +1,6 @@
 #pragma once
 //! \file layer_texture.hpp
-//! The layers' texture (REFERENCE 1.2): gray, its alpha falling to zero towards the outer
+//! The layers' texture ([Thesis] 2.2.2): gray, its alpha falling to zero towards the outer
 //! border of the footprint and uniform across edges shared between patches. Each patch keeps
 //! its full (u, v) mapping; which of its sides and corners lie on the border (its "border
 //! mask") picks a tile of a procedurally generated atlas, one tile per mask in use.

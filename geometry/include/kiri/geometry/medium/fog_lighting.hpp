@@ -6,7 +6,7 @@
 //! Units follow the terrain's shading: `sun` is the radiance a white Lambertian surface facing
 //! the sun reflects (scene sun colour x intensity), so the sun's irradiance is pi sun; the sky
 //! is an isotropic radiance `ambient`. Single scattering of the sun plus the sky, with multiple
-//! scattering approximated by octaves (Wrenninge et al., "Oz: the great and volumetric", 2013):
+//! scattering approximated by octaves ([Wrenninge13]):
 //! octave i scatters a^i of the light, sees the sun through b^i of the optical depth and has
 //! anisotropy c^i g (a = b = c = 1/2). One octave is plain single scattering. Thick fog seen
 //! with the sun behind the eye stays white instead of turning grey, as real fog does.

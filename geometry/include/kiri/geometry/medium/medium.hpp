@@ -5,15 +5,15 @@
 //! particles, froxels, the CPU reference ray marcher), so they draw the same fog.
 //!
 //! The volume is a shell between two height grids over (x, y): `bottom` and `top`, clipped
-//! below by the ground (`floor` = max(bottom, ground)). Over the authored fog (issue 4) the
+//! below by the ground (`floor` = max(bottom, ground)). Over the authored fog (docs/fog.md) the
 //! bottom is the layer stack's base and the top the base plus the stack's thickness; a fill
-//! (issue 10) gives bottom = ground and top = the fog-top altitude. Inside, the density is
+//! (docs/placement.md) gives bottom = ground and top = the fog-top altitude. Inside, the density is
 //!
 //!   d(p) = coverage(x, y) * profile(h) * detail(x, y, h, t) * dissipation(h, t),
 //!   h = (z - bottom) / (top - bottom) in [0, 1],
 //!   profile(h) = 1 - (1 - top_density) h          (the layer alphas (2.7): 1 at the base, 0.1 at the top)
 //!
-//! and sigma_t(p) = extinction * d(p). coverage is the layers' border fade (REFERENCE 1.2),
+//! and sigma_t(p) = extinction * d(p). coverage is the layers' border fade ([Thesis] 2.2.2),
 //! detail the layers' drifting noise at the height of layer i = h l0, dissipation the layers'
 //! 0.5^(t / half_life (1 + h)): a layer of the stack and the medium at its height agree.
 //! Grids are sampled bilinearly (the GPU's linear filtering of the same values).
@@ -29,7 +29,7 @@
 
 namespace kiri::geometry {
 
-// ---- Optics (REFERENCE 6) -------------------------------------------------------------------
+// ---- Optics ([Koschmieder24], [ValleyFog]) ----------------------------------------------------
 
 //! Koschmieder: the visibility V (m) of a medium of extinction sigma (1/m), V = 3.912 / sigma
 //! (contrast threshold 2 %). \throw std::invalid_argument unless sigma > 0 and finite.

@@ -1,6 +1,6 @@
 #pragma once
 //! \file medium_options.hpp
-//! The optics of the fog (REFERENCE 6): what the scene's "medium" section sets, read by the
+//! The optics of the fog ([ValleyFog]): what the scene's "medium" section sets, read by the
 //! Medium (medium.hpp) and by the layers when they shade from the medium.
 
 namespace kiri::geometry {

@@ -1,6 +1,6 @@
 #pragma once
 //! \file attenuation_cpu.hpp
-//! The 3D attenuation buffer (Shimada 2008, REFERENCE 2.3-2.4) computed on the CPU, with exactly
+//! The 3D attenuation buffer ([Shimada08] (7), sections 3.2-3.3) computed on the CPU, with exactly
 //! the GPU's discretisation (render/src/attenuation_buffer.cpp): the oracle of the GL pass and the
 //! subject of the unit tests that compare the buffer with the exact Harris pass.
 //!

@@ -1,6 +1,6 @@
 #pragma once
 //! \file harris_reference.hpp
-//! The exact light pass of Harris & Lastra (2001) as Shimada restates it (REFERENCE 2.1), in
+//! The exact light pass of [Harris01] as [Shimada08] (1)-(4) restates it, in
 //! double: the ground truth the attenuation buffer is scored against.
 //!
 //! The particles are sorted towards the sun (by L.p, nearest the sun first; ties by index). The

@@ -1,6 +1,6 @@
 #pragma once
 //! \file light_grid.hpp
-//! The voxel grid of the 3D attenuation buffer (Shimada's "3D intensity space", REFERENCE 2.4):
+//! The voxel grid of the 3D attenuation buffer ([Shimada08] 3.3, the "3D intensity space"):
 //! columns along the light, enclosing every particle. Shared by the GPU buffer (render) and its
 //! CPU twin (attenuation_cpu.hpp) so both discretise the same way.
 //!

@@ -1,6 +1,6 @@
 #pragma once
 //! \file particle_footprint.hpp
-//! What one particle does to the light that passes it (Shimada (7), REFERENCE 2.3), written once
+//! What one particle does to the light that passes it ([Shimada08] (7)), written once
 //! here for the exact reference, the CPU attenuation buffer and the tests; the GPU's copy is
 //! render/shaders/particle_footprint.glsl (checked against this file by a GL test).
 //!

@@ -1,6 +1,6 @@
 #pragma once
 //! \file particles.hpp
-//! The fog as a cloud of particles (Harris 2001, Shimada 2008 = REFERENCE 2): each particle is a
+//! The fog as a cloud of particles ([Harris01], [Shimada08]): each particle is a
 //! sphere of radius r whose optical depth along a ray at distance rho from its centre is
 //! tau f(rho / r), f a Gaussian footprint (particle_footprint.hpp). The particles are sampled
 //! inside the Medium, blue noise with a density that follows the Medium's, and carry together
@@ -66,7 +66,7 @@ struct ParticleCloud {
     std::size_t candidate_count = 0;
 };
 
-//! Harris's read-back solid angle (0.09 sr, REFERENCE 5): the forward cone whose scattered light
+//! Harris's read-back solid angle (0.09 sr, [SkyWorks]): the forward cone whose scattered light
 //! stays in the beam.
 constexpr double harris_forward_solid_angle = 0.09;
 //! The fraction of Henyey-Greenstein scattering (anisotropy g) that goes into the forward cone of
@@ -75,7 +75,7 @@ constexpr double harris_forward_solid_angle = 0.09;
 double forward_scattering_fraction(double g, double solid_angle = harris_forward_solid_angle);
 
 //! Samples the particles of a Medium: candidates drawn with probability proportional to the
-//! density, thinned to the count by sample elimination (Yuksel 2015) with distances measured in
+//! density, thinned to the count by sample elimination ([Yuksel15]) with distances measured in
 //! units of the local spacing, so the result is blue noise whose density still follows the
 //! Medium. Each particle carries the same share of the Medium's extinction integral:
 //! tau_k = extinction * density_integral / (count * footprint_area(r_k)). Deterministic for a seed

@@ -1,6 +1,6 @@
 #pragma once
 //! \file burn_off.hpp
-//! Burn-off of valley fog after sunrise (issue 10, REFERENCE 6): the sun thins the fog from
+//! Burn-off of valley fog after sunrise ([ValleyFog]): the sun thins the fog from
 //! its thin edges and from sunlit slopes first, then surface heating lifts its base and the
 //! fog turns into low stratus.
 #include <string>
@@ -14,7 +14,7 @@ namespace kiri::geometry {
 
 //! Unit vector towards the sun (x east, y north, z up) at a latitude (degrees), day of the
 //! year (1..366) and local solar time (hours): declination 23.44 sin(2 pi (284 + day) / 365)
-//! degrees (Cooper 1969), hour angle 15 (hour - 12) degrees. z < 0 when the sun is down.
+//! degrees ([Cooper69]), hour angle 15 (hour - 12) degrees. z < 0 when the sun is down.
 glm::dvec3 sun_direction(double latitude_deg, int day_of_year, double solar_hour);
 
 struct BurnOffOptions {
@@ -46,7 +46,7 @@ struct BurnOffReport {
 //! The fog at options.time, from the fog at dawn (`dawn`). Per cell, from midnight, with fixed
 //! steps: the ground under the fog is heated by the sun through it, and evaporates it from
 //! below at burn_rate * max(0, n . s) * T(h), T(h) = 1 / (1 + 3/4 (1 - g) sigma h) the diffuse
-//! transmission of a scattering layer of thickness h (two-stream, Bohren 1987), n the ground's
+//! transmission of a scattering layer of thickness h (two-stream, [Bohren87]), n the ground's
 //! normal, s the sun: thin edges (small h) and slopes facing the sun clear first. The base is
 //! also held at or above the lifted level L = lowest bottom + lift_rate * sun_hours_level, so
 //! the fog detaches from the valley floors as the morning goes on. The top stays. Thickness

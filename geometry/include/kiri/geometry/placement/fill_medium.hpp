@@ -1,6 +1,6 @@
 #pragma once
 //! \file fill_medium.hpp
-//! The Medium (medium.hpp) of fog placed by the terrain (issue 10): the fill's columns as the
+//! The Medium (medium.hpp) of fog placed by the terrain: the fill's columns as the
 //! shell, so the volume renderers draw the fog the terrain holds, not the fitted lake surface.
 #include <string>
 

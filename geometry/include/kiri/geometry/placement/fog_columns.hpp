@@ -1,6 +1,6 @@
 #pragma once
 //! \file fog_columns.hpp
-//! Fog as a column over each terrain cell: the "fill" density profile of issue 10 (absolute
+//! Fog as a column over each terrain cell: the "fill" density profile (absolute
 //! altitudes), which the Medium, the maps and the renderers' targets read.
 #include <cstdint>
 #include <vector>

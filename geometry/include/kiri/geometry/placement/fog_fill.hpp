@@ -1,8 +1,7 @@
 #pragma once
 //! \file fog_fill.hpp
-//! Fog placed by the terrain (issue 10): valley fill from seeds up to a flat fog top (the
-//! temperature inversion, REFERENCE 6), by priority-flood over the DEM (Barnes, Lehman and
-//! Mulla 2014, "Priority-Flood: an optimal depression-filling and watershed-labeling algorithm").
+//! Fog placed by the terrain: valley fill from seeds up to a flat fog top (the
+//! temperature inversion, [ValleyFog]), by priority-flood over the DEM ([Barnes14]).
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 //! \file fog_flow.hpp
-//! Fog moved by the wind over the terrain (issue 10, REFERENCE 6 "cloud waterfalls"). The fog
+//! Fog moved by the wind over the terrain ([ValleyFog], "cloud waterfalls"). The fog
 //! pooled under the inversion (the fill's connected bodies) keeps a plane top, tilted by the
 //! wind's set-up; where the tilted top rises above the pool's rim (its lowest passes downwind)
 //! fog spills over, and the spilt fog is a thin stream advected over the terrain, pouring down

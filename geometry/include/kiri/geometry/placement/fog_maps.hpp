@@ -1,6 +1,6 @@
 #pragma once
 //! \file fog_maps.hpp
-//! 2D products on the terrain's grid for GIS and engine pipelines (issue 10): float GeoTIFFs
+//! 2D products on the terrain's grid for GIS and engine pipelines: float GeoTIFFs
 //! with the input DEM's georeferencing (GDAL), and 8-bit masks a user can look at and edit.
 #include <cstdint>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #pragma once
 //! \file fog_placement.hpp
-//! Fog placed by the terrain (issue 10), the scene's side: fill regions (seeds + fog top),
+//! Fog placed by the terrain, the scene's side: fill regions (seeds + fog top),
 //! automatic seeding, burn-off and flow, and the one call that turns them into fog columns, a
 //! footprint and a lake target for the existing fit and layers.
 #include <filesystem>

@@ -1,7 +1,7 @@
 #pragma once
 //! \file mask_outline.hpp
 //! A cell mask on the terrain's grid (a fill's fog cells, a valley mask) turned into footprint
-//! polygons, so the existing control mesh, fit and layers follow it (issue 10).
+//! polygons, so the existing control mesh, fit and layers follow it.
 #include <cstdint>
 #include <string>
 #include <vector>

@@ -1,9 +1,9 @@
 #pragma once
 //! \file valley_analysis.hpp
-//! Candidate fog regions found from the terrain (issue 10, "automatic seeding"): a multi-scale
-//! topographic position index (Weiss 2001; Guisan et al. 1999) as a cold-air-pool index, with
+//! Candidate fog regions found from the terrain ("automatic seeding"): a multi-scale
+//! topographic position index ([Weiss01], [Guisan99]) as a cold-air-pool index, with
 //! one threshold. Cold air drains into whatever lies low against its surroundings, at the
-//! scale of gullies as well as of whole valleys (REFERENCE 6).
+//! scale of gullies as well as of whole valleys ([ValleyFog]).
 #include <cstdint>
 #include <string>
 #include <vector>

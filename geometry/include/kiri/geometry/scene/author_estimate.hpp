@@ -1,7 +1,7 @@
 #pragma once
 //! \file author_estimate.hpp
 //! What authoring a scene's fog will need in memory, estimated from the scene before anything
-//! large is allocated (issue 9): `kiri author` prints it, and a scene above the limit is refused
+//! large is allocated (docs/hardening.md): `kiri author` prints it, and a scene above the limit is refused
 //! with the memory it would need and the key that drives it.
 #include <string>
 

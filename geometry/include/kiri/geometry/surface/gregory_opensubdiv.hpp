@@ -1,7 +1,8 @@
 #pragma once
 //! \file gregory_opensubdiv.hpp
 //! An independent implementation of the same Gregory patch: OpenSubdiv's GREGORY_BASIS
-//! patch basis (REFERENCE 5: same surface, its own point order, approximate derivatives).
+//! patch basis ([OpenSubdiv]: same surface, its own point order, approximate derivatives; see
+//! docs/references.md).
 //! For tests (an oracle) and for `kiri bench` (a side-by-side rival); not a fast path.
 #include <span>
 
@@ -10,7 +11,7 @@
 namespace kiri::geometry {
 
 //! OpenSubdiv's GREGORY_BASIS weights at (u, v), permuted into GregoryPatch's storage order.
-//! Its derivative weights hold the rational blends constant (REFERENCE 5): approximate.
+//! Its derivative weights hold the rational blends constant: approximate.
 void opensubdiv_gregory_weights(double u, double v, std::span<double, 20> w, std::span<double, 20> wu,
                                 std::span<double, 20> wv);
 

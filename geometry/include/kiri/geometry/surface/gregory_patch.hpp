@@ -1,7 +1,7 @@
 #pragma once
 //! \file gregory_patch.hpp
-//! The bicubic Gregory patch of 20 control points (REFERENCE 1.1; thesis (2.1)-(2.3) with the
-//! corrected Bernstein basis B^3_i(t) = C(3,i) t^i (1-t)^(3-i)):
+//! The bicubic Gregory patch of 20 control points ([Chiyokura83]; [Thesis] (2.1)-(2.5) with the
+//! corrected Bernstein basis B^3_i(t) = C(3,i) t^i (1-t)^(3-i), docs/references.md):
 //!
 //!     S(u,v) = sum_{i,j=0..3} B_i(u) B_j(v) Q_ij(u,v),   Q_ij = P_ij0 on the boundary,
 //!     Q11 = (u P110 + v P111) / (u + v),          Q21 = ((1-u) P210 + v P211) / ((1-u) + v),
@@ -76,7 +76,7 @@ glm::dvec3 unit_normal(const GregoryPatch& patch, double u, double v, const glm:
 //! clamped to [0,1]; NaN parameters give the patch centre.
 PatchPoint evaluate(const GregoryPatch& patch, double u, double v);
 
-//! The 20 Gregory weights at (u, v) in storage order (REFERENCE 1.1) and their exact first
+//! The 20 Gregory weights at (u, v) in storage order ([Thesis] (2.1)-(2.5)) and their exact first
 //! derivatives: S = sum_k w[k] P_k. Sums to 1 (partition of unity); wu, wv sum to 0.
 void gregory_weights(double u, double v, std::span<double, 20> w, std::span<double, 20> wu, std::span<double, 20> wv);
 

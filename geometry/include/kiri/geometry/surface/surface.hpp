@@ -1,9 +1,9 @@
 #pragma once
 //! \file surface.hpp
-//! One interface over the two smooth surfaces of a quad control mesh (issue 3):
+//! One interface over the two smooth surfaces of a quad control mesh:
 //!
 //! - `SurfaceKind::gregory`: one bicubic Gregory patch per face (gregory_patch.hpp), joined
-//!   with G1 continuity by Loop, Schaefer, Ni, Castano 2009 (REFERENCE 5). Interior vertices
+//!   with G1 continuity by [Loop09] ("LSNC"). Interior vertices
 //!   of any valence use LSNC: corner = Catmull-Clark limit position, edge points
 //!   p + (2/3) lambda q_i on the limit tangent plane, face points from the G1 condition
 //!   f = (1/3)[c_far p + (3 - 2 c_near - c_far) e + 2 c_near e' + r], c = cos(2 pi / n).

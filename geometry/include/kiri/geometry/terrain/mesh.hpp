@@ -1,6 +1,7 @@
 #pragma once
 //! \file mesh.hpp
-//! OpenMesh types used across kiri, in double precision (REFERENCE 5).
+//! OpenMesh types used across kiri, in double precision (traits with Vec3d points and normals).
+//! OpenMesh wants MeshIO.hh included before the mesh kernel headers for read_mesh/write_mesh.
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>

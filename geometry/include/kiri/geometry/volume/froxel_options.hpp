@@ -11,9 +11,9 @@ namespace kiri::geometry {
 
 //! How the depth slices of a froxel volume are spread between a near and a far depth.
 enum class SliceDistribution {
-    exponential,  //!< d = a (b / a)^s: equal ratios (Wronski 2014, Assassin's Creed 4)
-    log2,         //!< linear for the first log2_scale metres, then logarithmic (Unreal)
-    power,        //!< d = a + (b - a) s^power (Godot's "detail spread")
+    exponential,  //!< d = a (b / a)^s: equal ratios ([Wronski14], Assassin's Creed 4)
+    log2,         //!< linear for the first log2_scale metres, then logarithmic ([Unreal])
+    power,        //!< d = a + (b - a) s^power ([Godot]'s "detail spread")
 };
 
 struct FroxelOptions {
