@@ -54,6 +54,14 @@ Texture make_tiles(const glm::ivec2& size)
     return t;
 }
 
+// One invocation per froxel column (8 x 8 per group) and `depth` in z, then the barrier that
+// lets the next pass read what it wrote.
+void dispatch_volume(const glm::ivec3& size, int depth)
+{
+    glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), GLuint(depth));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 // Exactly zero components would make the box exit of the sun march 0 * inf.
 glm::vec3 safe_direction(glm::vec3 d)
 {
@@ -83,7 +91,6 @@ FroxelPass::FroxelPass()
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
-    timer_ran_.assign(stage_count, false);
 }
 
 FroxelPass::~FroxelPass() = default;
@@ -214,7 +221,8 @@ void FroxelPass::bind_layout(const ShaderProgram& p) const
 
 void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
 {
-    std::fill(timer_ran_.begin(), timer_ran_.end(), false);
+    for (PassTimer& timer : timers_)
+        timer.forget();
     stats_.updated = false;
     medium_gpu_.set_partition(frame.partitioned, frame.partition);
     visible_ = enabled_ && visible(frame);
@@ -229,11 +237,9 @@ void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
     if (enabled_ && options_.terrain_shadows && terrain.has_terrain()) {
         glm::dvec3 lo = terrain.bounds_min(), hi = terrain.bounds_max();
         extend_bounds(lo, hi);
-        timers_[shadow_map].begin();
+        const ScopedPassTimer timed(timers_[shadow_map]);
         if (shadow_.update(terrain, frame.sun_direction, lo, hi, options_.shadow_map_size, options_.esm_sharpness))
             ++stats_.shadow_map_updates;
-        timers_[shadow_map].end();
-        timer_ran_[shadow_map] = true;
     }
 }
 
@@ -293,7 +299,7 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
 {
     if (!visible_ || !apply_)
         return;
-    timers_[apply_stage].begin();
+    const ScopedPassTimer timed(timers_[apply_stage]);
     const ShaderProgram& p = apply_program_;
     bind_apply(p);
     const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
@@ -306,14 +312,22 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    timers_[apply_stage].end();
-    timer_ran_[apply_stage] = true;
 }
 
 void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture)
 {
+    const Jitter jitter = advance_view(frame);
+    run_tiles(frame, depth_texture);
+    run_density();
+    run_lighting(frame, options_.terrain_shadows && terrain.has_terrain(), jitter);
+    if (options_.temporal)
+        run_temporal();
+    run_integrate();
+}
+
+FroxelPass::Jitter FroxelPass::advance_view(const FrameContext& frame)
+{
     const geometry::FroxelOptions& o = options_;
-    const glm::ivec3 size = v_->size;
     // This frame's view (the previous one is kept for reprojection).
     previous_ = view_;
     current_ = 1 - current_;
@@ -329,14 +343,19 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     view_.far = float(o.far > 0.0 ? o.far : far_plane);
     view_.far = std::max(view_.far, view_.near * 1.01f);
     const int jitter_index = o.temporal ? frame_index_ % halton_cycle + 1 : 0;
-    const glm::vec3 jitter = o.temporal
+    Jitter jitter;
+    jitter.froxel = o.temporal
         ? glm::vec3(float(halton(jitter_index, 2)), float(halton(jitter_index, 3)), float(halton(jitter_index, 5)))
         : glm::vec3(0.5f);
-    const float sun_jitter = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
+    jitter.sun = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
     ++frame_index_;
+    return jitter;
+}
 
-    const bool shadows = o.terrain_shadows && terrain.has_terrain();
-    // Tiles: the depths their slices span.
+void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
+{
+    const geometry::FroxelOptions& o = options_;
+    const glm::ivec3 size = v_->size;
     mode_ = FroxelTileBounds::Mode::standard;
     shell_ok_ = false;
     if (o.fog_aware) {
@@ -345,45 +364,45 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
             !shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
         mode_ = shell_ok_ && !o.height_fog.enabled() ? FroxelTileBounds::Mode::shell : FroxelTileBounds::Mode::ground;
     }
-    timers_[tiles].begin();
+    const ScopedPassTimer timed(timers_[tiles]);
+    // The depths each tile's slices span.
     tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
                         v_->tiles[current_].get());
-    const geometry::HeightFog& haze = o.height_fog;
     if (mode_ == FroxelTileBounds::Mode::shell) {  // ranges end where the fog turns opaque
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         bind_layout(opaque_);
         glBindTextureUnit(unit_tiles, 0);  // written below as an image, not read as a texture
-        medium_gpu_.bind(opaque_, haze, unit_medium);
+        medium_gpu_.bind(opaque_, o.height_fog, unit_medium);
         opaque_.set("u_steps", 48);
         opaque_.use();
         glBindImageTexture(0, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
         glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    timers_[tiles].end();
-    timer_ran_[tiles] = true;
+}
 
-    const GLuint groups_x = GLuint((size.x + 7) / 8), groups_y = GLuint((size.y + 7) / 8);
-    auto barrier = [] { glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); };
-
-    timers_[density].begin();
+void FroxelPass::run_density()
+{
+    const ScopedPassTimer timed(timers_[density]);
     bind_layout(density_);
-    medium_gpu_.bind(density_, haze, unit_medium);
-    density_.set("u_samples", o.density_samples);
+    medium_gpu_.bind(density_, options_.height_fog, unit_medium);
+    density_.set("u_samples", options_.density_samples);
     density_.use();
     glBindImageTexture(0, v_->density.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups_x, groups_y, GLuint(size.z));
-    barrier();
-    timers_[density].end();
-    timer_ran_[density] = true;
+    dispatch_volume(v_->size, v_->size.z);
+}
 
-    timers_[lighting].begin();
+void FroxelPass::run_lighting(const FrameContext& frame, bool terrain_shadows, const Jitter& jitter)
+{
+    const geometry::FroxelOptions& o = options_;
+    const geometry::HeightFog& haze = o.height_fog;
+    const ScopedPassTimer timed(timers_[lighting]);
     bind_layout(lighting_);
     medium_gpu_.bind(lighting_, haze, unit_medium);
-    shadow_.bind(lighting_, unit_esm, shadows);
+    shadow_.bind(lighting_, unit_esm, terrain_shadows);
     lighting_.set("u_density", unit_density);
-    lighting_.set("u_jitter", jitter);
-    lighting_.set("u_sun_jitter", sun_jitter);
+    lighting_.set("u_jitter", jitter.froxel);
+    lighting_.set("u_sun_jitter", jitter.sun);
     lighting_.set("u_sun_direction", safe_direction(frame.sun_direction));
     lighting_.set("u_sun_radiance", frame.sun_radiance);
     lighting_.set("u_ambient", frame.ambient);
@@ -401,20 +420,19 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     lighting_.use();
     glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups_x, groups_y, GLuint(size.z));
-    barrier();
-    timers_[lighting].end();
-    timer_ran_[lighting] = true;
+    dispatch_volume(v_->size, v_->size.z);
+}
 
-    const GLuint lit = o.temporal ? v_->resolved[current_].get() : v_->light.get();
-    if (o.temporal) {
-        timers_[temporal].begin();
+void FroxelPass::run_temporal()
+{
+    {
+        const ScopedPassTimer timed(timers_[temporal]);
         bind_layout(temporal_);
         temporal_.set("u_current", unit_light);
         temporal_.set("u_history", unit_history);
         temporal_.set("u_history_tiles", unit_history_tiles);
         temporal_.set("u_history_valid", int(history_valid_));
-        temporal_.set("u_weight", float(o.history_weight));
+        temporal_.set("u_weight", float(options_.history_weight));
         temporal_.set("u_previous_view_projection", previous_.view_projection);
         temporal_.set("u_previous_eye", previous_.eye);
         temporal_.set("u_previous_forward", previous_.forward);
@@ -423,14 +441,15 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
         glBindTextureUnit(unit_history, v_->resolved[1 - current_].get());
         glBindTextureUnit(unit_history_tiles, v_->tiles[1 - current_].get());
         glBindImageTexture(0, v_->resolved[current_].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glDispatchCompute(groups_x, groups_y, GLuint(size.z));
-        barrier();
-        timers_[temporal].end();
-        timer_ran_[temporal] = true;
-        history_valid_ = true;
+        dispatch_volume(v_->size, v_->size.z);
     }
+    history_valid_ = true;
+}
 
-    timers_[integrate].begin();
+void FroxelPass::run_integrate()
+{
+    const GLuint lit = options_.temporal ? v_->resolved[current_].get() : v_->light.get();
+    const ScopedPassTimer timed(timers_[integrate]);
     bind_layout(integrate_);
     integrate_.set("u_light", unit_light);
     integrate_.set("u_density", unit_density);
@@ -438,10 +457,7 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     glBindTextureUnit(unit_light, lit);
     glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->integrated.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups_x, groups_y, 1);
-    barrier();
-    timers_[integrate].end();
-    timer_ran_[integrate] = true;
+    dispatch_volume(v_->size, 1);
 }
 
 void FroxelPass::bind_shadow(const ShaderProgram& p) const
@@ -543,9 +559,9 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
 
 void FroxelPass::append_timings(std::vector<PassTime>& out) const
 {
-    for (int s = 0; s < stage_count; ++s)
-        if (timer_ran_[std::size_t(s)])
-            out.push_back(timers_[std::size_t(s)].result());
+    for (const PassTimer& timer : timers_)
+        if (timer.ran())
+            out.push_back(timer.result());
 }
 
 }  // namespace kiri::render::detail

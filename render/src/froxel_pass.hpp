@@ -83,13 +83,25 @@ private:
     bool history_valid_ = false;
     glm::vec3 light_[3]{};  // sun direction, radiance, ambient of the last run
     FroxelStats stats_;
-    std::vector<PassTimer> timers_;
-    std::vector<bool> timer_ran_;
+    std::vector<PassTimer> timers_;  // one per stage, in stage order
 
     std::vector<double> make_key(const FrameContext& frame, const TerrainPass& terrain) const;
     bool visible(const FrameContext& frame) const;
     void bind_layout(const ShaderProgram& program) const;
+    // The update's passes, in order; each times itself.
     void run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
+    struct Jitter {
+        glm::vec3 froxel{0.5f};  // the sample's position in its froxel
+        float sun = 0.5f;        // the start of its sun march
+    };
+    //! The frame's view becomes the volume's (the last one is kept for reprojection); this
+    //! frame's jitter.
+    Jitter advance_view(const FrameContext& frame);
+    void run_tiles(const FrameContext& frame, GLuint depth_texture);
+    void run_density();
+    void run_lighting(const FrameContext& frame, bool terrain_shadows, const Jitter& jitter);
+    void run_temporal();
+    void run_integrate();
     void bind_apply_textures(const ShaderProgram& program) const;
 };
 
