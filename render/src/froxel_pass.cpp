@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 
 #include <glm/geometric.hpp>
@@ -119,7 +118,7 @@ void FroxelPass::clear()
     apply_ = false;
     medium_ = nullptr;
     history_valid_ = false;
-    key_.clear();
+    key_.reset();
     stats_ = {};
 }
 
@@ -145,63 +144,6 @@ bool FroxelPass::visible(const FrameContext& frame) const
             return false;
     }
     return box_in_view(frame, b.min, b.max);
-}
-
-std::vector<double> FroxelPass::make_key(const FrameContext& frame, const TerrainPass& terrain) const
-{
-    // Everything the volume depends on; equal keys on consecutive frames: nothing to redo.
-    std::vector<double> k;
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            k.push_back(frame.view[c][r]);
-    k.insert(k.end(), {frame.projection[0][0], frame.projection[1][1], double(frame.width), double(frame.height)});
-    for (const glm::vec3& v : {frame.sun_direction, frame.sun_radiance, frame.ambient})
-        k.insert(k.end(), {v.x, v.y, v.z});
-    k.insert(k.end(),
-             {double(frame.partitioned), frame.partition.x, frame.partition.y, frame.partition.z, frame.partition.w});
-    std::uintptr_t ids[2] = {reinterpret_cast<std::uintptr_t>(medium_),
-                             reinterpret_cast<std::uintptr_t>(terrain.identity())};
-    for (std::uintptr_t id : ids)
-        k.push_back(double(id));
-    if (medium_) {
-        const geometry::MediumOptions& o = medium_->options();
-        const geometry::MediumDetail& d = medium_->detail();
-        k.insert(k.end(),
-                 {o.extinction, o.albedo, o.anisotropy, o.top_density, d.detail, d.detail_scale, d.layers, d.wind.x,
-                  d.wind.y, d.time, d.dissipation_half_life});
-    }
-    const geometry::FroxelOptions& o = options_;
-    const geometry::HeightFog& h = o.height_fog;
-    k.insert(k.end(),
-             {double(o.width),
-              double(o.height),
-              double(o.slices),
-              double(o.distribution),
-              o.power,
-              o.log2_scale,
-              o.near,
-              o.far,
-              double(o.fog_aware),
-              double(o.temporal),
-              o.history_weight,
-              double(o.density_samples),
-              double(o.sun_steps),
-              double(o.pixel_steps),
-              double(o.terrain_shadows),
-              double(o.fog_shadows),
-              double(geometry::scattering_octaves_of(medium_)),
-              double(o.shadow_map_size),
-              o.esm_sharpness,
-              h.extinction,
-              h.base,
-              h.scale_height,
-              h.albedo,
-              h.anisotropy,
-              h.min.x,
-              h.min.y,
-              h.max.x,
-              h.max.y});
-    return k;
 }
 
 void FroxelPass::bind_layout(const ShaderProgram& p) const
@@ -230,7 +172,7 @@ void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
     if (!visible_) {  // off-screen: no pass runs, no history survives
         apply_ = false;
         history_valid_ = false;
-        key_.clear();
+        key_.reset();
     }
     // The sun's view of the terrain (kept while the sun and the terrain stay): the terrain
     // casts its shadows in the frame whether the fog is in view or not.
@@ -262,11 +204,11 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
         glTextureParameteri(v_->light.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         v_->size = size;
         history_valid_ = false;
-        key_.clear();
+        key_.reset();
     }
     const geometry::FroxelOptions& o = options_;
-    std::vector<double> key = make_key(frame, terrain);
-    if (key == key_ && apply_) {
+    FroxelVolumeKey key = make_froxel_volume_key(frame, terrain.identity(), medium_, o);
+    if (key_ == key && apply_) {
         ++static_frames_;
         if (!options_.temporal || static_frames_ >= halton_cycle)
             return;  // the volume is as good as it gets: reuse it
@@ -275,10 +217,8 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     }
     // The history stays usable across view, sun and fog changes (reprojection and the clamp
     // take care of them), not across a change of the volume's layout.
-    const std::vector<double> layout = {
-        double(o.width), double(o.height),   double(o.slices), double(o.distribution), o.power, o.log2_scale, o.near,
-        o.far,           double(o.fog_aware)};
-    history_valid_ = history_valid_ && o.temporal && layout == layout_;
+    const FroxelVolumeLayout layout = volume_layout(o);
+    history_valid_ = history_valid_ && o.temporal && layout_ == layout;
     layout_ = layout;
     // A sun that turned by more than half a degree, or light that changed by more than 2 %,
     // changes J everywhere at once: the clamp alone would let the old light linger.

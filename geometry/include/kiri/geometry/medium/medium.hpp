@@ -68,6 +68,7 @@ struct MediumDetail {
     glm::dvec2 wind{0.0};                //!< m/s: drift of the noise
     double time = 0.0;                   //!< seconds
     double dissipation_half_life = 0.0;  //!< seconds; 0: none
+    bool operator==(const MediumDetail&) const = default;
 };
 MediumDetail medium_detail(const LayerOptions& layers);
 
