@@ -33,6 +33,8 @@ std::filesystem::path data_dir()
 
 void run(const BenchArgs& a)
 {
+    if (!KIRI_BUILD_BENCH)
+        throw InputError("", "bench", "this kiri was built without its benchmark stages (KIRI_BUILD_BENCH=OFF)");
     auto& all = bench::stages();
     if (a.list) {
         for (const bench::Stage& s : all)

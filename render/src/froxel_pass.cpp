@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
 
 #include <glm/geometric.hpp>
@@ -54,6 +53,14 @@ Texture make_tiles(const glm::ivec2& size)
     return t;
 }
 
+// One invocation per froxel column (8 x 8 per group) and `depth` in z, then the barrier that
+// lets the next pass read what it wrote.
+void dispatch_volume(const glm::ivec3& size, int depth)
+{
+    glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), GLuint(depth));
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 // Exactly zero components would make the box exit of the sun march 0 * inf.
 glm::vec3 safe_direction(glm::vec3 d)
 {
@@ -83,7 +90,6 @@ FroxelPass::FroxelPass()
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
-    timer_ran_.assign(stage_count, false);
 }
 
 FroxelPass::~FroxelPass() = default;
@@ -112,7 +118,7 @@ void FroxelPass::clear()
     apply_ = false;
     medium_ = nullptr;
     history_valid_ = false;
-    key_.clear();
+    key_.reset();
     stats_ = {};
 }
 
@@ -140,63 +146,6 @@ bool FroxelPass::visible(const FrameContext& frame) const
     return box_in_view(frame, b.min, b.max);
 }
 
-std::vector<double> FroxelPass::make_key(const FrameContext& frame, const TerrainPass& terrain) const
-{
-    // Everything the volume depends on; equal keys on consecutive frames: nothing to redo.
-    std::vector<double> k;
-    for (int c = 0; c < 4; ++c)
-        for (int r = 0; r < 4; ++r)
-            k.push_back(frame.view[c][r]);
-    k.insert(k.end(), {frame.projection[0][0], frame.projection[1][1], double(frame.width), double(frame.height)});
-    for (const glm::vec3& v : {frame.sun_direction, frame.sun_radiance, frame.ambient})
-        k.insert(k.end(), {v.x, v.y, v.z});
-    k.insert(k.end(),
-             {double(frame.partitioned), frame.partition.x, frame.partition.y, frame.partition.z, frame.partition.w});
-    std::uintptr_t ids[2] = {reinterpret_cast<std::uintptr_t>(medium_),
-                             reinterpret_cast<std::uintptr_t>(terrain.identity())};
-    for (std::uintptr_t id : ids)
-        k.push_back(double(id));
-    if (medium_) {
-        const geometry::MediumOptions& o = medium_->options();
-        const geometry::MediumDetail& d = medium_->detail();
-        k.insert(k.end(),
-                 {o.extinction, o.albedo, o.anisotropy, o.top_density, d.detail, d.detail_scale, d.layers, d.wind.x,
-                  d.wind.y, d.time, d.dissipation_half_life});
-    }
-    const geometry::FroxelOptions& o = options_;
-    const geometry::HeightFog& h = o.height_fog;
-    k.insert(k.end(),
-             {double(o.width),
-              double(o.height),
-              double(o.slices),
-              double(o.distribution),
-              o.power,
-              o.log2_scale,
-              o.near,
-              o.far,
-              double(o.fog_aware),
-              double(o.temporal),
-              o.history_weight,
-              double(o.density_samples),
-              double(o.sun_steps),
-              double(o.pixel_steps),
-              double(o.terrain_shadows),
-              double(o.fog_shadows),
-              double(geometry::scattering_octaves_of(medium_)),
-              double(o.shadow_map_size),
-              o.esm_sharpness,
-              h.extinction,
-              h.base,
-              h.scale_height,
-              h.albedo,
-              h.anisotropy,
-              h.min.x,
-              h.min.y,
-              h.max.x,
-              h.max.y});
-    return k;
-}
-
 void FroxelPass::bind_layout(const ShaderProgram& p) const
 {
     p.set("u_fx_size", v_->size);
@@ -214,7 +163,8 @@ void FroxelPass::bind_layout(const ShaderProgram& p) const
 
 void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
 {
-    std::fill(timer_ran_.begin(), timer_ran_.end(), false);
+    for (PassTimer& timer : timers_)
+        timer.forget();
     stats_.updated = false;
     medium_gpu_.set_partition(frame.partitioned, frame.partition);
     visible_ = enabled_ && visible(frame);
@@ -222,18 +172,16 @@ void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
     if (!visible_) {  // off-screen: no pass runs, no history survives
         apply_ = false;
         history_valid_ = false;
-        key_.clear();
+        key_.reset();
     }
     // The sun's view of the terrain (kept while the sun and the terrain stay): the terrain
     // casts its shadows in the frame whether the fog is in view or not.
     if (enabled_ && options_.terrain_shadows && terrain.has_terrain()) {
         glm::dvec3 lo = terrain.bounds_min(), hi = terrain.bounds_max();
         extend_bounds(lo, hi);
-        timers_[shadow_map].begin();
+        const ScopedPassTimer timed(timers_[shadow_map]);
         if (shadow_.update(terrain, frame.sun_direction, lo, hi, options_.shadow_map_size, options_.esm_sharpness))
             ++stats_.shadow_map_updates;
-        timers_[shadow_map].end();
-        timer_ran_[shadow_map] = true;
     }
 }
 
@@ -256,11 +204,11 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
         glTextureParameteri(v_->light.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         v_->size = size;
         history_valid_ = false;
-        key_.clear();
+        key_.reset();
     }
     const geometry::FroxelOptions& o = options_;
-    std::vector<double> key = make_key(frame, terrain);
-    if (key == key_ && apply_) {
+    FroxelVolumeKey key = make_froxel_volume_key(frame, terrain.identity(), medium_, o);
+    if (key_ == key && apply_) {
         ++static_frames_;
         if (!options_.temporal || static_frames_ >= halton_cycle)
             return;  // the volume is as good as it gets: reuse it
@@ -269,10 +217,8 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     }
     // The history stays usable across view, sun and fog changes (reprojection and the clamp
     // take care of them), not across a change of the volume's layout.
-    const std::vector<double> layout = {
-        double(o.width), double(o.height),   double(o.slices), double(o.distribution), o.power, o.log2_scale, o.near,
-        o.far,           double(o.fog_aware)};
-    history_valid_ = history_valid_ && o.temporal && layout == layout_;
+    const FroxelVolumeLayout layout = volume_layout(o);
+    history_valid_ = history_valid_ && o.temporal && layout_ == layout;
     layout_ = layout;
     // A sun that turned by more than half a degree, or light that changed by more than 2 %,
     // changes J everywhere at once: the clamp alone would let the old light linger.
@@ -293,7 +239,7 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
 {
     if (!visible_ || !apply_)
         return;
-    timers_[apply_stage].begin();
+    const ScopedPassTimer timed(timers_[apply_stage]);
     const ShaderProgram& p = apply_program_;
     bind_apply(p);
     const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
@@ -306,14 +252,22 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
-    timers_[apply_stage].end();
-    timer_ran_[apply_stage] = true;
 }
 
 void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture)
 {
+    const Jitter jitter = advance_view(frame);
+    run_tiles(frame, depth_texture);
+    run_density();
+    run_lighting(frame, options_.terrain_shadows && terrain.has_terrain(), jitter);
+    if (options_.temporal)
+        run_temporal();
+    run_integrate();
+}
+
+FroxelPass::Jitter FroxelPass::advance_view(const FrameContext& frame)
+{
     const geometry::FroxelOptions& o = options_;
-    const glm::ivec3 size = v_->size;
     // This frame's view (the previous one is kept for reprojection).
     previous_ = view_;
     current_ = 1 - current_;
@@ -329,14 +283,19 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     view_.far = float(o.far > 0.0 ? o.far : far_plane);
     view_.far = std::max(view_.far, view_.near * 1.01f);
     const int jitter_index = o.temporal ? frame_index_ % halton_cycle + 1 : 0;
-    const glm::vec3 jitter = o.temporal
+    Jitter jitter;
+    jitter.froxel = o.temporal
         ? glm::vec3(float(halton(jitter_index, 2)), float(halton(jitter_index, 3)), float(halton(jitter_index, 5)))
         : glm::vec3(0.5f);
-    const float sun_jitter = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
+    jitter.sun = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
     ++frame_index_;
+    return jitter;
+}
 
-    const bool shadows = o.terrain_shadows && terrain.has_terrain();
-    // Tiles: the depths their slices span.
+void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
+{
+    const geometry::FroxelOptions& o = options_;
+    const glm::ivec3 size = v_->size;
     mode_ = FroxelTileBounds::Mode::standard;
     shell_ok_ = false;
     if (o.fog_aware) {
@@ -345,45 +304,45 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
             !shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
         mode_ = shell_ok_ && !o.height_fog.enabled() ? FroxelTileBounds::Mode::shell : FroxelTileBounds::Mode::ground;
     }
-    timers_[tiles].begin();
+    const ScopedPassTimer timed(timers_[tiles]);
+    // The depths each tile's slices span.
     tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
                         v_->tiles[current_].get());
-    const geometry::HeightFog& haze = o.height_fog;
     if (mode_ == FroxelTileBounds::Mode::shell) {  // ranges end where the fog turns opaque
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         bind_layout(opaque_);
         glBindTextureUnit(unit_tiles, 0);  // written below as an image, not read as a texture
-        medium_gpu_.bind(opaque_, haze, unit_medium);
+        medium_gpu_.bind(opaque_, o.height_fog, unit_medium);
         opaque_.set("u_steps", 48);
         opaque_.use();
         glBindImageTexture(0, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
         glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     }
-    timers_[tiles].end();
-    timer_ran_[tiles] = true;
+}
 
-    const GLuint groups_x = GLuint((size.x + 7) / 8), groups_y = GLuint((size.y + 7) / 8);
-    auto barrier = [] { glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT); };
-
-    timers_[density].begin();
+void FroxelPass::run_density()
+{
+    const ScopedPassTimer timed(timers_[density]);
     bind_layout(density_);
-    medium_gpu_.bind(density_, haze, unit_medium);
-    density_.set("u_samples", o.density_samples);
+    medium_gpu_.bind(density_, options_.height_fog, unit_medium);
+    density_.set("u_samples", options_.density_samples);
     density_.use();
     glBindImageTexture(0, v_->density.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups_x, groups_y, GLuint(size.z));
-    barrier();
-    timers_[density].end();
-    timer_ran_[density] = true;
+    dispatch_volume(v_->size, v_->size.z);
+}
 
-    timers_[lighting].begin();
+void FroxelPass::run_lighting(const FrameContext& frame, bool terrain_shadows, const Jitter& jitter)
+{
+    const geometry::FroxelOptions& o = options_;
+    const geometry::HeightFog& haze = o.height_fog;
+    const ScopedPassTimer timed(timers_[lighting]);
     bind_layout(lighting_);
     medium_gpu_.bind(lighting_, haze, unit_medium);
-    shadow_.bind(lighting_, unit_esm, shadows);
+    shadow_.bind(lighting_, unit_esm, terrain_shadows);
     lighting_.set("u_density", unit_density);
-    lighting_.set("u_jitter", jitter);
-    lighting_.set("u_sun_jitter", sun_jitter);
+    lighting_.set("u_jitter", jitter.froxel);
+    lighting_.set("u_sun_jitter", jitter.sun);
     lighting_.set("u_sun_direction", safe_direction(frame.sun_direction));
     lighting_.set("u_sun_radiance", frame.sun_radiance);
     lighting_.set("u_ambient", frame.ambient);
@@ -401,20 +360,19 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     lighting_.use();
     glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups_x, groups_y, GLuint(size.z));
-    barrier();
-    timers_[lighting].end();
-    timer_ran_[lighting] = true;
+    dispatch_volume(v_->size, v_->size.z);
+}
 
-    const GLuint lit = o.temporal ? v_->resolved[current_].get() : v_->light.get();
-    if (o.temporal) {
-        timers_[temporal].begin();
+void FroxelPass::run_temporal()
+{
+    {
+        const ScopedPassTimer timed(timers_[temporal]);
         bind_layout(temporal_);
         temporal_.set("u_current", unit_light);
         temporal_.set("u_history", unit_history);
         temporal_.set("u_history_tiles", unit_history_tiles);
         temporal_.set("u_history_valid", int(history_valid_));
-        temporal_.set("u_weight", float(o.history_weight));
+        temporal_.set("u_weight", float(options_.history_weight));
         temporal_.set("u_previous_view_projection", previous_.view_projection);
         temporal_.set("u_previous_eye", previous_.eye);
         temporal_.set("u_previous_forward", previous_.forward);
@@ -423,14 +381,15 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
         glBindTextureUnit(unit_history, v_->resolved[1 - current_].get());
         glBindTextureUnit(unit_history_tiles, v_->tiles[1 - current_].get());
         glBindImageTexture(0, v_->resolved[current_].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        glDispatchCompute(groups_x, groups_y, GLuint(size.z));
-        barrier();
-        timers_[temporal].end();
-        timer_ran_[temporal] = true;
-        history_valid_ = true;
+        dispatch_volume(v_->size, v_->size.z);
     }
+    history_valid_ = true;
+}
 
-    timers_[integrate].begin();
+void FroxelPass::run_integrate()
+{
+    const GLuint lit = options_.temporal ? v_->resolved[current_].get() : v_->light.get();
+    const ScopedPassTimer timed(timers_[integrate]);
     bind_layout(integrate_);
     integrate_.set("u_light", unit_light);
     integrate_.set("u_density", unit_density);
@@ -438,10 +397,7 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
     glBindTextureUnit(unit_light, lit);
     glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->integrated.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glDispatchCompute(groups_x, groups_y, 1);
-    barrier();
-    timers_[integrate].end();
-    timer_ran_[integrate] = true;
+    dispatch_volume(v_->size, 1);
 }
 
 void FroxelPass::bind_shadow(const ShaderProgram& p) const
@@ -543,9 +499,9 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
 
 void FroxelPass::append_timings(std::vector<PassTime>& out) const
 {
-    for (int s = 0; s < stage_count; ++s)
-        if (timer_ran_[std::size_t(s)])
-            out.push_back(timers_[std::size_t(s)].result());
+    for (const PassTimer& timer : timers_)
+        if (timer.ran())
+            out.push_back(timer.result());
 }
 
 }  // namespace kiri::render::detail

@@ -11,12 +11,14 @@
 //             (front to back through the slices);
 //   apply     every frame, the fog on the resolved frame (froxel_apply.comp).
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "frame_context.hpp"
 #include "froxel_medium.hpp"
 #include "froxel_shell.hpp"
 #include "froxel_tile_bounds.hpp"
+#include "froxel_volume_key.hpp"
 #include "kiri/geometry/volume/froxel_options.hpp"
 #include "kiri/render/renderer.hpp"
 #include "pass_timer.hpp"
@@ -78,18 +80,30 @@ private:
         glm::vec3 eye{0.0f}, forward{0.0f, 1.0f, 0.0f}, right{1.0f, 0.0f, 0.0f}, up{0.0f, 0.0f, 1.0f};
         float near = 1.0f, far = 2.0f;
     } view_, previous_;
-    std::vector<double> key_, layout_;
+    std::optional<FroxelVolumeKey> key_;
+    std::optional<FroxelVolumeLayout> layout_;
     int static_frames_ = 0, frame_index_ = 0, current_ = 0;
     bool history_valid_ = false;
     glm::vec3 light_[3]{};  // sun direction, radiance, ambient of the last run
     FroxelStats stats_;
-    std::vector<PassTimer> timers_;
-    std::vector<bool> timer_ran_;
+    std::vector<PassTimer> timers_;  // one per stage, in stage order
 
-    std::vector<double> make_key(const FrameContext& frame, const TerrainPass& terrain) const;
     bool visible(const FrameContext& frame) const;
     void bind_layout(const ShaderProgram& program) const;
+    // The update's passes, in order; each times itself.
     void run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
+    struct Jitter {
+        glm::vec3 froxel{0.5f};  // the sample's position in its froxel
+        float sun = 0.5f;        // the start of its sun march
+    };
+    //! The frame's view becomes the volume's (the last one is kept for reprojection); this
+    //! frame's jitter.
+    Jitter advance_view(const FrameContext& frame);
+    void run_tiles(const FrameContext& frame, GLuint depth_texture);
+    void run_density();
+    void run_lighting(const FrameContext& frame, bool terrain_shadows, const Jitter& jitter);
+    void run_temporal();
+    void run_integrate();
     void bind_apply_textures(const ShaderProgram& program) const;
 };
 

@@ -14,6 +14,7 @@ public:
     explicit PassTimer(std::string name) : name_(std::move(name)), query_(make_query(GL_TIME_ELAPSED)) {}
     void begin()
     {
+        ran_ = true;
         cpu_start_ = std::chrono::steady_clock::now();
         glBeginQuery(GL_TIME_ELAPSED, query_.get());
     }
@@ -22,6 +23,10 @@ public:
         glEndQuery(GL_TIME_ELAPSED);
         cpu_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - cpu_start_).count();
     }
+    //! Whether begin() was called since the last forget(): passes that may be skipped report
+    //! only the timings of the ones that ran.
+    bool ran() const { return ran_; }
+    void forget() { ran_ = false; }
     PassTime result() const
     {
         GLuint64 ns = 0;
@@ -34,6 +39,20 @@ private:
     Query query_;
     std::chrono::steady_clock::time_point cpu_start_;
     double cpu_ms_ = 0.0;
+    bool ran_ = false;
+};
+
+//! Times the enclosing scope: begin() now, end() when it closes. GL_TIME_ELAPSED queries do
+//! not nest, so neither may two of these.
+class ScopedPassTimer {
+public:
+    explicit ScopedPassTimer(PassTimer& timer) : timer_(timer) { timer_.begin(); }
+    ~ScopedPassTimer() { timer_.end(); }
+    ScopedPassTimer(const ScopedPassTimer&) = delete;
+    ScopedPassTimer& operator=(const ScopedPassTimer&) = delete;
+
+private:
+    PassTimer& timer_;
 };
 
 }  // namespace kiri::render::detail

@@ -27,6 +27,7 @@ namespace kiri::render {
 using detail::FrameContext;
 
 using detail::PassTimer;
+using detail::ScopedPassTimer;
 
 struct Renderer::Impl {
     detail::SkyPass sky;
@@ -151,48 +152,48 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.layers.set_fog(fog);
     r.particles.set_fog(fog);
     r.targets.bind_for_drawing();
-    r.sky_timer.begin();
-    r.sky.draw(frame);
-    r.sky_timer.end();
-    r.terrain_timer.begin();
-    r.terrain.draw(frame, fog);
-    r.terrain_timer.end();
+    {
+        const ScopedPassTimer timed(r.sky_timer);
+        r.sky.draw(frame);
+    }
+    {
+        const ScopedPassTimer timed(r.terrain_timer);
+        r.terrain.draw(frame, fog);
+    }
     if (layers_multisampled) {  // layers straight into the multisampled frame
-        r.layers_timer.begin();
+        const ScopedPassTimer timed(r.layers_timer);
         if (r.layers.draw(frame))
             ++r.pending_uploads;
-        r.layers_timer.end();
     }
-    r.resolve_timer.begin();
-    r.targets.resolve();
-    r.resolve_timer.end();
+    {
+        const ScopedPassTimer timed(r.resolve_timer);
+        r.targets.resolve();
+    }
     if (fog) {  // the volume from the frame's depth, then the fog on the resolved frame
         r.froxel->update(frame, r.terrain, r.targets.resolved_depth());
         r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth());
     }
     if (!layers_multisampled) {  // layers in their own target, composited after the resolve
-        r.layers_timer.begin();
+        const ScopedPassTimer timed(r.layers_timer);
         if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.hdr_framebuffer(), r.targets.resolved_depth()))
             ++r.pending_uploads;
-        r.layers_timer.end();
     }
     const bool particles = r.particles.has_particles();
     bool rebuilt = false;
     if (particles) {  // over the terrain and the layers, soft where they meet the terrain
-        r.particles_timer.begin();
+        const ScopedPassTimer timed(r.particles_timer);
         rebuilt = r.particles.draw(frame, r.targets.hdr_framebuffer(), r.targets.resolved_depth());
-        r.particles_timer.end();
     }
-    r.tonemap_timer.begin();
-    glBindFramebuffer(GL_FRAMEBUFFER, r.targets.display_framebuffer());
-    glViewport(0, 0, width, height);
-    r.tonemap.draw(frame, r.targets.hdr_color());
-    r.tonemap_timer.end();
+    {
+        const ScopedPassTimer timed(r.tonemap_timer);
+        glBindFramebuffer(GL_FRAMEBUFFER, r.targets.display_framebuffer());
+        glViewport(0, 0, width, height);
+        r.tonemap.draw(frame, r.targets.hdr_color());
+    }
     const bool overlays = r.overlays.has_visible();
     if (overlays) {  // last, over the fog, into the display image (its depth is the terrain's)
-        r.overlays_timer.begin();
+        const ScopedPassTimer timed(r.overlays_timer);
         r.overlays.draw(frame);
-        r.overlays_timer.end();
     }
     glFinish();
     detail::check_gl_errors("Renderer::draw");

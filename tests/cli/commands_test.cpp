@@ -61,6 +61,8 @@ TEST(KiriRender, DefaultSceneWritesAPictureAndPrintsItsPath)
     fs::remove(out);
 }
 
+// The benchmark stages are compiled in with KIRI_BUILD_BENCH (tests/cli/CMakeLists.txt).
+#if KIRI_BUILD_BENCH
 TEST(KiriBench, EndToEndStageWritesCsvAndPlot)
 {
     const fs::path dir = kiri::test::temp_path("commands_test_bench");
@@ -101,3 +103,14 @@ TEST(KiriBench, UnknownStageIsAUsageError)
     EXPECT_EQ(r.err, "kiri: --stage: unknown stage \"nonsense\" (see kiri bench --list)\n");
     EXPECT_FALSE(fs::exists(dir));
 }
+#else
+TEST(KiriBench, BuiltWithoutStagesSaysSo)
+{
+    const fs::path dir = kiri::test::temp_path("commands_test_bench_none");
+    fs::remove_all(dir);
+    const auto r = run_kiri("bench --quick -o " + dir.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "kiri: bench: this kiri was built without its benchmark stages (KIRI_BUILD_BENCH=OFF)\n");
+    EXPECT_FALSE(fs::exists(dir));
+}
+#endif

@@ -9,7 +9,6 @@ kiri_test(layer_stack_test SOURCES layer_stack_test.cpp LIBS kiri_geometry LABEL
 kiri_test(medium_test SOURCES medium_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(reference_fog_test SOURCES reference_fog_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(froxel_options_test SOURCES froxel_options_test.cpp LIBS kiri_geometry LABELS unit)
-list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
-find_package(OpenVDB REQUIRED)
+kiri_find_openvdb()
 kiri_test(medium_vdb_test SOURCES medium_vdb_test.cpp LIBS kiri_geometry OpenVDB::openvdb LABELS unit)
 kiri_test(fog_partition_test SOURCES fog_partition_test.cpp LIBS kiri_geometry LABELS unit)

@@ -1,10 +1,13 @@
 // The froxel fog against the CPU reference ray marcher (geometry/reference_fog.hpp) at small
 // resolution: homogeneous fog, height fog, a 2 m layer at 30 m (the Jacksboro fog lake is in
-// froxel_lake_gltest.cpp); and what the pass must not do: NaN, g at +-1, work it need not do.
+// froxel_lake_gltest.cpp); and what the pass must not do: NaN, g at +-1, work it need not do,
+// and what it must: rerun when any option changes.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <iterator>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -157,6 +160,83 @@ TEST_F(FroxelGl, FogOffScreenCostsNothing)
     r.draw(HillScene::camera(), 80, 48);
     EXPECT_TRUE(r.last_stats().froxel.visible);
     EXPECT_EQ(r.last_stats().froxel.updates, 1);
+}
+
+// The number of fields of an aggregate: the most initialisers T{...} takes.
+struct AnyField {
+    template <class T>
+    operator T() const;
+};
+template <class T, std::size_t... I>
+constexpr bool takes_initialisers(std::index_sequence<I...>)
+{
+    return requires { T{(void(I), AnyField{})...}; };
+}
+template <class T, std::size_t N = 0>
+constexpr std::size_t aggregate_fields()
+{
+    if constexpr (takes_initialisers<T>(std::make_index_sequence<N + 1>{}))
+        return aggregate_fields<T, N + 1>();
+    else
+        return N;
+}
+
+TEST_F(FroxelGl, EveryOptionChangeReruns)
+{
+    // One change per field of FroxelOptions and of its height fog: the table must grow with
+    // the structs, so an option the volume ignores when deciding to rerun cannot go unnoticed.
+    using Change = std::pair<const char*, void (*)(g::FroxelOptions&)>;
+    const Change changes[] = {
+        {"width", [](g::FroxelOptions& o) { o.width = 24; }},
+        {"height", [](g::FroxelOptions& o) { o.height = 14; }},
+        {"slices", [](g::FroxelOptions& o) { o.slices = 24; }},
+        {"distribution", [](g::FroxelOptions& o) { o.distribution = g::SliceDistribution::log2; }},
+        {"power", [](g::FroxelOptions& o) { o.power = 3.0; }},
+        {"log2_scale", [](g::FroxelOptions& o) { o.log2_scale = 16.0; }},
+        {"near", [](g::FroxelOptions& o) { o.near = 2.0; }},
+        {"far", [](g::FroxelOptions& o) { o.far = 5000.0; }},
+        {"fog_aware", [](g::FroxelOptions& o) { o.fog_aware = !o.fog_aware; }},
+        {"temporal", [](g::FroxelOptions& o) { o.temporal = !o.temporal; }},
+        {"history_weight", [](g::FroxelOptions& o) { o.history_weight = 0.5; }},
+        {"density_samples", [](g::FroxelOptions& o) { o.density_samples = 3; }},
+        {"sun_steps", [](g::FroxelOptions& o) { o.sun_steps = 8; }},
+        {"pixel_steps", [](g::FroxelOptions& o) { o.pixel_steps = 16; }},
+        {"terrain_shadows", [](g::FroxelOptions& o) { o.terrain_shadows = !o.terrain_shadows; }},
+        {"fog_shadows", [](g::FroxelOptions& o) { o.fog_shadows = !o.fog_shadows; }},
+        {"shadow_map_size", [](g::FroxelOptions& o) { o.shadow_map_size = 512; }},
+        {"esm_sharpness", [](g::FroxelOptions& o) { o.esm_sharpness = 2.0; }},
+        {"height_fog.extinction", [](g::FroxelOptions& o) { o.height_fog.extinction = 0.001; }},
+        {"height_fog.base", [](g::FroxelOptions& o) { o.height_fog.base = 50.0; }},
+        {"height_fog.scale_height", [](g::FroxelOptions& o) { o.height_fog.scale_height = 60.0; }},
+        {"height_fog.albedo", [](g::FroxelOptions& o) { o.height_fog.albedo = 0.5; }},
+        {"height_fog.anisotropy", [](g::FroxelOptions& o) { o.height_fog.anisotropy = 0.2; }},
+        {"height_fog.min",
+         [](g::FroxelOptions& o) {
+             o.height_fog.min = {-2000.0, -2000.0};
+         }},
+        {"height_fog.max",
+         [](g::FroxelOptions& o) {
+             o.height_fog.max = {2000.0, 2000.0};
+         }},
+    };
+    ASSERT_EQ(std::size(changes), aggregate_fields<g::FroxelOptions>() - 1 + aggregate_fields<g::HeightFog>());
+    HillScene s;
+    Renderer r;
+    r.set_terrain(s.ground);
+    r.set_sun(sun());
+    const g::FroxelOptions base = small(20, 12, 32);
+    for (const auto& [field, change] : changes) {
+        g::FroxelOptions changed = base;
+        change(changed);
+        ASSERT_FALSE(changed == base) << field;
+        r.set_froxel_fog(&s.fog, base);
+        r.draw(HillScene::camera(), 80, 48);
+        r.draw(HillScene::camera(), 80, 48);
+        ASSERT_FALSE(r.last_stats().froxel.updated) << field << ": the unchanged options rerun";
+        r.set_froxel_fog(&s.fog, changed);
+        r.draw(HillScene::camera(), 80, 48);
+        EXPECT_TRUE(r.last_stats().froxel.updated) << field;
+    }
 }
 
 TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)

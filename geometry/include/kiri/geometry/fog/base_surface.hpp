@@ -98,6 +98,10 @@ public:
     const FaceStencils& stencils() const { return *stencils_; }
 
 private:
+    // The sample layout for the terrain's grid: the previous one when the grid is the same
+    // (returns true), else a new one.
+    bool place_samples(const Heightfield& terrain, int per_side);
+
     ControlMesh control_;
     SurfaceKind kind_;
     std::unique_ptr<FaceStencils> stencils_;  // the fit's linear map
