@@ -78,7 +78,7 @@ void run(const RenderArgs& a)
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n", a.out.c_str());
     std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, render::to_string(mode), seconds);
-    if (a.timings) {  // the last frame's passes (GL timer queries; llvmpipe: CPU time)
+    if (a.timings) {  // the last frame's passes: device time (pass_timer.hpp) and issue time
         const render::FrameStats& stats = renderer.last_stats();
         for (const render::PassTime& t : stats.passes)
             std::fprintf(stderr, "kiri render: pass %-18s gpu %9.2f ms  cpu %9.2f ms\n", t.pass.c_str(), t.gpu_ms,

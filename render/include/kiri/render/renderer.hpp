@@ -41,8 +41,11 @@ struct ParticleStyle {
 
 struct PassTime {
     std::string pass;
-    double gpu_ms = 0.0;  //!< GL timer query
-    double cpu_ms = 0.0;
+    //! The device's time of the pass: a GL timer query on a GPU; on a software rasteriser
+    //! (llvmpipe), whose queries do not time passes, the wall time from an idle device through
+    //! the pass to an idle device (render/src/pass_timer.hpp).
+    double gpu_ms = 0.0;
+    double cpu_ms = 0.0;  //!< the time the pass's commands took to issue
 };
 
 //! What the froxel fog did in a frame.
@@ -62,7 +65,9 @@ struct FogBuffer {
 };
 
 struct FrameStats {
-    //! sky, terrain, layers, resolve, and overlays when any overlay is visible.
+    //! sky, terrain, layers, resolve, tonemap, then the particles', the overlays' and the froxel
+    //! passes that ran. They do not overlap (the particles' "attenuation" build is a part of
+    //! "particles"): their device times add up to no more than frame_ms.
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
     int uploads = 0;               //!< GPU resources (re)built during this frame
