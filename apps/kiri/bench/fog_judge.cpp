@@ -55,18 +55,58 @@ void FogJudge::prepare(const geometry::Scene& scene, render::FogMode mode)
 
 const geometry::Terrain& FogJudge::terrain() const { return *pipeline_.products().terrain; }
 
-double FogJudge::frame_ms(int width, int height, int frames)
+double FogJudge::frame_ms(int width, int height, int frames) { return frame_cost(width, height, frames).frame_ms; }
+
+namespace {
+
+double median(std::vector<double> v)
+{
+    if (v.empty())
+        return 0.0;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
+}  // namespace
+
+FrameCost FogJudge::frame_cost(int width, int height, int frames)
 {
     std::vector<double> ms;
+    std::vector<std::vector<render::PassTime>> passes;
     for (int k = -1; k < frames; ++k) {
         render::Camera c = camera_;
         c.position.z += 1e-3 * (k + 2);  // a new view each frame: every pass reruns
         renderer_->draw(c, width, height);
-        if (k >= 0)  // the first frame uploads the layers, builds the buffer and the shadow map
+        if (k >= 0) {  // the first frame uploads the layers, builds the buffer and the shadow map
             ms.push_back(renderer_->last_stats().frame_ms);
+            passes.push_back(renderer_->last_stats().passes);
+        }
     }
-    std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
-    return ms[ms.size() / 2];
+    FrameCost cost;
+    cost.frame_ms = median(ms);
+    for (const render::PassTime& pass : passes.back()) {
+        std::vector<double> gpu, cpu;
+        for (const auto& frame : passes)
+            for (const render::PassTime& p : frame)
+                if (p.pass == pass.pass) {
+                    gpu.push_back(p.gpu_ms);
+                    cpu.push_back(p.cpu_ms);
+                }
+        cost.passes.push_back({pass.pass, median(gpu), median(cpu)});
+    }
+    return cost;
+}
+
+double FogJudge::still_ms(int width, int height)
+{
+    render::Camera moved = camera_;
+    moved.position.z += 0.5;  // a view the frames before were not drawn from
+    renderer_->draw(moved, width, height);
+    const auto start = std::chrono::steady_clock::now();
+    for (int k = 0; k < rendering_->warmup_frames(); ++k)
+        renderer_->draw(camera_, width, height);
+    still_image_ = renderer_->render(camera_, width, height);
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 render::FogError FogJudge::error()

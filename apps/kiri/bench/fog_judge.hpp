@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,13 @@ struct SceneJson {
     geometry::Scene parse(const nlohmann::json& root) const;
 };
 
+//! A frame's cost: the median frame time and, per pass, the median device and issue times
+//! (FrameStats::passes, in the order of the last frame).
+struct FrameCost {
+    double frame_ms = 0.0;
+    std::vector<render::PassTime> passes;
+};
+
 class FogJudge {
 public:
     //! The reference of `base`'s fog (its Medium, and its froxel height fog when the scene has
@@ -45,6 +53,14 @@ public:
     //! Median Renderer draw time (ms) of `frames` frames at width x height while the view moves
     //! by a millimetre a frame (the froxels rerun their passes, as in a moving view).
     double frame_ms(int width, int height, int frames);
+    //! The same frames' median time and their passes' median times.
+    FrameCost frame_cost(int width, int height, int frames);
+    //! A still picture at width x height as kiri render draws it, after a moving view: the
+    //! warm-up frames and the final one (ms, all of them).
+    double still_ms(int width, int height);
+    //! The frames still_ms drew for the picture, and the picture.
+    int still_frames() const { return rendering_ ? rendering_->warmup_frames() + 1 : 0; }
+    const render::Image& still_image() const { return still_image_; }
     //! The settled frame (after the froxels' warm-up) at the judge's size against the reference.
     render::FogError error();
     //! The last settled frame, tone-mapped (for a look).
@@ -60,7 +76,7 @@ private:
     std::unique_ptr<render::GlContext> context_;
     std::unique_ptr<render::Renderer> renderer_;
     std::optional<render::SceneRendering> rendering_;
-    render::Image last_image_;
+    render::Image last_image_, still_image_;
     std::optional<render::RadianceImage> plain_[2];  //!< without fog: [terrain shadows off, on]
 };
 
