@@ -66,13 +66,7 @@ void run(const RenderArgs& a)
     render::Renderer renderer;
     renderer.set_terrain(*products.terrain);
     rendering.apply(renderer);
-    // A still picture: the froxels' temporal filter's jittered frames first (its 16-frame
-    // Halton cycle), so the lighting's shadow edges are averaged over each froxel, not aliased.
-    for (int frame = 0; frame < rendering.warmup_frames(); ++frame) {
-        renderer.draw(camera, width, height);
-        if (!renderer.last_stats().froxel.visible)
-            break;  // no froxel fog in view: nothing to settle
-    }
+    // A still picture in one frame: the froxels' lighting takes its jittered samples at once.
     const render::Image image = renderer.render(camera, width, height);
     render::write_png_atomic(a.out, image);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -60,12 +60,14 @@ TEST_F(PassTimingGl, EveryPassThatDrawsTookTimeAndNoMoreThanItsFrame)
     Camera c;
     c.position = {-900.0, -1100.0, 500.0};
     c.target = {0.0, 0.0, 60.0};
-    for (int frame = 0; frame < 3; ++frame) {  // the first frame builds; the others rerun the volume
+    for (int frame = 0; frame < 3; ++frame) {  // the first frame builds (a still); the others move
         c.position.x += 10.0;
         r.draw(c, 160, 96);
-        const std::set<std::string> drawn = {"sky", "terrain", "resolve", "tonemap", "particles",
-                                             "froxel tiles", "froxel density", "froxel lighting",
-                                             "froxel temporal", "froxel integrate", "froxel apply"};
+        std::set<std::string> drawn = {
+            "sky",          "terrain",        "resolve",         "tonemap",          "particles",
+            "froxel tiles", "froxel density", "froxel lighting", "froxel integrate", "froxel apply"};
+        if (frame > 0)  // the history of a moving view
+            drawn.insert("froxel temporal");
         SCOPED_TRACE("frame " + std::to_string(frame));
         expect_plausible(r.last_stats(), drawn);
     }

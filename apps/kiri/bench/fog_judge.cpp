@@ -99,21 +99,16 @@ FrameCost FogJudge::frame_cost(int width, int height, int frames)
 
 double FogJudge::still_ms(int width, int height)
 {
-    render::Camera moved = camera_;
-    moved.position.z += 0.5;  // a view the frames before were not drawn from
-    renderer_->draw(moved, width, height);
+    renderer_->clear_froxel_fog();  // the fog seen for the first time, as in a new process
+    rendering_->apply(*renderer_);
     const auto start = std::chrono::steady_clock::now();
-    for (int k = 0; k < rendering_->warmup_frames(); ++k)
-        renderer_->draw(camera_, width, height);
     still_image_ = renderer_->render(camera_, width, height);
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 render::FogError FogJudge::error()
 {
-    // A still picture as kiri render draws it: the froxels' jittered cycle first.
-    for (int k = 0; k < rendering_->warmup_frames(); ++k)
-        renderer_->draw(camera_, width_, height_);
+    // A still picture as kiri render draws it.
     last_image_ = renderer_->render(camera_, width_, height_);
     const render::RadianceImage with = renderer_->read_radiance();
     // The terrain is shadowed only where the froxels built the sun's shadow map: the frame

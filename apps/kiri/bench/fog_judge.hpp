@@ -1,8 +1,8 @@
 #pragma once
 // Any fog renderer's frame of a scene judged against the CPU reference (render::compare_frames):
 // the scene's JSON varied per measurement (quality ladders, presets), the reference computed
-// once per view, each configuration's cost per frame while the view moves and its error once
-// the frame is settled (the froxels' warm-up).
+// once per view, each configuration's cost per frame while the view moves and its error on a
+// still picture.
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -55,15 +55,14 @@ public:
     double frame_ms(int width, int height, int frames);
     //! The same frames' median time and their passes' median times.
     FrameCost frame_cost(int width, int height, int frames);
-    //! A still picture at width x height as kiri render draws it, after a moving view: the
-    //! warm-up frames and the final one (ms, all of them).
+    //! The time (ms) of a still picture at width x height as kiri render draws it: the first
+    //! view of the fog, as a still (Renderer::render).
     double still_ms(int width, int height);
-    //! The frames still_ms drew for the picture, and the picture.
-    int still_frames() const { return rendering_ ? rendering_->warmup_frames() + 1 : 0; }
+    //! The picture still_ms drew.
     const render::Image& still_image() const { return still_image_; }
-    //! The settled frame (after the froxels' warm-up) at the judge's size against the reference.
+    //! A still picture at the judge's size against the reference.
     render::FogError error();
-    //! The last settled frame, tone-mapped (for a look).
+    //! The last still picture error() drew, tone-mapped (for a look).
     const render::Image& last_image() const { return last_image_; }
 
 private:

@@ -74,7 +74,6 @@ struct Measured {
     render::FogMode mode;
     FrameCost cost;
     double still_ms = 0.0;
-    int still_frames = 0;
     render::FogError error;
 };
 
@@ -109,9 +108,9 @@ void frame(Context& c)
     std::ostringstream passes_md;
     md << "Fog cost = frame - terrain-only frame of the same view and size, measured in the same run; error: "
        << "mean relative luminance against the CPU reference at " << ew << "x" << eh
-       << " (the Medium alone). Still: the frames kiri render draws for a picture.\n\n"
-       << "| size | view | mode | frame (ms) | fog cost (ms) | fog cost / terrain | still (ms) | still frames | "
-          "mean error | p99 error |\n|---|---|---|---|---|---|---|---|---|---|\n";
+       << " (the Medium alone). Still: a picture as kiri render draws it.\n\n"
+       << "| size | view | mode | frame (ms) | fog cost (ms) | fog cost / terrain | still (ms) | mean error | "
+          "p99 error |\n|---|---|---|---|---|---|---|---|---|\n";
     passes_md << "\n| size | view | mode | pass | device (ms) | issue (ms) |\n|---|---|---|---|---|---|\n";
     for (const char* view : {"default", "valley"}) {
         const std::string camera = view == std::string("default") ? "" : view;
@@ -125,7 +124,6 @@ void frame(Context& c)
                 judge.prepare(scene, mode);
                 m.cost = judge.frame_cost(w, h, frames);
                 m.still_ms = judge.still_ms(w, h);
-                m.still_frames = judge.still_frames();
                 if (mode == render::FogMode::terrain) {
                     render::write_png_atomic(c.out_dir() / ("frame_" + std::string(view) + "_terrain.png"),
                                              judge.still_image());
@@ -143,9 +141,8 @@ void frame(Context& c)
                 const std::string mode = render::to_string(m.mode);
                 const double fog_ms = m.cost.frame_ms - terrain_ms, ratio = fog_ms / terrain_ms;
                 const bool fog = m.mode != render::FogMode::terrain;
-                std::printf("  %-9s %-7s %-9s frame %8.1f ms  fog %8.1f ms = %5.2f x terrain  still %8.1f ms (%d)",
-                            size.c_str(), view, mode.c_str(), m.cost.frame_ms, fog_ms, ratio, m.still_ms,
-                            m.still_frames);
+                std::printf("  %-9s %-7s %-9s frame %8.1f ms  fog %8.1f ms = %5.2f x terrain  still %8.1f ms",
+                            size.c_str(), view, mode.c_str(), m.cost.frame_ms, fog_ms, ratio, m.still_ms);
                 if (fog)
                     std::printf("  mean %5.2f %%  p99 %6.2f %%", m.error.mean_relative * 100,
                                 m.error.p99_relative * 100);
@@ -156,14 +153,14 @@ void frame(Context& c)
                     md << fog_ms << " | " << ratio << " | ";
                 else
                     md << "- | - | ";
-                md << m.still_ms << " | " << m.still_frames << " | ";
+                md << m.still_ms << " | ";
                 if (fog)
                     md << m.error.mean_relative * 100 << " % | " << m.error.p99_relative * 100 << " % |\n";
                 else
                     md << "- | - |\n";
                 for (const render::PassTime& p : m.cost.passes)
-                    passes_md << "| " << size << " | " << view << " | " << mode << " | " << p.pass << " | "
-                              << p.gpu_ms << " | " << p.cpu_ms << " |\n";
+                    passes_md << "| " << size << " | " << view << " | " << mode << " | " << p.pass << " | " << p.gpu_ms
+                              << " | " << p.cpu_ms << " |\n";
                 if (fog)
                     c.add({std::string(view) + " " + size, mode, ratio, m.cost.frame_ms / 1e3,
                            "mean relative luminance error at " + std::to_string(ew) + "x" + std::to_string(eh),

@@ -53,7 +53,10 @@ struct FroxelStats {
     bool enabled = false;  //!< set_froxel_fog was called
     bool visible = false;  //!< the fog was in view (fog off-screen costs nothing)
     bool updated = false;  //!< its passes ran this frame (not for a static view and fog)
-    int updates = 0;       //!< frames whose passes ran since set_froxel_fog
+    //! The volume is final for this view: a still's (its lighting's jittered samples taken at
+    //! once), or one without temporal filtering. The same view again reruns nothing.
+    bool converged = false;
+    int updates = 0;  //!< frames whose passes ran since set_froxel_fog
     int shadow_map_updates = 0;
 };
 
@@ -129,7 +132,8 @@ public:
     void draw(const Camera& camera, int width, int height);
     //! Copies the last drawn frame into the window's framebuffer (0), scaled to its size.
     void present(int framebuffer_width, int framebuffer_height) const;
-    //! Renders the frame offscreen and reads it back.
+    //! Renders a still picture offscreen and reads it back: final for its view (the froxels'
+    //! lighting converged; a view that differs from the last frame's draws twice).
     Image render(const Camera& camera, int width, int height);
     //! The last drawn frame's linear radiance, before the tone map (what the fog renderers are
     //! judged on against the CPU reference).
