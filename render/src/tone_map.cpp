@@ -5,7 +5,10 @@
 
 namespace kiri::render {
 
-double tone_map(double radiance) { return std::pow(1.0 - std::exp(-std::max(radiance, 0.0) * display_exposure), 1.0 / 2.2); }
+double tone_map(double radiance)
+{
+    return std::pow(1.0 - std::exp(-std::max(radiance, 0.0) * display_exposure), 1.0 / 2.2);
+}
 
 std::uint8_t tone_map_level(double radiance) { return std::uint8_t(std::lround(255.0 * tone_map(radiance))); }
 

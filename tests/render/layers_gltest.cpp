@@ -150,7 +150,8 @@ TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
         }
         const std::uint8_t* got = pixel(fog, {w / 2, h / 2});
         for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(got[c], 255.0 * kiri::render::tone_map(expected[c]), 2.5) << "sigma " << sigma << " channel " << c;
+            EXPECT_NEAR(got[c], 255.0 * kiri::render::tone_map(expected[c]), 2.5)
+                << "sigma " << sigma << " channel " << c;
         if (sigma > 0.01) {
             EXPECT_GT(std::abs(got[1] - ground_px[1]), 8) << "the fog shows";
         }

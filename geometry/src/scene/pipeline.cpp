@@ -31,10 +31,9 @@ std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const
         if (!(in.partition.particle_share > 0.0))
             return nullptr;
         const FogPartition partition = in.partition;
-        return std::make_shared<const ParticleCloud>(
-            sample_particles(medium, in.options, label, [&](const glm::dvec3& p) {
-                return particle_share(partition, medium.height_fraction(p));
-            }));
+        return std::make_shared<const ParticleCloud>(sample_particles(
+            medium, in.options, label,
+            [&](const glm::dvec3& p) { return particle_share(partition, medium.height_fraction(p)); }));
     }
     return std::make_shared<const ParticleCloud>(sample_particles(medium, in.options, label));
 }
@@ -43,8 +42,8 @@ std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const
 
 const char* to_string(Stage stage)
 {
-    static const char* names[stage_count] = {"terrain",      "placement",  "control mesh", "fit",    "tessellation",
-                                             "layer base",   "medium",     "particles",    "exports"};
+    static const char* names[stage_count] = {"terrain",    "placement", "control mesh", "fit",    "tessellation",
+                                             "layer base", "medium",    "particles",    "exports"};
     return names[int(stage)];
 }
 
