@@ -8,6 +8,7 @@ kiri_test(author_test SOURCES author_test.cpp LIBS kiri_geometry nlohmann_json::
 kiri_test(layer_stack_test SOURCES layer_stack_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(medium_test SOURCES medium_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(reference_fog_test SOURCES reference_fog_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(path_tracer_test SOURCES path_tracer_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(froxel_options_test SOURCES froxel_options_test.cpp LIBS kiri_geometry LABELS unit)
 list(APPEND CMAKE_MODULE_PATH /usr/lib/x86_64-linux-gnu/cmake/OpenVDB)
 find_package(OpenVDB REQUIRED)
