@@ -76,8 +76,8 @@ RadianceImage read_exr(const std::filesystem::path& path)
         image.rgba.assign(std::size_t(image.width) * std::size_t(image.height) * 4, 0.0f);
         const std::size_t x_stride = 4 * sizeof(float), y_stride = x_stride * std::size_t(image.width);
         // The slices' base points at pixel (0, 0) of the file's coordinates.
-        const std::ptrdiff_t origin =
-            -(std::ptrdiff_t(window.min.x) * std::ptrdiff_t(x_stride) + std::ptrdiff_t(window.min.y) * std::ptrdiff_t(y_stride));
+        const std::ptrdiff_t origin = -(std::ptrdiff_t(window.min.x) * std::ptrdiff_t(x_stride) +
+                                        std::ptrdiff_t(window.min.y) * std::ptrdiff_t(y_stride));
         Imf::FrameBuffer frame;
         for (int c = 0; c < 4; ++c) {
             char* base = reinterpret_cast<char*>(image.rgba.data() + c) + origin;

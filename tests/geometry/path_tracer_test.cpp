@@ -269,8 +269,8 @@ TEST(PathTracer, DoubleScatteringOfAnAnisotropicSlab)
         const double l = u.z > 0.0 ? z / u.z : (H - z) / -u.z;
         const double k = sigma * (1.0 + u.z / mu_s);
         const double path = std::abs(k * l) < 1e-9 ? l : -std::expm1(-k * l) / k;
-        return a * sigma * std::numbers::pi * henyey_greenstein(glm::dot(-s, u), g) * std::exp(-sigma * (H - z) / mu_s) *
-            path;
+        return a * sigma * std::numbers::pi * henyey_greenstein(glm::dot(-s, u), g) *
+            std::exp(-sigma * (H - z) / mu_s) * path;
     };
     const auto cos_nodes = gauss_legendre(160), t_nodes = gauss_legendre(24);
     const int n_phi = 360;
@@ -382,10 +382,8 @@ TEST(PathTracer, SingleScatteringAgreesWithTheReferenceOnNoisyFogAndTerrainShado
     // Two independent integrators of the same single scattering: a noisy, graded Medium over
     // hills with a ridge, the ridge's shadow in the fog, and a height fog. Per pixel the path
     // tracer's error is its noise: (difference / standard error)^2 averages about 1.
-    const Heightfield hills =
-        kiri::test::make_heightfield(81, 81, 25.0, -1000.0, -1000.0, [](double x, double y) {
-            return kiri::test::hills(x, y);
-        });
+    const Heightfield hills = kiri::test::make_heightfield(81, 81, 25.0, -1000.0, -1000.0,
+                                                           [](double x, double y) { return kiri::test::hills(x, y); });
     MediumGrid grid;
     grid.nx = grid.ny = 41;
     grid.x0 = grid.y0 = -1000.0;

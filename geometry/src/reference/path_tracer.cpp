@@ -284,12 +284,9 @@ double PathTracer::sun_transmittance(const glm::dvec3& p, Random& rng) const
 glm::dvec3 PathTracer::sky(const glm::dvec3& w) const
 {
     switch (sky_) {
-    case PathSky::sphere:
-        return ambient_;
-    case PathSky::hemisphere:
-        return w.z > 0.0 ? ambient_ : glm::dvec3(0.0);
-    case PathSky::none:
-        break;
+    case PathSky::sphere: return ambient_;
+    case PathSky::hemisphere: return w.z > 0.0 ? ambient_ : glm::dvec3(0.0);
+    case PathSky::none: break;
     }
     return glm::dvec3(0.0);
 }
@@ -328,8 +325,8 @@ glm::dvec3 PathTracer::sample(const glm::dvec3& origin, const glm::dvec3& dir, d
             // The sun's irradiance pi sun, scattered towards -w by the phase function.
             if (sun_on_)
                 if (const double ts = sun_transmittance(p, rng); ts > 0.0)
-                    radiance += throughput * sun_radiance_ *
-                        (std::numbers::pi * henyey_greenstein(glm::dot(w, sun_), g) * ts);
+                    radiance +=
+                        throughput * sun_radiance_ * (std::numbers::pi * henyey_greenstein(glm::dot(w, sun_), g) * ts);
             w = sample_phase(w, g, rng);
             o = p;
         } else if (ground) {
@@ -339,8 +336,8 @@ glm::dvec3 PathTracer::sample(const glm::dvec3& origin, const glm::dvec3& dir, d
             ++vertices;
             const glm::dvec3 p = o + w * t_end;
             const glm::dvec3 n = terrain_->normal(p.x, p.y);
-            const double height01 = std::clamp(
-                (p.z - terrain_->z_min()) / std::max(terrain_->z_max() - terrain_->z_min(), 1e-3), 0.0, 1.0);
+            const double height01 =
+                std::clamp((p.z - terrain_->z_min()) / std::max(terrain_->z_max() - terrain_->z_min(), 1e-3), 0.0, 1.0);
             throughput *= detail::terrain_albedo(height01, n.z);
             const glm::dvec3 q = p + n * (0.01 + 1e-7 * glm::length(p));  // off the surface's own triangles
             // Lambert: albedo / pi times the sun's irradiance pi sun cos.
