@@ -201,6 +201,31 @@ TEST(PathTracer, SingleScatteringOfASlabLitByTheSun)
     const RayFog rd = reference_ray({&graded, {}}, nullptr, {0.0, 0.0, 5.0}, level, 60.0, low);
     expect_within(deep, rd.inscatter, 4.5, 0.001);
     EXPECT_LT(deep.std_error.x, 0.03 * rd.inscatter.x);
+    // Coverage rising from 0.2 to 1 across a 500 m cell (the sun's rays cross the ramp): the
+    // control variate of ratio tracking must stay under the extinction everywhere in a cell.
+    MediumGrid grid;
+    grid.nx = grid.ny = 3;
+    grid.x0 = grid.y0 = -500.0;
+    grid.dx = grid.dy = 500.0;
+    grid.floor.assign(9, 0.0);
+    grid.bottom.assign(9, 0.0);
+    grid.top.assign(9, H);
+    grid.coverage = {0.2, 1.0, 1.0, 0.2, 1.0, 1.0, 0.2, 1.0, 1.0};
+    MediumOptions mo;
+    mo.extinction = 0.02;
+    mo.albedo = a;
+    mo.anisotropy = g;
+    mo.top_density = 1.0;
+    MediumDetail md;
+    md.detail = 0.0;
+    const Medium ramp(std::move(grid), mo, md);
+    const FogLighting from_west = sun_at(0.3, std::numbers::pi, {3.0, 2.0, 1.0});
+    const glm::dvec3 north(0.0, 1.0, 0.0), start(-150.0, -300.0, 30.0);
+    o.samples = 40000;
+    const PathEstimate pr = path_traced_ray({&ramp, {}}, nullptr, start, north, 600.0, from_west, o, 5);
+    const RayFog rr = reference_ray({&ramp, {}}, nullptr, start, north, 600.0, from_west);
+    expect_within(pr, rr.inscatter, 4.5, 0.001);
+    EXPECT_LT(pr.std_error.x, 0.02 * rr.inscatter.x);
 }
 
 TEST(PathTracer, GroundUnderAnAbsorbingSlab)

@@ -103,9 +103,12 @@ glm::dvec3 sample_cosine(const glm::dvec3& n, Random& rng)
 }
 
 // The majorant of the Medium over one cell of its grid: sigma_t <= sigma there, and the
-// Medium is empty outside z_lo <= z <= z_hi.
+// Medium is empty outside z_lo <= z <= z_hi. Between core_lo and core_hi every point of the
+// cell is inside the shell and sigma_t >= control there (the control variate of residual ratio
+// tracking; 0 where there is no such bound).
 struct MajorantCell {
     double sigma = 0.0, z_lo = 0.0, z_hi = 0.0;
+    double control = 0.0, core_lo = 0.0, core_hi = 0.0;
 };
 
 class PathTracer {
@@ -153,26 +156,41 @@ PathTracer::PathTracer(const FogVolume& fog, const Heightfield* terrain, const F
         z_hi_ = m.bounds().max.z;
         albedo_medium_ = clamp_albedo(m.options().albedo);
         g_medium_ = clamp_g(m.options().anisotropy);
-        // density <= coverage * profile * detail * dissipation, each factor's largest value.
-        const double detail = m.detail().detail;
-        const double bound = m.options().extinction * std::max(1.0, m.options().top_density) *
-            std::max(1.0, 1.0 - (std::isfinite(detail) ? detail : 0.0));
+        // density <= coverage * profile * detail * dissipation, each factor's largest value;
+        // and inside the shell >= each factor's smallest (detail in [0, 1], dissipation
+        // smallest at the top).
+        const double detail = std::isfinite(m.detail().detail) ? m.detail().detail : 0.0;
+        const double bound =
+            m.options().extinction * std::max(1.0, m.options().top_density) * std::max(1.0, 1.0 - detail);
+        const double floor_bound = detail >= 0.0 && detail <= 1.0 && m.options().top_density >= 0.0
+            ? m.options().extinction * std::min(1.0, m.options().top_density) * (1.0 - detail) * m.dissipation(1.0)
+            : 0.0;
         cells_.resize(std::size_t(g.nx - 1) * std::size_t(g.ny - 1));
         for (int j = 0; j + 1 < g.ny; ++j)
             for (int i = 0; i + 1 < g.nx; ++i) {
                 const std::size_t k[4] = {std::size_t(j) * g.nx + i, std::size_t(j) * g.nx + i + 1,
                                           std::size_t(j + 1) * g.nx + i, std::size_t(j + 1) * g.nx + i + 1};
-                double cover = 0.0, lo = inf, hi = -inf;
+                double cover = 0.0, least_cover = inf, lo = inf, hi = -inf, core_lo = -inf, core_hi = inf,
+                       thinnest = inf;
                 for (std::size_t c : k) {
                     cover = std::max(cover, g.coverage[c]);
+                    least_cover = std::min(least_cover, g.coverage[c]);
                     lo = std::min(lo, g.floor[c]);
                     hi = std::max(hi, g.top[c]);
+                    core_lo = std::max(core_lo, g.floor[c]);
+                    core_hi = std::min(core_hi, g.top[c]);
+                    thinnest = std::min(thinnest, g.top[c] - g.bottom[c]);
                 }
                 MajorantCell& cell = cells_[std::size_t(j) * std::size_t(g.nx - 1) + std::size_t(i)];
                 if (cover > 0.0 && hi > lo) {
                     cell.sigma = bound * cover;
                     cell.z_lo = lo;
                     cell.z_hi = hi;
+                    if (least_cover > 0.0 && thinnest > 0.0 && core_hi > core_lo && floor_bound > 0.0) {
+                        cell.control = std::min(floor_bound * least_cover, cell.sigma);
+                        cell.core_lo = core_lo;
+                        cell.core_hi = core_hi;
+                    }
                 }
             }
     }
@@ -232,16 +250,23 @@ double PathTracer::medium_collision(const glm::dvec3& o, const glm::dvec3& w, do
 
 double PathTracer::medium_transmittance(const glm::dvec3& o, const glm::dvec3& w, Random& rng) const
 {
-    // Ratio tracking [Novak14]: the product of (1 - sigma_t / majorant) over the tentative
-    // collisions; Russian roulette once it is small.
+    // Residual ratio tracking [Novak14]: in a cell's core (wholly inside the shell) the control
+    // extinction's transmittance exactly, times the product of (1 - (sigma_t - control) / rate)
+    // over tentative collisions at the residual's majorant rate; elsewhere plain ratio tracking.
+    // Russian roulette once the estimate is small. (In a uniform slab the control is the
+    // extinction itself: the sun's transmittance is exact.)
     double transmittance = 1.0;
-    walk_cells(o, w, 0.0, inf, [&](const MajorantCell& cell, double a, double b) {
-        double t = a;
-        for (;;) {
-            t -= std::log1p(-rng.uniform()) / cell.sigma;
+    auto track = [&](double a, double b, double control, double majorant) {
+        if (control > 0.0)
+            transmittance *= std::exp(-control * (b - a));
+        const double rate = majorant - control;
+        if (!(rate > 0.0))
+            return true;
+        for (double t = a;;) {
+            t -= std::log1p(-rng.uniform()) / rate;
             if (!(t < b))
                 return true;
-            transmittance *= 1.0 - std::min(medium_->extinction(o + w * t) / cell.sigma, 1.0);
+            transmittance *= 1.0 - std::clamp((medium_->extinction(o + w * t) - control) / rate, 0.0, 1.0);
             if (transmittance < transmittance_roulette) {
                 if (rng.uniform() * transmittance_roulette >= transmittance) {
                     transmittance = 0.0;
@@ -250,6 +275,13 @@ double PathTracer::medium_transmittance(const glm::dvec3& o, const glm::dvec3& w
                 transmittance = transmittance_roulette;
             }
         }
+    };
+    walk_cells(o, w, 0.0, inf, [&](const MajorantCell& cell, double a, double b) {
+        double c0 = a, c1 = b;
+        if (!(cell.control > 0.0) || !detail::clip_slab(o.z, w.z, cell.core_lo, cell.core_hi, c0, c1) || !(c1 > c0))
+            return track(a, b, 0.0, cell.sigma);
+        return track(a, c0, 0.0, cell.sigma) && track(c0, c1, cell.control, cell.sigma) &&
+            track(c1, b, 0.0, cell.sigma);
     });
     return transmittance;
 }
