@@ -23,13 +23,14 @@
 //! Medium's grid (the extinction at density 1 times the cell's largest coverage, between the
 //! cell's lowest floor and highest top), the height fog's free path sampled exactly by inverting
 //! its closed-form optical depth (the first of the two independent collisions is the collision
-//! of the sum); transmittance towards the sun by ratio tracking ([Novak14]) over the same cells
-//! times the height fog's closed form; directions by importance sampling the phase function
-//! (cosine-weighted at the ground); Russian roulette on the path's throughput after
-//! `roulette_after` vertices, and at most `max_bounces` vertices. Each pixel draws from its own
-//! random stream ([Blackman21]) seeded by (seed, pixel), so an image is bit-identical for the
-//! same seed and options on any number of threads. Rays run through pixel centres, like the
-//! reference's.
+//! of the sum); transmittance towards the sun by residual ratio tracking ([Novak14]) over the
+//! same cells (the control: a lower bound of the extinction where a cell is wholly inside the
+//! shell, exact in a uniform slab) times the height fog's closed form; directions by
+//! importance sampling the phase function (cosine-weighted at the ground); Russian roulette on
+//! the path's throughput after `roulette_after` vertices, and at most `max_bounces` vertices.
+//! Each pixel draws from its own random stream ([Blackman21]) seeded by (seed, pixel), so an
+//! image is bit-identical for the same seed and options on any number of threads. Rays run
+//! through pixel centres, like the reference's.
 #include <cstdint>
 #include <vector>
 
