@@ -169,7 +169,7 @@ void add_render_command(CLI::App& app)
         ->check(CLI::IsMember({"auto", "terrain", "layers", "particles", "froxel", "combined", "reference", "path"}));
     sub->add_option(
            "--samples", a->samples,
-           "--mode path: paths per pixel (default 256: the default scene at 160x90 in well under a minute on 2 cores)")
+           "--mode path: paths per pixel (default 256: the default scene at 160x90 in about a minute on 2 cores)")
         ->check(CLI::Range(1, 1 << 20));
     sub->add_option("--bounces", a->bounces, "--mode path: most scattering events per path (default 128)")
         ->check(CLI::Range(0, 1 << 20));
