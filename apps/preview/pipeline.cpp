@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "kiri/geometry/scene/author_estimate.hpp"
+#include "kiri/geometry/layers/layer_medium.hpp"
 #include "kiri/geometry/placement/fill_medium.hpp"
 #include "kiri/geometry/medium/fog_partition.hpp"
 #include "kiri/geometry/scene/fog_spec.hpp"
@@ -57,14 +58,15 @@ std::string placement_key(const geometry::Scene& s)
     return geometry::scene_to_json(k);
 }
 
-// The medium: the layer base it is made from (its version), the optics and the layers' detail
-// (medium_detail). The layers' time is left out: playing it would resample every frame.
+// The medium: the layer base it is made from (its version), the medium's options and the
+// layers' (their count shifts the noise). The medium's time is left out: playing it would
+// resample every frame.
 std::string medium_key(const geometry::Scene& s, std::uint64_t base_version)
 {
     geometry::Scene k;
     k.medium = s.medium;
+    k.medium.time = 0.0;
     k.layers = s.layers;
-    k.layers.time = 0.0;
     k.layers.resolution = geometry::LayerOptions{}.resolution;  // the layer pass's, per frame
     return std::to_string(base_version) + geometry::scene_to_json(k);
 }
@@ -341,8 +343,8 @@ Products Pipeline::compute(const geometry::Scene& scene, Needs needs, std::uint6
             step(Stage::medium, c.medium_key, medium_key(scene, c.base_version), [&] {
                 c.medium.reset();
                 c.medium = std::make_shared<const geometry::Medium>(
-                    c.placed ? geometry::fill_medium(terrain, *c.placed, scene.medium, geometry::medium_detail(layers),
-                                                     label)
+                    c.placed ? geometry::fill_medium(terrain, *c.placed, scene.medium,
+                                                     geometry::medium_detail(scene.medium, layers.count), label)
                              : geometry::make_medium(*c.base, layers, terrain, scene.medium, label));
                 ++c.medium_version;
             });

@@ -184,8 +184,8 @@ void PreviewApp::apply_live_options()
             const geometry::FroxelOptions options = scene_froxel_options(scene_, *terrain_);
             // The medium while the fog has one (a scene without fog: the height fog alone).
             geometry::Medium* medium = fog_ ? live_medium_.get() : nullptr;
-            if (medium && medium->detail().time != scene_.layers.time)
-                medium->set_time(scene_.layers.time);
+            if (medium && medium->detail().time != scene_.medium.time)
+                medium->set_time(scene_.medium.time);
             if (medium || options.height_fog.enabled()) {
                 renderer_->set_froxel_fog(medium, options);
                 froxels_on_ = true;
@@ -279,8 +279,8 @@ void PreviewApp::draw_panel()
         edited |= terrain_panel(scene_);
         edited |= fog_panel(scene_, terrain_.get(), fog_.get());
         edited |= placement_panel(scene_, terrain_.get(), fog_.get());
-        edited |= layers_panel(scene_, view);
-        edited |= medium_panel(scene_);
+        edited |= layers_panel(scene_);
+        edited |= medium_panel(scene_, view);
         edited |= particles_panel(scene_, particles_.get(), renderer_->attenuation());
         edited |= froxel_panel(scene_, renderer_->last_stats().froxel);
         edited |= sun_panel(scene_);
@@ -434,7 +434,7 @@ int PreviewApp::run()
         ui_.clear_actions();
         handle_input(seconds);
         if (ui_.view.play_time) {  // wind and dissipation run in real time
-            scene_.layers.time += seconds;
+            scene_.medium.time += seconds;
             apply_live_options();
             scene_dirty_ = true;
         }

@@ -2,7 +2,6 @@
 // the texture options reshape the layer base (recomputed on the worker).
 #include <algorithm>
 
-#include <glm/vec2.hpp>
 #include <imgui.h>
 
 #include "panels/panels.hpp"
@@ -10,7 +9,7 @@
 
 namespace kiri::preview {
 
-bool layers_panel(geometry::Scene& scene, ViewOptions& view)
+bool layers_panel(geometry::Scene& scene)
 {
     if (!ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen))
         return false;
@@ -22,18 +21,7 @@ bool layers_panel(geometry::Scene& scene, ViewOptions& view)
     changed |= ImGui::Checkbox("scale rule (2.10)", &o.enlargement);
     if (o.shading == geometry::LayerShading::source)  // the medium's shading takes the medium's optics
         changed |= slider("opacity", o.opacity, 0.0, 0.9, "%.3f");
-    changed |= slider("detail", o.detail, 0.0, 1.0, "%.2f");
-    changed |= slider("detail scale (m)", o.detail_scale, 100.0, 10000.0, "%.0f", true);
     changed |= slider("ground fade (m)", o.ground_fade, 0.0, 200.0, "%.0f");
-    float wind[2] = {float(o.wind.x), float(o.wind.y)};
-    if (ImGui::SliderFloat2("wind (m/s)", wind, -30.0f, 30.0f, "%.1f")) {
-        o.wind = {wind[0], wind[1]};
-        changed = true;
-    }
-    changed |= slider("dissipation half-life (s)", o.dissipation_half_life, 0.0, 3600.0, "%.0f");
-    changed |= slider("time (s)", o.time, 0.0, 3600.0, "%.0f");
-    ImGui::SameLine();
-    changed |= ImGui::Checkbox("play", &view.play_time);
     if (ImGui::TreeNode("more")) {
         changed |= slider("spacing divisor (2.6)", o.spacing_divisor, 20.0, 2000.0, "%.0f", true);
         changed |= slider("most layers", o.max_count, o.count, 400);

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -15,8 +16,6 @@ namespace {
 {
     throw InputError(label, "/layers/" + field, why);
 }
-
-bool finite2(const glm::dvec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 
 }  // namespace
 
@@ -36,18 +35,9 @@ void validate_layer_options(const LayerOptions& o, const std::string& label)
         refuse(label, "opacity", "must be in [0, 0.999]");
     if (!(o.ground_fade >= 0.0) || !std::isfinite(o.ground_fade))
         refuse(label, "ground_fade", "must be >= 0");
-    if (!(o.detail >= 0.0 && o.detail <= 1.0))
-        refuse(label, "detail", "must be in [0, 1]");
-    if (!(o.detail_scale > 0.0) || !std::isfinite(o.detail_scale))
-        refuse(label, "detail_scale", "must be > 0");
-    if (!(o.dissipation_half_life >= 0.0) || !std::isfinite(o.dissipation_half_life))
-        refuse(label, "dissipation_half_life", "must be >= 0 (0: no dissipation)");
     if (!std::isfinite(o.base_offset))
         refuse(label, "base_offset", "must be finite");
-    if (!finite2(o.wind))
-        refuse(label, "wind", "must be finite");
-    if (!std::isfinite(o.time))
-        refuse(label, "time", "must be finite");
+    validate_medium_options(o.optics, label);
 }
 
 LayerColumn layer_column(const LayerOptions& o, const glm::dvec3& eye, const glm::dvec3& point,
@@ -95,10 +85,11 @@ LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, con
 
 double layer_dissipation(const LayerOptions& o, int i, double n)
 {
-    if (!(o.dissipation_half_life > 0.0) || o.time <= 0.0)
+    const MediumOptions& m = o.optics;
+    if (!(m.dissipation_half_life > 0.0) || m.time <= 0.0)
         return 1.0;
     const double height = n > 0.0 ? std::min(i / n, 1.0) : 0.0;
-    return std::exp2(-o.time / o.dissipation_half_life * (1.0 + height));
+    return std::exp2(-m.time / m.dissipation_half_life * (1.0 + height));
 }
 
 LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessellation, const LayerOptions& options,

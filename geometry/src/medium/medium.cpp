@@ -19,15 +19,15 @@ constexpr double layer_shift_x = 0.137, layer_shift_y = 0.071;
 
 }  // namespace
 
-MediumDetail medium_detail(const LayerOptions& layers)
+MediumDetail medium_detail(const MediumOptions& medium, double noise_layers)
 {
     MediumDetail d;
-    d.detail = layers.detail;
-    d.detail_scale = layers.detail_scale;
-    d.layers = layers.count;
-    d.wind = layers.wind;
-    d.time = layers.time;
-    d.dissipation_half_life = layers.dissipation_half_life;
+    d.detail = medium.detail;
+    d.detail_scale = medium.detail_scale;
+    d.layers = noise_layers;
+    d.wind = medium.wind;
+    d.time = medium.time;
+    d.dissipation_half_life = medium.dissipation_half_life;
     return d;
 }
 
@@ -48,6 +48,16 @@ void validate_medium_options(const MediumOptions& o, const std::string& label)
         throw InputError(label, p + "max_grid_side", "must be in [2, 8192]");
     if (o.scattering_octaves < 1 || o.scattering_octaves > 8)
         throw InputError(label, p + "scattering_octaves", "must be in [1, 8]");
+    if (!(o.detail >= 0.0 && o.detail <= 1.0))
+        throw InputError(label, p + "detail", "must be in [0, 1]");
+    if (!(o.detail_scale > 0.0) || !std::isfinite(o.detail_scale))
+        throw InputError(label, p + "detail_scale", "must be > 0");
+    if (!(o.dissipation_half_life >= 0.0) || !std::isfinite(o.dissipation_half_life))
+        throw InputError(label, p + "dissipation_half_life", "must be >= 0 (0: no dissipation)");
+    if (!std::isfinite(o.wind.x) || !std::isfinite(o.wind.y))
+        throw InputError(label, p + "wind", "must be finite");
+    if (!std::isfinite(o.time))
+        throw InputError(label, p + "time", "must be finite");
 }
 
 Medium::Medium(MediumGrid grid, const MediumOptions& options, const MediumDetail& detail)

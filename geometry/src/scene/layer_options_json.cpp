@@ -10,6 +10,8 @@ LayerOptions parse_layer_options(const json& j, const std::string& file)
 {
     const JsonReader r{file};
     const std::string p = "/layers";
+    // detail, detail_scale, dissipation_half_life, wind and time are the medium's now
+    // (read_layer_aliases reads them).
     r.only(j, p,
            {"count", "max_count", "spacing_divisor", "narrowing", "enlargement", "enlargement_rate", "opacity",
             "texture_size", "fade_width", "gray", "ground_fade", "detail", "detail_scale", "dissipation_half_life",
@@ -40,16 +42,6 @@ LayerOptions parse_layer_options(const json& j, const std::string& file)
         o.texture.gray = r.in_range(j["gray"], p + "/gray", 0.0, 1.0, false);
     if (j.contains("ground_fade"))
         o.ground_fade = r.non_negative(j["ground_fade"], p + "/ground_fade");
-    if (j.contains("detail"))
-        o.detail = r.in_range(j["detail"], p + "/detail", 0.0, 1.0, false);
-    if (j.contains("detail_scale"))
-        o.detail_scale = r.positive(j["detail_scale"], p + "/detail_scale");
-    if (j.contains("dissipation_half_life"))
-        o.dissipation_half_life = r.non_negative(j["dissipation_half_life"], p + "/dissipation_half_life");
-    if (j.contains("wind"))
-        o.wind = r.point(j["wind"], p + "/wind");
-    if (j.contains("time"))
-        o.time = r.number(j["time"], p + "/time");
     if (j.contains("resolution"))
         o.resolution = r.in_range(j["resolution"], p + "/resolution", 0.125, 1.0, false);
     if (j.contains("shading")) {
@@ -77,11 +69,6 @@ json layer_options_to_json(const LayerOptions& o)
             {"fade_width", o.texture.fade_width},
             {"gray", o.texture.gray},
             {"ground_fade", o.ground_fade},
-            {"detail", o.detail},
-            {"detail_scale", o.detail_scale},
-            {"dissipation_half_life", o.dissipation_half_life},
-            {"wind", {o.wind.x, o.wind.y}},
-            {"time", o.time},
             {"shading", o.shading == LayerShading::medium ? "medium" : "source"},
             {"resolution", o.resolution}};
 }

@@ -6,13 +6,33 @@ namespace kiri::geometry {
 
 using json = nlohmann::json;
 
+namespace {
+
+// The medium's motion: its own keys, and the layers' before the medium owned them.
+void read_medium_motion(const json& j, const JsonReader& r, const std::string& p, MediumOptions& o)
+{
+    if (j.contains("detail"))
+        o.detail = r.in_range(j["detail"], p + "/detail", 0.0, 1.0, false);
+    if (j.contains("detail_scale"))
+        o.detail_scale = r.positive(j["detail_scale"], p + "/detail_scale");
+    if (j.contains("dissipation_half_life"))
+        o.dissipation_half_life = r.non_negative(j["dissipation_half_life"], p + "/dissipation_half_life");
+    if (j.contains("wind"))
+        o.wind = r.point(j["wind"], p + "/wind");
+    if (j.contains("time"))
+        o.time = r.number(j["time"], p + "/time");
+}
+
+}  // namespace
+
 MediumOptions parse_medium_options(const json& j, const std::string& file)
 {
     const JsonReader r{file};
     const std::string p = "/medium";
     r.only(j, p,
            {"extinction", "visibility", "liquid_water_content", "droplet_radius", "albedo", "anisotropy", "top_density",
-            "grid_spacing", "max_grid_side", "scattering_octaves"});
+            "grid_spacing", "max_grid_side", "scattering_octaves", "detail", "detail_scale", "wind", "time",
+            "dissipation_half_life"});
     const int given =
         int(j.contains("extinction")) + int(j.contains("visibility")) + int(j.contains("liquid_water_content"));
     if (given > 1)
@@ -44,7 +64,23 @@ MediumOptions parse_medium_options(const json& j, const std::string& file)
         o.max_grid_side = r.integer(j["max_grid_side"], p + "/max_grid_side", 2, 8192);
     if (j.contains("scattering_octaves"))
         o.scattering_octaves = r.integer(j["scattering_octaves"], p + "/scattering_octaves", 1, 8);
+    read_medium_motion(j, r, p, o);
     return o;
+}
+
+void read_layer_aliases(const json& layers, const json* medium, const std::string& file, MediumOptions& o)
+{
+    const JsonReader r{file};
+    json given = json::object();
+    for (const char* key : {"detail", "detail_scale", "wind", "time", "dissipation_half_life"}) {
+        if (!layers.contains(key))
+            continue;
+        if (medium && medium->contains(key))
+            r.fail(std::string("/layers/") + key,
+                   std::string("the old name of /medium/") + key + ", which the scene gives too: give only that");
+        given[key] = layers[key];
+    }
+    read_medium_motion(given, r, "/layers", o);
 }
 
 json medium_options_to_json(const MediumOptions& o)
@@ -55,7 +91,12 @@ json medium_options_to_json(const MediumOptions& o)
             {"top_density", o.top_density},
             {"grid_spacing", o.grid_spacing},
             {"max_grid_side", o.max_grid_side},
-            {"scattering_octaves", o.scattering_octaves}};
+            {"scattering_octaves", o.scattering_octaves},
+            {"detail", o.detail},
+            {"detail_scale", o.detail_scale},
+            {"dissipation_half_life", o.dissipation_half_life},
+            {"wind", {o.wind.x, o.wind.y}},
+            {"time", o.time}};
 }
 
 }  // namespace kiri::geometry

@@ -14,4 +14,10 @@ namespace kiri::geometry {
 MediumOptions parse_medium_options(const nlohmann::json& j, const std::string& file);
 nlohmann::json medium_options_to_json(const MediumOptions& options);
 
+//! The medium's detail, detail_scale, wind, time and dissipation_half_life given under their old
+//! names in the "layers" section `layers` (before the medium owned them), written into `o`.
+//! \throw InputError when the "medium" section `medium` (null if none) gives one of them too.
+void read_layer_aliases(const nlohmann::json& layers, const nlohmann::json* medium, const std::string& file,
+                        MediumOptions& o);
+
 }  // namespace kiri::geometry

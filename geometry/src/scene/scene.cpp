@@ -172,10 +172,13 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
             r.fail("/fog", strip_exception_id(e.what()));
         }
     }
-    if (root.contains("layers"))
-        scene.layers = parse_layer_options(root["layers"], file_label);
     if (root.contains("medium"))
         scene.medium = parse_medium_options(root["medium"], file_label);
+    if (root.contains("layers")) {
+        scene.layers = parse_layer_options(root["layers"], file_label);
+        read_layer_aliases(root["layers"], root.contains("medium") ? &root["medium"] : nullptr, file_label,
+                           scene.medium);
+    }
     if (root.contains("particles"))
         scene.particles = parse_particle_options(root["particles"], file_label);
     if (root.contains("froxel"))

@@ -4,6 +4,7 @@
 
 #include "kiri/geometry/scene/author_estimate.hpp"
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/layers/layer_medium.hpp"
 #include "kiri/geometry/placement/fill_medium.hpp"
 
 namespace kiri::geometry {
@@ -33,8 +34,9 @@ SceneFog author_scene_fog(const Scene& scene, const Terrain& terrain)
     fog.base = make_layer_base(fog.authored.surface, fog.authored.tessellation, fog.layers, label);
     const auto made_base = std::chrono::steady_clock::now();
     fog.seconds_layer_base = std::chrono::duration<double>(made_base - start).count();
-    fog.medium = placed ? fill_medium(terrain, *placed, scene.medium, medium_detail(fog.layers), label)
-                        : make_medium(fog.base, fog.layers, terrain, scene.medium, label);
+    fog.medium = placed
+        ? fill_medium(terrain, *placed, scene.medium, medium_detail(scene.medium, fog.layers.count), label)
+        : make_medium(fog.base, fog.layers, terrain, scene.medium, label);
     fog.placed = std::move(placed);
     fog.seconds_medium = std::chrono::duration<double>(std::chrono::steady_clock::now() - made_base).count();
     return fog;

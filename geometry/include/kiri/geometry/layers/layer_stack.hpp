@@ -70,17 +70,14 @@ struct LayerOptions {
     int max_count = 120;    //!< most layers the narrowing may add (>= count)
     double opacity = 0.12;  //!< a layer's alpha where a_i = 1, at the reference spacing, [0, 0.999]
     LayerTextureOptions texture;
-    double ground_fade = 20.0;           //!< metres: a layer fades out this close to the ground (renderer)
-    double detail = 0.6;                 //!< strength of the world-space noise in the alpha, [0, 1] (renderer)
-    double detail_scale = 1500.0;        //!< metres: size of the noise's largest features (renderer)
-    double dissipation_half_life = 0.0;  //!< seconds; 0: no dissipation (top layers thin faster)
-    glm::dvec2 wind{0.0};                //!< m/s: drift of the detail texture
-    double time = 0.0;                   //!< seconds since the scene's start
+    double ground_fade = 20.0;  //!< metres: a layer fades out this close to the ground (renderer)
     LayerShading shading = LayerShading::medium;
     //! Resolution of the layer pass relative to the frame, [1/8, 1] (renderer: the layers are
     //! smooth, half resolution costs a quarter and barely shows; `kiri bench --stage layers`).
     double resolution = 0.5;
-    //! The fog's optics for LayerShading::medium (world_layer_options copies the scene's medium).
+    //! The fog's medium (world_layer_options copies the scene's): its optics shade the layers
+    //! (LayerShading::medium) and its detail noise, wind, time and dissipation move them, so the
+    //! layers and the volume renderers draw the same fog.
     MediumOptions optics;
     bool operator==(const LayerOptions&) const = default;
 };
@@ -104,7 +101,7 @@ LayerColumn layer_column(const LayerOptions& options, const glm::dvec3& eye, con
 //! Layer i (0 = base) of the column at `point` with enlargement about `centre` (x, y).
 LayerVertex layer_vertex(const LayerOptions& options, const LayerColumn& column, int i, const glm::dvec3& point,
                          const glm::dvec2& centre);
-//! Dissipation factor of layer i of n at options.time: 0.5^(t / half_life (1 + i / n)).
+//! Dissipation factor of layer i of n at the medium's time: 0.5^(t / half_life (1 + i / n)).
 double layer_dissipation(const LayerOptions& options, int i, double n);
 
 //! The base tessellation prepared for layers: positions, normals, atlas coordinates and
