@@ -157,7 +157,7 @@ TEST(Scene, MoreErrorClasses)
         {"name": "a", "position": [0,0,2], "target": [0,0,0]}]})"),
               "s.json: /cameras/1/name: duplicate camera name \"a\"");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "sun": {"color": [1, -0.5, 1]}})"),
-              "s.json: /sun/color: colour components must be >= 0");
+              "s.json: /sun/color/1: must be >= 0");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": {"name": "a"}})"),
               "s.json: /cameras: expected an array of cameras");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": [640, 480]})"), "s.json: /image: expected an object");

@@ -21,20 +21,9 @@ namespace {
 
 void validate_layer_options(const LayerOptions& o, const std::string& label)
 {
-    if (o.count < 1 || o.count > 1000)
-        refuse(label, "count", "must be in [1, 1000], got " + std::to_string(o.count));
-    if (o.max_count < std::max(o.count, 1) || o.max_count > 1000)
-        refuse(label, "max_count", "must be in [count, 1000], got " + std::to_string(o.max_count));
+    check_fields(o, label, "/layers");
     if (!(o.thickness > 0.0) || !std::isfinite(o.thickness))
         refuse(label, "thickness", "must be a finite number > 0 (fog.thickness)");
-    if (!(o.spacing_divisor > 0.0) || !std::isfinite(o.spacing_divisor))
-        refuse(label, "spacing_divisor", "must be > 0");
-    if (!(o.enlargement_rate >= 0.0 && o.enlargement_rate * o.max_count < 1.0))
-        refuse(label, "enlargement_rate", "must be >= 0 and below 1 / max_count");
-    if (!(o.opacity >= 0.0 && o.opacity <= 0.999))
-        refuse(label, "opacity", "must be in [0, 0.999]");
-    if (!(o.ground_fade >= 0.0) || !std::isfinite(o.ground_fade))
-        refuse(label, "ground_fade", "must be >= 0");
     if (!std::isfinite(o.base_offset))
         refuse(label, "base_offset", "must be finite");
     validate_medium_options(o.optics, label);

@@ -31,34 +31,7 @@ MediumDetail medium_detail(const MediumOptions& medium, double noise_layers)
     return d;
 }
 
-void validate_medium_options(const MediumOptions& o, const std::string& label)
-{
-    const std::string p = "/medium/";
-    if (!(o.extinction > 0.0) || !std::isfinite(o.extinction))
-        throw InputError(label, p + "extinction", "must be a finite number > 0 (1/m)");
-    if (!(o.albedo >= 0.0 && o.albedo <= 1.0))
-        throw InputError(label, p + "albedo", "must be in [0, 1]");
-    if (!(o.anisotropy > -1.0 && o.anisotropy < 1.0))
-        throw InputError(label, p + "anisotropy", "must be in (-1, 1)");
-    if (!(o.top_density >= 0.0 && o.top_density <= 1.0))
-        throw InputError(label, p + "top_density", "must be in [0, 1]");
-    if (!(o.grid_spacing >= 0.0) || !std::isfinite(o.grid_spacing))
-        throw InputError(label, p + "grid_spacing", "must be a finite number >= 0 (0: the terrain's spacing)");
-    if (o.max_grid_side < 2 || o.max_grid_side > 8192)
-        throw InputError(label, p + "max_grid_side", "must be in [2, 8192]");
-    if (o.scattering_octaves < 1 || o.scattering_octaves > 8)
-        throw InputError(label, p + "scattering_octaves", "must be in [1, 8]");
-    if (!(o.detail >= 0.0 && o.detail <= 1.0))
-        throw InputError(label, p + "detail", "must be in [0, 1]");
-    if (!(o.detail_scale > 0.0) || !std::isfinite(o.detail_scale))
-        throw InputError(label, p + "detail_scale", "must be > 0");
-    if (!(o.dissipation_half_life >= 0.0) || !std::isfinite(o.dissipation_half_life))
-        throw InputError(label, p + "dissipation_half_life", "must be >= 0 (0: no dissipation)");
-    if (!std::isfinite(o.wind.x) || !std::isfinite(o.wind.y))
-        throw InputError(label, p + "wind", "must be finite");
-    if (!std::isfinite(o.time))
-        throw InputError(label, p + "time", "must be finite");
-}
+void validate_medium_options(const MediumOptions& o, const std::string& label) { check_fields(o, label, "/medium"); }
 
 Medium::Medium(MediumGrid grid, const MediumOptions& options, const MediumDetail& detail)
     : grid_(std::move(grid)), options_(options), detail_(detail)
