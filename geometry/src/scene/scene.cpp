@@ -16,6 +16,7 @@
 #include "scene/froxel_options_json.hpp"
 #include "core/json_reader.hpp"
 #include "scene/field_json.hpp"
+#include "scene/quality_json.hpp"
 #include "kiri/geometry/terrain/dem.hpp"
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
