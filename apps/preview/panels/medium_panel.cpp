@@ -1,6 +1,7 @@
 // The fog's optics and motion (the scene's "medium" section, docs/medium.md): shared by every
 // renderer, so an edit here applies to the layers on the next frame (and to the volume
-// renderers). Playing the time drifts and dissipates the fog in real time.
+// renderers). Playing the time drifts and dissipates the fog in real time. Ranges and
+// tooltips are the medium's field list's (medium_options.hpp).
 #include <cmath>
 
 #include <imgui.h>
@@ -19,24 +20,20 @@ bool medium_panel(geometry::Scene& scene, ViewOptions& view)
     bool changed = false;
     // Visibility is what people know of fog (Koschmieder); the extinction follows.
     double visibility = geometry::visibility_from_extinction(o.extinction);
-    if (slider("visibility (m)", visibility, 10.0, 20000.0, "%.0f", true)) {
+    if (field_slider("visibility (m)", visibility, geometry::field_named(o, "visibility"), "%.0f")) {
         o.extinction = geometry::extinction_from_visibility(visibility);
         changed = true;
     }
     ImGui::TextDisabled("extinction %.4f 1/m", o.extinction);
-    changed |= slider("albedo", o.albedo, 0.0, 1.0, "%.3f");
-    changed |= slider("anisotropy g", o.anisotropy, -0.95, 0.95, "%.2f");
-    changed |= slider("top density", o.top_density, 0.0, 1.0, "%.2f");
-    changed |= slider("scattering octaves", o.scattering_octaves, 1, 8);
-    changed |= slider("detail", o.detail, 0.0, 1.0, "%.2f");
-    changed |= slider("detail scale (m)", o.detail_scale, 100.0, 10000.0, "%.0f", true);
-    float wind[2] = {float(o.wind.x), float(o.wind.y)};
-    if (ImGui::SliderFloat2("wind (m/s)", wind, -30.0f, 30.0f, "%.1f")) {
-        o.wind = {wind[0], wind[1]};
-        changed = true;
-    }
-    changed |= slider("dissipation half-life (s)", o.dissipation_half_life, 0.0, 3600.0, "%.0f");
-    changed |= slider("time (s)", o.time, 0.0, 3600.0, "%.0f");
+    changed |= edit("albedo", o, o.albedo, "%.3f");
+    changed |= edit("anisotropy g", o, o.anisotropy, "%.2f");
+    changed |= edit("top density", o, o.top_density, "%.2f");
+    changed |= edit("scattering octaves", o, o.scattering_octaves);
+    changed |= edit("detail", o, o.detail, "%.2f");
+    changed |= edit("detail scale (m)", o, o.detail_scale, "%.0f");
+    changed |= edit("wind (m/s)", o, o.wind, "%.1f");
+    changed |= edit("dissipation half-life (s)", o, o.dissipation_half_life, "%.0f");
+    changed |= edit("time (s)", o, o.time, "%.0f");
     ImGui::SameLine();
     changed |= ImGui::Checkbox("play", &view.play_time);
     bool medium = scene.layers.shading == geometry::LayerShading::medium;
@@ -44,6 +41,7 @@ bool medium_panel(geometry::Scene& scene, ViewOptions& view)
         scene.layers.shading = medium ? geometry::LayerShading::medium : geometry::LayerShading::source;
         changed = true;
     }
+    field_tooltip(geometry::field_of(scene.layers, scene.layers.shading));
     return changed;
 }
 
