@@ -33,11 +33,8 @@ FillRegionSpec read_region(const json& j, const JsonReader& r, const std::string
         r.only(seeds, sp, {"mask"});
         if (!seeds.contains("mask"))
             r.fail(sp + "/mask", "missing: the mask raster (nonzero pixels seed the fill)");
-        const std::string path = r.string(seeds["mask"], sp + "/mask");
-        if (path.empty())
-            r.fail(sp + "/mask", "must not be empty");
+        read_value(r, seeds["mask"], sp + "/mask", FieldInfo{}, s.mask_path, base_dir);
         s.seeds = SeedKind::mask;
-        s.mask_path = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base_dir / path;
     } else {
         r.fail(sp, "expected seed points [[x, y], ...], \"all\", \"valleys\" or {\"mask\": FILE}");
     }
