@@ -1,6 +1,7 @@
 #include "kiri/geometry/core/fields.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <sstream>
 
 namespace kiri::geometry {

@@ -14,10 +14,7 @@
 //! and its default are typed once. Fields are visited in declaration order, so a range may
 //! depend on a field visited before it, as the reader has read it. Defaults are the struct's
 //! default member initialisers. A list visits the same fields whatever the values (no branches).
-#include <cmath>
 #include <concepts>
-#include <cstdint>
-#include <filesystem>
 #include <limits>
 #include <span>
 #include <stdexcept>
