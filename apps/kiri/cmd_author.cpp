@@ -6,12 +6,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <set>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include "author_maps.hpp"
+#include "author_outputs.hpp"
 #include "commands.hpp"
 #include "kiri/geometry/scene/author_estimate.hpp"
 #include "kiri/geometry/terrain/dem.hpp"
@@ -50,8 +53,46 @@ void write_text(const std::string& text, const fs::path& tmp)
         throw IoError(tmp.string(), "", "cannot write");
 }
 
-int author(const fs::path& scene_path, const fs::path& out_dir)
+struct AuthorArgs {
+    std::string scene, out, camera, formats;
+    double max_output_mib = default_output_limit_mib;
+};
+
+// A file to write: written under a temporary name, renamed into place with the others.
+struct OutputFile {
+    fs::path name;
+    std::function<void(const fs::path& tmp)> write;
+};
+
+// Every file under a temporary name first, then each renamed into place: the folder never holds
+// a half-written result, and a failure removes what it wrote.
+void write_all(const std::vector<OutputFile>& files, const fs::path& out_dir)
 {
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec)
+        throw IoError(out_dir.string(), "", "cannot create the output folder: " + ec.message());
+    const auto tmp = [&](const OutputFile& f) { return out_dir / (".kiri-author.tmp." + f.name.string()); };
+    try {
+        for (const OutputFile& f : files)
+            f.write(tmp(f));
+        for (const OutputFile& f : files) {
+            fs::rename(tmp(f), out_dir / f.name, ec);
+            if (ec)
+                throw IoError((out_dir / f.name).string(), "", "cannot move into place: " + ec.message());
+        }
+    } catch (...) {
+        for (const OutputFile& f : files)
+            fs::remove(tmp(f), ec);
+        throw;
+    }
+}
+
+int author(const AuthorArgs& args)
+{
+    const fs::path scene_path(args.scene), out_dir(args.out);
+    const std::set<AuthorFormat> formats =
+        args.formats.empty() ? default_author_formats() : parse_author_formats(args.formats);
     check_output_folder(out_dir.string());
     const Scene scene = load_scene(scene_path);
     if (!scene.fog)
@@ -59,58 +100,54 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
     Pipeline pipeline;
     const std::shared_ptr<const Terrain> loaded = pipeline.run(scene, {Stage::terrain}).terrain;
     const Terrain& terrain = *loaded;
-    // The estimate comes before any large allocation; above the limit the pipeline refuses.
+    // The estimates come before any large allocation; above the limits the pipeline (memory)
+    // or this command (files) refuses.
     const AuthorEstimate estimate = estimate_author(world_fog_spec(scene), terrain.heightfield(), scene.layers.count);
     check_author_estimate(estimate, scene_path.string());
-    std::printf("kiri author: %s\n", estimate.summary().c_str());
+    const OutputEstimate files_estimate =
+        estimate_outputs(estimate, double(terrain.heightfield().size()), double(scene.particles.count), formats);
+    check_output_estimate(files_estimate, args.max_output_mib, scene_path.string());
+    std::printf("kiri author: memory %s; files %s\n", estimate.summary().c_str(), files_estimate.summary().c_str());
     std::fflush(stdout);
-    // The layers are view dependent: exported as the scene's first camera sees them. The
-    // particles are the whole fog (the scene's "particles" section, docs/particles.md).
+    // The layers are view dependent: exported as the camera sees them (the scene's first).
     const Bounds3 bounds = terrain.bounds();
-    PipelineTarget target{Stage::exports, ParticleSet::whole, scene.camera("", bounds.min, bounds.max).position};
+    const bool layers_wanted =
+        formats.count(AuthorFormat::glb) || formats.count(AuthorFormat::obj) || formats.count(AuthorFormat::ply);
+    const bool particles_wanted = formats.count(AuthorFormat::particles) > 0;
+    PipelineTarget target;
+    target.up_to = layers_wanted ? Stage::exports : particles_wanted ? Stage::particles : Stage::medium;
+    target.particles = particles_wanted ? ParticleSet::whole : ParticleSet::none;
+    target.export_eye = scene.camera(args.camera, bounds.min, bounds.max).position;
     const PipelineProducts& fog = pipeline.run(scene, target);
     const Tessellation& tessellation = *fog.tessellation;
-    const std::vector<LayerMesh>& layers = *fog.exports;
-    const ParticleCloud& particles = *fog.particles;
 
-    std::error_code ec;
-    fs::create_directories(out_dir, ec);
-    if (ec)
-        throw IoError(out_dir.string(), "", "cannot create the output folder: " + ec.message());
-    const std::string stem = ".kiri-author.tmp.";
-    std::vector<std::pair<fs::path, fs::path>> files = {{out_dir / (stem + "obj"), out_dir / "base_surface.obj"},
-                                                        {out_dir / (stem + "ply"), out_dir / "base_surface.ply"},
-                                                        {out_dir / (stem + "json"), out_dir / "report.json"},
-                                                        {out_dir / (stem + "glb"), out_dir / "layers.glb"},
-                                                        {out_dir / (stem + "layers.obj"), out_dir / "layers.obj"},
-                                                        {out_dir / (stem + "layers.ply"), out_dir / "layers.ply"},
-                                                        {out_dir / (stem + "particles.ply"), out_dir / "particles.ply"},
-                                                        {out_dir / (stem + "vdb"), out_dir / "medium.vdb"}};
-    const std::vector<MapFile> maps = placement_maps(scene, terrain, fog.placed.get());
-    for (const MapFile& m : maps)
-        files.push_back({out_dir / (stem + m.name), out_dir / m.name});
+    std::vector<OutputFile> files = {
+        {"report.json", [&](const fs::path& f) { write_text(author_report_json(scene, fog, pipeline.stages()), f); }}};
     VdbExportReport vdb;
-    try {
-        write_mesh_file(tessellation.mesh, files[0].first, false);
-        write_mesh_file(tessellation.mesh, files[1].first, true);
-        write_text(author_report_json(scene, fog, pipeline.stages()), files[2].first);
-        write_layers_glb(files[3].first, *fog.layer_base, layers, fog.layers, &terrain.mesh());
-        write_layers_obj(files[4].first, *fog.layer_base, layers);
-        write_layers_ply(files[5].first, *fog.layer_base, layers, fog.layers);
-        write_particles_ply(files[6].first.string(), particles);
-        vdb = write_medium_vdb(*fog.medium, files[7].first);
-        for (std::size_t m = 0; m < maps.size(); ++m)
-            maps[m].write(files[8 + m].first);
-        for (const auto& [tmp, final_path] : files) {
-            fs::rename(tmp, final_path, ec);
-            if (ec)
-                throw IoError(final_path.string(), "", "cannot move into place: " + ec.message());
-        }
-    } catch (...) {
-        for (const auto& [tmp, final_path] : files)
-            fs::remove(tmp, ec);
-        throw;
+    if (formats.count(AuthorFormat::surface)) {
+        files.push_back({"base_surface.obj", [&](const fs::path& f) { write_mesh_file(tessellation.mesh, f, false); }});
+        files.push_back({"base_surface.ply", [&](const fs::path& f) { write_mesh_file(tessellation.mesh, f, true); }});
     }
+    if (formats.count(AuthorFormat::glb))
+        files.push_back({"layers.glb", [&](const fs::path& f) {
+                             write_layers_glb(f, *fog.layer_base, *fog.exports, fog.layers, &terrain.mesh());
+                         }});
+    if (formats.count(AuthorFormat::obj))
+        files.push_back({"layers.obj", [&](const fs::path& f) { write_layers_obj(f, *fog.layer_base, *fog.exports); }});
+    if (formats.count(AuthorFormat::ply))
+        files.push_back(
+            {"layers.ply", [&](const fs::path& f) { write_layers_ply(f, *fog.layer_base, *fog.exports, fog.layers); }});
+    if (particles_wanted)
+        files.push_back({"particles.ply", [&](const fs::path& f) { write_particles_ply(f.string(), *fog.particles); }});
+    if (formats.count(AuthorFormat::vdb))
+        files.push_back({"medium.vdb", [&](const fs::path& f) { vdb = write_medium_vdb(*fog.medium, f); }});
+    std::vector<MapFile> maps;
+    if (formats.count(AuthorFormat::maps))
+        maps = placement_maps(scene, terrain, fog.placed.get());
+    for (const MapFile& m : maps)
+        files.push_back({m.name, m.write});
+    write_all(files, out_dir);
+
     const FitReport& fit = fog.surface->fit;
     if (fog.placed) {
         const ColumnFigures& c = fog.placed->figures;
@@ -121,12 +158,16 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
             c.area_m2 * 1e-6, c.volume_m3 / e, c.max_thickness / e, c.mean_thickness / e, c.top_min / e, c.top_max / e,
             fog.placed->outline.components, maps.size());
     }
-    std::printf(
-        "%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m, "
-        "%zu layers, %zu particles, medium %zu voxels of %.3g m -> %s\n",
-        scene_path.filename().string().c_str(), fog.surface->patches, tessellation.mesh.n_faces(), fit.max_deviation,
-        fit.rms_deviation, fit.min_clearance, layers.size(), particles.particles.size(), vdb.active_voxels,
-        vdb.voxel_size, out_dir.string().c_str());
+    std::printf("%s: %d patches, %zu triangles, max deviation %.2f m, rms %.2f m, min clearance %.2f m",
+                scene_path.filename().string().c_str(), fog.surface->patches, tessellation.mesh.n_faces(),
+                fit.max_deviation, fit.rms_deviation, fit.min_clearance);
+    if (fog.exports)
+        std::printf(", %zu layers", fog.exports->size());
+    if (fog.particles)
+        std::printf(", %zu particles", fog.particles->particles.size());
+    if (vdb.active_voxels > 0)
+        std::printf(", medium %zu voxels of %.3g m", vdb.active_voxels, vdb.voxel_size);
+    std::printf(" -> %s\n", out_dir.string().c_str());
     return 0;
 }
 }  // namespace
@@ -134,15 +175,23 @@ int author(const fs::path& scene_path, const fs::path& out_dir)
 //! Registers `kiri author`.
 void add_author_command(CLI::App& app)
 {
-    auto* sub = app.add_subcommand("author",
-                                   "Fit the scene's fog; write its base surface, layers (OBJ, PLY, glTF), "
-                                   "particles (PLY), the medium (OpenVDB) and report.json");
-    auto scene = std::make_shared<std::string>();
-    auto out = std::make_shared<std::string>();
-    sub->add_option("scene", *scene, "scene file (JSON) with a fog section")->required();
-    sub->add_option("-o,--out", *out, "output folder")->required();
+    auto* sub =
+        app.add_subcommand("author",
+                           "Fit the scene's fog; write its layers (glTF), the medium (OpenVDB), particles (PLY), "
+                           "maps of fog placed by the terrain and report.json (--formats for more)");
+    auto args = std::make_shared<AuthorArgs>();
+    sub->add_option("scene", args->scene, "scene file (JSON) with a fog section")->required();
+    sub->add_option("-o,--out", args->out, "output folder")->required();
+    sub->add_option("--formats", args->formats,
+                    "comma-separated: glb (layers.glb), vdb (medium.vdb), particles (particles.ply), maps (fog placed "
+                    "by the terrain), surface (base_surface.obj/.ply), obj (layers.obj), ply (layers.ply), all; "
+                    "default glb,vdb,particles,maps");
+    sub->add_option("--camera", args->camera,
+                    "the scene camera the view-dependent layers are exported for (default: its first)");
+    sub->add_option("--max-output", args->max_output_mib, "refuse when the files would weigh more (MiB, default 2048)")
+        ->check(CLI::PositiveNumber);
     // Errors propagate to main, which prints one line and exits with code 2.
-    sub->callback([scene, out] { author(*scene, *out); });
+    sub->callback([args] { author(*args); });
 }
 
 }  // namespace kiri::cli

@@ -23,8 +23,8 @@ TEST(Determinism, AuthorTwiceGivesIdenticalFiles)
 {
     const fs::path a = kiri::test::temp_path("determinism_a"), b = kiri::test::temp_path("determinism_b");
     const std::string scene = (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_lake.json").string();
-    ASSERT_EQ(run_kiri("author " + scene + " -o " + a.string()).exit_code, 0);
-    ASSERT_EQ(run_kiri("author " + scene + " -o " + b.string()).exit_code, 0);
+    ASSERT_EQ(run_kiri("author " + scene + " -o " + a.string() + " --formats all").exit_code, 0);
+    ASSERT_EQ(run_kiri("author " + scene + " -o " + b.string() + " --formats all").exit_code, 0);
     for (const char* name :
          {"base_surface.obj", "base_surface.ply", "layers.glb", "layers.obj", "layers.ply", "particles.ply"}) {
         const std::string first = read_all(a / name);

@@ -67,11 +67,14 @@ TEST(KiriLayers, AuthorWritesLayersThatTheKhronosValidatorAccepts)
 {
     const fs::path dir = kiri::test::temp_path("layers_test_author");
     fs::remove_all(dir);
-    const auto r = run_kiri("author " + default_scene + " -o " + dir.string());
+    const auto r = run_kiri("author " + default_scene + " -o " + dir.string() + " --formats glb,ply,surface");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("16 layers"), std::string::npos) << r.out;
-    for (const char* name : {"layers.glb", "layers.obj", "layers.ply", "base_surface.obj", "report.json"})
+    for (const char* name : {"layers.glb", "layers.ply", "base_surface.obj", "base_surface.ply", "report.json"})
         EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
+    // Only what was asked for.
+    for (const char* name : {"layers.obj", "medium.vdb", "particles.ply"})
+        EXPECT_FALSE(fs::exists(dir / name)) << name;
     for (const auto& entry : fs::directory_iterator(dir))
         EXPECT_EQ(entry.path().filename().string().find(".tmp."), std::string::npos) << entry.path();
 
@@ -86,6 +89,15 @@ TEST(KiriLayers, AuthorWritesLayersThatTheKhronosValidatorAccepts)
     EXPECT_EQ(status, 0) << text;
     EXPECT_NE(text.find(": 0 errors, 0 warnings"), std::string::npos) << text;
     EXPECT_NE(text.find("17 draw calls"), std::string::npos) << text;  // 16 layers + terrain
+    // The default formats: the compact glTF, the medium, the particles; no copies of the stack.
+    const fs::path plain = kiri::test::temp_path("layers_test_author_default");
+    fs::remove_all(plain);
+    ASSERT_EQ(run_kiri("author " + default_scene + " -o " + plain.string()).exit_code, 0);
+    for (const char* name : {"layers.glb", "medium.vdb", "particles.ply", "report.json"})
+        EXPECT_TRUE(fs::is_regular_file(plain / name)) << name;
+    for (const char* name : {"layers.obj", "layers.ply", "base_surface.obj", "base_surface.ply"})
+        EXPECT_FALSE(fs::exists(plain / name)) << name;
+    fs::remove_all(plain);
     // PLY header: every layer's vertices with their alpha.
     const std::string ply = kiri::test::read_all(dir / "layers.ply");
     EXPECT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);

@@ -66,7 +66,7 @@ protected:
         o.base_offset = base_offset;
         o.shading = g::LayerShading::source;  // the medium's shading has its own test below
         o.opacity = 0.3;
-        o.detail = 0.0;
+        o.optics.detail = 0.0;
         o.ground_fade = 5.0;
         return o;
     }
@@ -150,7 +150,8 @@ TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
         }
         const std::uint8_t* got = pixel(fog, {w / 2, h / 2});
         for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(got[c], 255.0 * kiri::render::tone_map(expected[c]), 2.5) << "sigma " << sigma << " channel " << c;
+            EXPECT_NEAR(got[c], 255.0 * kiri::render::tone_map(expected[c]), 2.5)
+                << "sigma " << sigma << " channel " << c;
         if (sigma > 0.01) {
             EXPECT_GT(std::abs(got[1] - ground_px[1]), 8) << "the fog shows";
         }

@@ -1,5 +1,6 @@
 #include "kiri/geometry/layers/layer_export.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -18,7 +19,7 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr int gl_float = 5126, gl_unsigned_int = 5125;
+constexpr int gl_float = 5126, gl_unsigned_int = 5125, gl_unsigned_short = 5123;
 constexpr int array_buffer = 34962, element_array_buffer = 34963;
 
 // The binary chunk and the JSON that describes it, grown view by view.
@@ -54,6 +55,16 @@ struct GlbBuilder {
             a["max"] = hi;
         }
         accessors.push_back(a);
+        return int(accessors.size()) - 1;
+    }
+    //! Unsigned 16-bit values read as [0, 1] (normalized), e.g. a colour.
+    int normalized(const std::vector<std::uint16_t>& data, int components, const char* type)
+    {
+        accessors.push_back({{"bufferView", view(data.data(), data.size() * 2, array_buffer)},
+                             {"componentType", gl_unsigned_short},
+                             {"normalized", true},
+                             {"count", data.size() / std::size_t(components)},
+                             {"type", type}});
         return int(accessors.size()) - 1;
     }
     int indices(const std::vector<std::uint32_t>& data)
@@ -115,15 +126,28 @@ void write_layers_glb(const std::filesystem::path& path, const LayerBase& base, 
     GlbBuilder b;
     json meshes = json::array(), nodes = json::array(), children = json::array();
     const std::size_t nv = base.position.size();
-    std::vector<float> normals(nv * 3), uvs(nv * 2);
+    // Layer i's vertex is p + i d(p) ([Thesis] (2.6)-(2.10) per vertex: the spacing lifts it,
+    // the enlargement (2.10) pushes it from the centre, both linear in i), so every layer is the
+    // base mesh with one morph target, d scaled by the top layer's index, at weight i / top
+    // (the mesh's weight, in [0, 1] as DCC tools' shape keys expect). Only the alpha differs
+    // per layer: a COLOR_0 of its own, the rest is shared.
+    const int top = layers.empty() ? 0 : layers.back().index;
+    std::vector<float> positions(nv * 3), displacement(nv * 3, 0.0f), normals(nv * 3), uvs(nv * 2);
     for (std::size_t i = 0; i < nv; ++i) {
         const glm::dvec3 n = glm::length(base.normal[i]) > 0.0 ? glm::normalize(base.normal[i]) : glm::dvec3(0, 0, 1);
-        for (int k = 0; k < 3; ++k)
+        const glm::dvec3 p = layers.empty() ? base.position[i] : layers.front().vertices[i].position;
+        const glm::dvec3 d = top > 0 ? layers.back().vertices[i].position - p : glm::dvec3(0.0);
+        for (int k = 0; k < 3; ++k) {
             normals[i * 3 + k] = float(n[k]);
+            positions[i * 3 + k] = float(p[k]);
+            displacement[i * 3 + k] = float(d[k]);
+        }
         // glTF's v runs downwards from the image's top row.
         uvs[i * 2] = float(base.atlas_uv[i].x);
         uvs[i * 2 + 1] = float(1.0 - base.atlas_uv[i].y);
     }
+    const int position_accessor = b.accessor(positions, 3, "VEC3", true);
+    const int displacement_accessor = b.accessor(displacement, 3, "VEC3", true);
     const int normal_accessor = b.accessor(normals, 3, "VEC3", false);
     const int uv_accessor = b.accessor(uvs, 2, "VEC2", false);
     const int index_accessor = b.indices(base.triangles);
@@ -131,22 +155,22 @@ void write_layers_glb(const std::filesystem::path& path, const LayerBase& base, 
     const int image_view = b.view(png.data(), png.size(), 0);
 
     for (const LayerMesh& layer : layers) {
-        std::vector<float> positions(nv * 3), colors(nv * 4);
-        for (std::size_t i = 0; i < nv; ++i) {
-            for (int k = 0; k < 3; ++k)
-                positions[i * 3 + k] = float(layer.vertices[i].position[k]);
-            colors[i * 4] = colors[i * 4 + 1] = colors[i * 4 + 2] = 1.0f;
-            colors[i * 4 + 3] = float(exported_alpha(layer.vertices[i], options));
-        }
+        std::vector<std::uint16_t> colors(nv * 4, 65535);
+        for (std::size_t i = 0; i < nv; ++i)
+            colors[i * 4 + 3] =
+                std::uint16_t(std::lround(65535.0 * std::clamp(exported_alpha(layer.vertices[i], options), 0.0, 1.0)));
+        const double weight = top > 0 ? double(layer.index) / top : 0.0;
         json primitive = {{"attributes",
-                           {{"POSITION", b.accessor(positions, 3, "VEC3", true)},
+                           {{"POSITION", position_accessor},
                             {"NORMAL", normal_accessor},
                             {"TEXCOORD_0", uv_accessor},
-                            {"COLOR_0", b.accessor(colors, 4, "VEC4", false)}}},
+                            {"COLOR_0", b.normalized(colors, 4, "VEC4")}}},
+                          {"targets", json::array({{{"POSITION", displacement_accessor}}})},
                           {"indices", index_accessor},
                           {"material", 0}};
-        meshes.push_back({{"name", "layer " + std::to_string(layer.index)}, {"primitives", json::array({primitive})}});
-        nodes.push_back({{"name", "layer " + std::to_string(layer.index)}, {"mesh", int(meshes.size()) - 1}});
+        const std::string name = "layer " + std::to_string(layer.index);
+        meshes.push_back({{"name", name}, {"primitives", json::array({primitive})}, {"weights", {weight}}});
+        nodes.push_back({{"name", name}, {"mesh", int(meshes.size()) - 1}});
         children.push_back(int(nodes.size()) - 1);
     }
     json materials =

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <exception>
 
+#include "kiri/geometry/layers/layer_medium.hpp"
 #include "kiri/geometry/placement/fill_medium.hpp"
 #include "kiri/geometry/scene/author_estimate.hpp"
 #include "scene/stage_inputs.hpp"
@@ -19,8 +20,9 @@ std::shared_ptr<const Medium> build_medium(const Terrain& terrain, const PlacedF
                                            const std::string& label)
 {
     // Fog placed by the terrain: the fill's columns are the shell; else the layer stack's slab.
-    return std::make_shared<const Medium>(placed ? fill_medium(terrain, *placed, medium, medium_detail(layers), label)
-                                                 : make_medium(base, layers, terrain, medium, label));
+    return std::make_shared<const Medium>(
+        placed ? fill_medium(terrain, *placed, medium, medium_detail(medium, layers.count), label)
+               : make_medium(base, layers, terrain, medium, label));
 }
 
 std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const ParticlesInput& in,
@@ -31,10 +33,9 @@ std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const
         if (!(in.partition.particle_share > 0.0))
             return nullptr;
         const FogPartition partition = in.partition;
-        return std::make_shared<const ParticleCloud>(
-            sample_particles(medium, in.options, label, [&](const glm::dvec3& p) {
-                return particle_share(partition, medium.height_fraction(p));
-            }));
+        return std::make_shared<const ParticleCloud>(sample_particles(
+            medium, in.options, label,
+            [&](const glm::dvec3& p) { return particle_share(partition, medium.height_fraction(p)); }));
     }
     return std::make_shared<const ParticleCloud>(sample_particles(medium, in.options, label));
 }
@@ -43,8 +44,8 @@ std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const
 
 const char* to_string(Stage stage)
 {
-    static const char* names[stage_count] = {"terrain",      "placement",  "control mesh", "fit",    "tessellation",
-                                             "layer base",   "medium",     "particles",    "exports"};
+    static const char* names[stage_count] = {"terrain",    "placement", "control mesh", "fit",    "tessellation",
+                                             "layer base", "medium",    "particles",    "exports"};
     return names[int(stage)];
 }
 

@@ -10,10 +10,13 @@
 
 namespace kiri::geometry {
 
-//! .glb: one mesh per layer (POSITION, NORMAL, TEXCOORD_0 into the atlas, COLOR_0 whose alpha
-//! is the layer's alpha at full texture alpha), one material with alphaMode BLEND and the
-//! atlas as baseColorTexture (PNG); the terrain, when given, as an opaque mesh. kiri's z-up
-//! metres sit under a root node rotated to glTF's y-up. \throw IoError.
+//! .glb, compact: the base's POSITION, NORMAL, TEXCOORD_0 (into the atlas) and triangles once,
+//! with one morph target (a layer vertex is p + i d(p): the spacing and the enlargement are
+//! linear in the layer index i); one mesh per layer sharing them, with its own COLOR_0 (alpha:
+//! the layer's alpha at full texture alpha, 16-bit) and the morph weight i / top on its node.
+//! One material with alphaMode BLEND and the atlas as baseColorTexture (PNG); the terrain, when
+//! given, as an opaque mesh. kiri's z-up metres sit under a root node rotated to glTF's y-up.
+//! \throw IoError.
 void write_layers_glb(const std::filesystem::path& path, const LayerBase& base, const std::vector<LayerMesh>& layers,
                       const LayerOptions& options, const TriMesh* terrain = nullptr);
 //! OBJ: one group per layer (v, vt into the atlas, vn); the alpha goes in a comment per group.

@@ -75,7 +75,7 @@ struct PipelineProducts {
     std::shared_ptr<const Tessellation> tessellation;
     std::shared_ptr<const LayerBase> layer_base;
     std::shared_ptr<const Medium> medium;
-    std::shared_ptr<const ParticleCloud> particles;     //!< null for ParticleSet::none or no share
+    std::shared_ptr<const ParticleCloud> particles;         //!< null for ParticleSet::none or no share
     std::shared_ptr<const std::vector<LayerMesh>> exports;  //!< every layer for the export eye
     bool has_fog() const { return layer_base != nullptr; }
 };
