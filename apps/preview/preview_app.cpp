@@ -258,6 +258,7 @@ void PreviewApp::draw_panel()
         edited |= medium_panel(scene_, view);
         edited |= particles_panel(scene_, shown_.fog.particles.get(), renderer_->attenuation());
         edited |= froxel_panel(scene_, renderer_->last_stats().froxel);
+        edited |= combined_panel(scene_);
         edited |= sun_panel(scene_);
         view_changed |= view_panel(view, shown_.views.get());
         camera_panel(scene_, ui_);
