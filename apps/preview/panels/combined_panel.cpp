@@ -42,8 +42,9 @@ bool quality_combo(geometry::Scene& scene)
         ImGui::EndCombo();
     }
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("a preset of layer count and resolution, particles and their attenuation buffer, the froxel "
-                          "volume and the particles' share (docs/combined.md); choosing one sets them all");
+        ImGui::SetTooltip(
+            "a preset of layer count and resolution, particles and their attenuation buffer, the froxel "
+            "volume and the particles' share (docs/combined.md); choosing one sets them all");
     return changed;
 }
 
