@@ -273,8 +273,9 @@ Terrain load_scene_terrain(const Scene& scene)
 {
     DemOptions options;
     options.cell_size = scene.terrain.cell_size;
-    options.vertical_scale = scene.terrain.vertical_scale * scene.terrain.exaggeration;
-    options.vertical_offset = scene.terrain.vertical_offset * scene.terrain.exaggeration;
+    options.vertical_scale = scene.terrain.vertical_scale;
+    options.vertical_offset = scene.terrain.vertical_offset;
+    options.exaggeration = scene.terrain.exaggeration;
     return Terrain(load_dem(scene.terrain.path, options));
 }
 
