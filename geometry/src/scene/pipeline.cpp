@@ -2,6 +2,9 @@
 
 #include <chrono>
 #include <exception>
+#include <new>
+
+#include "kiri/geometry/core/error.hpp"
 
 #include "kiri/geometry/placement/fill_medium.hpp"
 #include "kiri/geometry/scene/author_estimate.hpp"
@@ -219,10 +222,21 @@ const PipelineProducts& Pipeline::run(const Scene& scene, const PipelineTarget& 
                          build_layers(*c.layer_base.product, in.layers, in.eye));
                  });
         }
-    } catch (...) {
+    } catch (const Error&) {
         failed_ = current;
         publish(target);  // the last good products stay
         throw;
+    } catch (const std::bad_alloc&) {
+        failed_ = current;
+        publish(target);
+        throw LimitError(label, to_string(current), "ran out of memory (a smaller terrain or fewer layers would fit)");
+    } catch (const std::exception&) {
+        // A library's own message (std::, allocator, assertion text) means nothing to a user:
+        // name the stage and the scene instead.
+        failed_ = current;
+        publish(target);
+        throw InputError(label, to_string(current),
+                         "failed on this input (an internal error: please report it with the scene and its terrain)");
     }
     publish(target);
     return products_;
