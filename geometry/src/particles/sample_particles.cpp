@@ -57,8 +57,12 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     const Bounds3& box = medium.bounds();
     const glm::dvec3 extent = box.max - box.min;
     const double d_max = medium.max_extinction() / medium.options().extinction;
-    if (!(d_max > 0.0) || !(extent.x > 0.0) || !(extent.y > 0.0) || !(extent.z > 0.0))
-        throw InputError(label, "/particles", "the medium holds no fog to sample particles in");
+    if (!(d_max > 0.0) || !(extent.x > 0.0) || !(extent.y > 0.0) || !(extent.z > 0.0)) {
+        ParticleCloud empty;  // no fog to sample: no particles, the other renderers draw nothing either
+        empty.anisotropy = medium.options().anisotropy;
+        empty.scattering_octaves = medium.options().scattering_octaves;
+        return empty;
+    }
 
     // The count: given, or from the spacing at full density and a first estimate of the density
     // integral (a pilot run of the same sampler).
