@@ -10,8 +10,8 @@ namespace kiri::cli {
 namespace {
 
 constexpr double mib = 1024.0 * 1024.0;
-constexpr AuthorFormat all_formats[] = {AuthorFormat::glb,     AuthorFormat::vdb, AuthorFormat::particles,
-                                        AuthorFormat::maps,    AuthorFormat::surface, AuthorFormat::obj,
+constexpr AuthorFormat all_formats[] = {AuthorFormat::glb,  AuthorFormat::vdb,     AuthorFormat::particles,
+                                        AuthorFormat::maps, AuthorFormat::surface, AuthorFormat::obj,
                                         AuthorFormat::ply};
 
 // Bytes per item of each file, measured on the Jacksboro scenes and rounded up. A tessellation
@@ -85,8 +85,9 @@ std::set<AuthorFormat> parse_author_formats(const std::string& list)
                 known = true;
             }
         if (!known)
-            throw InputError("", "--formats",
-                             "unknown format \"" + name + "\" (expected glb, vdb, particles, maps, surface, obj, ply or all)");
+            throw InputError(
+                "", "--formats",
+                "unknown format \"" + name + "\" (expected glb, vdb, particles, maps, surface, obj, ply or all)");
     }
     if (out.empty())
         throw InputError("", "--formats", "names no format (e.g. glb,vdb)");

@@ -1,15 +1,20 @@
 // `kiri render SCENE.json -o OUT.png`: renders a scene headless (EGL) and writes the PNG
-// atomically. The output folder is checked before any loading or rendering.
+// atomically, or the linear radiance before the tone map for OUT.exr. The CPU modes (reference,
+// path) need no GL. The output folder is checked before any loading or rendering.
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "commands.hpp"
+#include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/scene/pipeline.hpp"
+#include "kiri/render/exr_image.hpp"
 #include "kiri/render/gl_context.hpp"
 #include "kiri/render/renderer.hpp"
 #include "kiri/render/scene_rendering.hpp"
@@ -22,19 +27,53 @@ struct RenderArgs {
     std::string scene, out, camera, mode = "auto";
     int width = 0, height = 0;
     bool timings = false;
+    bool no_sky = false, black_ground = false;
+    int samples = 256, bounces = 128;
+    std::uint64_t seed = 1;
 };
 
-void render_reference(const geometry::Scene& scene, const geometry::PipelineProducts& products,
-                      const render::Camera& camera, int width, int height, const std::string& out)
+// The CPU renderers (reference, path) of the scene's Medium and height fog.
+void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometry::PipelineProducts& products,
+                const render::Camera& camera, int width, int height)
 {
     const geometry::Terrain& terrain = *products.terrain;
     const geometry::FroxelOptions options = render::scene_froxel_options(scene, terrain);
     const geometry::Medium* medium = products.medium.get();
     const geometry::ReferenceView view = render::reference_view(camera, width, height, options.far);
-    const geometry::FogLighting light = render::scene_fog_lighting(scene, medium, options);
-    const geometry::ReferenceImage r =
-        geometry::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, light);
-    render::write_png_atomic(out, render::tone_mapped(r));
+    geometry::FogLighting light = render::scene_fog_lighting(scene, medium, options);
+    light.sky = !a.no_sky;
+    const bool exr = render::is_exr_path(a.out);
+    if (a.mode == "reference") {
+        geometry::ReferenceOptions ro;
+        ro.shade_terrain = !a.black_ground;
+        const geometry::ReferenceImage r =
+            geometry::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, light, ro);
+        if (exr)
+            render::write_exr_atomic(a.out, render::linear_radiance(r));
+        else
+            render::write_png_atomic(a.out, render::tone_mapped(r));
+        return;
+    }
+    geometry::PathTracerOptions po;
+    po.samples = a.samples;
+    po.max_bounces = a.bounces;
+    po.seed = a.seed;
+    po.ground = a.black_ground ? geometry::PathGround::black : geometry::PathGround::lambertian;
+    const geometry::PathTracedImage p =
+        geometry::render_path_traced({medium, options.height_fog}, &terrain.heightfield(), view, light, po);
+    if (exr)
+        render::write_exr_atomic(a.out, render::linear_radiance(p));
+    else
+        render::write_png_atomic(a.out, render::tone_mapped(p));
+    // The noise: mean standard error over mean radiance (luminance).
+    double mean = 0.0, error = 0.0;
+    for (std::size_t k = 0; k < p.radiance.size(); ++k) {
+        mean += geometry::luminance(p.radiance[k]);
+        error += geometry::luminance(p.std_error[k]);
+    }
+    std::fprintf(stderr, "kiri render: %d samples per pixel, at most %d bounces, seed %llu: %.2f %% standard error\n",
+                 p.samples, a.bounces, static_cast<unsigned long long>(a.seed),
+                 mean > 0.0 ? 100.0 * error / mean : 0.0);
 }
 
 void run(const RenderArgs& a)
@@ -42,10 +81,12 @@ void run(const RenderArgs& a)
     const auto start = std::chrono::steady_clock::now();
     check_output_file(a.out);
     const geometry::Scene scene = geometry::load_scene(a.scene);
-    const bool reference = a.mode == "reference";  // the CPU judge: slow, no GL
+    const bool cpu = a.mode == "reference" || a.mode == "path";  // the CPU judges: slow, no GL
+    if (a.black_ground && !cpu)
+        throw InputError(a.scene, "--black-ground", "only --mode reference and --mode path draw a black ground");
     render::FogMode mode = render::default_mode(scene);
-    if (reference)
-        mode = render::FogMode::froxel;  // the reference draws the Medium and the height fog
+    if (cpu)
+        mode = render::FogMode::froxel;  // the CPU modes draw the Medium and the height fog
     else if (a.mode != "auto")
         render::parse_fog_mode(a.mode, mode);  // CLI11 checked the name
     const geometry::PipelineProducts products = geometry::author_scene(scene, render::pipeline_target(mode, scene));
@@ -54,10 +95,10 @@ void run(const RenderArgs& a)
     const int width = a.width > 0 ? a.width : scene.image.width;
     const int height = a.height > 0 ? a.height : scene.image.height;
 
-    if (reference) {
-        render_reference(scene, products, camera, width, height, a.out);
+    if (cpu) {
+        render_cpu(a, scene, products, camera, width, height);
         std::printf("%s\n", a.out.c_str());
-        std::fprintf(stderr, "kiri render: %dx%d, mode reference, %.2f s\n", width, height,
+        std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, a.mode.c_str(),
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         return;
     }
@@ -66,6 +107,11 @@ void run(const RenderArgs& a)
     render::Renderer renderer;
     renderer.set_terrain(*products.terrain);
     rendering.apply(renderer);
+    if (a.no_sky) {
+        render::SunLight sun = render::to_sun(scene.sun);
+        sun.sky = false;
+        renderer.set_sun(sun);
+    }
     // A still picture: the froxels' temporal filter's jittered frames first (its 16-frame
     // Halton cycle), so the lighting's shadow edges are averaged over each froxel, not aliased.
     for (int frame = 0; frame < rendering.warmup_frames(); ++frame) {
@@ -74,7 +120,10 @@ void run(const RenderArgs& a)
             break;  // no froxel fog in view: nothing to settle
     }
     const render::Image image = renderer.render(camera, width, height);
-    render::write_png_atomic(a.out, image);
+    if (render::is_exr_path(a.out))
+        render::write_exr_atomic(a.out, renderer.read_radiance());
+    else
+        render::write_png_atomic(a.out, image);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n", a.out.c_str());
     std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, render::to_string(mode), seconds);
@@ -99,10 +148,14 @@ void run(const RenderArgs& a)
 
 void add_render_command(CLI::App& app)
 {
-    auto* sub = app.add_subcommand("render", "Render a scene headless to a PNG and print its path");
+    auto* sub = app.add_subcommand(
+        "render", "Render a scene headless to a PNG (or its linear radiance to an OpenEXR file) and print its path");
     auto a = std::make_shared<RenderArgs>();
     sub->add_option("scene", a->scene, "scene file (JSON)")->required();
-    sub->add_option("-o,--out", a->out, "output PNG")->required();
+    sub->add_option("-o,--out", a->out,
+                    "output file: a PNG (tone-mapped), or the linear radiance before the tone map when it ends in "
+                    ".exr (OpenEXR, 32-bit float RGBA)")
+        ->required();
     sub->add_option("--width", a->width, "image width in pixels (default: the scene's)")->check(CLI::Range(1, 16384));
     sub->add_option("--height", a->height, "image height in pixels (default: the scene's)")
         ->check(CLI::Range(1, 16384));
@@ -111,8 +164,22 @@ void add_render_command(CLI::App& app)
                     "what to draw: terrain, layers (the fog's layer stack), particles (the fog as lit particles), "
                     "froxel (the fog as a volume), combined (each of them drawing its share of the fog: froxels "
                     "near, layers far, particles in the top band), reference (the CPU reference ray marcher of "
-                    "that volume: slow), auto (default: combined when the scene has fog, else terrain)")
-        ->check(CLI::IsMember({"auto", "terrain", "layers", "particles", "froxel", "combined", "reference"}));
+                    "that volume: slow), path (the CPU path tracer of that volume, every order of scattering: "
+                    "slower, noisy), auto (default: combined when the scene has fog, else terrain)")
+        ->check(CLI::IsMember({"auto", "terrain", "layers", "particles", "froxel", "combined", "reference", "path"}));
+    sub->add_option(
+           "--samples", a->samples,
+           "--mode path: paths per pixel (default 256: the default scene at 160x90 in about a minute on 2 cores)")
+        ->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--bounces", a->bounces, "--mode path: most scattering events per path (default 128)")
+        ->check(CLI::Range(0, 1 << 20));
+    sub->add_option("--seed", a->seed, "--mode path: random seed (default 1; the same seed gives the same image)");
+    sub->add_flag("--no-sky", a->no_sky,
+                  "no sky light: no ambient, a black sky without the sun's glow (to compare with renderers set up "
+                  "in a black world)");
+    sub->add_flag("--black-ground", a->black_ground,
+                  "--mode reference and path: a black terrain (it still hides and shadows), so the picture is the "
+                  "fog's light alone");
     sub->add_flag("--timings", a->timings, "print the last frame's time per pass");
     sub->callback([a] { run(*a); });
 }

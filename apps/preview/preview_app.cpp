@@ -113,7 +113,7 @@ void PreviewApp::request()
     // The fog's time plays per frame (SceneRendering moves the Medium in time): the pipeline
     // makes it at time 0, so playing never remakes it.
     geometry::Scene at_rest = scene_;
-    at_rest.layers.time = 0.0;
+    at_rest.medium.time = 0.0;
     pipeline_.request(at_rest, requested_target_);
 }
 
@@ -254,8 +254,8 @@ void PreviewApp::draw_panel()
         edited |= terrain_panel(scene_);
         edited |= fog_panel(scene_, shown_.fog.terrain.get(), fog);
         edited |= placement_panel(scene_, shown_.fog.terrain.get(), fog);
-        edited |= layers_panel(scene_, view);
-        edited |= medium_panel(scene_);
+        edited |= layers_panel(scene_);
+        edited |= medium_panel(scene_, view);
         edited |= particles_panel(scene_, shown_.fog.particles.get(), renderer_->attenuation());
         edited |= froxel_panel(scene_, renderer_->last_stats().froxel);
         edited |= sun_panel(scene_);
@@ -412,7 +412,7 @@ int PreviewApp::run()
         ui_.clear_actions();
         handle_input(seconds);
         if (ui_.view.play_time) {  // wind and dissipation run in real time
-            scene_.layers.time += seconds;
+            scene_.medium.time += seconds;
             apply_live_options();
             scene_dirty_ = true;
         }

@@ -43,6 +43,10 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
     // The sky is the ambient light seen directly: deeper blue overhead, paler at the horizon.
     f.sky_zenith = glm::vec3(sun.ambient * glm::dvec3(0.9, 1.5, 2.6));
     f.sky_horizon = glm::vec3(glm::mix(sun.ambient * 3.0, glm::dvec3(1.0, 1.0, 1.0), 0.3));
+    if (!sun.sky) {  // a black world: no sky light, no sky, no glow
+        f.ambient = f.sky_zenith = f.sky_horizon = glm::vec3(0.0f);
+        f.sun_glow = false;
+    }
     return f;
 }
 

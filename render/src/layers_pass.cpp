@@ -240,8 +240,8 @@ void LayersPass::draw_stack(const FrameContext& frame)
     p.set("u_enlargement", int(o.enlargement));
     p.set("u_top", top);
     p.set("u_bottom_first", int(bottom_first));
-    p.set("u_time", float(o.time));
-    p.set("u_half_life", float(o.dissipation_half_life));
+    p.set("u_time", float(o.optics.time));
+    p.set("u_half_life", float(o.optics.dissipation_half_life));
     p.set("u_atlas", 0);
     p.set("u_heights", 1);
     p.set("u_noise", 2);
@@ -249,9 +249,9 @@ void LayersPass::draw_stack(const FrameContext& frame)
     p.set("u_height_texels", height_texels_);
     p.set("u_opacity", float(o.opacity));
     p.set("u_ground_fade", float(o.ground_fade));
-    p.set("u_detail", float(o.detail));
-    p.set("u_detail_scale", float(o.detail_scale));
-    p.set("u_drift", glm::vec2(o.wind * o.time));
+    p.set("u_detail", float(o.optics.detail));
+    p.set("u_detail_scale", float(o.optics.detail_scale));
+    p.set("u_drift", glm::vec2(o.optics.wind * o.optics.time));
     p.set("u_sun_direction", frame.sun_direction);
     p.set("u_sun_radiance", frame.sun_radiance);
     p.set("u_ambient", frame.ambient);

@@ -7,7 +7,7 @@ namespace kiri::render {
 namespace {
 
 // The time the scene's fog is drawn at (wind drift and dissipation).
-double scene_time(const geometry::Scene& scene) { return scene.layers.time; }
+double scene_time(const geometry::Scene& scene) { return scene.medium.time; }
 
 bool has_haze(const geometry::Scene& scene) { return geometry::world_froxel_options(scene).height_fog.enabled(); }
 

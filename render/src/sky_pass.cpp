@@ -9,7 +9,7 @@ void SkyPass::draw(const FrameContext& frame) const
     program_.set("u_inverse_view_projection", frame.inverse_view_projection);
     program_.set("u_eye", frame.eye);
     program_.set("u_sun_direction", frame.sun_direction);
-    program_.set("u_sun_radiance", frame.sun_radiance);
+    program_.set("u_sun_radiance", frame.sun_glow ? frame.sun_radiance : glm::vec3(0.0f));
     program_.set("u_sky_zenith", frame.sky_zenith);
     program_.set("u_sky_horizon", frame.sky_horizon);
     program_.use();

@@ -125,7 +125,7 @@ TEST(PlacementCli, BadPlacementIsOneLineAndNoOutput)
           {R"({"fill": {"top": 460, "seeds": [[-40000, 0]]}})",
            ": /fog/fill/seeds/0: seed (-40000, 0) lies outside the terrain"},
           {R"({"fill": {"top": 460, "seeds": "all"}, "flow": {"wind": [1, 0], "time_step": -1}})",
-           ": /fog/flow/time_step: must be in [0, 86400], got -1"}}) {
+           ": /fog/flow/time_step: must be in (0, 86400], got -1"}}) {
         const fs::path scene = write_scene("bad_fill.json", fog);
         const auto r = run_kiri("author " + shell_quote(scene.string()) + " -o " + out.string());
         EXPECT_EQ(r.exit_code, 2) << fog;

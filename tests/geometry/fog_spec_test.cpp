@@ -65,7 +65,8 @@ TEST(FogSpecJson, PreciseErrors)
         error_of(R"({"colour": 1})"),
         "s.json: /fog/colour: unknown key (expected one of: altitude, burn_off, clearance, fill, flow, footprint, mode, "
         "offset, outline, patch_size, samples_per_patch, smoothing, smoothness, surface, tessellation, thickness)");
-    EXPECT_EQ(error_of(R"({"surface": "nurbs"})"), "s.json: /fog/surface: expected \"gregory\" or \"catmull-clark\"");
+    EXPECT_EQ(error_of(R"({"surface": "nurbs"})"),
+              "s.json: /fog/surface: expected \"gregory\" or \"catmull-clark\", got \"nurbs\"");
     EXPECT_EQ(error_of(R"({"patch_size": -3})"), "s.json: /fog/patch_size: must be > 0");
     EXPECT_EQ(error_of(R"({"mode": "lake"})"),
               "s.json: /fog/altitude: lake mode needs the altitude of the fog top (metres)");

@@ -96,7 +96,8 @@ TEST(LayerExport, TheCompactGlbHoldsEveryLayerOfTheStack)
             const auto p = glb.element<float>(position, i, 3), d = glb.element<float>(target, i, 3);
             const glm::dvec3 want = layers[l].vertices[i].position;
             for (int k = 0; k < 3; ++k)
-                worst_position = std::max(worst_position, std::abs(p[std::size_t(k)] + weight * d[std::size_t(k)] - want[k]));
+                worst_position =
+                    std::max(worst_position, std::abs(p[std::size_t(k)] + weight * d[std::size_t(k)] - want[k]));
             const double alpha = glb.element<std::uint16_t>(color, i, 4)[3] / 65535.0;
             worst_alpha = std::max(worst_alpha, std::abs(alpha - exported_alpha(layers[l].vertices[i], options)));
         }

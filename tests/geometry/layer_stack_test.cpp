@@ -234,15 +234,15 @@ TEST(LayerColumn, DissipationThinsTopLayersFirst)
 {
     LayerOptions o = options_15();
     EXPECT_EQ(layer_dissipation(o, 10, 15), 1.0);  // no half-life: no dissipation
-    o.dissipation_half_life = 60.0;
-    o.time = 0.0;
+    o.optics.dissipation_half_life = 60.0;
+    o.optics.time = 0.0;
     EXPECT_EQ(layer_dissipation(o, 10, 15), 1.0);
-    o.time = 60.0;
+    o.optics.time = 60.0;
     EXPECT_NEAR(layer_dissipation(o, 0, 15), 0.5, 1e-15);
     EXPECT_NEAR(layer_dissipation(o, 15, 15), 0.25, 1e-15);
     double previous = 1.0;
     for (double t : {10.0, 30.0, 90.0, 300.0}) {
-        o.time = t;
+        o.optics.time = t;
         const double d = layer_dissipation(o, 5, 15);
         EXPECT_LT(d, previous);
         EXPECT_LT(layer_dissipation(o, 12, 15), d);
@@ -393,10 +393,10 @@ TEST(LayerOptionsJson, RoundTripAndRefusals)
     EXPECT_EQ(s.layers.count, 30);
     EXPECT_EQ(s.layers.opacity, 0.2);
     EXPECT_FALSE(s.layers.narrowing);
-    EXPECT_EQ(s.layers.wind, glm::dvec2(3, -1));
+    EXPECT_EQ(s.medium.wind, glm::dvec2(3, -1));  // the old names of the medium's keys
     const Scene back = parse_scene(scene_to_json(s), "s.json", ".");
     EXPECT_EQ(back.layers.count, 30);
-    EXPECT_EQ(back.layers.dissipation_half_life, 90.0);
+    EXPECT_EQ(back.medium.dissipation_half_life, 90.0);
     const LayerOptions world = world_layer_options(s);
     EXPECT_EQ(world.thickness, 120.0);
     auto refused = [](const std::string& layers, const std::string& pointer) {

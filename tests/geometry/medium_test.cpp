@@ -8,6 +8,7 @@
 
 #include "fog_test_terrains.hpp"
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/layers/layer_medium.hpp"
 #include "kiri/geometry/medium/fog_lighting.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/scene/scene.hpp"
@@ -228,9 +229,10 @@ TEST(Medium, OfAFittedFogFollowsItsLayers)
     LayerOptions layers;
     layers.count = 10;
     layers.thickness = 150.0;
-    layers.detail = 0.0;
+    MediumOptions smooth;
+    smooth.detail = 0.0;
     const LayerBase base = make_layer_base(surface, tess, layers);
-    const Medium m = make_medium(base, layers, terrain, MediumOptions{});
+    const Medium m = make_medium(base, layers, terrain, smooth);
     const MediumGrid& g = m.grid();
     EXPECT_EQ(g.dx, 20.0);  // the terrain's spacing
     // Every base vertex away from the border: the grid's bottom is the base within the

@@ -181,10 +181,10 @@ TEST(ParticleSampling, BadOptionsNameTheirKey)
     };
     ParticleOptions o;
     o.count = 0;
-    EXPECT_EQ(message(o), "s.json: /particles/count: must be in [1, 2000000]");
+    EXPECT_EQ(message(o), "s.json: /particles/count: must be in [1, 2000000], got 0");
     o = {};
     o.resolution = 600;
-    EXPECT_EQ(message(o), "s.json: /particles/resolution: must be in [16, 512]");
+    EXPECT_EQ(message(o), "s.json: /particles/resolution: must be in [16, 512], got 600");
     o = {};
     o.count = 1000000;
     o.candidates = 30.0;
@@ -221,7 +221,7 @@ TEST(ParticleSampling, SceneSection)
     EXPECT_EQ(error(R"({"count": 3, "spacing": 4})"),
               "s.json: /particles: give count or spacing, not both (each sets the number of particles)");
     EXPECT_EQ(error(R"({"radius": [5, 2]})"), "s.json: /particles/radius: the minimum is above the maximum");
-    EXPECT_EQ(error(R"({"radius": 5})"), "s.json: /particles/radius: expected [min, max] in metres");
+    EXPECT_EQ(error(R"({"radius": 5})"), "s.json: /particles/radius: expected an array of 2 numbers [min, max] (m)");
     EXPECT_EQ(error(R"({"format": "rgba8"})"),
               "s.json: /particles/format: expected \"r16f\" or \"r32f\", got \"rgba8\"");
     EXPECT_EQ(error(R"({"resolution": 8})"), "s.json: /particles/resolution: must be in [16, 512], got 8");

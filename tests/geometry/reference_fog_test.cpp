@@ -304,3 +304,37 @@ TEST(ReferenceFog, ViewRaysFollowTheCamera)
     const glm::dvec3 left = v.ray(0, 1);
     EXPECT_GT(left.y, 0.0);  // x forward, z up: left is +y
 }
+
+TEST(ReferenceFog, NoSkyAndBlackGroundLeaveTheSunsLightAlone)
+{
+    // FogLighting::sky false: no ambient in the fog and a black sky (no horizon, no glow);
+    // ReferenceOptions::shade_terrain false: the ground is black but still ends the ray.
+    const double sigma = 0.01, a = 0.9, g = 0.5, H = 100.0, z = 50.0, d = 200.0, e = 0.5;
+    const Medium m = slab(0.0, H, sigma, 1.0, a, g);
+    FogLighting light;
+    light.sun_direction = {std::cos(e), 0.0, std::sin(e)};
+    light.sun_radiance = {3.0, 2.0, 1.0};
+    light.ambient = {0.2, 0.3, 0.4};
+    light.terrain_shadows = false;
+    light.sky = false;
+    const glm::dvec3 w(0.0, 1.0, 0.0);
+    const RayFog r = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
+    const glm::dvec3 expected = a * std::numbers::pi * light.sun_radiance * std::exp(-sigma * (H - z) / std::sin(e)) *
+        henyey_greenstein(glm::dot(w, light.sun_direction), g) * (1.0 - std::exp(-sigma * d));
+    expect_rel(r.inscatter, expected, 1e-9);
+    EXPECT_EQ(r.surface, glm::dvec3(0.0));
+    const RayFog sky = reference_ray({}, nullptr, {0.0, 0.0, z}, light.sun_direction, 1e6, light);
+    EXPECT_EQ(sky.surface, glm::dvec3(0.0));  // looking into the sun: no glow either
+    light.sky = true;
+    EXPECT_GT(reference_ray({}, nullptr, {0.0, 0.0, z}, light.sun_direction, 1e6, light).surface.x, 0.5);
+
+    const Heightfield ground = flat();
+    ReferenceOptions black;
+    black.shade_terrain = false;
+    const RayFog lit = reference_ray({}, &ground, {0.0, 0.0, 300.0}, {0.0, 0.0, -1.0}, 1e6, light);
+    const RayFog dark = reference_ray({}, &ground, {0.0, 0.0, 300.0}, {0.0, 0.0, -1.0}, 1e6, light, black);
+    ASSERT_TRUE(lit.hit_terrain && dark.hit_terrain);
+    EXPECT_GT(lit.surface.y, 0.1);
+    EXPECT_EQ(dark.surface, glm::dvec3(0.0));
+    EXPECT_EQ(dark.distance, lit.distance);
+}

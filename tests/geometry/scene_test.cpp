@@ -157,7 +157,7 @@ TEST(Scene, MoreErrorClasses)
         {"name": "a", "position": [0,0,2], "target": [0,0,0]}]})"),
               "s.json: /cameras/1/name: duplicate camera name \"a\"");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "sun": {"color": [1, -0.5, 1]}})"),
-              "s.json: /sun/color: colour components must be >= 0");
+              "s.json: /sun/color/1: must be >= 0");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "cameras": {"name": "a"}})"),
               "s.json: /cameras: expected an array of cameras");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "image": [640, 480]})"), "s.json: /image: expected an object");
@@ -234,3 +234,39 @@ TEST(Scene, FogVerticalQuantitiesFollowTheExaggeration)
     const Scene none = parse_scene(minimal, "s.json", "/");
     EXPECT_THROW(kiri::geometry::world_fog_spec(none), kiri::InputError);
 }
+
+namespace {
+
+// The fog's motion is the medium's; the layers' old names of its keys still read, as the medium's.
+TEST(Scene, TheMediumOwnsTheFogsMotion)
+{
+    const Scene s = parse_scene(
+        R"({"terrain": {"path": "t.tif"}, "medium": {"detail": 0.3, "wind": [1, -2], "time": 5, "detail_scale": 800,
+            "dissipation_half_life": 60}})",
+        "s.json", "/scenes");
+    EXPECT_EQ(s.medium.detail, 0.3);
+    EXPECT_EQ(s.medium.wind, glm::dvec2(1, -2));
+    EXPECT_EQ(s.medium.time, 5.0);
+    const std::string text = kiri::geometry::scene_to_json(s);
+    EXPECT_EQ(parse_scene(text, "s.json", "/scenes").medium, s.medium);
+    // Written under "medium" (sections in key order: layers, medium, particles).
+    const std::size_t layers = text.find("\"layers\""), medium = text.find("\"medium\""),
+                      particles = text.find("\"particles\""), detail = text.find("\"detail\"");
+    EXPECT_TRUE(layers < medium && medium < detail && detail < particles) << text;
+    const Scene old =
+        parse_scene(R"({"terrain": {"path": "t.tif"}, "layers": {"detail": 0.3, "time": 5}})", "s.json", "/scenes");
+    EXPECT_EQ(old.medium.detail, 0.3);
+    EXPECT_EQ(old.medium.time, 5.0);
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "layers": {"time": 5}, "medium": {"time": 6}})"),
+              "s.json: /layers/time: the old name of /medium/time, which the scene gives too: give only that");
+    EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "layers": {"detail": 2}})"),
+              "s.json: /layers/detail: must be in [0, 1], got 2");
+    const kiri::geometry::MediumDetail d = kiri::geometry::medium_detail(s.medium, 15.0);
+    EXPECT_EQ(d.detail, 0.3);
+    EXPECT_EQ(d.detail_scale, 800.0);
+    EXPECT_EQ(d.layers, 15.0);
+    EXPECT_EQ(d.wind, glm::dvec2(1, -2));
+    EXPECT_EQ(d.dissipation_half_life, 60.0);
+}
+
+}  // namespace

@@ -66,7 +66,7 @@ protected:
         o.base_offset = base_offset;
         o.shading = g::LayerShading::source;  // the medium's shading has its own test below
         o.opacity = 0.3;
-        o.detail = 0.0;
+        o.optics.detail = 0.0;
         o.ground_fade = 5.0;
         return o;
     }

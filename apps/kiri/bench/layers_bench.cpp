@@ -141,7 +141,7 @@ void error_curve(Context& c)
         LayerFog fog = s.fog(8, count);
         fog.layers.narrowing = false;
         fog.layers.opacity = 1.0 - std::pow(1.0 - s.scene.layers.opacity, 15.0 / count);
-        fog.layers.detail = 0.0;         // the noise varies per layer; compare the medium itself
+        fog.layers.optics.detail = 0.0;  // the noise varies per layer; compare the medium itself
         fog.layers.enlargement = false;  // (2.10) grows with the layer index: 400 layers would be 40 % wider
         return fog;
     };

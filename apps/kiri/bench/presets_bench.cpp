@@ -39,12 +39,10 @@ void presets(Context& c)
         varied["quality"] = geometry::to_string(q);
         judge.prepare(source.parse(varied), render::FogMode::combined);
         const render::FogError e = judge.error();
-        const nlohmann::json p = geometry::quality_preset(q);
-        md << "| " << geometry::to_string(q) << " | " << p["layers"]["count"].get<int>() << " at "
-           << p["layers"]["resolution"].get<double>() << " | " << p["particles"]["count"].get<int>() << " ("
-           << p["particles"]["resolution"].get<int>() << "^3) | " << p["froxel"]["size"][0].get<int>() << "x"
-           << p["froxel"]["size"][1].get<int>() << "x" << p["froxel"]["size"][2].get<int>() << " | "
-           << p["combined"]["particle_share"].get<double>() << " |";
+        const geometry::QualityPreset p = geometry::quality_preset(q);
+        md << "| " << geometry::to_string(q) << " | " << p.layers << " at " << p.layer_resolution << " | "
+           << p.particles << " (" << p.attenuation_resolution << "^3) | " << p.froxel_width << "x" << p.froxel_height
+           << "x" << p.froxel_slices << " | " << p.particle_share << " |";
         for (const auto& [sw, sh] : sizes) {
             const double ms = judge.frame_ms(sw, sh, frames);
             md << ' ' << ms << " |";

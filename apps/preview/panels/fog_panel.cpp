@@ -47,7 +47,9 @@ bool footprint_editor(geometry::FogSpec& f, const geometry::Terrain* terrain)
         return true;
     }
     switch (kind) {
-    case whole_terrain: return slider("margin (m)", f.margin, 0.0, 10000.0, "%.0f");
+    case whole_terrain:
+        return field_slider("margin (m)", f.margin, geometry::field_of(f, f.margin, geometry::TerrainFootprintFields{}),
+                            "%.0f");
     case rectangle: {
         auto& p = f.footprint.polygon;  // (min), (max.x, min.y), (max), (min.x, max.y)
         double lo[2] = {p[0].x, p[0].y}, hi[2] = {p[2].x, p[2].y};
@@ -123,7 +125,7 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const g
         f.surface = kind == 0 ? geometry::SurfaceKind::gregory : geometry::SurfaceKind::catmull_clark;
         changed = true;
     }
-    changed |= slider("patch size (m)", f.patch_size, 100.0, 10000.0, "%.0f", true);
+    changed |= edit("patch size (m)", f, f.patch_size, "%.0f");
     geometry::FitOptions& o = f.fit;
     int mode = o.mode == geometry::FitMode::blanket ? 0 : 1;
     if (!placed && ImGui::Combo("mode", &mode, "blanket\0lake\0")) {
@@ -136,17 +138,17 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const g
     ImGui::TextDisabled("heights in metres of the DEM");
     if (placed) {
     } else if (o.mode == geometry::FitMode::blanket) {
-        changed |= slider("offset (m)", o.offset, -200.0, 1000.0, "%.0f");
-        changed |= slider("clearance (m)", o.clearance, 0.0, o.thickness, "%.0f");
-        changed |= slider("smoothing (m)", o.smoothing_length, 0.0, 5000.0, "%.0f");
+        changed |= edit("offset (m)", o, o.offset, "%.0f");
+        changed |= edit("clearance (m)", o, o.clearance, "%.0f");
+        changed |= edit("smoothing (m)", o, o.smoothing_length, "%.0f");
     } else {
-        changed |= drag("fog top (m)", o.altitude, 2.0);
+        changed |= field_drag("fog top (m)", o.altitude, geometry::field_of(o, o.altitude), 2.0);
     }
     if (!placed)
-        changed |= slider("thickness (m)", o.thickness, std::max(o.clearance, 1.0), 2000.0, "%.0f", true);
-    changed |= slider("smoothness", o.smoothness, 0.0, 10.0, "%.4f", true);
+        changed |= edit("thickness (m)", o, o.thickness, "%.0f");
+    changed |= edit("smoothness", o, o.smoothness, "%.4f");
     if (ImGui::TreeNode("fit samples")) {
-        changed |= slider("samples per patch side", o.samples_per_patch, 0, 64);
+        changed |= edit("samples per patch side", o, o.samples_per_patch);
         ImGui::SameLine();
         ImGui::TextDisabled(o.samples_per_patch == 0 ? "(0: 4)" : "");
         changed |= slider("active-set iterations", o.max_active_set_iterations, 1, 200);
@@ -159,10 +161,10 @@ bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const g
         changed = true;
     }
     if (adaptive) {
-        changed |= slider("tolerance (m)", t.tolerance, 0.05, 100.0, "%.2f", true);
-        changed |= slider("finest level", t.max_level, 1, 256);
+        changed |= edit("tolerance (m)", t, t.tolerance, "%.2f");
+        changed |= edit("finest level", t, t.max_level);
     } else {
-        changed |= slider("tessellation level", t.level, 1, 64);
+        changed |= edit("tessellation level", t, t.level);
     }
     if (fog)
         fit_figures(*fog);

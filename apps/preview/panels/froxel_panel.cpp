@@ -1,7 +1,8 @@
 // Froxel volumetric fog (the scene's "froxel" section, docs/froxel.md): the froxel grid, how its
 // depth slices are spread, fog-aware slicing, temporal filtering and the optional height fog.
 // Every control applies on the next frame (the renderer reruns its passes); drawn in the froxel
-// and combined render modes.
+// and combined render modes. Ranges and tooltips are the froxels' field lists'
+// (froxel_options.hpp, height_fog.hpp).
 #include <imgui.h>
 
 #include "kiri/geometry/medium/medium.hpp"
@@ -16,24 +17,20 @@ bool froxel_panel(geometry::Scene& scene, const render::FroxelStats& stats)
         return false;
     geometry::FroxelOptions& o = scene.froxel;
     bool changed = false;
-    changed |= slider("froxels across", o.width, 16, 512);
-    changed |= slider("froxels down", o.height, 9, 288);
-    changed |= slider("depth slices", o.slices, 8, 256);
-    int d = int(o.distribution);
-    if (ImGui::Combo("slice distribution", &d, "exponential\0log2\0power\0")) {
-        o.distribution = geometry::SliceDistribution(d);
-        changed = true;
-    }
+    changed |= edit("froxels across", o, o.width);
+    changed |= edit("froxels down", o, o.height);
+    changed |= edit("depth slices", o, o.slices);
+    changed |= edit("slice distribution", o, o.distribution);
     if (o.distribution == geometry::SliceDistribution::power)
-        changed |= slider("power", o.power, 0.25, 8.0, "%.2f", true);
+        changed |= edit("power", o, o.power, "%.2f");
     else if (o.distribution == geometry::SliceDistribution::log2)
-        changed |= slider("linear up to (m)", o.log2_scale, 1.0, 2000.0, "%.0f", true);
-    changed |= ImGui::Checkbox("fog-aware slicing", &o.fog_aware);
+        changed |= edit("linear up to (m)", o, o.log2_scale, "%.0f");
+    changed |= edit("fog-aware slicing", o, o.fog_aware);
     ImGui::SameLine();
-    changed |= ImGui::Checkbox("temporal filtering", &o.temporal);
-    changed |= ImGui::Checkbox("terrain shadows", &o.terrain_shadows);
+    changed |= edit("temporal filtering", o, o.temporal);
+    changed |= edit("terrain shadows", o, o.terrain_shadows);
     ImGui::SameLine();
-    changed |= ImGui::Checkbox("fog shadows", &o.fog_shadows);
+    changed |= edit("fog shadows", o, o.fog_shadows);
     geometry::HeightFog& h = o.height_fog;
     bool height_fog = h.enabled();
     if (ImGui::Checkbox("height fog", &height_fog)) {
@@ -42,12 +39,12 @@ bool froxel_panel(geometry::Scene& scene, const render::FroxelStats& stats)
     }
     if (h.enabled()) {
         double visibility = geometry::visibility_from_extinction(h.extinction);
-        if (slider("visibility at the base (m)", visibility, 100.0, 200000.0, "%.0f", true)) {
+        if (field_slider("visibility at the base (m)", visibility, geometry::field_named(h, "visibility"), "%.0f")) {
             h.extinction = geometry::extinction_from_visibility(visibility);
             changed = true;
         }
-        changed |= drag("base (m)", h.base, 5.0);
-        changed |= slider("scale height (m)", h.scale_height, 10.0, 5000.0, "%.0f", true);
+        changed |= field_drag("base (m)", h.base, geometry::field_of(h, h.base), 5.0);
+        changed |= edit("scale height (m)", h, h.scale_height, "%.0f");
     }
     ImGui::TextDisabled("updates %d, shadow map %d; %s", stats.updates, stats.shadow_map_updates,
                         !stats.enabled      ? "off"

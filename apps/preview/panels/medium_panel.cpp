@@ -1,5 +1,7 @@
-// The fog's optics (the scene's "medium" section, docs/medium.md): shared by every renderer, so
-// an edit here applies to the layers on the next frame (and to the volume renderers).
+// The fog's optics and motion (the scene's "medium" section, docs/medium.md): shared by every
+// renderer, so an edit here applies to the layers on the next frame (and to the volume
+// renderers). Playing the time drifts and dissipates the fog in real time. Ranges and
+// tooltips are the medium's field list's (medium_options.hpp).
 #include <cmath>
 
 #include <imgui.h>
@@ -10,7 +12,7 @@
 
 namespace kiri::preview {
 
-bool medium_panel(geometry::Scene& scene)
+bool medium_panel(geometry::Scene& scene, ViewOptions& view)
 {
     if (!ImGui::CollapsingHeader("Medium", ImGuiTreeNodeFlags_DefaultOpen))
         return false;
@@ -18,20 +20,28 @@ bool medium_panel(geometry::Scene& scene)
     bool changed = false;
     // Visibility is what people know of fog (Koschmieder); the extinction follows.
     double visibility = geometry::visibility_from_extinction(o.extinction);
-    if (slider("visibility (m)", visibility, 10.0, 20000.0, "%.0f", true)) {
+    if (field_slider("visibility (m)", visibility, geometry::field_named(o, "visibility"), "%.0f")) {
         o.extinction = geometry::extinction_from_visibility(visibility);
         changed = true;
     }
     ImGui::TextDisabled("extinction %.4f 1/m", o.extinction);
-    changed |= slider("albedo", o.albedo, 0.0, 1.0, "%.3f");
-    changed |= slider("anisotropy g", o.anisotropy, -0.95, 0.95, "%.2f");
-    changed |= slider("top density", o.top_density, 0.0, 1.0, "%.2f");
-    changed |= slider("scattering octaves", o.scattering_octaves, 1, 8);
+    changed |= edit("albedo", o, o.albedo, "%.3f");
+    changed |= edit("anisotropy g", o, o.anisotropy, "%.2f");
+    changed |= edit("top density", o, o.top_density, "%.2f");
+    changed |= edit("scattering octaves", o, o.scattering_octaves);
+    changed |= edit("detail", o, o.detail, "%.2f");
+    changed |= edit("detail scale (m)", o, o.detail_scale, "%.0f");
+    changed |= edit("wind (m/s)", o, o.wind, "%.1f");
+    changed |= edit("dissipation half-life (s)", o, o.dissipation_half_life, "%.0f");
+    changed |= edit("time (s)", o, o.time, "%.0f");
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("play", &view.play_time);
     bool medium = scene.layers.shading == geometry::LayerShading::medium;
     if (ImGui::Checkbox("layers shaded from the medium", &medium)) {
         scene.layers.shading = medium ? geometry::LayerShading::medium : geometry::LayerShading::source;
         changed = true;
     }
+    field_tooltip(geometry::field_of(scene.layers, scene.layers.shading));
     return changed;
 }
 

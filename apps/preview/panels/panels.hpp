@@ -24,7 +24,7 @@ struct ViewOptions {
     bool tessellation = false;  //!< the surface's triangles as lines
     bool patches = false;       //!< patch borders
     bool control_mesh = false;
-    bool play_time = false;           //!< advance the fog's time (wind, dissipation) in real time
+    bool play_time = false;           //!< advance the medium's time (wind, dissipation) in real time
     float render_scale = 1.0f;        //!< of the window's framebuffer
     bool reduce_while_moving = true;  //!< render at moving_scale while the camera moves
     float moving_scale = 0.5f;
@@ -62,8 +62,10 @@ struct FrameTimes {
 bool terrain_panel(geometry::Scene& scene);
 bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const geometry::PipelineProducts* fog);
 bool sun_panel(geometry::Scene& scene);
-bool layers_panel(geometry::Scene& scene, ViewOptions& view);
-bool medium_panel(geometry::Scene& scene);
+bool layers_panel(geometry::Scene& scene);
+//! The medium's optics and its motion (detail noise, wind, time, dissipation); `view` holds
+//! whether its time plays.
+bool medium_panel(geometry::Scene& scene, ViewOptions& view);
 //! Fog placed by the terrain (the fog section's fill, outline, flow and burn_off keys), with
 //! the last placement's figures; only for a scene whose fog has them.
 bool placement_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const geometry::PipelineProducts* fog);

@@ -1,7 +1,8 @@
 // The fog as particles (the scene's "particles" section, docs/particles.md). Sampling options
 // resample the Medium on the worker (~1 s for 60k particles); the attenuation buffer's
 // resolution and format and the billboards' soft edge apply on the next frame (the buffer is
-// rebuilt once). Drawn in the particles and combined render modes.
+// rebuilt once). Drawn in the particles and combined render modes. Ranges and tooltips are the
+// particles' field list's (particles.hpp).
 #include <algorithm>
 
 #include <imgui.h>
@@ -26,10 +27,10 @@ bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* clou
         changed = true;
     }
     if (by_spacing)
-        changed |= slider("spacing (m)", o.spacing, 10.0, 2000.0, "%.0f", true);
+        changed |= edit("spacing (m)", o, o.spacing, "%.0f");
     else
-        changed |= ImGui::SliderInt("count", &o.count, 100, 200000, "%d", ImGuiSliderFlags_Logarithmic);
-    changed |= slider("radius scale", o.radius_scale, 0.5, 4.0, "%.2f");
+        changed |= edit("count", o, o.count);
+    changed |= edit("radius scale", o, o.radius_scale, "%.2f");
     bool own_albedo = o.albedo >= 0.0;
     if (ImGui::Checkbox("own albedo", &own_albedo)) {
         o.albedo = own_albedo ? scene.medium.albedo : -1.0;
@@ -38,7 +39,7 @@ bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* clou
     if (own_albedo) {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
-        changed |= slider("##albedo", o.albedo, 0.0, 1.0, "%.3f");
+        changed |= edit("##albedo", o, o.albedo, "%.3f");
     } else {
         ImGui::SameLine();
         ImGui::TextDisabled("(the medium's %.3f)", scene.medium.albedo);
@@ -49,13 +50,9 @@ bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* clou
         changed = true;
     }
     ImGui::TextUnformatted("attenuation buffer");
-    changed |= slider("voxels per side", o.resolution, 64, 384);
-    int format = o.half_float ? 0 : 1;
-    if (ImGui::Combo("format", &format, "R16F\0R32F\0")) {
-        o.half_float = format == 0;
-        changed = true;
-    }
-    changed |= slider("soft edge (m)", o.soft_edge, 0.0, 500.0, "%.0f");
+    changed |= edit("voxels per side", o, o.resolution);
+    changed |= field_combo("format", o.half_float, geometry::field_of(o, o.half_float));
+    changed |= edit("soft edge (m)", o, o.soft_edge, "%.0f");
     if (cloud)
         ImGui::TextDisabled("%zu particles, spacing %.0f m", cloud->particles.size(), cloud->spacing);
     if (buffer.rebuild_count() > 0) {

@@ -58,11 +58,11 @@ bool region_editor(geometry::FillRegionSpec& r)
     if (r.seeds == geometry::SeedKind::points)
         changed |= seed_points(r.points);
     else if (r.seeds == geometry::SeedKind::valleys)
-        changed |= slider("valley threshold", r.valleys.threshold, -2.0, 4.0, "%.2f");
+        changed |= edit("valley threshold", r.valleys, r.valleys.threshold, "%.2f");
     else if (r.seeds == geometry::SeedKind::mask)
         ImGui::TextDisabled("mask %s", r.mask_path.filename().string().c_str());
-    changed |= drag("fog top (m)", r.top, 2.0);
-    changed |= slider("min thickness (m)", r.min_thickness, 0.0, 200.0, "%.0f");
+    changed |= field_drag("fog top (m)", r.top, geometry::field_of(r, r.top), 2.0);
+    changed |= edit("min thickness (m)", r, r.min_thickness, "%.0f");
     bool limit = r.max_thickness > 0.0;
     if (ImGui::Checkbox("max thickness", &limit)) {
         r.max_thickness = limit ? 200.0 : 0.0;
@@ -71,11 +71,9 @@ bool region_editor(geometry::FillRegionSpec& r)
     if (limit) {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.5f);
-        changed |= slider("##max", r.max_thickness, 1.0, 2000.0, "%.0f m", true);
+        changed |= edit("##max", r, r.max_thickness, "%.0f m");
     }
-    changed |= slider("density profile", r.profile, 0.0, 1.0, "%.2f");
-    if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("0: each column densest at its own bottom (blanket); 1: by altitude (fill)");
+    changed |= edit("density profile", r, r.profile, "%.2f");
     return changed;
 }
 
@@ -92,16 +90,9 @@ bool flow_editor(geometry::PlacementSpec& p)
     }
     if (!p.flow)
         return changed;
-    float wind[2] = {float(p.flow->wind.x), float(p.flow->wind.y)};
-    if (ImGui::SliderFloat2("wind (m/s)", wind, -15.0f, 15.0f, "%.1f")) {
-        p.flow->wind = {wind[0], wind[1]};
-        changed = true;
-    }
-    double hours = p.flow->duration / 3600.0;
-    if (slider("flow time (h)", hours, 0.0, 12.0, "%.1f")) {
-        p.flow->duration = hours * 3600.0;
-        changed = true;
-    }
+    geometry::FlowOptions& flow = *p.flow;
+    changed |= edit("wind (m/s)", flow, flow.wind, "%.1f");
+    changed |= field_slider("flow time (h)", flow.duration, geometry::field_of(flow, flow.duration), "%.1f", 3600.0);
     return changed;
 }
 
@@ -118,8 +109,9 @@ bool burn_off_editor(geometry::PlacementSpec& p)
     }
     if (!p.burn_off)
         return changed;
-    changed |= slider("time of day (h)", p.burn_off->time, 0.0, 24.0, "%.2f");
-    changed |= slider("day of the year", p.burn_off->day_of_year, 1, 366);
+    geometry::BurnOffOptions& burn_off = *p.burn_off;
+    changed |= edit("time of day (h)", burn_off, burn_off.time, "%.2f");
+    changed |= edit("day of the year", burn_off, burn_off.day_of_year);
     return changed;
 }
 

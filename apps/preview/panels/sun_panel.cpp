@@ -28,7 +28,7 @@ bool sun_panel(geometry::Scene& scene)
         changed = true;
     }
     changed |= color_edit("colour", s.color);
-    changed |= slider("intensity", s.intensity, 0.0, 20.0, "%.2f");
+    changed |= edit("intensity", s, s.intensity, "%.2f");
     changed |= color_edit("sky ambient", s.ambient);
     return changed;
 }

@@ -15,11 +15,11 @@ bool terrain_panel(geometry::Scene& scene)
     ImGui::TextWrapped("%s", t.path.filename().string().c_str());
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("%s", t.path.string().c_str());
-    bool changed = slider("exaggeration", t.exaggeration, 0.1, 10.0, "%.2f", true);
+    bool changed = edit("exaggeration", t, t.exaggeration, "%.2f");
     if (ImGui::TreeNode("raster units")) {
-        changed |= slider("vertical scale", t.vertical_scale, 1e-3, 1e3, "%.3f m/unit", true);
-        changed |= drag("vertical offset (m)", t.vertical_offset, 1.0);
-        changed |= slider("cell size (m)", t.cell_size, 0.0, 1000.0, t.cell_size > 0.0 ? "%.2f" : "from the raster");
+        changed |= edit("vertical scale", t, t.vertical_scale, "%.3f m/unit");
+        changed |= field_drag("vertical offset (m)", t.vertical_offset, geometry::field_of(t, t.vertical_offset), 1.0);
+        changed |= edit("cell size (m)", t, t.cell_size, t.cell_size > 0.0 ? "%.2f" : "from the raster");
         ImGui::TreePop();
     }
     return changed;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <imgui.h>
@@ -117,6 +118,104 @@ void color_legend(const char* low, const char* high, bool diverging)
     ImGui::TextUnformatted(low);
     ImGui::SameLine(std::max(width - ImGui::CalcTextSize(high).x, 0.0f) + ImGui::GetStyle().WindowPadding.x);
     ImGui::TextUnformatted(high);
+}
+
+namespace {
+
+// The field's slider ends: its widget range, else its range; an open end is nudged inside.
+struct Ends {
+    double lo, hi;
+};
+Ends ends(const geometry::FieldInfo& info)
+{
+    const geometry::Range& r = info.widget.bounded() ? info.widget : info.range;
+    double lo = r.lo.value, hi = std::max(r.hi.value, r.lo.value);
+    const double nudge = (hi - lo) * 1e-4;
+    if (r.lo_open)
+        lo += nudge;
+    if (r.hi_open)
+        hi -= nudge;
+    return {lo, hi};
+}
+
+}  // namespace
+
+void field_tooltip(const geometry::FieldInfo& info, bool integer)
+{
+    if (!ImGui::IsItemHovered())
+        return;
+    const std::string range = geometry::range_text(info.range, integer);
+    ImGui::SetTooltip("%.*s%s%.*s%s%s\n%.*s", int(info.key.size()), info.key.data(), info.unit.empty() ? "" : " (",
+                      int(info.unit.size()), info.unit.data(), info.unit.empty() ? "" : ")",
+                      range.empty() ? "" : (" " + range).c_str(), int(info.doc.size()), info.doc.data());
+}
+
+bool field_slider(const char* label, double& value, const geometry::FieldInfo& info, const char* format,
+                  double per_shown)
+{
+    const Ends e = ends(info);
+    double shown = value / per_shown;
+    const bool changed = slider(label, shown, e.lo / per_shown, e.hi / per_shown, format, info.log_widget);
+    field_tooltip(info);
+    if (changed)
+        value = shown * per_shown;
+    return changed;
+}
+
+bool field_slider(const char* label, int& value, const geometry::FieldInfo& info)
+{
+    const Ends e = ends(info);
+    const ImGuiSliderFlags flags = ImGuiSliderFlags_AlwaysClamp | (info.log_widget ? ImGuiSliderFlags_Logarithmic : 0);
+    const bool changed = ImGui::SliderInt(label, &value, int(std::ceil(e.lo)), int(std::floor(e.hi)), "%d", flags);
+    field_tooltip(info, true);
+    return changed;
+}
+
+bool field_slider(const char* label, glm::dvec2& value, const geometry::FieldInfo& info, const char* format)
+{
+    const Ends e = ends(info);
+    float v[2] = {float(value.x), float(value.y)};
+    const bool changed = ImGui::SliderFloat2(label, v, float(e.lo), float(e.hi), format);
+    field_tooltip(info);
+    if (changed)
+        value = {v[0], v[1]};
+    return changed;
+}
+
+bool field_drag(const char* label, double& value, const geometry::FieldInfo& info, double speed, const char* format)
+{
+    const bool changed = drag(label, value, speed, format);
+    field_tooltip(info);
+    return changed;
+}
+
+bool field_checkbox(const char* label, bool& value, const geometry::FieldInfo& info)
+{
+    const bool changed = ImGui::Checkbox(label, &value);
+    field_tooltip(info);
+    return changed;
+}
+
+bool choice_combo(const char* label, int& value, const geometry::FieldInfo& info)
+{
+    int index = 0;
+    for (std::size_t k = 0; k < info.choices.size(); ++k)
+        if (info.choices[k].value == value)
+            index = int(k);
+    bool changed = false;
+    const std::string shown(info.choices.empty() ? std::string_view() : info.choices[std::size_t(index)].name);
+    if (ImGui::BeginCombo(label, shown.c_str())) {
+        for (std::size_t k = 0; k < info.choices.size(); ++k) {
+            const std::string name(info.choices[k].name);
+            if (ImGui::Selectable(name.c_str(), int(k) == index) && int(k) != index) {
+                value = info.choices[k].value;
+                changed = true;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    field_tooltip(info);
+    return changed;
 }
 
 }  // namespace kiri::preview

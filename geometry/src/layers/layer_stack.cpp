@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -16,38 +17,16 @@ namespace {
     throw InputError(label, "/layers/" + field, why);
 }
 
-bool finite2(const glm::dvec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
-
 }  // namespace
 
 void validate_layer_options(const LayerOptions& o, const std::string& label)
 {
-    if (o.count < 1 || o.count > 1000)
-        refuse(label, "count", "must be in [1, 1000], got " + std::to_string(o.count));
-    if (o.max_count < std::max(o.count, 1) || o.max_count > 1000)
-        refuse(label, "max_count", "must be in [count, 1000], got " + std::to_string(o.max_count));
+    check_fields(o, label, "/layers");
     if (!(o.thickness > 0.0) || !std::isfinite(o.thickness))
         refuse(label, "thickness", "must be a finite number > 0 (fog.thickness)");
-    if (!(o.spacing_divisor > 0.0) || !std::isfinite(o.spacing_divisor))
-        refuse(label, "spacing_divisor", "must be > 0");
-    if (!(o.enlargement_rate >= 0.0 && o.enlargement_rate * o.max_count < 1.0))
-        refuse(label, "enlargement_rate", "must be >= 0 and below 1 / max_count");
-    if (!(o.opacity >= 0.0 && o.opacity <= 0.999))
-        refuse(label, "opacity", "must be in [0, 0.999]");
-    if (!(o.ground_fade >= 0.0) || !std::isfinite(o.ground_fade))
-        refuse(label, "ground_fade", "must be >= 0");
-    if (!(o.detail >= 0.0 && o.detail <= 1.0))
-        refuse(label, "detail", "must be in [0, 1]");
-    if (!(o.detail_scale > 0.0) || !std::isfinite(o.detail_scale))
-        refuse(label, "detail_scale", "must be > 0");
-    if (!(o.dissipation_half_life >= 0.0) || !std::isfinite(o.dissipation_half_life))
-        refuse(label, "dissipation_half_life", "must be >= 0 (0: no dissipation)");
     if (!std::isfinite(o.base_offset))
         refuse(label, "base_offset", "must be finite");
-    if (!finite2(o.wind))
-        refuse(label, "wind", "must be finite");
-    if (!std::isfinite(o.time))
-        refuse(label, "time", "must be finite");
+    validate_medium_options(o.optics, label);
 }
 
 LayerColumn layer_column(const LayerOptions& o, const glm::dvec3& eye, const glm::dvec3& point,
@@ -95,10 +74,11 @@ LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, con
 
 double layer_dissipation(const LayerOptions& o, int i, double n)
 {
-    if (!(o.dissipation_half_life > 0.0) || o.time <= 0.0)
+    const MediumOptions& m = o.optics;
+    if (!(m.dissipation_half_life > 0.0) || m.time <= 0.0)
         return 1.0;
     const double height = n > 0.0 ? std::min(i / n, 1.0) : 0.0;
-    return std::exp2(-o.time / o.dissipation_half_life * (1.0 + height));
+    return std::exp2(-m.time / m.dissipation_half_life * (1.0 + height));
 }
 
 LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessellation, const LayerOptions& options,

@@ -72,12 +72,7 @@ glm::dvec2 LayerTexture::atlas_uv(BorderMask mask, double u, double v) const
 
 LayerTexture make_layer_texture(const std::vector<BorderMask>& masks, const LayerTextureOptions& options)
 {
-    if (options.resolution < 4 || options.resolution > 1024)
-        throw InputError({}, "layers/texture_size", "must be in [4, 1024], got " + std::to_string(options.resolution));
-    if (!(options.fade_width > 0.0 && options.fade_width <= 1.0))
-        throw InputError({}, "layers/fade_width", "must be in (0, 1]");
-    if (!(options.gray >= 0.0 && options.gray <= 1.0))
-        throw InputError({}, "layers/gray", "must be in [0, 1]");
+    check_fields(options, {}, "layers");
     std::vector<BorderMask> unique = masks;
     std::sort(unique.begin(), unique.end());
     unique.erase(std::unique(unique.begin(), unique.end()), unique.end());

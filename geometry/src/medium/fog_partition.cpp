@@ -38,19 +38,6 @@ FogShares fog_shares(const FogPartition& p, double distance, double h)
     return s;
 }
 
-void validate_fog_partition(const FogPartition& p, const std::string& label)
-{
-    auto need = [&](bool ok, const char* key, const char* reason) {
-        if (!ok)
-            throw InputError(label, std::string("/combined/") + key, reason);
-    };
-    need(std::isfinite(p.near_start) && p.near_start >= 0.0, "near_start", "must be a finite distance >= 0 (metres)");
-    need(std::isfinite(p.near_end) && p.near_end >= p.near_start, "near_end", "must be finite and >= near_start");
-    need(p.near_end <= 1e7, "near_end", "must be at most 1e7 metres");
-    need(std::isfinite(p.particle_share) && p.particle_share >= 0.0 && p.particle_share <= 1.0, "particle_share",
-         "must be in [0, 1]");
-    need(std::isfinite(p.particle_band) && p.particle_band > 0.0 && p.particle_band <= 1.0, "particle_band",
-         "must be in (0, 1]");
-}
+void validate_fog_partition(const FogPartition& p, const std::string& label) { check_fields(p, label, "/combined"); }
 
 }  // namespace kiri::geometry

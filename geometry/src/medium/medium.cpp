@@ -19,36 +19,19 @@ constexpr double layer_shift_x = 0.137, layer_shift_y = 0.071;
 
 }  // namespace
 
-MediumDetail medium_detail(const LayerOptions& layers)
+MediumDetail medium_detail(const MediumOptions& medium, double noise_layers)
 {
     MediumDetail d;
-    d.detail = layers.detail;
-    d.detail_scale = layers.detail_scale;
-    d.layers = layers.count;
-    d.wind = layers.wind;
-    d.time = layers.time;
-    d.dissipation_half_life = layers.dissipation_half_life;
+    d.detail = medium.detail;
+    d.detail_scale = medium.detail_scale;
+    d.layers = noise_layers;
+    d.wind = medium.wind;
+    d.time = medium.time;
+    d.dissipation_half_life = medium.dissipation_half_life;
     return d;
 }
 
-void validate_medium_options(const MediumOptions& o, const std::string& label)
-{
-    const std::string p = "/medium/";
-    if (!(o.extinction > 0.0) || !std::isfinite(o.extinction))
-        throw InputError(label, p + "extinction", "must be a finite number > 0 (1/m)");
-    if (!(o.albedo >= 0.0 && o.albedo <= 1.0))
-        throw InputError(label, p + "albedo", "must be in [0, 1]");
-    if (!(o.anisotropy > -1.0 && o.anisotropy < 1.0))
-        throw InputError(label, p + "anisotropy", "must be in (-1, 1)");
-    if (!(o.top_density >= 0.0 && o.top_density <= 1.0))
-        throw InputError(label, p + "top_density", "must be in [0, 1]");
-    if (!(o.grid_spacing >= 0.0) || !std::isfinite(o.grid_spacing))
-        throw InputError(label, p + "grid_spacing", "must be a finite number >= 0 (0: the terrain's spacing)");
-    if (o.max_grid_side < 2 || o.max_grid_side > 8192)
-        throw InputError(label, p + "max_grid_side", "must be in [2, 8192]");
-    if (o.scattering_octaves < 1 || o.scattering_octaves > 8)
-        throw InputError(label, p + "scattering_octaves", "must be in [1, 8]");
-}
+void validate_medium_options(const MediumOptions& o, const std::string& label) { check_fields(o, label, "/medium"); }
 
 Medium::Medium(MediumGrid grid, const MediumOptions& options, const MediumDetail& detail)
     : grid_(std::move(grid)), options_(options), detail_(detail)

@@ -3,7 +3,6 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/medium/optics.cpp
   src/medium/fog_noise.cpp
   src/medium/medium.cpp
-  src/medium/make_medium.cpp
   src/medium/fog_partition.cpp
   src/medium/fog_lighting.cpp
 )

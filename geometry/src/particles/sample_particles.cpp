@@ -23,31 +23,10 @@ double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
 void validate_particle_options(const ParticleOptions& o, const std::string& label)
 {
-    const std::string p = "/particles/";
-    if (o.count < 1 || double(o.count) > max_particles)
-        throw InputError(label, p + "count", "must be in [1, 2000000]");
-    if (!(o.spacing >= 0.0) || !std::isfinite(o.spacing))
-        throw InputError(label, p + "spacing", "must be a finite number >= 0 (metres; 0: use count)");
-    if (!(o.radius_scale > 0.0) || !(o.radius_scale <= 100.0))
-        throw InputError(label, p + "radius_scale", "must be in (0, 100]");
-    if (!(o.radius_min >= 0.0) || !std::isfinite(o.radius_min) || !(o.radius_max >= 0.0) ||
-        !std::isfinite(o.radius_max))
-        throw InputError(label, p + "radius", "must be finite numbers >= 0 (metres; 0: automatic)");
+    check_fields(o, label, "/particles");
     if (o.radius_min > 0.0 && o.radius_max > 0.0 && o.radius_min > o.radius_max)
-        throw InputError(label, p + "radius", "the minimum is above the maximum");
-    if (!(o.albedo <= 1.0) || std::isnan(o.albedo))
-        throw InputError(label, p + "albedo", "must be in [0, 1] (or absent: the medium's)");
-    if (!(o.extinction >= 0.0) || !std::isfinite(o.extinction) || o.extinction > 1e3)
-        throw InputError(label, p + "extinction", "must be in [0, 1000] (1/m; 0: the medium's)");
-    if (!(o.forward_scattering <= 1.0) || std::isnan(o.forward_scattering))
-        throw InputError(label, p + "forward_scattering",
-                         "must be in [0, 1] (or absent: from the medium's anisotropy)");
-    if (!(o.candidates >= 1.0 && o.candidates <= 50.0))
-        throw InputError(label, p + "candidates", "must be in [1, 50]");
-    if (o.resolution < 16 || o.resolution > 512)
-        throw InputError(label, p + "resolution", "must be in [16, 512]");
-    if (!(o.soft_edge >= 0.0) || !std::isfinite(o.soft_edge))
-        throw InputError(label, p + "soft_edge", "must be a finite number >= 0 (metres)");
+        throw InputError(label, "/particles/" + std::string(field_of(o, o.radius_min).key),
+                         "the minimum is above the maximum");
 }
 
 ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label,

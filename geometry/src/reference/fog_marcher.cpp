@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "reference/grid_walk.hpp"
+#include "reference/terrain_shading.hpp"
 
 namespace kiri::geometry::detail {
 namespace {
@@ -27,13 +28,6 @@ double step_weight(double sigma, double dt)
     return x > 1e-6 ? -std::expm1(-x) / sigma : dt * (1.0 - 0.5 * x);
 }
 
-glm::dvec3 mix(const glm::dvec3& a, const glm::dvec3& b, double t) { return a + (b - a) * t; }
-double smoothstep(double a, double b, double x)
-{
-    const double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
-    return t * t * (3.0 - 2.0 * t);
-}
-
 }  // namespace
 
 FogMarcher::FogMarcher(const FogVolume& fog, const Heightfield* terrain, const FogLighting& light,
@@ -44,6 +38,8 @@ FogMarcher::FogMarcher(const FogVolume& fog, const Heightfield* terrain, const F
         terrain_ = std::make_unique<HeightfieldRay>(*terrain);
     const double len = glm::length(light.sun_direction);
     sun_ = len > 0.0 && std::isfinite(len) ? light.sun_direction / len : glm::dvec3(0.0, 0.0, 1.0);
+    if (!light_.sky)
+        light_.ambient = glm::dvec3(0.0);
     if (fog_.medium && !(fog_.medium->max_extinction() > 0.0))
         fog_.medium = nullptr;
     o_.optical_step = std::clamp(o_.optical_step, 1e-4, 1.0);
@@ -286,10 +282,7 @@ glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s) co
     const glm::dvec3 n = terrain_->normal(p.x, p.y);
     const double height01 =
         std::clamp((p.z - terrain_->z_min()) / std::max(terrain_->z_max() - terrain_->z_min(), 1e-3), 0.0, 1.0);
-    const glm::dvec3 valley(0.16, 0.26, 0.10), slope(0.30, 0.32, 0.15), upland(0.42, 0.40, 0.28),
-        rock(0.40, 0.36, 0.32);
-    glm::dvec3 base = height01 < 0.5 ? mix(valley, slope, height01 * 2.0) : mix(slope, upland, height01 * 2.0 - 1.0);
-    base = mix(base, rock, smoothstep(0.18, 0.55, 1.0 - n.z));
+    const glm::dvec3 base = terrain_albedo(height01, n.z);
     double direct = std::max(glm::dot(n, sun_), 0.0);
     if (direct > 0.0) {
         const glm::dvec3 q = p + n * (0.01 + 1e-7 * glm::length(p));  // off the surface's own triangles
@@ -302,6 +295,8 @@ glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s) co
 glm::dvec3 FogMarcher::sky_radiance(const glm::dvec3& w) const
 {
     // render/shaders/sky.frag in linear radiance.
+    if (!light_.sky)
+        return glm::dvec3(0.0);
     const glm::dvec3 zenith = light_.ambient * glm::dvec3(0.9, 1.5, 2.6);
     const glm::dvec3 horizon = mix(light_.ambient * 3.0, glm::dvec3(1.0), 0.3);
     const double elevation = std::clamp(w.z, -1.0, 1.0);
@@ -371,7 +366,10 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
     r.transmittance = std::exp(-tau);
     r.steps = int(s.steps.size());
     r.sun_knots = int(s.knots.size());
-    r.surface = r.hit_terrain ? surface_radiance(o + w * t_end, s) : sky_radiance(w);
+    if (r.hit_terrain)
+        r.surface = o_.shade_terrain ? surface_radiance(o + w * t_end, s) : glm::dvec3(0.0);
+    else
+        r.surface = sky_radiance(w);
     return r;
 }
 

@@ -4,4 +4,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/reference/shell_intervals.cpp
   src/reference/fog_marcher.cpp
   src/reference/reference_fog.cpp
+  src/reference/path_tracer.cpp
 )

@@ -1,5 +1,6 @@
 #pragma once
 // Internal: the scene's "medium" section <-> JSON.
+#include <set>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -13,5 +14,13 @@ namespace kiri::geometry {
 //! \throw InputError(file, "/medium/...", reason); unknown keys are errors.
 MediumOptions parse_medium_options(const nlohmann::json& j, const std::string& file);
 nlohmann::json medium_options_to_json(const MediumOptions& options);
+
+//! The medium's motion keys (detail, detail_scale, wind, time, dissipation_half_life): the
+//! "layers" section gave them before the medium owned them, and still may.
+std::set<std::string> medium_keys_in_layers();
+//! Those keys given in the "layers" section `layers`, written into `o` (the medium's options).
+//! \throw InputError when the "medium" section `medium` (null if none) gives one of them too.
+void read_layer_aliases(const nlohmann::json& layers, const nlohmann::json* medium, const std::string& file,
+                        MediumOptions& o);
 
 }  // namespace kiri::geometry

@@ -6,6 +6,7 @@
 
 #include "kiri/geometry/core/error.hpp"
 
+#include "kiri/geometry/layers/layer_medium.hpp"
 #include "kiri/geometry/placement/fill_medium.hpp"
 #include "kiri/geometry/scene/author_estimate.hpp"
 #include "scene/stage_inputs.hpp"
@@ -22,8 +23,9 @@ std::shared_ptr<const Medium> build_medium(const Terrain& terrain, const PlacedF
                                            const std::string& label)
 {
     // Fog placed by the terrain: the fill's columns are the shell; else the layer stack's slab.
-    return std::make_shared<const Medium>(placed ? fill_medium(terrain, *placed, medium, medium_detail(layers), label)
-                                                 : make_medium(base, layers, terrain, medium, label));
+    return std::make_shared<const Medium>(
+        placed ? fill_medium(terrain, *placed, medium, medium_detail(medium, layers.count), label)
+               : make_medium(base, layers, terrain, medium, label));
 }
 
 std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const ParticlesInput& in,

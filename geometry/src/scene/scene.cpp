@@ -15,6 +15,8 @@
 #include "scene/fog_partition_json.hpp"
 #include "scene/froxel_options_json.hpp"
 #include "core/json_reader.hpp"
+#include "scene/field_json.hpp"
+#include "scene/quality_json.hpp"
 #include "kiri/geometry/terrain/dem.hpp"
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
@@ -28,22 +30,8 @@ using Reader = JsonReader;
 
 TerrainSpec read_terrain(const Reader& r, const json& j, const std::filesystem::path& base_dir)
 {
-    r.only(j, "/terrain", {"path", "exaggeration", "cell_size", "vertical_scale", "vertical_offset"});
-    if (!j.contains("path"))
-        r.fail("/terrain/path", "missing (the elevation raster to load)");
     TerrainSpec t;
-    const std::string path = r.string(j["path"], "/terrain/path");
-    if (path.empty())
-        r.fail("/terrain/path", "must not be empty");
-    t.path = std::filesystem::path(path).is_absolute() ? std::filesystem::path(path) : base_dir / path;
-    if (j.contains("exaggeration"))
-        t.exaggeration = r.in_range(j["exaggeration"], "/terrain/exaggeration", 0.0, 100.0, true);
-    if (j.contains("cell_size"))
-        t.cell_size = r.in_range(j["cell_size"], "/terrain/cell_size", 0.0, 1e6, false);
-    if (j.contains("vertical_scale"))
-        t.vertical_scale = r.in_range(j["vertical_scale"], "/terrain/vertical_scale", 0.0, 1e6, true);
-    if (j.contains("vertical_offset"))
-        t.vertical_offset = r.number(j["vertical_offset"], "/terrain/vertical_offset");
+    read_fields(r, j, "/terrain", t, {}, base_dir);
     return t;
 }
 
@@ -56,20 +44,15 @@ std::vector<CameraSpec> read_cameras(const Reader& r, const json& j)
     for (std::size_t k = 0; k < j.size(); ++k) {
         const std::string p = "/cameras/" + std::to_string(k);
         const json& c = j[k];
-        r.only(c, p, {"name", "position", "target", "fov"});
         CameraSpec cam;
-        if (c.contains("name"))
-            cam.name = r.string(c["name"], p + "/name");
+        const std::string position(field_of(cam, cam.position).key), target(field_of(cam, cam.target).key);
+        read_fields(r, c, p, cam);
+        if (!c.contains(position) || !c.contains(target))
+            r.fail(p, "a camera needs \"position\" and \"target\" (local metres)");
         if (!names.insert(cam.name).second)
             r.fail(p + "/name", "duplicate camera name \"" + cam.name + "\"");
-        if (!c.contains("position") || !c.contains("target"))
-            r.fail(p, "a camera needs \"position\" and \"target\" (local metres)");
-        cam.position = r.vec3(c["position"], p + "/position");
-        cam.target = r.vec3(c["target"], p + "/target");
         if (glm::dvec3 d = cam.target - cam.position; d.x == 0.0 && d.y == 0.0 && d.z == 0.0)
-            r.fail(p + "/target", "equals the position: the view direction is undefined");
-        if (c.contains("fov"))
-            cam.fov_y_deg = r.in_range(c["fov"], p + "/fov", 0.0, 180.0, true);
+            r.fail(p + "/" + target, "equals the position: the view direction is undefined");
         cameras.push_back(cam);
     }
     return cameras;
@@ -77,42 +60,25 @@ std::vector<CameraSpec> read_cameras(const Reader& r, const json& j)
 
 SunSpec read_sun(const Reader& r, const json& j)
 {
-    r.only(j, "/sun", {"direction", "color", "intensity", "ambient"});
     SunSpec s;
-    if (j.contains("direction")) {
-        s.direction = r.vec3(j["direction"], "/sun/direction");
+    read_fields(r, j, "/sun", s);
+    if (const std::string key(field_of(s, s.direction).key); j.contains(key)) {
         const double len =
             std::sqrt(s.direction.x * s.direction.x + s.direction.y * s.direction.y + s.direction.z * s.direction.z);
         if (!(len > 0.0))
-            r.fail("/sun/direction", "must not be the zero vector");
+            r.fail("/sun/" + key, "must not be the zero vector");
         // Dividing a unit vector by its computed length can move its last bits; leaving
         // vectors already unit to rounding untouched makes scene_to_json -> parse exact.
         if (std::abs(len - 1.0) > 1e-14)
             s.direction /= len;
     }
-    const auto colour = [&](const char* key, glm::dvec3& out) {
-        if (!j.contains(key))
-            return;
-        const std::string p = std::string("/sun/") + key;
-        out = r.vec3(j[key], p);
-        if (out.x < 0.0 || out.y < 0.0 || out.z < 0.0)
-            r.fail(p, "colour components must be >= 0");
-    };
-    colour("color", s.color);
-    colour("ambient", s.ambient);
-    if (j.contains("intensity"))
-        s.intensity = r.in_range(j["intensity"], "/sun/intensity", 0.0, 1e6, false);
     return s;
 }
 
 ImageSpec read_image(const Reader& r, const json& j)
 {
-    r.only(j, "/image", {"width", "height"});
     ImageSpec im;
-    if (j.contains("width"))
-        im.width = r.integer(j["width"], "/image/width", 1, 16384);
-    if (j.contains("height"))
-        im.height = r.integer(j["height"], "/image/height", 1, 16384);
+    read_fields(r, j, "/image", im);
     return im;
 }
 
@@ -125,8 +91,6 @@ std::string strip_exception_id(std::string what)
 }
 
 std::string parse_error_reason(const json::parse_error& e) { return "malformed JSON: " + strip_exception_id(e.what()); }
-
-json arr(const glm::dvec3& v) { return json::array({v.x, v.y, v.z}); }
 
 }  // namespace
 
@@ -172,10 +136,13 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
             r.fail("/fog", strip_exception_id(e.what()));
         }
     }
-    if (root.contains("layers"))
-        scene.layers = parse_layer_options(root["layers"], file_label);
     if (root.contains("medium"))
         scene.medium = parse_medium_options(root["medium"], file_label);
+    if (root.contains("layers")) {
+        scene.layers = parse_layer_options(root["layers"], file_label, medium_keys_in_layers());
+        read_layer_aliases(root["layers"], root.contains("medium") ? &root["medium"] : nullptr, file_label,
+                           scene.medium);
+    }
     if (root.contains("particles"))
         scene.particles = parse_particle_options(root["particles"], file_label);
     if (root.contains("froxel"))
@@ -207,25 +174,14 @@ Scene load_scene(const std::filesystem::path& path)
 std::string scene_to_json(const Scene& scene)
 {
     json root;
-    json t = {{"path", scene.terrain.path.string()}, {"exaggeration", scene.terrain.exaggeration}};
-    if (scene.terrain.cell_size > 0.0)
-        t["cell_size"] = scene.terrain.cell_size;
-    if (scene.terrain.vertical_scale != 1.0)
-        t["vertical_scale"] = scene.terrain.vertical_scale;
-    if (scene.terrain.vertical_offset != 0.0)
-        t["vertical_offset"] = scene.terrain.vertical_offset;
-    root["terrain"] = t;
+    root["terrain"] = write_fields(scene.terrain);
     json cams = json::array();
     for (const CameraSpec& c : scene.cameras)
-        cams.push_back(
-            {{"name", c.name}, {"position", arr(c.position)}, {"target", arr(c.target)}, {"fov", c.fov_y_deg}});
+        cams.push_back(write_fields(c));
     if (!cams.empty())
         root["cameras"] = cams;
-    root["sun"] = {{"direction", arr(scene.sun.direction)},
-                   {"color", arr(scene.sun.color)},
-                   {"intensity", scene.sun.intensity},
-                   {"ambient", arr(scene.sun.ambient)}};
-    root["image"] = {{"width", scene.image.width}, {"height", scene.image.height}};
+    root["sun"] = write_fields(scene.sun);
+    root["image"] = write_fields(scene.image);
     if (scene.fog)
         root["fog"] = fog_spec_to_json(*scene.fog);
     root["layers"] = layer_options_to_json(scene.layers);

@@ -2,6 +2,10 @@
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/scene/scene.cpp
   src/scene/quality.cpp
+  src/scene/quality_json.cpp
+  src/scene/field_docs.cpp
+  src/scene/scene_fields.cpp
+  src/scene/field_json.cpp
   src/scene/fog_partition_json.cpp
   src/scene/author_report.cpp
   src/scene/author.cpp

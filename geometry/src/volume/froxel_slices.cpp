@@ -73,30 +73,10 @@ bool parse_slice_distribution(const std::string& name, SliceDistribution& out)
 
 void validate_froxel_options(const FroxelOptions& o, const std::string& label)
 {
-    const std::string p = "/froxel/";
-    auto in = [&](int v, int lo, int hi, const char* key) {
-        if (v < lo || v > hi)
-            throw InputError(label, p + key, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-    };
-    in(o.width, 1, 1024, "size");
-    in(o.height, 1, 1024, "size");
-    in(o.slices, 2, 512, "size");
-    in(o.density_samples, 1, 16, "density_samples");
-    in(o.sun_steps, 1, 64, "sun_steps");
-    in(o.pixel_steps, 1, 256, "pixel_steps");
-    in(o.shadow_map_size, 64, 8192, "shadow_map_size");
-    if (!(o.power > 0.0) || !std::isfinite(o.power) || o.power > 16.0)
-        throw InputError(label, p + "power", "must be in (0, 16]");
-    if (!(o.log2_scale > 0.0) || !std::isfinite(o.log2_scale))
-        throw InputError(label, p + "log2_scale", "must be a finite number > 0 (m)");
-    if (!(o.near > 0.0) || !std::isfinite(o.near))
-        throw InputError(label, p + "near", "must be a finite number > 0 (m)");
-    if (!(o.far >= 0.0) || !std::isfinite(o.far) || (o.far > 0.0 && o.far <= o.near))
-        throw InputError(label, p + "far", "must be 0 (the scene's far side) or a finite number > near (m)");
-    if (!(o.history_weight >= 0.0 && o.history_weight <= 0.99))
-        throw InputError(label, p + "history_weight", "must be in [0, 0.99]");
-    if (!(o.esm_sharpness > 0.0) || !std::isfinite(o.esm_sharpness) || o.esm_sharpness > 64.0)
-        throw InputError(label, p + "esm_sharpness", "must be in (0, 64]");
+    check_fields(o, label, "/froxel");
+    if (o.far > 0.0 && o.far <= o.near)
+        throw InputError(label, "/froxel/" + std::string(field_of(o, o.far).key),
+                         "must be 0 (the scene's far side) or larger than near");
     validate_height_fog(o.height_fog, label);
 }
 

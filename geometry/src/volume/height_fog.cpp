@@ -79,19 +79,9 @@ double HeightFog::optical_depth(const glm::dvec3& origin, const glm::dvec3& dir,
 
 void validate_height_fog(const HeightFog& f, const std::string& label)
 {
-    const std::string p = "/froxel/height_fog/";
-    if (!(f.extinction >= 0.0) || !std::isfinite(f.extinction) || f.extinction > 1e3)
-        throw InputError(label, p + "extinction", "must be a finite number in [0, 1000] (1/m)");
+    check_fields(f, label, "/froxel/height_fog");
     if (!(f.min.x <= f.max.x && f.min.y <= f.max.y))
-        throw InputError(label, p + "extent", "the minimum must not exceed the maximum");
-    if (!std::isfinite(f.base))
-        throw InputError(label, p + "base", "must be a finite number (m)");
-    if (!(f.scale_height > 0.0) || !std::isfinite(f.scale_height))
-        throw InputError(label, p + "scale_height", "must be a finite number > 0 (m)");
-    if (!(f.albedo >= 0.0 && f.albedo <= 1.0))
-        throw InputError(label, p + "albedo", "must be in [0, 1]");
-    if (!(f.anisotropy > -1.0 && f.anisotropy < 1.0))
-        throw InputError(label, p + "anisotropy", "must be in (-1, 1)");
+        throw InputError(label, "/froxel/height_fog/extent", "the minimum must not exceed the maximum");
 }
 
 }  // namespace kiri::geometry

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <vector>
 
 #include <openvdb/openvdb.h>
 
@@ -70,9 +71,13 @@ VdbExportReport write_medium_vdb(const Medium& m, const std::filesystem::path& p
     const Bounds3& b = m.bounds();
     const int i0 = int(std::floor(b.min.x / v)), i1 = int(std::ceil(b.max.x / v));
     const int j0 = int(std::floor(b.min.y / v)), j1 = int(std::ceil(b.max.y / v));
-    // Each voxel (its value sits at index * v, OpenVDB's convention) averages 2 x 2 x 2 samples
-    // at +-v/4: the noise of the medium varies within a voxel.
+    // OpenVDB's convention: voxel (i, j, k)'s value sits at the transform of (i, j, k), here
+    // (i v, j v, k v), and a trilinear sampler reads the value at a world point from the eight
+    // voxels around it. Each voxel holds the mean of the Medium over its cell [index +- 1/2]:
+    // 2 x 2 samples across and 2 along z (the profile is linear in z), 8 along z in the voxels a
+    // face of the shell crosses.
     const double q = 0.25 * v;
+    std::vector<double> column;
     for (int j = j0; j <= j1; ++j)
         for (int i = i0; i <= i1; ++i) {
             // Only the heights where the columns around this one hold fog.
@@ -86,14 +91,32 @@ VdbExportReport write_medium_vdb(const Medium& m, const std::filesystem::path& p
             }
             if (hi < lo)
                 continue;
-            for (int k = int(std::floor(lo / v)); k <= int(std::ceil(hi / v)); ++k) {
+            const MediumColumn centre = m.column(i * v, j * v);
+            const int k0 = int(std::floor(lo / v)), k1 = int(std::ceil(hi / v));
+            column.assign(std::size_t(k1 - k0 + 1), 0.0);
+            for (int k = k0; k <= k1; ++k) {
+                const double z = k * v;
+                const bool face = std::abs(z - centre.floor) < v || std::abs(z - centre.top) < v;
+                const int nz = face ? 8 : 2;
                 double sum = 0.0;
-                for (int s = 0; s < 8; ++s)
+                for (int s = 0; s < 4 * nz; ++s)
                     sum += m.extinction(
-                        {i * v + ((s & 1) ? q : -q), j * v + ((s & 2) ? q : -q), k * v + ((s & 4) ? q : -q)});
-                if (sum > 0.0)
-                    accessor.setValue(openvdb::Coord(i, j, k), float(sum / 8.0));
+                        {i * v + ((s & 1) ? q : -q), j * v + ((s & 2) ? q : -q), z + ((s / 4 + 0.5) / nz - 0.5) * v});
+                column[std::size_t(k - k0)] = sum / (4 * nz);
             }
+            // The fog ends at the floor (the ground): voxels centred below it hold none, and
+            // what their cells held above the floor moves to the lowest voxel centred at or
+            // above it, so the column keeps its optical depth. (A trilinear read still spreads
+            // that voxel down to the one under it: at most about half a voxel's worth of fog
+            // lies below the floor, where the terrain hides it.)
+            const int kf = std::clamp(int(std::ceil(centre.floor / v)), k0, k1);
+            for (int k = k0; k < kf; ++k) {
+                column[std::size_t(kf - k0)] += column[std::size_t(k - k0)];
+                column[std::size_t(k - k0)] = 0.0;
+            }
+            for (int k = k0; k <= k1; ++k)
+                if (const double value = column[std::size_t(k - k0)]; value > 0.0)
+                    accessor.setValue(openvdb::Coord(i, j, k), float(value));
         }
     grid->insertMeta("extinction_at_density_1", openvdb::DoubleMetadata(m.options().extinction));
     grid->insertMeta("albedo", openvdb::DoubleMetadata(m.options().albedo));

@@ -31,6 +31,9 @@ struct SunLight {
     glm::dvec3 color{1.0, 0.96, 0.9};
     double intensity = 3.0;
     glm::dvec3 ambient{0.25, 0.3, 0.38};
+    //! false: no sky light at all (`kiri render --no-sky`): no ambient, a black sky without the
+    //! sun's glow, for comparisons with renderers set up in a black world.
+    bool sky = true;
 };
 
 //! How particle clouds are drawn (docs/particles.md).

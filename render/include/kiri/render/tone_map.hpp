@@ -5,6 +5,7 @@
 //! transfer curve (gamma 2.2). The shader reads display_exposure from the frame.
 #include <cstdint>
 
+#include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/render/image.hpp"
 
@@ -18,5 +19,11 @@ double tone_map(double radiance);
 std::uint8_t tone_map_level(double radiance);
 //! The CPU reference's composed radiance (reference_fog.hpp), tone-mapped as the frame is.
 Image tone_mapped(const geometry::ReferenceImage& reference);
+//! The path tracer's radiance (path_tracer.hpp), tone-mapped as the frame is.
+Image tone_mapped(const geometry::PathTracedImage& image);
+//! The linear radiance of the CPU images (alpha 1), for write_exr_atomic: the reference's
+//! composed radiance, the path tracer's radiance.
+RadianceImage linear_radiance(const geometry::ReferenceImage& reference);
+RadianceImage linear_radiance(const geometry::PathTracedImage& image);
 
 }  // namespace kiri::render

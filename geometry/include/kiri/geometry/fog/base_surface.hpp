@@ -2,12 +2,14 @@
 //! \file base_surface.hpp
 //! The fog's base surface: a smooth surface over the quad control mesh (Gregory patch network
 //! or Catmull-Clark limit), fitted to a target over the terrain (docs/fog.md; [Thesis] 2.2.1).
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/fog/footprint.hpp"
 #include "kiri/geometry/surface/surface.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
@@ -21,18 +23,19 @@ enum class FitMode {
     blanket,  //!< smoothed terrain + offset, never below terrain + clearance
     lake,     //!< flat at `altitude`; passes under the ridges, fog only where terrain is below
 };
+inline constexpr Choice fit_mode_names[] = {{"blanket", int(FitMode::blanket)}, {"lake", int(FitMode::lake)}};
 
 struct FitOptions {
     FitMode mode = FitMode::blanket;
-    double offset = 60.0;             //!< blanket: metres above the smoothed terrain
-    double smoothing_length = 400.0;  //!< blanket: sigma (m) of the target's Gaussian (fog_target.hpp)
-    double altitude = 0.0;            //!< lake: altitude of the fog top (m)
+    double offset = 60.0;
+    double smoothing_length = 400.0;  //!< (fog_target.hpp)
+    double altitude = 0.0;
     //! Lake: when set, the fog top at each point is this grid's bilinear height (m) instead of
     //! the flat altitude: fog placed by the terrain whose top is not flat (wind-blown, or
     //! regions with different tops; fog_placement.hpp). Must be finite everywhere.
     std::shared_ptr<const Heightfield> altitude_grid;
-    double clearance = 10.0;   //!< blanket: hard minimum height above the terrain (m), >= 0
-    double thickness = 200.0;  //!< fog thickness (m); a clearance above it is refused
+    double clearance = 10.0;
+    double thickness = 200.0;
     //! Weight of the thin-plate energy against the data term: E = sum_faces [ mean_samples
     //! (z - target)^2 + smoothness h^4 mean_quadrature (z_xx^2 + 2 z_xy^2 + z_yy^2) ], h the
     //! patch size, so it is dimensionless and independent of the patch and sample counts.
@@ -44,6 +47,62 @@ struct FitOptions {
     int max_active_set_iterations = 50;
     bool operator==(const FitOptions&) const = default;
 };
+
+//! Keys of the scene's "fog" section (fog_spec.hpp). Lake mode needs an altitude; a blanket's
+//! clearance is at most its thickness.
+template <fields_of<FitOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.mode,
+      {.key = "mode",
+       .doc = "`blanket`: the terrain smoothed at `smoothing` plus `offset`, never below terrain + "
+              "`clearance`; `lake`: flat at `altitude`, passing under the ridges (fog only where the "
+              "terrain is below it)",
+       .choices = fit_mode_names});
+    v(o.offset,
+      {.key = "offset", .unit = "m", .doc = "blanket: above the smoothed terrain", .widget = closed(-200, 1000)});
+    v(o.smoothing_length,
+      {.key = "smoothing",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "blanket: sigma of the Gaussian that smooths the terrain into the target (three "
+              "box passes; 0 = none)",
+       .widget = closed(0, 5000)});
+    v(o.altitude,
+      {.key = "altitude",
+       .unit = "m",
+       .doc = "lake: altitude of the fog top, metres of the DEM (the exaggeration stretches it with the "
+              "terrain: `jacksboro_lake.json` fills to the 460 m contour)",
+       .shown_default = "required in lake mode"});
+    v(o.clearance,
+      {.key = "clearance",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "blanket: hard minimum height of the surface above the terrain, held at every terrain "
+              "grid vertex under the mesh; at most `thickness`",
+       .widget = closed(0, {o.thickness, "thickness"})});
+    v(o.thickness,
+      {.key = "thickness",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "fog thickness",
+       .widget = closed({std::max(o.clearance, 1.0), "clearance"}, 2000),
+       .log_widget = true});
+    v(o.smoothness,
+      {.key = "smoothness",
+       .range = at_least(0),
+       .doc = "weight of the thin-plate energy against the data term (dimensionless: it is scaled by "
+              "the patch size); 0 = plain least squares, larger = gentler hills",
+       .widget = closed(0, 10),
+       .log_widget = true});
+    v(o.samples_per_patch,
+      {.key = "samples_per_patch",
+       .range = closed(1, 1024),
+       .doc = "(u, v) samples per patch side, in addition to every terrain grid vertex",
+       .widget = closed(0, 64),
+       .shown_default = "4",
+       .omit_default = true});
+}
 
 //! Fit figures over the samples that have terrain data (the "fit" of report.json).
 struct FitReport {

@@ -10,11 +10,29 @@
 namespace kiri::geometry {
 
 struct TessellationOptions {
-    int level = 8;           //!< uniform: N x N cells per patch (the source used 4..10), >= 1
-    double tolerance = 0.0;  //!< > 0: adaptive, max distance to the exact surface (m)
-    int max_level = 64;      //!< adaptive: the finest level a patch may get
+    int level = 8;           //!< (the source used 4..10)
+    double tolerance = 0.0;  //!< 0: uniform
+    int max_level = 64;
     bool operator==(const TessellationOptions&) const = default;
 };
+
+//! The "tessellation" object of the scene's "fog" section.
+template <fields_of<TessellationOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.level,
+      {.key = "level", .range = closed(1, 256), .doc = "uniform: N x N cells per patch", .widget = closed(1, 64)});
+    v(o.tolerance,
+      {.key = "tolerance",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "adaptive instead: the maximum distance to the exact surface",
+       .widget = closed(0.05, 100),
+       .log_widget = true,
+       .shown_default = "none (uniform)",
+       .omit_default = true});
+    v(o.max_level, {.key = "max_level", .range = closed(1, 256), .doc = "adaptive: the finest level a patch may get"});
+}
 
 //! The triangles and, per vertex: position, unit normal, (u, v) of its patch in the texture
 //! coordinates (mesh.texcoord2D), and the patch id in the OpenMesh property named

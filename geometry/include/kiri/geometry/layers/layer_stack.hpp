@@ -11,12 +11,14 @@
 //! and the enlargement is about one centre for the whole stack (the footprint's centroid).
 //! For a single patch and the eye over O these are the source's values; shared edge vertices
 //! carry equal inputs, so every layer is crack-free. See docs/layers.md.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/layers/layer_texture.hpp"
 #include "kiri/geometry/medium/medium_options.hpp"
 #include "kiri/geometry/fog/tessellate.hpp"
@@ -57,33 +59,81 @@ enum class LayerShading {
     medium,
 };
 
+inline constexpr Choice layer_shading_names[] = {{"medium", int(LayerShading::medium)},
+                                                 {"source", int(LayerShading::source)}};
+
 struct LayerOptions {
-    int count = 15;                  //!< l0: layers above the base at the reference view (source: 15)
+    int count = 15;                  //!< l0 (the source's 15)
     double thickness = 200.0;        //!< T0 = r0 l0 (world metres); the scene takes fog.thickness
-    double spacing_divisor = 200.0;  //!< 200 of (2.6): the reference distance is L0 = 200 T0 / l0
-    bool narrowing = true;           //!< (2.8) + (2.9): spacing narrows and layers are added near the eye
-    bool enlargement = true;         //!< (2.10)
-    double enlargement_rate = 1e-3;  //!< 1/1000 of (2.10)
+    double spacing_divisor = 200.0;  //!< (2.6): the reference distance is L0 = 200 T0 / l0
+    bool narrowing = true;
+    bool enlargement = true;
+    double enlargement_rate = 1e-3;  //!< (2.10)'s 1/1000
     //! Metres added to the base's height: a fog lake's fitted surface is its top, so its stack
     //! starts one thickness below (author_scene_fog sets -thickness in lake mode).
     double base_offset = 0.0;
-    int max_count = 120;    //!< most layers the narrowing may add (>= count)
-    double opacity = 0.12;  //!< a layer's alpha where a_i = 1, at the reference spacing, [0, 0.999]
+    int max_count = 120;
+    double opacity = 0.12;
     LayerTextureOptions texture;
-    double ground_fade = 20.0;           //!< metres: a layer fades out this close to the ground (renderer)
-    double detail = 0.6;                 //!< strength of the world-space noise in the alpha, [0, 1] (renderer)
-    double detail_scale = 1500.0;        //!< metres: size of the noise's largest features (renderer)
-    double dissipation_half_life = 0.0;  //!< seconds; 0: no dissipation (top layers thin faster)
-    glm::dvec2 wind{0.0};                //!< m/s: drift of the detail texture
-    double time = 0.0;                   //!< seconds since the scene's start
+    double ground_fade = 20.0;
     LayerShading shading = LayerShading::medium;
-    //! Resolution of the layer pass relative to the frame, [1/8, 1] (renderer: the layers are
-    //! smooth, half resolution costs a quarter and barely shows; `kiri bench --stage layers`).
+    //! The layers are smooth: half resolution costs a quarter and barely shows (`kiri bench
+    //! --stage layers`).
     double resolution = 0.5;
-    //! The fog's optics for LayerShading::medium (world_layer_options copies the scene's medium).
+    //! The fog's medium (world_layer_options copies the scene's): its optics shade the layers
+    //! (LayerShading::medium) and its detail noise, wind, time and dissipation move them, so the
+    //! layers and the volume renderers draw the same fog.
     MediumOptions optics;
     bool operator==(const LayerOptions&) const = default;
 };
+
+//! The "layers" section. max_count is raised to count when only count is given; the range of
+//! enlargement_rate keeps every layer's scale (2.10) at most 2.
+template <fields_of<LayerOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.count,
+      {.key = "count",
+       .range = closed(1, 1000),
+       .doc = "l0, layers above the base at the reference view (the formulas accept l = 0, the base "
+              "alone; a scene asks for at least one layer)",
+       .widget = closed(1, 100)});
+    v(o.max_count,
+      {.key = "max_count",
+       .range = closed({double(std::max(o.count, 1)), "count"}, 1000),
+       .doc = "most layers the narrowing may add",
+       .widget = closed({double(o.count), "count"}, 400)});
+    v(o.spacing_divisor,
+      {.key = "spacing_divisor",
+       .range = greater_than(0),
+       .doc = "the 200 of (2.6)",
+       .widget = closed(20, 2000),
+       .log_widget = true});
+    v(o.narrowing, {.key = "narrowing", .doc = "(2.8) + (2.9): the spacing narrows and layers are added near the eye"});
+    v(o.enlargement, {.key = "enlargement", .doc = "(2.10): upper layers are enlarged"});
+    v(o.enlargement_rate,
+      {.key = "enlargement_rate",
+       .range = closed(0, {1.0 / std::max(o.max_count, o.count), "1 / max_count"}),
+       .doc = "the 1/1000 of (2.10)"});
+    v(o.shading, {.key = "shading", .doc = "how a layer is filled and lit (above)", .choices = layer_shading_names});
+    v(o.opacity,
+      {.key = "opacity",
+       .range = closed(0, 0.999),
+       .doc = "`source` shading: a layer's alpha where a_i = 1 and the texture is opaque",
+       .widget = closed(0, 0.9)});
+    visit_fields(o.texture, v);
+    v(o.ground_fade,
+      {.key = "ground_fade",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "of the DEM, over which a layer fades into the ground",
+       .widget = closed(0, 200)});
+    v(o.resolution,
+      {.key = "resolution",
+       .range = closed(0.125, 1),
+       .doc = "of the target the layers are drawn into, relative to the frame (1: full resolution, "
+              "multisampled with the terrain; below 1: reduced, upsampled by depth)"});
+}
 
 //! What a layer vertex needs, evaluated per vertex for one eye (the GPU mirrors this in
 //! render/shaders/layers.vert).
@@ -104,7 +154,7 @@ LayerColumn layer_column(const LayerOptions& options, const glm::dvec3& eye, con
 //! Layer i (0 = base) of the column at `point` with enlargement about `centre` (x, y).
 LayerVertex layer_vertex(const LayerOptions& options, const LayerColumn& column, int i, const glm::dvec3& point,
                          const glm::dvec2& centre);
-//! Dissipation factor of layer i of n at options.time: 0.5^(t / half_life (1 + i / n)).
+//! Dissipation factor of layer i of n at the medium's time: 0.5^(t / half_life (1 + i / n)).
 double layer_dissipation(const LayerOptions& options, int i, double n);
 
 //! The base tessellation prepared for layers: positions, normals, atlas coordinates and

@@ -10,16 +10,31 @@
 
 #include <glm/vec2.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/fog/footprint.hpp"
 
 namespace kiri::geometry {
 
 struct LayerTextureOptions {
-    int resolution = 64;      //!< texels per tile side, [4, 1024]
-    double fade_width = 0.5;  //!< fraction of a patch over which alpha falls to 0 at the border, (0, 1]
-    double gray = 0.92;       //!< the texture's gray level, [0, 1]
+    int resolution = 64;
+    double fade_width = 0.5;
+    double gray = 0.92;
     bool operator==(const LayerTextureOptions&) const = default;
 };
+
+//! Keys of the scene's "layers" section (the texture has no section of its own).
+template <fields_of<LayerTextureOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.resolution,
+      {.key = "texture_size", .unit = "texels", .range = closed(4, 1024), .doc = "per side of an atlas tile"});
+    v(o.fade_width,
+      {.key = "fade_width",
+       .range = left_open(0, 1),
+       .doc = "share of a patch over which alpha falls to 0 at the border",
+       .widget = closed(0.02, 1)});
+    v(o.gray, {.key = "gray", .range = closed(0, 1), .doc = "`source` shading: the texture's gray"});
+}
 
 //! Bits 0..3: the patch's sides v = 0, u = 1, v = 1, u = 0 lie on the footprint's border.
 //! Bits 4..7: its corners (0,0), (1,0), (1,1), (0,1) lie on the border while neither side

@@ -47,6 +47,9 @@ struct FogLighting {
     bool terrain_shadows = true;               //!< visibility: the terrain hides the sun
     bool fog_shadows = true;                   //!< tau_sun: the fog dims the sun on its way
     int scattering_octaves = 1;                //!< kiri render passes the Medium's (MediumOptions::scattering_octaves)
+    //! false: no sky light at all, for comparisons with renderers set up in a black world: the
+    //! ambient is taken as 0 and the sky seen behind the fog is black (`kiri render --no-sky`).
+    bool sky = true;
 };
 
 //! The sum over the octaves of J above, a^i p_HG(cos_theta, c^i g) exp(-b^i tau_sun) (1/sr);

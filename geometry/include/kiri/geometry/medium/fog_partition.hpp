@@ -16,15 +16,39 @@
 //! The GLSL copies are in render/shaders/fog_partition.glsl.
 #include <string>
 
+#include "kiri/geometry/core/fields.hpp"
+
 namespace kiri::geometry {
 
 struct FogPartition {
-    double near_start = 400.0;    //!< metres from the eye: the froxels draw all the fog nearer
-    double near_end = 1600.0;     //!< metres: the layers draw all the fog farther
-    double particle_share = 0.5;  //!< the particles' share at the shell's top, [0, 1]
-    double particle_band = 0.35;  //!< the top fraction of the shell the particles share, (0, 1]
+    double near_start = 400.0;
+    double near_end = 1600.0;
+    double particle_share = 0.5;
+    double particle_band = 0.35;
     bool operator==(const FogPartition&) const = default;
 };
+
+//! The "combined" section; near_end is raised to near_start when only near_start is given.
+template <fields_of<FogPartition> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.near_start,
+      {.key = "near_start",
+       .unit = "m",
+       .range = closed(0, 1e7),
+       .doc = "from the eye: the froxels draw all the fog nearer"});
+    v(o.near_end,
+      {.key = "near_end",
+       .unit = "m",
+       .range = closed({o.near_start, "near_start"}, 1e7),
+       .doc = "from the eye: the layers draw all the fog farther"});
+    v(o.particle_share,
+      {.key = "particle_share",
+       .range = closed(0, 1),
+       .doc = "the particles' share at the shell's top; 0: no particles"});
+    v(o.particle_band,
+      {.key = "particle_band", .range = left_open(0, 1), .doc = "the top fraction of the shell the particles share"});
+}
 
 //! Quintic smooth step of x from a to b (0 below, 1 above; C2): a == b gives a step at a.
 double smoother_step(double a, double b, double x);

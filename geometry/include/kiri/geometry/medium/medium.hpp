@@ -23,7 +23,6 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "kiri/geometry/layers/layer_stack.hpp"
 #include "kiri/geometry/medium/medium_options.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
@@ -60,7 +59,8 @@ double henyey_greenstein(double cos_theta, double g);
 
 // ---- Options: medium_options.hpp ------------------------------------------------------------
 
-//! The parts of the layer options that shape the medium too (so both draw the same fog).
+//! What moves the density over time and space: the medium's noise, wind, time and dissipation,
+//! and the layer count the noise is shifted by (so the layers and the medium draw the same fog).
 struct MediumDetail {
     double detail = 0.6;                 //!< noise strength, [0, 1]
     double detail_scale = 1500.0;        //!< metres: largest noise feature; the tile repeats every 8x
@@ -70,7 +70,9 @@ struct MediumDetail {
     double dissipation_half_life = 0.0;  //!< seconds; 0: none
     bool operator==(const MediumDetail&) const = default;
 };
-MediumDetail medium_detail(const LayerOptions& layers);
+//! The medium's detail, its noise shifted per layer of a stack of `noise_layers` layers (the
+//! layers' count l0: layer i sits at h = i / l0).
+MediumDetail medium_detail(const MediumOptions& medium, double noise_layers);
 
 //! \throw InputError(label, "/medium/<key>", reason) for options outside their ranges.
 void validate_medium_options(const MediumOptions& options, const std::string& label = {});
@@ -135,13 +137,6 @@ private:
     Bounds3 bounds_;
     double max_density_ = 0.0;
 };
-
-//! The medium of the authored fog: the layer base (make_layer_base) rasterised onto a grid
-//! over its bounds; bottom = base z + options.base_offset, top = bottom + options.thickness,
-//! coverage = the base's atlas alpha (the layers' border fade). The enlargement (2.10) is
-//! view-dependent and left out. \throw InputError (label names the scene) on bad options.
-Medium make_medium(const LayerBase& base, const LayerOptions& layers, const Terrain& terrain,
-                   const MediumOptions& options, const std::string& label = {});
 
 //! The deterministic, tileable 2D value noise (three octaves of 8, 16 and 32 cells, seed
 //! 20081123) that both the medium and the layers' GPU texture sample: size x size values in

@@ -2,18 +2,101 @@
 //! \file medium_options.hpp
 //! The optics of the fog ([ValleyFog]): what the scene's "medium" section sets, read by the
 //! Medium (medium.hpp) and by the layers when they shade from the medium.
+//! The fog's motion (detail noise, wind, time, dissipation) is the medium's too: the layers
+//! read it from here, so they and the volume renderers move the same fog.
+#include <glm/vec2.hpp>
+
+#include "kiri/geometry/core/fields.hpp"
 
 namespace kiri::geometry {
 
 struct MediumOptions {
-    double extinction = 0.02;    //!< sigma_t (1/m) at density 1 (visibility 196 m: dense fog), > 0
-    double albedo = 0.99;        //!< scattering / extinction, [0, 1]; fog hardly absorbs
-    double anisotropy = 0.8;     //!< Henyey-Greenstein g, (-1, 1); water droplets ~0.8
-    double top_density = 0.1;    //!< profile at the shell's top relative to its bottom, [0, 1] (2.7: 0.1)
-    double grid_spacing = 0.0;   //!< metres between grid samples; 0 = the terrain's spacing
-    int max_grid_side = 1024;    //!< the grid is coarsened to at most this many samples per side
-    int scattering_octaves = 3;  //!< 1: single scattering; more: multiple scattering (fog_lighting.hpp), [1, 8]
+    double extinction = 0.02;  //!< visibility 196 m: a dense valley fog
+    double albedo = 0.99;      //!< fog hardly absorbs
+    double anisotropy = 0.8;   //!< water droplets
+    double top_density = 0.1;  //!< (2.7): the layers' alpha at the top
+    double grid_spacing = 0.0;
+    int max_grid_side = 1024;
+    int scattering_octaves = 3;
+    double detail = 0.6;
+    double detail_scale = 1500.0;
+    glm::dvec2 wind{0.0};
+    double time = 0.0;
+    double dissipation_half_life = 0.0;
     bool operator==(const MediumOptions&) const = default;
 };
+
+//! The "medium" section. visibility, liquid_water_content (with droplet_radius) are other ways
+//! to give the extinction (at most one of the three).
+template <fields_of<MediumOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.extinction, {.key = "extinction", .unit = "1/m", .range = greater_than(0), .doc = "sigma_t at full density"});
+    v(hand_written,
+      {.key = "visibility",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "instead of `extinction`: Koschmieder visibility V, sigma = 3.912 / V",
+       .widget = closed(10, 20000),
+       .log_widget = true});
+    v(hand_written,
+      {.key = "liquid_water_content",
+       .unit = "g/m^3",
+       .range = greater_than(0),
+       .doc = "instead of `extinction`: with `droplet_radius`, sigma = 3 Q LWC / (4 rho_w r), Q = 2"});
+    v(hand_written,
+      {.key = "droplet_radius",
+       .unit = "um",
+       .range = greater_than(0),
+       .doc = "effective droplet radius, with `liquid_water_content` only",
+       .shown_default = "7"});
+    v(o.albedo, {.key = "albedo", .range = closed(0, 1), .doc = "scattering / extinction"});
+    v(o.anisotropy,
+      {.key = "anisotropy", .range = open_range(-1, 1), .doc = "Henyey-Greenstein g", .widget = closed(-0.95, 0.95)});
+    v(o.top_density,
+      {.key = "top_density",
+       .range = closed(0, 1),
+       .doc = "density at the top of the fog relative to its bottom (the layers' 0.1)"});
+    v(o.grid_spacing,
+      {.key = "grid_spacing",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "between the medium's grid samples; 0 = the terrain's spacing"});
+    v(o.max_grid_side,
+      {.key = "max_grid_side",
+       .range = closed(2, 8192),
+       .doc = "the grid is coarsened to at most this many samples per side"});
+    v(o.scattering_octaves,
+      {.key = "scattering_octaves",
+       .range = closed(1, 8),
+       .doc =
+           "1: single scattering; more: multiple scattering approximated by octaves ([medium.md](medium.md#lighting))"});
+    v(o.detail,
+      {.key = "detail", .range = closed(0, 1), .doc = "strength of the drifting detail noise in the density"});
+    v(o.detail_scale,
+      {.key = "detail_scale",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "size of the noise's largest features (its tile repeats every 8 times that)",
+       .widget = closed(100, 10000),
+       .log_widget = true});
+    v(o.wind,
+      {.key = "wind",
+       .unit = "m/s",
+       .doc = "drift of the detail noise",
+       .widget = closed(-30, 30),
+       .shape = "[east, north]"});
+    v(o.time,
+      {.key = "time",
+       .unit = "s",
+       .doc = "since the scene's start: the noise drifts, the fog dissipates",
+       .widget = closed(0, 3600)});
+    v(o.dissipation_half_life,
+      {.key = "dissipation_half_life",
+       .unit = "s",
+       .range = at_least(0),
+       .doc = "0.5^(t / half_life (1 + h)) at height fraction h: the top thins first; 0 = none",
+       .widget = closed(0, 3600)});
+}
 
 }  // namespace kiri::geometry

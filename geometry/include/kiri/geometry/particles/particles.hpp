@@ -12,6 +12,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
@@ -29,26 +30,115 @@ struct Particle {
 //! the grid instead of a thin oblique sheet of it); `automatic` takes the one with fewer slices
 //! spent on empty space.
 enum class LightFrame { automatic, light, sheared };
+inline constexpr Choice light_frame_names[] = {
+    {"auto", int(LightFrame::automatic)}, {"light", int(LightFrame::light)}, {"sheared", int(LightFrame::sheared)}};
+//! The attenuation buffer's storage: R16F (true) or R32F.
+inline constexpr Choice buffer_format_names[] = {{"r16f", 1}, {"r32f", 0}};
 
 //! The scene's "particles" section (docs/particles.md).
 struct ParticleOptions {
-    int count = 20000;                 //!< particles to sample; ignored when spacing > 0
-    double spacing = 0.0;              //!< metres between particles at full density; 0: use count
-    double radius_scale = 1.5;         //!< radius = radius_scale * local spacing, clamped to the range
-    double radius_min = 0.0;           //!< metres; 0: radius_scale * the spacing at full density
-    double radius_max = 0.0;           //!< metres; 0: twice that (densities below 1/8 get no larger particles)
-    double albedo = -1.0;              //!< [0, 1]; < 0: the Medium's albedo
-    double extinction = 0.0;           //!< 1/m the particles carry at full density; 0: the Medium's
-    double forward_scattering = -1.0;  //!< p(l,l)/4pi of Shimada (7), [0, 1]; < 0: from the Medium's g
-    std::uint64_t seed = 1;            //!< the same seed gives the same particles
-    double candidates = 5.0;           //!< sample elimination starts from candidates * count points, >= 1
+    int count = 20000;     //!< ignored when spacing > 0
+    double spacing = 0.0;  //!< 0: use count
+    double radius_scale = 1.5;
+    double radius_min = 0.0;           //!< 0: radius_scale * the spacing at full density
+    double radius_max = 0.0;           //!< 0: twice that (densities below 1/8 get no larger particles)
+    double albedo = -1.0;              //!< < 0: the Medium's albedo
+    double extinction = 0.0;           //!< 0: the Medium's
+    double forward_scattering = -1.0;  //!< < 0: from the Medium's g
+    std::uint64_t seed = 1;
+    double candidates = 5.0;
     // The attenuation buffer and the billboards (render).
-    int resolution = 128;    //!< voxels per side of the attenuation buffer, [16, 512]
-    bool half_float = true;  //!< R16F (true) or R32F storage of log Gamma
+    int resolution = 128;
+    bool half_float = true;  //!< storage of log Gamma
     LightFrame frame = LightFrame::automatic;
-    double soft_edge = 40.0;  //!< metres over which a billboard fades out in front of the terrain
+    double soft_edge = 40.0;
     bool operator==(const ParticleOptions&) const = default;
 };
+
+//! The "particles" section. count and spacing are alternatives (at most one is given).
+template <fields_of<ParticleOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.count,
+      {.key = "count",
+       .range = closed(1, 2000000),
+       .doc = "particles to sample",
+       .widget = closed(100, 200000),
+       .log_widget = true});
+    v(o.spacing,
+      {.key = "spacing",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "instead of `count`: between particles at full density (count = D / spacing^3)",
+       .widget = closed(10, 2000),
+       .log_widget = true,
+       .shown_default = "none",
+       .omit_default = true});
+    v(o.radius_scale,
+      {.key = "radius_scale",
+       .range = left_open(0, 100),
+       .doc = "radius = radius_scale x the local spacing, clamped to `radius`",
+       .widget = closed(0.5, 4)});
+    v(o.radius_min,
+      {.key = "radius",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "the clamp of the radius (automatic: 1.5 and 3 x the spacing at full density)",
+       .shown_default = "automatic",
+       .omit_default = true,
+       .element = 0,
+       .elements = 2,
+       .shape = "[min, max]"});
+    v(o.radius_max,
+      {.key = "radius",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "the largest radius",
+       .shown_default = "automatic",
+       .omit_default = true,
+       .element = 1,
+       .elements = 2,
+       .shape = "[min, max]"});
+    v(o.albedo,
+      {.key = "albedo",
+       .range = closed(0, 1),
+       .doc = "scattering / extinction",
+       .shown_default = "the Medium's",
+       .omit_default = true});
+    v(o.extinction,
+      {.key = "extinction",
+       .unit = "1/m",
+       .range = closed(0, 1000),
+       .doc = "the particles carry at full density",
+       .shown_default = "the Medium's",
+       .omit_default = true});
+    v(o.forward_scattering,
+      {.key = "forward_scattering",
+       .range = closed(0, 1),
+       .doc = "c = p(l,l)/4pi of (7)",
+       .shown_default = "from the Medium's g",
+       .omit_default = true});
+    v(o.seed, {.key = "seed", .range = closed(0, 2147483647), .doc = "the same seed, the same particles"});
+    v(o.candidates,
+      {.key = "candidates", .range = closed(1, 50), .doc = "candidates per particle for the sample elimination"});
+    v(o.resolution,
+      {.key = "resolution",
+       .unit = "voxels",
+       .range = closed(16, 512),
+       .doc = "per side of the attenuation buffer",
+       .widget = closed(64, 384)});
+    v(o.half_float, {.key = "format", .doc = "the attenuation buffer's storage", .choices = buffer_format_names});
+    v(o.frame,
+      {.key = "frame",
+       .doc = "the buffer's slices: perpendicular to the light, or sheared to the fog (`auto`: the tighter)",
+       .choices = light_frame_names});
+    v(o.soft_edge,
+      {.key = "soft_edge",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "over which billboards fade in front of the terrain",
+       .widget = closed(0, 500)});
+}
 
 //! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.
 void validate_particle_options(const ParticleOptions& options, const std::string& label = {});

@@ -7,6 +7,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/placement/fog_columns.hpp"
 #include "kiri/geometry/terrain/heightfield.hpp"
 
@@ -18,21 +19,54 @@ namespace kiri::geometry {
 glm::dvec3 sun_direction(double latitude_deg, int day_of_year, double solar_hour);
 
 struct BurnOffOptions {
-    double time = 9.0;       //!< local solar time (hours, 0..24) at which the fog is shown
-    int day_of_year = 300;   //!< 1..366 (300: late October, the valley-fog season)
-    double latitude = 45.0;  //!< degrees north, -90..90
+    double time = 9.0;
+    int day_of_year = 300;  //!< late October, the valley-fog season
+    double latitude = 45.0;
     //! Metres of fog thickness evaporated from below per hour by full sun on ground facing it,
-    //! as it reaches the ground through the fog (>= 0).
+    //! as it reaches the ground through the fog.
     double burn_rate = 120.0;
     //! Metres per hour the lifted base (a flat level, from the lowest fog bottom) rises per hour
-    //! of full sun on level ground (>= 0): the heated, mixed air under the fog.
+    //! of full sun on level ground: the heated, mixed air under the fog.
     double lift_rate = 60.0;
-    double extinction = 0.02;    //!< sigma (1/m) of the fog, > 0 (a scene takes its medium's)
-    double anisotropy = 0.8;     //!< Henyey-Greenstein g of the droplets, [0, 1) (the medium's)
-    double min_thickness = 1.0;  //!< metres: thinner fog counts as gone
-    double step_minutes = 10.0;  //!< integration step (minutes, > 0)
+    double extinction = 0.02;  //!< sigma (1/m) of the fog, > 0 (a scene takes its medium's)
+    double anisotropy = 0.8;   //!< Henyey-Greenstein g of the droplets, [0, 1) (the medium's)
+    double min_thickness = 1.0;
+    double step_minutes = 10.0;
     bool operator==(const BurnOffOptions&) const = default;
 };
+
+//! The "burn_off" object of the scene's "fog" section (the optics are the medium's).
+template <fields_of<BurnOffOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.time,
+      {.key = "time",
+       .unit = "h",
+       .range = closed(0, 24),
+       .doc = "local solar time at which to show the fog",
+       .required = "missing: the local solar time (hours) at which to show the fog"});
+    v(o.day_of_year,
+      {.key = "day_of_year", .range = closed(1, 366), .doc = "300: late October, the valley-fog season"});
+    v(o.latitude,
+      {.key = "latitude",
+       .unit = "deg",
+       .range = closed(-90, 90),
+       .doc = "north (45 when the DEM has no CRS)",
+       .shown_default = "the DEM's centre"});
+    v(o.burn_rate,
+      {.key = "burn_rate",
+       .unit = "m/h",
+       .range = closed(0, 1e5),
+       .doc = "of fog evaporated from below per hour of full sun on ground facing it"});
+    v(o.lift_rate,
+      {.key = "lift_rate",
+       .unit = "m/h",
+       .range = closed(0, 1e5),
+       .doc = "the base lifts per hour of full sun on level ground"});
+    v(o.min_thickness,
+      {.key = "min_thickness", .unit = "m", .range = at_least(0), .doc = "thinner fog counts as gone"});
+    v(o.step_minutes, {.key = "step_minutes", .unit = "min", .range = left_open(0, 120), .doc = "integration step"});
+}
 
 struct BurnOffReport {
     double sunrise_hour = 0.0;       //!< first step with the sun above the horizon (24 if none)

@@ -11,30 +11,76 @@
 
 #include <glm/vec2.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/placement/fog_columns.hpp"
 #include "kiri/geometry/terrain/heightfield.hpp"
 
 namespace kiri::geometry {
 
 struct FlowOptions {
-    glm::dvec2 wind{0.0};      //!< m/s above the inversion, towards (x east, y north)
-    double duration = 3600.0;  //!< seconds of flow, >= 0
-    double time_step = 60.0;   //!< seconds, > 0; any value is stable (accuracy only)
-    double coupling = 0.5;     //!< share of the wind speed the fog's top layer and the stream move with, [0, 1]
+    glm::dvec2 wind{0.0};  //!< towards (x east, y north)
+    double duration = 3600.0;
+    double time_step = 60.0;  //!< any value is stable (accuracy only)
+    double coupling = 0.5;
     //! Inversion strength (K): the potential temperature jump at the fog top. The wind's stress
     //! tilts a pool's top by s = C_d |wind|^2 / (g' H) (C_d = 1.5e-3, g' = 9.81 dtheta / 280 K,
     //! H the pool's mean depth): about 2 m per km for 5 m/s over 100 m of fog under 5 K.
     double inversion_strength = 5.0;
     //! Gravity flow of the stream down the terrain: spread * slope m/s, at most max_speed.
     double spread = 10.0;
-    double max_speed = 3.0;  //!< m/s, > 0
+    double max_speed = 3.0;
     //! Metres of descent that evaporate all but 1/e of the stream (it warms as it sinks, so its
     //! liquid water evaporates: about LWC / (9.8 K/km * 0.45 g/m^3/K), 45 m for 0.2 g/m^3;
     //! fog_placement.hpp derives it from the medium's extinction); 0 = no evaporation.
     double evaporation_depth = 45.0;
-    double min_thickness = 1.0;  //!< metres: thinner fog counts as gone in the result
+    double min_thickness = 1.0;
     bool operator==(const FlowOptions&) const = default;
 };
+
+//! The "flow" object of the scene's "fog" section. The wind is at most 100 m/s; the duration
+//! takes at most a million time steps.
+template <fields_of<FlowOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.wind,
+      {.key = "wind",
+       .unit = "m/s",
+       .doc = "above the inversion (at most 100 m/s)",
+       .widget = closed(-15, 15),
+       .required = "missing: the wind [east, north] in m/s",
+       .shape = "[east, north]"});
+    v(o.duration,
+      {.key = "duration",
+       .unit = "s",
+       .range = closed(0, 2592000),
+       .doc = "of flow (at most 30 days)",
+       .widget = closed(0, 43200)});
+    v(o.time_step,
+      {.key = "time_step",
+       .unit = "s",
+       .range = left_open(0, 86400),
+       .doc = "any step is stable (accuracy only); at most 10^6 steps"});
+    v(o.coupling,
+      {.key = "coupling",
+       .range = closed(0, 1),
+       .doc = "share of the wind the fog's top layer and the stream move with"});
+    v(o.inversion_strength,
+      {.key = "inversion_strength",
+       .unit = "K",
+       .range = open_range(0, 50),
+       .doc = "the temperature jump at the fog top: a weaker inversion tilts the pools more"});
+    v(o.spread,
+      {.key = "spread", .unit = "m/s", .range = closed(0, 1e6), .doc = "gravity flow of the stream: spread * slope"});
+    v(o.max_speed, {.key = "max_speed", .unit = "m/s", .range = open_range(0, 100), .doc = "cap of the gravity flow"});
+    v(o.evaporation_depth,
+      {.key = "evaporation_depth",
+       .unit = "m",
+       .range = closed(0, 1e6),
+       .doc = "of descent that leave 1/e of the stream; 0 = none",
+       .shown_default = "from the medium"});
+    v(o.min_thickness,
+      {.key = "min_thickness", .unit = "m", .range = at_least(0), .doc = "thinner fog counts as gone in the result"});
+}
 
 struct FlowReport {
     int steps = 0;

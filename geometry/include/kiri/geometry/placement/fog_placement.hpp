@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/placement/burn_off.hpp"
 #include "kiri/geometry/placement/fog_columns.hpp"
 #include "kiri/geometry/placement/fog_fill.hpp"
@@ -43,6 +44,47 @@ struct FillRegionSpec {
     bool operator==(const FillRegionSpec&) const = default;
 };
 
+//! The "fill" object of the scene's "fog" section (or each of an array of them). max_thickness is
+//! 0 or above min_thickness; "valleys" goes with "seeds": "valleys" only.
+template <fields_of<FillRegionSpec> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.top,
+      {.key = "top",
+       .unit = "m",
+       .doc = "the fog-top altitude (the inversion), metres of the DEM",
+       .required = "missing: the fog-top altitude (metres of the DEM), the inversion the fog fills up to"});
+    v(hand_written,
+      {.key = "seeds",
+       .doc = "`[[x, y], ...]` seed points (local metres); `\"all\"` every basin below the top; "
+              "`\"valleys\"` automatic seeding; `{\"mask\": FILE}` a raster of the DEM's size (relative "
+              "to the scene), nonzero pixels seed, north up when it has no geotransform",
+       .shown_default = "required",
+       .type = "points, `\"all\"`, `\"valleys\"` or `{\"mask\": FILE}`"});
+    v(hand_written,
+      {.key = "valleys",
+       .doc = "with `\"seeds\": \"valleys\"` only: the valley analysis (the table below)",
+       .type = "object"});
+    v(o.min_thickness,
+      {.key = "min_thickness",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "fog lies, and the flood passes, only where top - ground > this",
+       .widget = closed(0, 200)});
+    v(o.max_thickness,
+      {.key = "max_thickness",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "0 = down to the ground; otherwise the fog's bottom is max(ground, top - this)",
+       .widget = closed(1, 2000),
+       .log_widget = true});
+    v(o.profile,
+      {.key = "profile",
+       .range = closed(0, 1),
+       .doc = "density profile: 0 blanket (height above the column's ground), 1 fill (absolute "
+              "altitude), between: blended"});
+}
+
 struct PlacementSpec {
     std::vector<FillRegionSpec> regions;  //!< at least one
     //! Footprint outline (mask_outline.hpp); margin < 0 = one patch size, tolerance 0 = a
@@ -56,6 +98,34 @@ struct PlacementSpec {
     bool latitude_given = false;             //!< burn_off.latitude from the scene, not the DEM
     double exaggeration = 1.0;               //!< heights are stretched by this (for messages)
     bool operator==(const PlacementSpec&) const = default;
+};
+
+//! The "outline" object of the scene's "fog" section: the placement's own fields.
+template <fields_of<PlacementSpec> O, class V>
+void visit_outline_fields(O& o, V&& v)
+{
+    v(o.margin,
+      {.key = "margin",
+       .unit = "m",
+       .range = closed(0, 1e6),
+       .doc = "the footprint extends past the fog cells (into cells the fit may use)",
+       .shown_default = "one `patch_size`",
+       .omit_default = true});
+    v(o.tolerance,
+      {.key = "tolerance",
+       .unit = "m",
+       .range = closed(0, 1e6),
+       .doc = "Douglas-Peucker tolerance of the polygons",
+       .shown_default = "a quarter of `patch_size`"});
+    v(o.min_area,
+      {.key = "min_area", .unit = "m^2", .range = at_least(0), .doc = "fog bodies under this area get no polygon"});
+}
+struct OutlineFields {
+    template <class O, class V>
+    void operator()(O& o, V&& v) const
+    {
+        visit_outline_fields(o, v);
+    }
 };
 
 //! Metres of descent that evaporate all but 1/e of fog of extinction sigma (1/m): its liquid

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/terrain/heightfield.hpp"
 
 namespace kiri::geometry {
@@ -22,6 +23,25 @@ struct ValleyOptions {
     double threshold = 1.0;
     bool operator==(const ValleyOptions&) const = default;
 };
+
+//! The "valleys" object of a fill region (fog_placement.hpp).
+template <fields_of<ValleyOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.threshold,
+      {.key = "threshold",
+       .range = closed(-10, 10),
+       .doc = "standard deviations of the cold-air-pool index: a cell is a candidate above it",
+       .widget = closed(-2, 4)});
+    v(hand_written,
+      {.key = "radii",
+       .unit = "m",
+       .range = open_range(0, 1e7),
+       .doc = "1 to 8 radii of the index (default 4, 16 and 64 cells, each at most a quarter of the "
+              "smaller extent)",
+       .shown_default = "automatic",
+       .type = "[r, ...]"});
+}
 
 struct ValleyMap {
     int nx = 0, ny = 0;

@@ -62,6 +62,9 @@ struct ReferenceOptions {
     double min_transmittance = 1e-5;  //!< the view ray stops when T falls below
     double sun_cutoff = 12.0;         //!< T_sun is 0 beyond this optical depth (6e-6)
     int threads = 0;                  //!< 0: every core
+    //! false: the terrain is black (it still ends rays and casts shadows), so the picture holds
+    //! the fog's light alone (`kiri render --black-ground`).
+    bool shade_terrain = true;
 };
 
 //! The fog along one ray.

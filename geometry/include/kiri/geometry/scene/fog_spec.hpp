@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/fog/base_surface.hpp"
 #include "kiri/geometry/placement/fog_placement.hpp"
 #include "kiri/geometry/fog/footprint.hpp"
@@ -25,6 +26,70 @@ struct FogSpec {
     //! below place it themselves while `footprint` is empty.
     std::optional<PlacementSpec> placement;
     bool operator==(const FogSpec&) const = default;
+};
+
+inline constexpr Choice surface_kind_names[] = {{"gregory", int(SurfaceKind::gregory)},
+                                                {"catmull-clark", int(SurfaceKind::catmull_clark)}};
+
+//! The "fog" section: the base surface, its fit (FitOptions) and tessellation, or fog placed by
+//! the terrain (fill, outline, flow, burn_off), which sets the footprint and the fit's mode,
+//! altitude and thickness itself.
+template <fields_of<FogSpec> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(hand_written,
+      {.key = "footprint",
+       .doc = "where the fog lies, seen from above, in local metres (x east, y north, origin near the DEM's centre): "
+              "`{\"type\": \"terrain\", \"margin\": M}` the DEM's extent less M metres on every side; "
+              "`{\"type\": \"rectangle\", \"min\": [x, y], \"max\": [x, y]}`; `{\"type\": \"polygon\", \"points\": "
+              "[[x, y], ...]}` a simple polygon (either orientation, not closed, no crossing or touching edges). The "
+              "footprint must lie inside the terrain: kiri does not clip it.",
+       .shown_default = "`{\"type\": \"terrain\", \"margin\": 0}`",
+       .type = "object"});
+    v(o.surface,
+      {.key = "surface",
+       .doc = "`gregory` (G1 network of bicubic Gregory patches, LSNC 2009) or `catmull-clark` (OpenSubdiv "
+              "limit surface)",
+       .choices = surface_kind_names});
+    v(o.patch_size,
+      {.key = "patch_size",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "control-mesh cell size: one patch per cell",
+       .widget = closed(100, 10000),
+       .log_widget = true});
+    visit_fields(o.fit, v);
+    v(hand_written,
+      {.key = "tessellation",
+       .doc = "`level`, or `tolerance` and `max_level` (the table below)",
+       .shown_default = "`{\"level\": 8}`",
+       .type = "object"});
+    v(hand_written,
+      {.key = "fill",
+       .doc = "fog placed by the terrain: seeds and a fog top ([placement.md](placement.md#scene-keys))",
+       .type = "object or array"});
+    v(hand_written, {.key = "outline", .doc = "with `fill`: the footprint's outline", .type = "object"});
+    v(hand_written, {.key = "flow", .doc = "with `fill`: the night's wind over the passes", .type = "object"});
+    v(hand_written, {.key = "burn_off", .doc = "with `fill`: the morning's sun", .type = "object"});
+}
+
+//! The footprint {"type": "terrain"}'s own key.
+template <fields_of<FogSpec> O, class V>
+void visit_terrain_footprint_fields(O& o, V&& v)
+{
+    v(o.margin,
+      {.key = "margin",
+       .unit = "m",
+       .range = at_least(0),
+       .doc = "the terrain's extent less this on every side",
+       .widget = closed(0, 10000)});
+}
+struct TerrainFootprintFields {
+    template <class O, class V>
+    void operator()(O& o, V&& v) const
+    {
+        visit_terrain_footprint_fields(o, v);
+    }
 };
 
 //! spec with the placed fog's footprint and lake target: mode lake at the flat top (or over

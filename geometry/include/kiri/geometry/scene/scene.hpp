@@ -10,6 +10,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/scene/fog_spec.hpp"
 #include "kiri/geometry/medium/fog_partition.hpp"
 #include "kiri/geometry/volume/froxel_options.hpp"
@@ -21,34 +22,103 @@
 namespace kiri::geometry {
 
 struct TerrainSpec {
-    std::filesystem::path path;   //!< resolved against the scene file's folder
-    double exaggeration = 1.0;    //!< vertical exaggeration, > 0
-    double cell_size = 0.0;       //!< metres per cell, for rasters without georeferencing
-    double vertical_scale = 1.0;  //!< metres per raster unit (PNG heightmaps)
+    std::filesystem::path path;  //!< resolved against the scene file's folder
+    double exaggeration = 1.0;
+    double cell_size = 0.0;
+    double vertical_scale = 1.0;
     double vertical_offset = 0.0;
     bool operator==(const TerrainSpec&) const = default;
 };
+
+template <fields_of<TerrainSpec> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.path,
+      {.key = "path",
+       .doc = "elevation raster (GeoTIFF, ESRI ASCII grid, SRTM `.hgt`, 8/16-bit PNG); a relative path is "
+              "resolved against the **scene file's folder**, not the working directory",
+       .required = "missing (the elevation raster to load)"});
+    v(o.exaggeration,
+      {.key = "exaggeration",
+       .range = open_range(0, 100),
+       .doc = "vertical exaggeration applied to every height on load",
+       .widget = closed(0.1, 10),
+       .log_widget = true});
+    v(o.cell_size,
+      {.key = "cell_size",
+       .unit = "m",
+       .range = closed(0, 1e6),
+       .doc = "per cell, for rasters without georeferencing (PNG heightmaps); 0 = take it from the raster",
+       .widget = closed(0, 1000),
+       .omit_default = true});
+    v(o.vertical_scale,
+      {.key = "vertical_scale",
+       .unit = "m/unit",
+       .range = open_range(0, 1e6),
+       .doc = "metres per raster unit (PNG heightmaps)",
+       .widget = closed(1e-3, 1e3),
+       .log_widget = true,
+       .omit_default = true});
+    v(o.vertical_offset,
+      {.key = "vertical_offset",
+       .unit = "m",
+       .doc = "added to every height (before the exaggeration)",
+       .omit_default = true});
+}
 
 struct CameraSpec {
     std::string name = "default";
     glm::dvec3 position{0.0, -5000.0, 3000.0};  //!< local metres
     glm::dvec3 target{0.0, 0.0, 500.0};
-    double fov_y_deg = 45.0;  //!< vertical field of view, (0, 180)
+    double fov_y_deg = 45.0;  //!< vertical
     bool operator==(const CameraSpec&) const = default;
 };
 
+//! One camera of the "cameras" array: names are unique, the target is not the position.
+template <fields_of<CameraSpec> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.name, {.key = "name", .doc = "unique within the scene; `kiri render --camera NAME` picks one"});
+    v(o.position,
+      {.key = "position", .unit = "m", .doc = "eye, local metres", .shown_default = "required", .shape = "[x, y, z]"});
+    v(o.target,
+      {.key = "target",
+       .unit = "m",
+       .doc = "point looked at; must differ from `position`",
+       .shown_default = "required",
+       .shape = "[x, y, z]"});
+    v(o.fov_y_deg, {.key = "fov", .unit = "deg", .range = open_range(0, 180), .doc = "vertical field of view"});
+}
+
 struct SunSpec {
-    glm::dvec3 direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised on load), z > -1
+    glm::dvec3 direction{0.5, -0.3, 0.6};  //!< towards the sun (normalised on load)
     glm::dvec3 color{1.0, 0.96, 0.9};
     double intensity = 3.0;
-    glm::dvec3 ambient{0.25, 0.3, 0.38};  //!< sky ambient radiance
+    glm::dvec3 ambient{0.25, 0.3, 0.38};
     bool operator==(const SunSpec&) const = default;
 };
+
+template <fields_of<SunSpec> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.direction, {.key = "direction", .doc = "towards the sun, not zero; normalised on load", .shape = "[x, y, z]"});
+    v(o.color, {.key = "color", .range = at_least(0), .doc = "sun colour (linear)", .shape = "[r, g, b]"});
+    v(o.intensity, {.key = "intensity", .range = closed(0, 1e6), .doc = "sun radiance scale", .widget = closed(0, 20)});
+    v(o.ambient, {.key = "ambient", .range = at_least(0), .doc = "sky ambient radiance", .shape = "[r, g, b]"});
+}
 
 struct ImageSpec {
     int width = 1280, height = 720;
     bool operator==(const ImageSpec&) const = default;
 };
+
+template <fields_of<ImageSpec> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.width, {.key = "width", .unit = "px", .range = closed(1, 16384), .doc = "`kiri render --width` overrides it"});
+    v(o.height,
+      {.key = "height", .unit = "px", .range = closed(1, 16384), .doc = "`kiri render --height` overrides it"});
+}
 
 struct Scene {
     std::filesystem::path file;  //!< where it was loaded from (for messages); may be empty

@@ -5,6 +5,7 @@
 //! the slices without a GL context.
 #include <string>
 
+#include "kiri/geometry/core/fields.hpp"
 #include "kiri/geometry/volume/height_fog.hpp"
 
 namespace kiri::geometry {
@@ -15,31 +16,111 @@ enum class SliceDistribution {
     log2,         //!< linear for the first log2_scale metres, then logarithmic ([Unreal])
     power,        //!< d = a + (b - a) s^power ([Godot]'s "detail spread")
 };
+inline constexpr Choice slice_distribution_names[] = {{"exponential", int(SliceDistribution::exponential)},
+                                                      {"log2", int(SliceDistribution::log2)},
+                                                      {"power", int(SliceDistribution::power)}};
 
 struct FroxelOptions {
-    int width = 160, height = 90, slices = 64;  //!< froxels across, down and in depth
+    int width = 160, height = 90, slices = 64;
     SliceDistribution distribution = SliceDistribution::exponential;
-    double power = 2.0;        //!< exponent of the power distribution, > 0
-    double log2_scale = 32.0;  //!< metres, > 0: where the log2 distribution turns logarithmic
-    double near = 1.0;         //!< metres, > 0: the volume's first depth (standard slicing)
-    double far = 0.0;          //!< metres: the volume's last depth; 0 = the far side of the scene
+    double power = 2.0;
+    double log2_scale = 32.0;
+    double near = 1.0;
+    double far = 0.0;  //!< 0 = the far side of the scene
     //! Fog-aware slicing: each tile's slices span only the depths where its rays are in the
     //! Medium's shell (entry and exit of the rasterised shell, clipped by the terrain), so a
     //! thin layer gets all the slices instead of a fraction of one.
     bool fog_aware = true;
-    bool temporal = true;         //!< Halton-jittered samples blended with the reprojected history
-    double history_weight = 0.9;  //!< [0, 0.99]: weight of the (clamped) history
-    int density_samples = 2;      //!< samples of the density per froxel, spread over its depth, 1..16
-    int sun_steps = 12;           //!< steps of the sun's optical depth through the Medium, 1..64
-    //! Fog-aware apply: steps along each pixel's own stretch of the Medium's shell, 1..256.
-    int pixel_steps = 24;
-    bool terrain_shadows = true;  //!< the terrain's shadow map (ESM) darkens the fog and the ground
-    bool fog_shadows = true;      //!< the fog dims the sun on its way (the lighting model's tau_sun)
-    int shadow_map_size = 1024;   //!< texels a side of the light-space terrain shadow map, 64..8192
-    double esm_sharpness = 4.0;   //!< ESM exponent per shadow-map texel of depth, > 0
-    HeightFog height_fog;         //!< optional global height fog
+    bool temporal = true;
+    double history_weight = 0.9;
+    int density_samples = 2;
+    int sun_steps = 12;
+    int pixel_steps = 24;  //!< fog-aware apply
+    bool terrain_shadows = true;
+    bool fog_shadows = true;
+    int shadow_map_size = 1024;
+    double esm_sharpness = 4.0;
+    HeightFog height_fog;  //!< optional global height fog
     bool operator==(const FroxelOptions&) const = default;
 };
+
+//! The "froxel" section; far is 0 or beyond near.
+template <fields_of<FroxelOptions> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    constexpr std::string_view size = "[width, height, slices]";
+    v(o.width,
+      {.key = "size",
+       .range = closed(1, 1024),
+       .doc = "froxels across, down and in depth",
+       .widget = closed(16, 512),
+       .element = 0,
+       .elements = 3,
+       .shape = size});
+    v(o.height,
+      {.key = "size",
+       .range = closed(1, 1024),
+       .doc = "froxels down",
+       .widget = closed(9, 288),
+       .element = 1,
+       .elements = 3,
+       .shape = size});
+    v(o.slices,
+      {.key = "size",
+       .range = closed(2, 512),
+       .doc = "depth slices",
+       .widget = closed(8, 256),
+       .element = 2,
+       .elements = 3,
+       .shape = size});
+    v(o.distribution,
+      {.key = "distribution",
+       .doc = "depth slices: `exponential` (equal ratios, AC4), `log2` (Unreal: linear for "
+              "`log2_scale` metres, then logarithmic), `power` (Godot: d = a + (b - a) s^power)",
+       .choices = slice_distribution_names});
+    v(o.power,
+      {.key = "power",
+       .range = left_open(0, 16),
+       .doc = "exponent of the power distribution",
+       .widget = closed(0.25, 8),
+       .log_widget = true});
+    v(o.log2_scale,
+      {.key = "log2_scale",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "where the log2 distribution turns logarithmic",
+       .widget = closed(1, 2000),
+       .log_widget = true});
+    v(o.near, {.key = "near", .unit = "m", .range = greater_than(0), .doc = "the volume's first depth"});
+    v(o.far, {.key = "far", .unit = "m", .range = at_least(0), .doc = "its last depth; 0 = the far side of the scene"});
+    v(o.fog_aware,
+      {.key = "fog_aware",
+       .doc = "slices where the Medium is (per-tile ranges from the rasterised shell) and each pixel's "
+              "own stretch of the shell; false: the classic froxel volume over [near, far]"});
+    v(o.temporal, {.key = "temporal", .doc = "Halton-jittered lighting blended with the reprojected, clamped history"});
+    v(o.history_weight, {.key = "history_weight", .range = closed(0, 0.99), .doc = "weight of that history"});
+    v(o.density_samples,
+      {.key = "density_samples", .range = closed(1, 16), .doc = "density samples per froxel, spread over its depth"});
+    v(o.sun_steps,
+      {.key = "sun_steps", .range = closed(1, 64), .doc = "steps of the sun's optical depth through the Medium"});
+    v(o.pixel_steps,
+      {.key = "pixel_steps",
+       .range = closed(1, 256),
+       .doc = "fog-aware: steps along each pixel's stretch of the shell"});
+    v(o.terrain_shadows,
+      {.key = "terrain_shadows", .doc = "the terrain's shadow map (ESM) shades the fog and the ground"});
+    v(o.fog_shadows, {.key = "fog_shadows", .doc = "the fog dims the sun on its way (tau_sun)"});
+    v(o.shadow_map_size,
+      {.key = "shadow_map_size", .unit = "texels", .range = closed(64, 8192), .doc = "a side of the sun's shadow map"});
+    v(o.esm_sharpness,
+      {.key = "esm_sharpness", .range = left_open(0, 64), .doc = "ESM exponent per shadow-map texel of depth"});
+    v(hand_written,
+      {.key = "height_fog",
+       .doc = "global exponential height fog (the table below); `kiri render` limits it to the "
+              "terrain's extent",
+       .shown_default = "none",
+       .type = "object"});
+}
 
 //! \throw InputError(label, "/froxel/<key>", reason) for options out of range.
 void validate_froxel_options(const FroxelOptions& options, const std::string& label = {});

@@ -12,14 +12,16 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/core/fields.hpp"
+
 namespace kiri::geometry {
 
 struct HeightFog {
-    double extinction = 0.0;                                   //!< sigma_t (1/m) at and below `base`; 0: no height fog
-    double base = 0.0;                                         //!< world z (m) where the falloff starts
-    double scale_height = 100.0;                               //!< m, > 0: the density falls by e every scale_height
-    double albedo = 0.99;                                      //!< [0, 1]
-    double anisotropy = 0.6;                                   //!< Henyey-Greenstein g, (-1, 1)
+    double extinction = 0.0;  //!< 0: no height fog
+    double base = 0.0;        //!< world z
+    double scale_height = 100.0;
+    double albedo = 0.99;
+    double anisotropy = 0.6;
     glm::dvec2 min{-std::numeric_limits<double>::infinity()};  //!< horizontal extent (x, y)
     glm::dvec2 max{std::numeric_limits<double>::infinity()};
 
@@ -33,6 +35,35 @@ struct HeightFog {
     double optical_depth(const glm::dvec3& origin, const glm::dvec3& dir, double t0, double t1) const;
     bool operator==(const HeightFog&) const = default;
 };
+
+//! The "height_fog" object of the "froxel" section; visibility is another way to give the extinction.
+template <fields_of<HeightFog> O, class V>
+void visit_fields(O& o, V&& v)
+{
+    v(o.extinction,
+      {.key = "extinction",
+       .unit = "1/m",
+       .range = closed(0, 1000),
+       .doc = "sigma_t at and below `base`; 0: no height fog"});
+    v(hand_written,
+      {.key = "visibility",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "instead of `extinction`: the Koschmieder visibility at the base",
+       .widget = closed(100, 200000),
+       .log_widget = true});
+    v(o.base,
+      {.key = "base", .unit = "m", .doc = "of the DEM (stretched by the exaggeration): where the falloff starts"});
+    v(o.scale_height,
+      {.key = "scale_height",
+       .unit = "m",
+       .range = greater_than(0),
+       .doc = "of the DEM (stretched by the exaggeration): the density falls by e every scale_height",
+       .widget = closed(10, 5000),
+       .log_widget = true});
+    v(o.albedo, {.key = "albedo", .range = closed(0, 1), .doc = "scattering / extinction"});
+    v(o.anisotropy, {.key = "anisotropy", .range = open_range(-1, 1), .doc = "Henyey-Greenstein g"});
+}
 
 //! \throw InputError(label, "/froxel/height_fog/<key>", reason) for values out of range.
 void validate_height_fog(const HeightFog& fog, const std::string& label = {});

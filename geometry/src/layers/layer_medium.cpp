@@ -1,8 +1,10 @@
+#include "kiri/geometry/layers/layer_medium.hpp"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "kiri/geometry/core/error.hpp"
-#include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -89,7 +91,7 @@ Medium make_medium(const LayerBase& base, const LayerOptions& layers, const Terr
             g.top[k] = g.bottom[k] + layers.thickness;
             g.floor[k] = std::min(std::max(g.bottom[k], ground), g.top[k]);
         }
-    return Medium(std::move(g), options, medium_detail(layers));
+    return Medium(std::move(g), options, medium_detail(options, layers.count));
 }
 
 }  // namespace kiri::geometry
