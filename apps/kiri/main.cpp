@@ -15,6 +15,7 @@ int main(int argc, char** argv)
     app.set_version_flag("--version", "kiri 0.1.0");
     app.require_subcommand(1);
     kiri::cli::add_info_command(app);
+    kiri::cli::add_new_command(app);
     kiri::cli::add_render_command(app);
     kiri::cli::add_author_command(app);
     kiri::cli::add_bench_command(app);
