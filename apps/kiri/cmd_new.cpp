@@ -30,8 +30,7 @@ void run(const NewArgs& a)
     if (geometry::is_scene_path(a.dem))
         throw InputError(a.dem, "", "is a scene: kiri new starts from a DEM (GeoTIFF, .asc, .hgt, ENVI, PNG, ...)");
     geometry::Pipeline pipeline;
-    const geometry::PipelineProducts& products =
-        pipeline.run(geometry::dem_scene(a.dem), {geometry::Stage::terrain});
+    const geometry::PipelineProducts& products = pipeline.run(geometry::dem_scene(a.dem), {geometry::Stage::terrain});
     const std::string text = geometry::starter_scene_json(*products.scene, a.out);
     // Written beside, then renamed: no half-written scene.
     const fs::path tmp = fs::path(a.out).concat(".kiri-new.tmp");

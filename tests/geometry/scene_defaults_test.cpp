@@ -74,17 +74,16 @@ TEST(SceneDefaults, ExaggerationStretchesLowReliefOnly)
         return grid(101, 101, 100.0, [rise](double x, double) { return rise * (x / 10000.0 + 0.5); });
     };
     EXPECT_EQ(derive_exaggeration(ramp(1000.0)), 1.0);
-    EXPECT_EQ(derive_exaggeration(ramp(300.0)), 1.5);   // 288 m x 1.5 = 432 m
-    EXPECT_EQ(derive_exaggeration(ramp(150.0)), 3.0);   // 144 m x 3 = 432 m (x 2: 288 m)
-    EXPECT_EQ(derive_exaggeration(ramp(20.0)), 5.0);    // the most
-    EXPECT_EQ(derive_exaggeration(ramp(0.0)), 1.0);     // a plain has nothing to stretch
+    EXPECT_EQ(derive_exaggeration(ramp(300.0)), 1.5);  // 288 m x 1.5 = 432 m
+    EXPECT_EQ(derive_exaggeration(ramp(150.0)), 3.0);  // 144 m x 3 = 432 m (x 2: 288 m)
+    EXPECT_EQ(derive_exaggeration(ramp(20.0)), 5.0);   // the most
+    EXPECT_EQ(derive_exaggeration(ramp(0.0)), 1.0);    // a plain has nothing to stretch
 }
 
 TEST(SceneDefaults, FiguresOfACoastCountTheLandOnly)
 {
     // Half sea at -500 m, half land rising 0..1000 m: the land's floor is near 0, not -500.
-    const Heightfield hf =
-        grid(201, 11, 50.0, [](double x, double) { return x < 0.0 ? -500.0 : 1000.0 * x / 5000.0; });
+    const Heightfield hf = grid(201, 11, 50.0, [](double x, double) { return x < 0.0 ? -500.0 : 1000.0 * x / 5000.0; });
     const TerrainFigures t = terrain_figures(hf);
     EXPECT_TRUE(t.coast);
     EXPECT_NEAR(t.low, 20.0, 10.0);
@@ -158,7 +157,8 @@ TEST(SceneDefaults, BlanketAndVisibilityFromTheRelief)
     EXPECT_EQ(out.medium.extinction, MediumOptions{}.extinction);
     // Exaggerated 5 times, the same blanket is 1200 m deep in world metres: 24 optical depths,
     // an opaque plate; the visibility is raised to make it 6.
-    const Terrain stretched(grid(101, 101, 100.0, [](double x, double) { return 5.0 * (1000.0 + x / 5000.0 * 1000.0 / 0.96); }));
+    const Terrain stretched(
+        grid(101, 101, 100.0, [](double x, double) { return 5.0 * (1000.0 + x / 5000.0 * 1000.0 / 0.96); }));
     const Scene far = derive_scene_defaults(s, stretched, 5.0, record);
     const double tau = far.medium.extinction * far.fog->fit.thickness * 5.0;
     EXPECT_NEAR(tau, 6.0, 0.1) << "two significant digits of visibility";
@@ -167,8 +167,10 @@ TEST(SceneDefaults, BlanketAndVisibilityFromTheRelief)
 
 TEST(SceneDefaults, TheOverviewFramesTheTerrainAndTheSunIsLow)
 {
-    const Terrain terrain(grid(81, 61, 50.0, [](double x, double y) { return 300.0 + 200.0 * std::sin(x / 700.0) * std::cos(y / 500.0); }));
-    const Scene s = parsed(R"({"terrain": {"path": "x.tif"}, "fog": {"mode": "blanket"}, "image": {"width": 160, "height": 90}})");
+    const Terrain terrain(grid(
+        81, 61, 50.0, [](double x, double y) { return 300.0 + 200.0 * std::sin(x / 700.0) * std::cos(y / 500.0); }));
+    const Scene s =
+        parsed(R"({"terrain": {"path": "x.tif"}, "fog": {"mode": "blanket"}, "image": {"width": 160, "height": 90}})");
     DerivedDefaults record;
     const Scene out = derive_scene_defaults(s, terrain, 1.0, record);
     ASSERT_EQ(out.cameras.size(), 3u);

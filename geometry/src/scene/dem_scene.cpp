@@ -41,8 +41,7 @@ std::string starter_scene_json(const Scene& scene, const std::filesystem::path& 
     std::error_code ec;
     const std::filesystem::path folder = std::filesystem::absolute(out, ec).parent_path();
     if (!ec) {
-        const std::filesystem::path relative =
-            std::filesystem::absolute(s.terrain.path, ec).lexically_relative(folder);
+        const std::filesystem::path relative = std::filesystem::absolute(s.terrain.path, ec).lexically_relative(folder);
         if (!ec && !relative.empty())
             s.terrain.path = relative;
     }

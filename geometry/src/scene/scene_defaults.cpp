@@ -256,8 +256,8 @@ Scene derive_scene_defaults(const Scene& scene, const Terrain& terrain, double e
             fog_depth = fog.fit.thickness;
             if (open("/fog/offset", fog.fit.offset == FitOptions{}.offset) &&
                 open("/fog/thickness", fog.fit.thickness == FitOptions{}.thickness)) {
-                fog.fit.thickness = std::max(round_to_two_digits(std::clamp(0.12 * t.relief(), 30.0, 1500.0)),
-                                             fog.fit.clearance);
+                fog.fit.thickness =
+                    std::max(round_to_two_digits(std::clamp(0.12 * t.relief(), 30.0, 1500.0)), fog.fit.clearance);
                 fog.fit.offset = round_to_two_digits(0.3 * fog.fit.thickness);
                 fog_depth = fog.fit.thickness;
                 const std::string reason = "relief " + number(round_to_two_digits(t.relief())) + " m";
@@ -267,7 +267,7 @@ Scene derive_scene_defaults(const Scene& scene, const Terrain& terrain, double e
         }
     }
     const bool medium_given = scene.gives("/medium/extinction") || scene.gives("/medium/visibility") ||
-                              scene.gives("/medium/liquid_water_content") || scene.gives("/layers/extinction");
+        scene.gives("/medium/liquid_water_content") || scene.gives("/layers/extinction");
     if (s.fog && !medium_given && s.medium.extinction == MediumOptions{}.extinction && fog_depth > 0.0) {
         // The optical depth through the fog's depth (world metres: the volume is stretched too).
         const double depth = fog_depth * e;

@@ -53,9 +53,9 @@ inline constexpr int max_triangles = 250000;
 //! valleys.
 struct TerrainFigures {
     double low = 0.0, median = 0.0, high = 0.0;  //!< land quantiles 2, 50, 98 %
-    double width = 0.0, depth = 0.0;                           //!< extent along x and y (m)
-    double cell = 0.0;                                         //!< the larger sample spacing (m)
-    double mean_slope = 0.0;                                   //!< mean |grad z| over the land
+    double width = 0.0, depth = 0.0;             //!< extent along x and y (m)
+    double cell = 0.0;                           //!< the larger sample spacing (m)
+    double mean_slope = 0.0;                     //!< mean |grad z| over the land
     bool coast = false;
     glm::dvec2 lowest{0.0};  //!< the lowest land sample away from the edges (local m)
     double relief() const { return high - low; }
