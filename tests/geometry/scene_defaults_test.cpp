@@ -90,15 +90,24 @@ TEST(SceneDefaults, FiguresOfACoastCountTheLandOnly)
     EXPECT_NEAR(t.high, 980.0, 10.0);
 }
 
-TEST(SceneDefaults, AFillWithoutTopFillsAQuarterOfTheRelief)
+TEST(SceneDefaults, AFillWithoutTopCoversThirtyPercentOfTheLand)
 {
-    // z = x over [-5000, 5000] (+5000): quantiles 2 % and 98 % at 200 and 9800 m.
+    // z = x over [-5000, 5000] (+5000): quantiles 2, 30, 98 % at 200, 3000, 9800 m; 3000 m is
+    // more than a fifth of the relief up (200 + 1920).
     const Terrain terrain(grid(101, 51, 100.0, [](double x, double) { return x + 5000.0; }));
     const Scene s = parsed(R"({"terrain": {"path": "x.tif", "exaggeration": 1},
                                "fog": {"fill": {"seeds": "all"}}, "cameras": [], "sun": {"direction": [0, 0, 1]}})");
     DerivedDefaults record;
     const Scene out = derive_scene_defaults(s, terrain, 1.0, record);
-    EXPECT_EQ(out.fog->placement->regions[0].top, std::round(200.0 + 0.25 * 9600.0));
+    EXPECT_EQ(out.fog->placement->regions[0].top, 3000.0);
+    // A single peak on a plain: 30 % of the land is the plain, so the fifth of the relief wins.
+    const Terrain peak(grid(101, 101, 100.0, [](double x, double y) {
+        return 100.0 + 1000.0 * std::exp(-(x * x + y * y) / (2000.0 * 2000.0));
+    }));
+    const TerrainFigures f = terrain_figures(peak.heightfield());
+    const Scene on_peak = derive_scene_defaults(s, peak, 1.0, record);
+    EXPECT_EQ(on_peak.fog->placement->regions[0].top, std::round(f.low + 0.2 * f.relief()));
+    EXPECT_GT(f.low + 0.2 * f.relief(), f.fill_level);
     ASSERT_NE(find(record, "/fog/fill/top"), nullptr);
     EXPECT_EQ(find(record, "/terrain/exaggeration"), nullptr) << "given";
     EXPECT_EQ(find(record, "/sun/direction"), nullptr) << "given";

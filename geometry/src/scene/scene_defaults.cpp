@@ -150,6 +150,7 @@ TerrainFigures terrain_figures(const Heightfield& hf, double exaggeration)
         t.coast = false;
     }
     t.low = quantile(heights, 0.02);
+    t.fill_level = quantile(heights, 0.30);
     t.median = quantile(heights, 0.50);
     t.high = quantile(heights, 0.98);
     t.mean_slope = slopes ? slope / double(slopes) : 0.0;
@@ -242,8 +243,9 @@ Scene derive_scene_defaults(const Scene& scene, const Terrain& terrain, double e
                     scene.gives("/fog/fill/" + std::to_string(k)) ? "/fog/fill/" + std::to_string(k) : "/fog/fill";
                 FillRegionSpec& region = fog.placement->regions[k];
                 if (open(key + "/top", region.top == FillRegionSpec{}.top)) {
-                    region.top = std::round(t.low + 0.25 * std::max(t.relief(), 8.0));
-                    add(key + "/top", number(region.top), "a quarter of the relief up from the land's floor");
+                    region.top = std::round(std::max(t.fill_level, t.low + 0.2 * std::max(t.relief(), 8.0)));
+                    add(key + "/top", number(region.top),
+                        "30 % of the land below it, a fifth of the relief deep at least");
                 }
                 if (t.coast && open(key + "/max_thickness", region.max_thickness == 0.0) && region.top > 0.0) {
                     // Fog lies on the sea, not on its floor: down to 0 m at most.
@@ -272,7 +274,7 @@ Scene derive_scene_defaults(const Scene& scene, const Terrain& terrain, double e
         // The optical depth through the fog's depth (world metres: the volume is stretched too).
         const double depth = fog_depth * e;
         const double tau = s.medium.extinction * depth;
-        const double wanted = std::clamp(tau, 0.8, 6.0);
+        const double wanted = std::clamp(tau, 2.0, 6.0);
         if (wanted != tau) {
             s.medium.extinction = wanted / depth;
             const double visibility = round_to_two_digits(3.912 / s.medium.extinction);

@@ -12,8 +12,8 @@
 //!   terrain; with it, the tessellation level: 8, less where the patches would pass
 //!   `max_triangles`;
 //! - a blanket without offset and thickness: both from the relief;
-//! - a fill region without a top: the fog fills the land up to a quarter of its relief (on a
-//!   coast, it lies on the sea rather than on the sea floor);
+//! - a fill region without a top: the fog covers 30 % of the land, and is a fifth of the relief
+//!   deep at least (on a coast, it lies on the sea rather than on the sea floor);
 //! - the medium's visibility, when the scene gives no extinction: the fog's optical depth kept
 //!   between 0.8 and 6 (neither invisible nor an opaque plate), by Koschmieder's law [Koschmieder24];
 //! - the sun's direction: from the west-north-west, low enough for the slopes to cast shadows;
@@ -52,10 +52,10 @@ inline constexpr int max_triangles = 250000;
 //! (at least 2 % of its valid cells below 0 and 2 % above), so that the sea floor counts no
 //! valleys.
 struct TerrainFigures {
-    double low = 0.0, median = 0.0, high = 0.0;  //!< land quantiles 2, 50, 98 %
-    double width = 0.0, depth = 0.0;             //!< extent along x and y (m)
-    double cell = 0.0;                           //!< the larger sample spacing (m)
-    double mean_slope = 0.0;                     //!< mean |grad z| over the land
+    double low = 0.0, fill_level = 0.0, median = 0.0, high = 0.0;  //!< land quantiles 2, 30, 50, 98 %
+    double width = 0.0, depth = 0.0;                               //!< extent along x and y (m)
+    double cell = 0.0;                                             //!< the larger sample spacing (m)
+    double mean_slope = 0.0;                                       //!< mean |grad z| over the land
     bool coast = false;
     glm::dvec2 lowest{0.0};  //!< the lowest land sample away from the edges (local m)
     double relief() const { return high - low; }
