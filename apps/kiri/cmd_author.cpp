@@ -24,6 +24,7 @@
 #include "kiri/geometry/particles/particles.hpp"
 #include "kiri/geometry/volume/medium_vdb.hpp"
 #include "kiri/geometry/scene/author_report.hpp"
+#include "kiri/geometry/scene/dem_scene.hpp"
 #include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/geometry/scene/scene.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
@@ -94,11 +95,15 @@ int author(const AuthorArgs& args)
     const std::set<AuthorFormat> formats =
         args.formats.empty() ? default_author_formats() : parse_author_formats(args.formats);
     check_output_folder(out_dir.string());
-    const Scene scene = load_scene(scene_path);
-    if (!scene.fog)
+    const Scene given = load_scene_or_dem(scene_path);
+    if (!given.fog)
         throw InputError(scene_path.string(), "/fog", "the scene has no fog section to author");
     Pipeline pipeline;
-    const std::shared_ptr<const Terrain> loaded = pipeline.run(scene, {Stage::terrain}).terrain;
+    const PipelineProducts& first = pipeline.run(given, {Stage::terrain});
+    const std::shared_ptr<const Terrain> loaded = first.terrain;
+    // The scene as the pipeline completed it: the keys the file left out derived from the terrain.
+    const std::shared_ptr<const Scene> completed = first.scene;
+    const Scene& scene = *completed;
     const Terrain& terrain = *loaded;
     // The estimates come before any large allocation; above the limits the pipeline (memory)
     // or this command (files) refuses.
@@ -118,7 +123,7 @@ int author(const AuthorArgs& args)
     target.up_to = layers_wanted ? Stage::exports : particles_wanted ? Stage::particles : Stage::medium;
     target.particles = particles_wanted ? ParticleSet::whole : ParticleSet::none;
     target.export_eye = scene.camera(args.camera, bounds.min, bounds.max).position;
-    const PipelineProducts& fog = pipeline.run(scene, target);
+    const PipelineProducts& fog = pipeline.run(given, target);
     const Tessellation& tessellation = *fog.tessellation;
 
     std::vector<OutputFile> files = {
@@ -168,6 +173,7 @@ int author(const AuthorArgs& args)
     if (vdb.active_voxels > 0)
         std::printf(", medium %zu voxels of %.3g m", vdb.active_voxels, vdb.voxel_size);
     std::printf(" -> %s\n", out_dir.string().c_str());
+    print_derived(*fog.derived, terrain.heightfield());
     return 0;
 }
 }  // namespace
@@ -180,7 +186,9 @@ void add_author_command(CLI::App& app)
                            "Fit the scene's fog; write its layers (glTF), the medium (OpenVDB), particles (PLY), "
                            "maps of fog placed by the terrain and report.json (--formats for more)");
     auto args = std::make_shared<AuthorArgs>();
-    sub->add_option("scene", args->scene, "scene file (JSON) with a fog section")->required();
+    sub->add_option("scene", args->scene,
+                    "scene file (JSON) with a fog section, or a DEM (a valley fog, every other key derived)")
+        ->required();
     sub->add_option("-o,--out", args->out, "output folder")->required();
     sub->add_option("--formats", args->formats,
                     "comma-separated: glb (layers.glb), vdb (medium.vdb), particles (particles.ply), maps (fog placed "

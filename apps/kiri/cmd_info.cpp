@@ -29,6 +29,8 @@ void add_info_command(CLI::App& app)
         std::printf("nodata:     %zu cells\n", i.nodata_count);
         std::printf("crs:        %s\n", i.crs_name.empty() ? "(none)" : i.crs_name.c_str());
         std::printf("centre:     %.7f, %.7f (source CRS)\n", i.centre_x, i.centre_y);
+        for (const std::string& w : i.warnings)
+            std::fprintf(stderr, "kiri: warning: %s\n", w.c_str());
     });
 }
 

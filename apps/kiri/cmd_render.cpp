@@ -13,6 +13,7 @@
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/scene/dem_scene.hpp"
 #include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/render/exr_image.hpp"
 #include "kiri/render/gl_context.hpp"
@@ -80,16 +81,19 @@ void run(const RenderArgs& a)
 {
     const auto start = std::chrono::steady_clock::now();
     check_output_file(a.out);
-    const geometry::Scene scene = geometry::load_scene(a.scene);
+    const geometry::Scene given = geometry::load_scene_or_dem(a.scene);
     const bool cpu = a.mode == "reference" || a.mode == "path";  // the CPU judges: slow, no GL
     if (a.black_ground && !cpu)
         throw InputError(a.scene, "--black-ground", "only --mode reference and --mode path draw a black ground");
-    render::FogMode mode = render::default_mode(scene);
+    render::FogMode mode = render::default_mode(given);
     if (cpu)
         mode = render::FogMode::froxel;  // the CPU modes draw the Medium and the height fog
     else if (a.mode != "auto")
         render::parse_fog_mode(a.mode, mode);  // CLI11 checked the name
-    const geometry::PipelineProducts products = geometry::author_scene(scene, render::pipeline_target(mode, scene));
+    const geometry::PipelineProducts products = geometry::author_scene(given, render::pipeline_target(mode, given));
+    // The scene as the pipeline completed it: the keys the file left out derived from the terrain.
+    const geometry::Scene& scene = *products.scene;
+    print_derived(*products.derived, products.terrain->heightfield());
     const geometry::Bounds3 bounds = products.terrain->bounds();
     const render::Camera camera = render::to_camera(scene.camera(a.camera, bounds.min, bounds.max));
     const int width = a.width > 0 ? a.width : scene.image.width;
@@ -145,7 +149,9 @@ void add_render_command(CLI::App& app)
     auto* sub = app.add_subcommand(
         "render", "Render a scene headless to a PNG (or its linear radiance to an OpenEXR file) and print its path");
     auto a = std::make_shared<RenderArgs>();
-    sub->add_option("scene", a->scene, "scene file (JSON)")->required();
+    sub->add_option("scene", a->scene,
+                    "scene file (JSON), or a DEM: its terrain with a valley fog, every other key derived")
+        ->required();
     sub->add_option("-o,--out", a->out,
                     "output file: a PNG (tone-mapped), or the linear radiance before the tone map when it ends in "
                     ".exr (OpenEXR, 32-bit float RGBA)")

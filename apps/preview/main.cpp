@@ -1,4 +1,4 @@
-// kiri-preview SCENE.json: the interactive preview (docs/preview.md). Exit codes: 0, or 2 with
+// kiri-preview SCENE.json (or DEM): the interactive preview (docs/preview.md). Exit codes: 0, or 2 with
 // one line on stderr (bad arguments, bad scene, no display, no OpenGL 4.5).
 #include <cstdio>
 #include <exception>
@@ -12,7 +12,8 @@ int main(int argc, char** argv)
     using kiri::preview::Args;
     CLI::App app{"kiri-preview: interactive preview of a kiri scene (docs/preview.md)"};
     Args args;
-    app.add_option("scene", args.scene, "scene file (JSON)")->required();
+    app.add_option("scene", args.scene, "scene file (JSON), or a DEM (a valley fog, every other key derived)")
+        ->required();
     app.add_option("--width", args.width, "window width (screen units)")->check(CLI::Range(64, 16384));
     app.add_option("--height", args.height, "window height (screen units)")->check(CLI::Range(64, 16384));
     app.add_option("--camera", args.camera, "scene camera to start from (default: its first)");

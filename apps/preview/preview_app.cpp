@@ -14,6 +14,7 @@
 
 #include "camera_path.hpp"
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/scene/dem_scene.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/render/image.hpp"
 #include "kiri/render/scene_rendering.hpp"
@@ -59,7 +60,13 @@ void apply_view_args(const std::vector<std::string>& views, ViewOptions& v)
 PreviewApp::PreviewApp(const Args& args) : args_(args)
 {
     // Absolute, so the terrain path resolves wherever the scene is saved to.
-    scene_ = geometry::load_scene(fs::absolute(args.scene));
+    scene_ = geometry::load_scene_or_dem(fs::absolute(args.scene));
+    {
+        // The keys the scene leaves out, derived once from its terrain (scene_defaults.hpp): the
+        // panels start from them and the cameras frame the terrain. Later runs keep them.
+        geometry::Pipeline terrain_only;
+        scene_ = *terrain_only.run(scene_, {geometry::Stage::terrain}).scene;
+    }
     if (!args.camera_path.empty())
         camera_path_ = load_camera_path(args.camera_path);
     ui_.view.fog = !args.no_fog;
@@ -258,6 +265,7 @@ void PreviewApp::draw_panel()
         edited |= medium_panel(scene_, view);
         edited |= particles_panel(scene_, shown_.fog.particles.get(), renderer_->attenuation());
         edited |= froxel_panel(scene_, renderer_->last_stats().froxel);
+        edited |= combined_panel(scene_);
         edited |= sun_panel(scene_);
         view_changed |= view_panel(view, shown_.views.get());
         camera_panel(scene_, ui_);

@@ -29,6 +29,10 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
         fitted.far_m = std::max(far_distance * 1.05, 10.0);
         // A 32-bit float depth buffer keeps a far/near ratio of 1e5 comfortably.
         fitted.near_m = std::clamp(near_distance * 0.9, std::max(fitted.far_m * 1e-5, 0.05), fitted.far_m * 0.5);
+        // The haze grows with the terrain: a DEM wider than 50 km is hazed across as a 30 km one
+        // is, instead of fading to the sky's grey (smaller ones keep the default).
+        const double across = std::hypot(scene_max.x - scene_min.x, scene_max.y - scene_min.y);
+        f.haze_density = float(1.0 / std::max(1.0 / double(f.haze_density), 3.0 * across));
     }
     f.view = fitted.view();
     f.projection = fitted.projection(double(width) / double(height));

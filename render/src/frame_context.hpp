@@ -21,7 +21,7 @@ struct FrameContext {
     glm::vec3 sky_zenith{0.3f}, sky_horizon{0.8f};
     bool sun_glow = true;                      // the sky draws the sun's glow (SunLight::sky)
     float exposure = float(display_exposure);  // tone_map.hpp
-    float haze_density = 1.0f / 150000.0f;     // 1/m: the far side of a 30 km DEM is ~20% hazed
+    float haze_density = 1.0f / 150000.0f;     // 1/m: the far side of a 30 km DEM is ~20% hazed (at least)
     //! Combined mode: each fog renderer draws its share of the Medium (fog_partition.hpp).
     bool partitioned = false;
     glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band

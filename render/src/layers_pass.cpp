@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "froxel_pass.hpp"
+#include "layer_stack_uniforms.hpp"
 #include "kiri/geometry/terrain/heightfield.hpp"
 #include "noise_texture.hpp"
 
@@ -229,19 +230,7 @@ void LayersPass::draw_stack(const FrameContext& frame)
     const bool bottom_first = eye.z >= 0.5 * (base_->min.z + base_->max.z);
     const auto& o = options_;
     p.set("u_view_projection", frame.view_projection);
-    p.set("u_eye", frame.eye);
-    p.set("u_centre", glm::vec2(base_->centre));
-    p.set("u_thickness", float(o.thickness));
-    p.set("u_count", float(o.count));
-    p.set("u_max_count", float(o.max_count));
-    p.set("u_divisor", float(o.spacing_divisor));
-    p.set("u_rate", float(o.enlargement_rate));
-    p.set("u_narrowing", int(o.narrowing));
-    p.set("u_enlargement", int(o.enlargement));
-    p.set("u_top", top);
-    p.set("u_bottom_first", int(bottom_first));
-    p.set("u_time", float(o.optics.time));
-    p.set("u_half_life", float(o.optics.dissipation_half_life));
+    set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, bottom_first);
     p.set("u_atlas", 0);
     p.set("u_heights", 1);
     p.set("u_noise", 2);
@@ -259,7 +248,6 @@ void LayersPass::draw_stack(const FrameContext& frame)
     p.set("u_haze_density", frame.haze_density);
     const bool medium = o.shading == geometry::LayerShading::medium;
     p.set("u_medium", int(medium));
-    p.set("u_top_loss", float(medium ? 1.0 - o.optics.top_density : 0.9));
     p.set("u_extinction", float(o.optics.extinction));
     p.set("u_albedo", float(o.optics.albedo));
     p.set("u_octaves", std::clamp(o.optics.scattering_octaves, 1, 8));

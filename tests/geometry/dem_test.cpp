@@ -343,18 +343,156 @@ TEST_F(Dem, NodataAndNanCellsAreMaskedAndFilled)
                 EXPECT_DOUBLE_EQ(hf.at(i, j), plane(i, j)) << i << "," << j;
             }
         }
-    // The block is filled from its rim: inside the rim's range, and its centre (second ring)
-    // is the mean of its eight first-ring neighbours.
-    double ring_sum = 0.0;
+    // The block is filled by the membrane over the valid cells, which refills a plane exactly.
     for (int j = 2; j <= 4; ++j)
-        for (int i = 6; i <= 8; ++i) {
-            EXPECT_GE(hf.at(i, j), plane(5, 5) - 1e-12);
-            EXPECT_LE(hf.at(i, j), plane(9, 1) + 1e-12);
-            if (i != 7 || j != 3)
-                ring_sum += hf.at(i, j);
-        }
-    EXPECT_NEAR(hf.at(7, 3), ring_sum / 8.0, 1e-12);
+        for (int i = 6; i <= 8; ++i)
+            EXPECT_NEAR(hf.at(i, j), plane(i, j), 1e-8) << i << "," << j;
     EXPECT_EQ(dem_info(path).nodata_count, 11u);
+    EXPECT_TRUE(hf.warnings.empty()) << hf.warnings.front();
+}
+
+TEST_F(Dem, VoidsAreFilledByAMembraneWithoutSpikes)
+{
+    // A cone whose apex lies in a 9 x 7 NaN hole, and a nodata border three cells wide on the
+    // west: each filled cell is the mean of its 4-neighbours (a discrete harmonic function, so
+    // no spike and no crease), and no filled value leaves the range of the valid cells around
+    // it (maximum principle).
+    const int w = 60, h = 50;
+    const double gt[6] = {500000.0, 30.0, 0.0, 4000000.0, 0.0, -30.0};
+    const double nd = -9999.0;
+    const auto cone = [](int i, int j) {
+        return 1000.0 + 800.0 * std::max(0.0, 1.0 - std::hypot(i - 30, j - 25) / 25.0);
+    };
+    const auto hole = [](int i, int j) { return i >= 26 && i <= 34 && j >= 22 && j <= 28; };
+    const auto values = grid_values(w, h, [&](int c, int r) {
+        const int j = h - 1 - r;
+        if (c < 3)
+            return nd;
+        return hole(c, j) ? double(NAN) : cone(c, j);
+    });
+    const auto path = write("cone.tif", "GTiff", w, h, GDT_Float32, values, gt, 32633, &nd);
+    const Heightfield hf = load_dem(path);
+    double rim_lo = INFINITY, rim_hi = -INFINITY;
+    for (int j = 21; j <= 29; ++j)
+        for (int i = 25; i <= 35; ++i)
+            if (!hole(i, j)) {
+                rim_lo = std::min(rim_lo, hf.at(i, j));
+                rim_hi = std::max(rim_hi, hf.at(i, j));
+            }
+    int filled = 0;
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) {
+            if (hf.valid[j * w + i])
+                continue;
+            ++filled;
+            double sum = 0.0;
+            int n = 0;
+            for (const auto [a, b] : {std::pair{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}})
+                if (a >= 0 && a < w && b >= 0 && b < h)
+                    sum += hf.at(a, b), ++n;
+            EXPECT_NEAR(hf.at(i, j), sum / n, 1e-6) << i << "," << j;
+            if (hole(i, j)) {
+                EXPECT_GE(hf.at(i, j), rim_lo - 1e-9);
+                EXPECT_LE(hf.at(i, j), rim_hi + 1e-9);
+            }
+        }
+    EXPECT_EQ(filled, 9 * 7 + 3 * h);
+    // The border is a continuation of the valid edge, not a wall: within the heights of the
+    // first valid column's rows.
+    for (int j = 0; j < h; ++j)
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_GE(hf.at(i, j), 1000.0 - 1e-9);
+            EXPECT_LE(hf.at(i, j), cone(3, 25) + 1e-9);
+        }
+}
+
+TEST_F(Dem, UndeclaredFillValuesAndImpossibleHeightsAreVoidsWithAWarning)
+{
+    // A float32 GeoTIFF with no nodata tag whose voids hold -3.4e38 (real exports), -32768 and
+    // -9999, and one cell at 20 km: all voids, counted in two one-line warnings.
+    const int w = 20, h = 16;
+    const double gt[6] = {300000.0, 10.0, 0.0, 5000000.0, 0.0, -10.0};
+    const auto values = grid_values(w, h, [&](int c, int r) {
+        if (r == 3 && c < 5)
+            return -3.4028234663852886e38;
+        if (r == 8 && c == 8)
+            return -32768.0;
+        if (r == 9 && c == 9)
+            return -9999.0;
+        if (r == 12 && c == 2)
+            return 20000.0;
+        return 100.0 + c + r;
+    });
+    const auto path = write("fills.tif", "GTiff", w, h, GDT_Float32, values, gt, 32633);
+    const Heightfield hf = load_dem(path);
+    int voids = 0;
+    for (std::size_t k = 0; k < hf.size(); ++k) {
+        voids += hf.valid[k] ? 0 : 1;
+        EXPECT_GE(hf.z[k], 100.0);
+        EXPECT_LE(hf.z[k], 100.0 + w + h);
+    }
+    EXPECT_EQ(voids, 8);
+    ASSERT_EQ(hf.warnings.size(), 2u);
+    EXPECT_NE(hf.warnings[0].find("7 cells hold an undeclared fill value"), std::string::npos) << hf.warnings[0];
+    EXPECT_NE(hf.warnings[1].find("1 cell lies outside -12 km..+9 km"), std::string::npos) << hf.warnings[1];
+    for (const std::string& warning : hf.warnings) {
+        EXPECT_EQ(warning.find('\n'), std::string::npos);
+        EXPECT_EQ(warning.rfind(path.string() + ": nodata: ", 0), 0u) << warning;
+    }
+    EXPECT_EQ(dem_info(path).nodata_count, 8u);
+    EXPECT_EQ(dem_info(path).warnings, hf.warnings);
+}
+
+TEST_F(Dem, HeightsMostlyOffTheEarthAreRefusedNamingTheVerticalScale)
+{
+    // Centimetres written as if they were metres: 150 km mountains.
+    const double gt[6] = {300000.0, 10.0, 0.0, 5000000.0, 0.0, -10.0};
+    const auto path = write("cm.tif", "GTiff", 8, 8, GDT_Float32,
+                            grid_values(8, 8, [](int c, int r) { return 150000.0 + c * r; }), gt, 32633);
+    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "vertical_scale", "-12 km..+9 km");
+}
+
+TEST_F(Dem, VerticalFeetAreConvertedToMetres)
+{
+    const double gt[6] = {300000.0, 10.0, 0.0, 5000000.0, 0.0, -10.0};
+    const auto path = write("feet.tif", "GTiff", 4, 4, GDT_Float32, std::vector<double>(16, 1000.0), gt, 32633);
+    {
+        GDALDataset* ds = GDALDataset::Open(path.string().c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE);
+        ASSERT_NE(ds, nullptr);
+        ds->GetRasterBand(1)->SetUnitType("ft");
+        GDALClose(ds);
+    }
+    const Heightfield hf = load_dem(path);
+    for (double z : hf.z)
+        EXPECT_DOUBLE_EQ(z, 304.8);
+}
+
+TEST_F(Dem, DegreesWithoutACrsAreReadAsGeographicWithAWarning)
+{
+    // An ESRI ASCII grid at 30 arc-seconds with no .prj: its coordinates can only be degrees.
+    const double cell = 1.0 / 120.0;
+    std::string text = "ncols 6\nnrows 5\nxllcorner -84.5\nyllcorner 36.5\ncellsize " + std::to_string(cell) + "\n";
+    for (int r = 0; r < 5; ++r) {
+        for (int c = 0; c < 6; ++c)
+            text += std::to_string(300 + 10 * c + r) + " ";
+        text += "\n";
+    }
+    const auto path = write_text("degrees.asc", text);
+    const Heightfield hf = load_dem(path);
+    EXPECT_TRUE(hf.georef.geographic);
+    const double lat = 36.5 + 2.5 * cell;
+    EXPECT_NEAR(hf.dx, cell * series_m_per_deg_lon(lat), 0.01 * cell * 1000.0);
+    EXPECT_NEAR(hf.dy, cell * series_m_per_deg_lat(lat), 0.01 * cell * 1000.0);
+    ASSERT_EQ(hf.warnings.size(), 1u);
+    EXPECT_NE(hf.warnings[0].find("plainly degrees"), std::string::npos) << hf.warnings[0];
+    // A metric grid with the same values and 30 m cells stays metres, silently.
+    std::string metric = text;
+    metric.replace(metric.find("cellsize"), metric.find("\n", metric.find("cellsize")) - metric.find("cellsize"),
+                   "cellsize 30");
+    const Heightfield m = load_dem(write_text("metres.asc", metric));
+    EXPECT_FALSE(m.georef.geographic);
+    EXPECT_DOUBLE_EQ(m.dx, 30.0);
+    EXPECT_TRUE(m.warnings.empty());
 }
 
 TEST_F(Dem, ResampleKeepsTheExtentAndReproducesAPlane)

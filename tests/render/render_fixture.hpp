@@ -1,6 +1,6 @@
 #pragma once
-// Shared by the GL tests: one headless context per test program, GL errors fatal, and small
-// analytic terrains built in code.
+// Shared by the GL tests: one headless context per test program, GL errors fatal, every test
+// checked for GL errors when it ends, and small analytic terrains built in code.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,6 +18,12 @@ protected:
         if (!context())
             context() = render::create_headless_context({.debug = true, .throw_on_gl_error = true});
         context()->make_current();
+    }
+    // A GL error anywhere in the test (the debug callback counts them, including those a test
+    // caught as exceptions) fails it, whatever the test asserted itself.
+    void TearDown() override
+    {
+        EXPECT_EQ(render::gl_error_count(), 0) << "GL errors were reported (the 'kiri gl:' lines above)";
     }
     static std::unique_ptr<render::GlContext>& context()
     {

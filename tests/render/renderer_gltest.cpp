@@ -149,6 +149,4 @@ TEST_F(RendererGl, GaussianHillMatchesReferenceImage)
     EXPECT_GT(std::abs(luminance(80, 2) - luminance(80, 90)), 30.0);
 }
 
-TEST_F(RendererGl, NoGlErrors) { EXPECT_EQ(kiri::render::gl_error_count(), 0); }
-
 }  // namespace

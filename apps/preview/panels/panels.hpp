@@ -62,6 +62,8 @@ struct FrameTimes {
 bool terrain_panel(geometry::Scene& scene);
 bool fog_panel(geometry::Scene& scene, const geometry::Terrain* terrain, const geometry::PipelineProducts* fog);
 bool sun_panel(geometry::Scene& scene);
+//! The scene's "combined" section and its quality preset (every renderer's budget at once).
+bool combined_panel(geometry::Scene& scene);
 bool layers_panel(geometry::Scene& scene);
 //! The medium's optics and its motion (detail noise, wind, time, dissipation); `view` holds
 //! whether its time plays.

@@ -36,8 +36,12 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     const Bounds3& box = medium.bounds();
     const glm::dvec3 extent = box.max - box.min;
     const double d_max = medium.max_extinction() / medium.options().extinction;
-    if (!(d_max > 0.0) || !(extent.x > 0.0) || !(extent.y > 0.0) || !(extent.z > 0.0))
-        throw InputError(label, "/particles", "the medium holds no fog to sample particles in");
+    if (!(d_max > 0.0) || !(extent.x > 0.0) || !(extent.y > 0.0) || !(extent.z > 0.0)) {
+        ParticleCloud empty;  // no fog to sample: no particles, the other renderers draw nothing either
+        empty.anisotropy = medium.options().anisotropy;
+        empty.scattering_octaves = medium.options().scattering_octaves;
+        return empty;
+    }
 
     // The count: given, or from the spacing at full density and a first estimate of the density
     // integral (a pilot run of the same sampler).
@@ -46,13 +50,18 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     std::size_t trials = 0, hits = 0;
     std::vector<glm::dvec3> candidates;
     std::vector<double> density;
+    // Rejection: uniform in the box, kept with probability d(p) / d_max. A fog too thin for the
+    // wanted candidates (a thin top band, a thin layer in a tall box) stops at `give_up` trials,
+    // or earlier once that is plainly out of reach, and keeps what it found: a thin fog gets few
+    // particles, or none, not an error.
     const auto draw = [&](std::size_t wanted) {
-        // Rejection: uniform in the box, kept with probability d(p) / d_max.
         const std::size_t give_up = std::max<std::size_t>(wanted, 1000) * 2000;
         for (std::size_t t = 0; candidates.size() < wanted; ++t) {
             if (t > give_up)
-                throw InputError(label, "/particles",
-                                 "the medium's fog is too thin to sample (almost every point is empty)");
+                return;
+            if (t >= 1000000 && t % 65536 == 0 &&
+                double(wanted) * double(trials) > 4.0 * double(give_up) * double(hits + 1))
+                return;
             const glm::dvec3 p = box.min + extent * glm::dvec3(uniform(rng), uniform(rng), uniform(rng));
             double d = medium.density(p);
             if (weight && d > 0.0)  // a share of the Medium: still below d_max
@@ -79,6 +88,17 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     if (wanted > max_candidates)
         throw LimitError(label, "/particles/candidates", "count * candidates is above the limit of 2e7 points");
     draw(std::size_t(wanted));
+    ParticleCloud cloud;
+    cloud.anisotropy = medium.options().anisotropy;
+    cloud.scattering_octaves = medium.options().scattering_octaves;
+    cloud.forward_scattering =
+        options.forward_scattering >= 0.0 ? options.forward_scattering : forward_scattering_fraction(cloud.anisotropy);
+    cloud.candidate_count = candidates.size();
+    if (candidates.empty())
+        return cloud;  // no particle found any fog: the other renderers draw it
+    // Fewer candidates than wanted (a thin fog): fewer particles, in the same proportion.
+    if (double(candidates.size()) < wanted)
+        count = std::max<std::size_t>(1, std::min(count, std::size_t(double(candidates.size()) / options.candidates)));
     const double integral = box_volume * d_max * double(hits) / double(trials);
 
     // Local spacing where each candidate lies: the distance between particles at that density.
@@ -88,14 +108,8 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
         spacing[i] = std::cbrt(integral / (double(count) * std::max(density[i], min_relative_density)));
     const std::vector<std::size_t> kept = detail::eliminate_samples(candidates, spacing, spacing_full, count);
 
-    ParticleCloud cloud;
-    cloud.anisotropy = medium.options().anisotropy;
-    cloud.scattering_octaves = medium.options().scattering_octaves;
-    cloud.forward_scattering =
-        options.forward_scattering >= 0.0 ? options.forward_scattering : forward_scattering_fraction(cloud.anisotropy);
     cloud.density_integral = integral;
     cloud.spacing = spacing_full;
-    cloud.candidate_count = candidates.size();
     const double albedo = options.albedo >= 0.0 ? options.albedo : medium.options().albedo;
     const double extinction = options.extinction > 0.0 ? options.extinction : medium.options().extinction;
     const double r_min = options.radius_min > 0.0 ? options.radius_min : options.radius_scale * spacing_full;

@@ -21,13 +21,16 @@ Medium fill_medium(const Terrain& terrain, const PlacedFog& placed, const Medium
         s = int(std::ceil(options.grid_spacing / cell - 1e-9));
     while ((hf.nx - 1) / s + 1 > options.max_grid_side || (hf.ny - 1) / s + 1 > options.max_grid_side)
         ++s;
+    // A grid only a few cells wide keeps its two edges on its short side, whatever the stride
+    // its long side needs.
+    const int sx = std::max(1, std::min(s, hf.nx - 1)), sy = std::max(1, std::min(s, hf.ny - 1));
     MediumGrid g;
-    g.nx = (hf.nx - 1) / s + 1;
-    g.ny = (hf.ny - 1) / s + 1;
+    g.nx = (hf.nx - 1) / sx + 1;
+    g.ny = (hf.ny - 1) / sy + 1;
     g.x0 = hf.x0;
     g.y0 = hf.y0;
-    g.dx = hf.dx * s;
-    g.dy = hf.dy * s;
+    g.dx = hf.dx * sx;
+    g.dy = hf.dy * sy;
     const std::size_t n = std::size_t(g.nx) * g.ny;
     g.floor.resize(n);
     g.bottom.resize(n);
@@ -35,7 +38,7 @@ Medium fill_medium(const Terrain& terrain, const PlacedFog& placed, const Medium
     g.coverage.resize(n);
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) {
-            const std::size_t k = std::size_t(j * s) * hf.nx + std::size_t(i * s), q = std::size_t(j) * g.nx + i;
+            const std::size_t k = std::size_t(j * sy) * hf.nx + std::size_t(i * sx), q = std::size_t(j) * g.nx + i;
             const double ground = hf.z[k];
             if (!c.mask[k]) {
                 g.floor[q] = g.bottom[q] = g.top[q] = ground;

@@ -166,6 +166,12 @@ std::string author_report_json(const Scene& scene, const PipelineProducts& produ
     j["optics"] = optics(scene.medium);
     if (products.placed && scene.fog->placement)
         j["placement"] = placement(scene, *products.placed);
+    // The keys the scene left out and the pipeline derived from the terrain (scene_defaults.hpp).
+    json derived = json::object();
+    if (products.derived)
+        for (const DerivedValue& v : products.derived->values)
+            derived[v.key] = {{"value", v.value}, {"reason", v.reason}};
+    j["derived"] = derived;
     return j.dump(2) + "\n";
 }
 

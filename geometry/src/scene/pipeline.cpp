@@ -2,6 +2,9 @@
 
 #include <chrono>
 #include <exception>
+#include <new>
+
+#include "kiri/geometry/core/error.hpp"
 
 #include "kiri/geometry/layers/layer_medium.hpp"
 #include "kiri/geometry/placement/fill_medium.hpp"
@@ -60,6 +63,11 @@ struct StageCache {
 
 struct Pipeline::Cache {
     StageCache<TerrainInput, std::shared_ptr<const Terrain>> terrain;
+    double exaggeration = 1.0;  // the terrain's, given or derived
+    // The scene with its derived defaults, for the terrain's version and scene it was made from.
+    std::optional<std::pair<std::uint64_t, Scene>> resolved_from;
+    std::shared_ptr<const Scene> resolved;
+    std::shared_ptr<const DerivedDefaults> derived;
     StageCache<PlacementInput, std::shared_ptr<const PlacedFog>> placement;
     // The control mesh's surface is refitted in place by the fit (its samples are reused).
     StageCache<ControlMeshInput, std::unique_ptr<BaseSurface>> control;
@@ -112,10 +120,11 @@ LayerOptions fog_layer_options(const Scene& scene, const FogSpec& spec)
     return layers;
 }
 
-const PipelineProducts& Pipeline::run(const Scene& scene, const PipelineTarget& target)
+const PipelineProducts& Pipeline::run(const Scene& given_scene, const PipelineTarget& target)
 {
     Cache& c = *cache_;
-    const std::string label = scene.file.string();
+    const Scene& input = given_scene;
+    const std::string label = input.file.string();
     ran_.fill(false);
     failed_.reset();
     Stage current = Stage::terrain;
@@ -141,14 +150,28 @@ const PipelineProducts& Pipeline::run(const Scene& scene, const PipelineTarget& 
             observer_(s, true);
     };
     try {
-        step(Stage::terrain, c.terrain, TerrainInput{scene.terrain}, [&](const TerrainInput&) {
-            c.terrain.product.reset();  // free the old one first: it can be large
-            c.terrain.product = std::make_shared<const Terrain>(load_scene_terrain(scene));
-            products_.terrain = c.terrain.product;
-        });
+        step(Stage::terrain, c.terrain, TerrainInput{input.terrain, input.gives("/terrain/exaggeration")},
+             [&](const TerrainInput&) {
+                 c.terrain.product.reset();  // free the old one first: it can be large
+                 c.terrain.product = std::make_shared<const Terrain>(load_scene_terrain(input, &c.exaggeration));
+                 products_.terrain = c.terrain.product;
+             });
+        // The keys the scene leaves out, derived once per terrain and scene (the preview runs
+        // this per edit).
+        if (!c.resolved_from || c.resolved_from->first != c.terrain.version || c.resolved_from->second != input) {
+            c.resolved_from.reset();
+            auto derived = std::make_shared<DerivedDefaults>();
+            c.resolved = std::make_shared<const Scene>(
+                derive_scene_defaults(input, *c.terrain.product, c.exaggeration, *derived));
+            c.derived = std::move(derived);
+            c.resolved_from.emplace(c.terrain.version, input);
+        }
+        const Scene& scene = *c.resolved;
+        products_.scene = c.resolved;
+        products_.derived = c.derived;
         if (!scene.fog) {
             c.forget_fog();
-            products_ = PipelineProducts{c.terrain.product};
+            products_ = PipelineProducts{c.terrain.product, c.resolved, c.derived};
             return products_;
         }
         const Terrain& terrain = *c.terrain.product;
@@ -221,10 +244,21 @@ const PipelineProducts& Pipeline::run(const Scene& scene, const PipelineTarget& 
                          build_layers(*c.layer_base.product, in.layers, in.eye));
                  });
         }
-    } catch (...) {
+    } catch (const Error&) {
         failed_ = current;
         publish(target);  // the last good products stay
         throw;
+    } catch (const std::bad_alloc&) {
+        failed_ = current;
+        publish(target);
+        throw LimitError(label, to_string(current), "ran out of memory (a smaller terrain or fewer layers would fit)");
+    } catch (const std::exception&) {
+        // A library's own message (std::, allocator, assertion text) means nothing to a user:
+        // name the stage and the scene instead.
+        failed_ = current;
+        publish(target);
+        throw InputError(label, to_string(current),
+                         "failed on this input (an internal error: please report it with the scene and its terrain)");
     }
     publish(target);
     return products_;
@@ -235,6 +269,8 @@ void Pipeline::publish(const PipelineTarget& target)
     const Cache& c = *cache_;
     const auto reaches = [&](Stage s) { return int(target.up_to) >= int(s); };
     products_.terrain = c.terrain.product;
+    products_.scene = c.resolved;
+    products_.derived = c.derived;
     products_.fog = c.fog;
     products_.layers = c.layers;
     products_.placed = c.placed ? c.placement.product : nullptr;

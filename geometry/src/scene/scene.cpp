@@ -20,6 +20,7 @@
 #include "kiri/geometry/terrain/dem.hpp"
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
+#include "kiri/geometry/scene/scene_defaults.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -90,6 +91,22 @@ std::string strip_exception_id(std::string what)
     return what;
 }
 
+// Every key and array element of j, as JSON pointers under prefix.
+void record_given(const json& j, const std::string& prefix, std::set<std::string>& given)
+{
+    if (j.is_object()) {
+        for (const auto& [key, value] : j.items()) {
+            given.insert(prefix + "/" + key);
+            record_given(value, prefix + "/" + key, given);
+        }
+    } else if (j.is_array()) {
+        for (std::size_t k = 0; k < j.size(); ++k) {
+            given.insert(prefix + "/" + std::to_string(k));
+            record_given(j[k], prefix + "/" + std::to_string(k), given);
+        }
+    }
+}
+
 std::string parse_error_reason(const json::parse_error& e) { return "malformed JSON: " + strip_exception_id(e.what()); }
 
 }  // namespace
@@ -150,6 +167,8 @@ Scene parse_scene(std::string_view json_text, const std::string& file_label, con
     if (root.contains("combined"))
         scene.combined = parse_fog_partition(root["combined"], file_label);
     scene.quality = quality;
+    scene.given.emplace();
+    record_given(root, "", *scene.given);
     return scene;
 }
 
@@ -225,13 +244,27 @@ CameraSpec Scene::camera(std::string_view name, const glm::dvec3& lo, const glm:
     return c;
 }
 
-Terrain load_scene_terrain(const Scene& scene)
+Terrain load_scene_terrain(const Scene& scene, double* exaggeration)
 {
     DemOptions options;
     options.cell_size = scene.terrain.cell_size;
-    options.vertical_scale = scene.terrain.vertical_scale * scene.terrain.exaggeration;
-    options.vertical_offset = scene.terrain.vertical_offset * scene.terrain.exaggeration;
-    return Terrain(load_dem(scene.terrain.path, options));
+    options.vertical_scale = scene.terrain.vertical_scale;
+    options.vertical_offset = scene.terrain.vertical_offset;
+    const bool derived =
+        !scene.gives("/terrain/exaggeration") && scene.terrain.exaggeration == TerrainSpec{}.exaggeration;
+    // A derived exaggeration is the relief's at 1: loaded at 1, stretched here (not loaded twice).
+    options.exaggeration = derived ? 1.0 : scene.terrain.exaggeration;
+    Heightfield hf = load_dem(scene.terrain.path, options);
+    double e = options.exaggeration;
+    if (derived) {
+        e = derive_exaggeration(hf);
+        if (e != 1.0)
+            for (double& z : hf.z)
+                z *= e;
+    }
+    if (exaggeration)
+        *exaggeration = e;
+    return Terrain(std::move(hf));
 }
 
 FogSpec world_fog_spec(const Scene& scene)

@@ -18,4 +18,6 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/scene/placement_json.cpp
   src/scene/stage_inputs.cpp
   src/scene/pipeline.cpp
+  src/scene/scene_defaults.cpp
+  src/scene/dem_scene.cpp
 )

@@ -12,6 +12,7 @@ namespace kiri::geometry {
 
 struct TerrainInput {
     TerrainSpec terrain;
+    bool exaggeration_given = true;  // else derived from the terrain on load
     bool operator==(const TerrainInput&) const = default;
 };
 

@@ -75,17 +75,59 @@ struct Raster {
     double z_scale = 1.0, z_offset = 0.0;   // metres = z_offset + z_scale * raw
     std::optional<double> nodata;
     bool nodata_float32 = false;
+    double exaggeration = 1.0;  // inside z_scale and z_offset; the plausible range is checked before it
+    std::vector<std::string> warnings;
 };
 
-double metres_per_unit_of_band(GDALRasterBand* band)
+// Elevations on Earth lie within these (the Challenger Deep -10.9 km, Everest 8.85 km): beyond
+// them a value of a georeferenced raster is a fill value, whatever the file declares. (Images
+// without georeferencing, such as a game's PNG heightmap, may hold any height their scale gives.)
+constexpr double lowest_elevation_m = -12000.0, highest_elevation_m = 9000.0;
+
+// Fill values real exports write without declaring them as nodata: the float limits (GDAL's
+// and ArcGIS's -3.4e38), the 16-bit ones (SRTM voids) and -9999 (ESRI and most GIS tools).
+bool undeclared_fill_value(double raw)
 {
-    std::string unit = band->GetUnitType();
+    return std::abs(raw) >= 3.0e38 || raw == -32768.0 || raw == -32767.0 || raw == -9999.0;
+}
+
+// Without a CRS, a geotransform whose cells are under 0.1 and whose extent fits the globe's
+// longitudes and latitudes is plainly in degrees (a metric grid that small would be centimetres
+// within a few metres of its origin).
+bool plainly_degrees(const double gt[6], int width, int height)
+{
+    const double x0 = gt[0], x1 = gt[0] + width * gt[1], y0 = gt[3], y1 = gt[3] + height * gt[5];
+    const auto inside = [](double v, double limit) { return std::abs(v) <= limit + 1e-9; };
+    return std::abs(gt[1]) <= 0.1 && std::abs(gt[5]) <= 0.1 && inside(x0, 180.0) && inside(x1, 180.0) &&
+        inside(y0, 90.0) && inside(y1, 90.0);
+}
+
+// Metres per unit of a unit's name as GDAL and its drivers spell it; 0 when it names no length.
+double metres_per_unit_named(std::string unit)
+{
     std::transform(unit.begin(), unit.end(), unit.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (unit == "ft" || unit == "foot" || unit == "feet")
+    std::replace(unit.begin(), unit.end(), '_', ' ');
+    if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "international foot")
         return 0.3048;
-    if (unit == "us-ft" || unit == "us survey foot" || unit == "ftus")
+    if (unit == "us-ft" || unit == "us survey foot" || unit == "ftus" || unit == "foot us" || unit == "us foot")
         return 1200.0 / 3937.0;
-    return 1.0;  // metres, or unstated
+    if (unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters")
+        return 1.0;
+    return 0.0;
+}
+
+// The band's own unit first; else the vertical CRS's (a compound CRS such as NAD83 + NAVD88
+// height in feet); else metres.
+double metres_per_unit_of_band(GDALRasterBand* band, const OGRSpatialReference* srs)
+{
+    if (const double m = metres_per_unit_named(band->GetUnitType()); m > 0.0)
+        return m;
+    if (srs && srs->IsCompound()) {
+        const double m = srs->GetTargetLinearUnits("VERT_CS");
+        if (m > 0.0 && std::isfinite(m))
+            return m;
+    }
+    return 1.0;
 }
 
 Raster open_raster(const fs::path& path, const DemOptions& options, const GdalErrors& errors)
@@ -140,7 +182,27 @@ Raster open_raster(const fs::path& path, const DemOptions& options, const GdalEr
     r.centre_y = r.gt[3] + 0.5 * r.height * r.gt[5];
 
     double mx = 1.0, my = 1.0;  // metres per source unit along x and y
-    if (const OGRSpatialReference* srs = r.ds->GetSpatialRef(); srs && r.georeferenced) {
+    const OGRSpatialReference* srs = r.ds->GetSpatialRef();
+    if (!srs && r.georeferenced && plainly_degrees(r.gt, r.width, r.height)) {
+        r.geographic = true;
+        const double lat = r.centre_y;
+        const LocalScale s = wgs84_metres_per_degree(lat);
+        mx = s.east;
+        my = s.north;
+        OGRSpatialReference wgs84;
+        wgs84.SetWellKnownGeogCS("WGS84");
+        char* wkt = nullptr;
+        if (wgs84.exportToWkt(&wkt) == OGRERR_NONE && wkt)
+            r.crs_wkt = wkt;
+        CPLFree(wkt);
+        r.crs_name = "WGS 84 (assumed)";
+        char note[200];
+        std::snprintf(note, sizeof note,
+                      "no CRS, but the coordinates are plainly degrees (cells of %.3g, centre %.4f, %.4f): read as "
+                      "WGS 84 longitude and latitude",
+                      std::abs(r.gt[1]), r.centre_x, r.centre_y);
+        r.warnings.push_back(r.file + ": crs: " + note);
+    } else if (srs && r.georeferenced) {
         char* wkt = nullptr;
         if (srs->exportToWkt(&wkt) == OGRERR_NONE && wkt)
             r.crs_wkt = wkt;
@@ -166,9 +228,13 @@ Raster open_raster(const fs::path& path, const DemOptions& options, const GdalEr
 
     int has_scale = 0, has_offset = 0, has_nodata = 0;
     const double band_scale = r.band->GetScale(&has_scale), band_offset = r.band->GetOffset(&has_offset);
-    const double unit = metres_per_unit_of_band(r.band);
-    r.z_scale = options.vertical_scale * (has_scale ? band_scale : 1.0) * unit;
-    r.z_offset = options.vertical_offset + options.vertical_scale * (has_offset ? band_offset : 0.0) * unit;
+    const double unit = metres_per_unit_of_band(r.band, r.georeferenced ? srs : nullptr);
+    if (!(options.exaggeration > 0.0) || !std::isfinite(options.exaggeration))
+        throw InputError(r.file, "exaggeration", "must be a finite number > 0");
+    r.exaggeration = options.exaggeration;
+    const double scale = options.vertical_scale * options.exaggeration;
+    r.z_scale = scale * (has_scale ? band_scale : 1.0) * unit;
+    r.z_offset = options.vertical_offset * options.exaggeration + scale * (has_offset ? band_offset : 0.0) * unit;
     if (!std::isfinite(r.z_scale) || !std::isfinite(r.z_offset))
         throw InputError(r.file, "vertical_scale", "vertical scale or offset is not finite");
     const double nd = r.band->GetNoDataValue(&has_nodata);
@@ -200,7 +266,10 @@ struct Samples {
     std::vector<double> z;  // local order: j = 0 south, i = 0 west; already in metres
     std::vector<std::uint8_t> valid;
     std::size_t nodata_count = 0;
+    std::vector<std::string> warnings;
 };
+
+std::string cells_text(std::size_t n) { return std::to_string(n) + (n == 1 ? " cell" : " cells"); }
 
 Samples read_samples(const Raster& r, const GdalErrors& errors)
 {
@@ -213,6 +282,9 @@ Samples read_samples(const Raster& r, const GdalErrors& errors)
     Samples s;
     s.z.resize(w * h);
     s.valid.resize(w * h);
+    std::size_t fills = 0, out_of_range = 0, finite = 0;
+    double outlier = 0.0;  // one height outside the range, for the message
+    const double lo = lowest_elevation_m * r.exaggeration, hi = highest_elevation_m * r.exaggeration;
     for (std::size_t row = 0; row < h; ++row) {
         const std::size_t j = r.flip_rows ? h - 1 - row : row;
         for (std::size_t col = 0; col < w; ++col) {
@@ -223,13 +295,38 @@ Samples read_samples(const Raster& r, const GdalErrors& errors)
                 ok = r.nodata_float32 ? float(v) != float(*r.nodata) : v != *r.nodata;
             const double z = r.z_offset + r.z_scale * v;
             ok = ok && std::isfinite(z);
+            if (ok) {
+                ++finite;
+                if (undeclared_fill_value(v)) {
+                    ok = false;
+                    ++fills;
+                } else if (r.georeferenced && !(z >= lo && z <= hi)) {
+                    ok = false;
+                    ++out_of_range;
+                    outlier = z / r.exaggeration;
+                }
+            }
             s.z[j * w + i] = ok ? z : 0.0;
             s.valid[j * w + i] = ok ? 1 : 0;
             s.nodata_count += ok ? 0 : 1;
         }
     }
+    char height[64];
+    std::snprintf(height, sizeof height, "%.6g m", outlier);
+    // Mostly outside the Earth's range: the units are wrong, not a few cells.
+    if (out_of_range > 0 && 2 * out_of_range > finite - fills)
+        throw InputError(r.file, "vertical_scale",
+                         cells_text(out_of_range) + " of " + std::to_string(finite - fills) +
+                             " lie outside -12 km..+9 km (e.g. " + height +
+                             "): give the metres per raster unit (/terrain/vertical_scale)");
     if (s.nodata_count == w * h)
         throw InputError(r.file, "nodata", "every cell is nodata (or NaN/Inf): no elevation to load");
+    if (fills > 0)
+        s.warnings.push_back(r.file + ": nodata: " + cells_text(fills) + (fills == 1 ? " holds" : " hold") +
+                             " an undeclared fill value (-3.4e38, -32768, -32767 or -9999): treated as voids");
+    if (out_of_range > 0)
+        s.warnings.push_back(r.file + ": nodata: " + cells_text(out_of_range) + (out_of_range == 1 ? " lies" : " lie") +
+                             " outside -12 km..+9 km (e.g. " + height + "): treated as voids");
     return s;
 }
 
@@ -256,8 +353,10 @@ Heightfield load_dem(const fs::path& path, const DemOptions& options)
     hf.y0 = -0.5 * (hf.ny - 1) * hf.dy;
     hf.z = std::move(s.z);
     hf.valid = std::move(s.valid);
+    hf.warnings = r.warnings;
+    hf.warnings.insert(hf.warnings.end(), s.warnings.begin(), s.warnings.end());
     if (s.nodata_count > 0)
-        fill_from_nearest_valid(hf.nx, hf.ny, hf.z, hf.valid);
+        fill_voids_smoothly(hf.nx, hf.ny, hf.z, hf.valid);
 
     GeoReference& g = hf.georef;
     g.crs_wkt = r.crs_wkt;
@@ -297,6 +396,8 @@ DemInfo dem_info(const fs::path& path, const DemOptions& options)
     info.crs_name = r.crs_name;
     info.centre_x = r.centre_x;
     info.centre_y = r.centre_y;
+    info.warnings = r.warnings;
+    info.warnings.insert(info.warnings.end(), s.warnings.begin(), s.warnings.end());
     return info;
 }
 

@@ -1,58 +1,119 @@
 #include "terrain/nodata_fill.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 
 namespace kiri::geometry {
+namespace {
 
-void fill_from_nearest_valid(int nx, int ny, std::vector<double>& z, const std::vector<std::uint8_t>& valid)
+// Sweeps per level stop once no cell moves by more than this share of the heights' range, or
+// after max_sweeps (each level starts from the coarser solution, so few are needed).
+constexpr double tolerance = 1e-10;
+constexpr int max_sweeps = 400;
+
+struct Grid {
+    int nx = 0, ny = 0;
+    std::vector<double> z;
+    std::vector<std::uint8_t> valid;
+};
+
+// Sweeps the voids of g towards the discrete harmonic interpolant: each void the mean of its
+// 4-neighbours inside the grid (a missing neighbour is no flux through the border).
+void relax(Grid& g, const std::vector<std::size_t>& voids, double scale)
 {
-    // known: 1 once a cell has a value (valid or filled in an earlier ring); 2 = queued.
-    std::vector<std::uint8_t> known(valid.begin(), valid.end());
-    std::vector<std::size_t> ring, next;
-    const auto for_neighbours = [nx, ny](std::size_t k, auto&& fn) {
-        const int i = int(k % std::size_t(nx)), j = int(k / std::size_t(nx));
-        for (int b = -1; b <= 1; ++b)
-            for (int a = -1; a <= 1; ++a)
-                if ((a || b) && i + a >= 0 && i + a < nx && j + b >= 0 && j + b < ny)
-                    fn(std::size_t(j + b) * nx + (i + a));
-    };
-    for (std::size_t k = 0; k < z.size(); ++k)
-        if (!known[k]) {
-            bool touches = false;
-            for_neighbours(k, [&](std::size_t n) { touches = touches || known[n] == 1; });
-            if (touches) {
-                known[k] = 2;
-                ring.push_back(k);
-            }
-        }
-    std::vector<double> values;
-    while (!ring.empty()) {
-        // Values of the whole ring first, from cells known before it, so the result does not
-        // depend on the order inside a ring.
-        values.assign(ring.size(), 0.0);
-        for (std::size_t r = 0; r < ring.size(); ++r) {
+    const int nx = g.nx, ny = g.ny;
+    const double stop = tolerance * scale;
+    for (int sweep = 0; sweep < max_sweeps; ++sweep) {
+        double largest = 0.0;
+        for (const std::size_t k : voids) {
+            const int i = int(k % std::size_t(nx)), j = int(k / std::size_t(nx));
             double sum = 0.0;
             int count = 0;
-            for_neighbours(ring[r], [&](std::size_t n) {
-                if (known[n] == 1)
-                    sum += z[n], ++count;
-            });
-            values[r] = sum / count;  // count >= 1: every ring cell touches a known cell
+            if (i > 0)
+                sum += g.z[k - 1], ++count;
+            if (i + 1 < nx)
+                sum += g.z[k + 1], ++count;
+            if (j > 0)
+                sum += g.z[k - std::size_t(nx)], ++count;
+            if (j + 1 < ny)
+                sum += g.z[k + std::size_t(nx)], ++count;
+            if (count == 0)
+                continue;  // a 1 x 1 grid
+            // Plain Gauss-Seidel: every value stays within its neighbours' range at every sweep,
+            // and a lone void in a plane takes the plane's value exactly.
+            const double value = sum / count;
+            largest = std::max(largest, std::abs(value - g.z[k]));
+            g.z[k] = value;
         }
-        next.clear();
-        for (std::size_t r = 0; r < ring.size(); ++r) {
-            z[ring[r]] = values[r];
-            known[ring[r]] = 1;
-        }
-        for (const std::size_t k : ring)
-            for_neighbours(k, [&](std::size_t n) {
-                if (!known[n]) {
-                    known[n] = 2;
-                    next.push_back(n);
-                }
-            });
-        ring.swap(next);
+        if (largest <= stop)
+            return;
     }
+}
+
+// Fills the voids of g (which holds at least one valid cell) coarse to fine.
+void fill(Grid& g, double scale)
+{
+    std::vector<std::size_t> voids;
+    for (std::size_t k = 0; k < g.z.size(); ++k)
+        if (!g.valid[k])
+            voids.push_back(k);
+    if (voids.empty())
+        return;
+    // The coarser level: each cell the mean of the valid cells of its 2 x 2 block.
+    Grid c;
+    c.nx = (g.nx + 1) / 2;
+    c.ny = (g.ny + 1) / 2;
+    c.z.assign(std::size_t(c.nx) * c.ny, 0.0);
+    c.valid.assign(c.z.size(), 0);
+    std::vector<int> counts(c.z.size(), 0);
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+            const std::size_t k = std::size_t(j) * g.nx + i;
+            if (!g.valid[k])
+                continue;
+            const std::size_t ck = std::size_t(j / 2) * c.nx + i / 2;
+            c.z[ck] += g.z[k];
+            ++counts[ck];
+        }
+    for (std::size_t k = 0; k < c.z.size(); ++k)
+        if (counts[k] > 0) {
+            c.z[k] /= counts[k];
+            c.valid[k] = 1;
+        }
+    if (c.z.size() < g.z.size())
+        fill(c, scale);
+    else  // 1 x 1 cannot shrink, and holds a valid cell
+        std::fill(c.z.begin(), c.z.end(), c.z[0]);
+    // Each void starts from the coarser membrane, bilinear at its centre, then is relaxed.
+    for (const std::size_t k : voids) {
+        const int i = int(k % std::size_t(g.nx)), j = int(k / std::size_t(g.nx));
+        const double u = std::clamp((i - 0.5) / 2.0, 0.0, double(c.nx - 1));
+        const double v = std::clamp((j - 0.5) / 2.0, 0.0, double(c.ny - 1));
+        const int i0 = std::min(int(u), std::max(c.nx - 2, 0)), j0 = std::min(int(v), std::max(c.ny - 2, 0));
+        const int i1 = std::min(i0 + 1, c.nx - 1), j1 = std::min(j0 + 1, c.ny - 1);
+        const double s = u - i0, t = v - j0;
+        const auto at = [&](int a, int b) { return c.z[std::size_t(b) * c.nx + a]; };
+        g.z[k] = (1 - t) * ((1 - s) * at(i0, j0) + s * at(i1, j0)) + t * ((1 - s) * at(i0, j1) + s * at(i1, j1));
+    }
+    relax(g, voids, scale);
+}
+
+}  // namespace
+
+void fill_voids_smoothly(int nx, int ny, std::vector<double>& z, const std::vector<std::uint8_t>& valid)
+{
+    double lo = INFINITY, hi = -INFINITY;
+    for (std::size_t k = 0; k < z.size(); ++k)
+        if (valid[k]) {
+            lo = std::min(lo, z[k]);
+            hi = std::max(hi, z[k]);
+        }
+    if (!(lo <= hi))
+        return;  // no valid cell: the caller refuses such a grid
+    Grid g{nx, ny, std::move(z), valid};
+    fill(g, std::max(hi - lo, 1.0));
+    z = std::move(g.z);
 }
 
 }  // namespace kiri::geometry

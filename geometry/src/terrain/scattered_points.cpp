@@ -171,7 +171,7 @@ Heightfield heightfield_from_points(const std::vector<glm::dvec3>& points, doubl
                 hf.z[std::size_t(j) * hf.nx + i] =
                     dt.nearest_vertex(K::Point_3(xmin + i * cell_size, ymin + j * cell_size, 0.0))->point().z();
     } else if (valid_count < hf.z.size()) {
-        fill_from_nearest_valid(hf.nx, hf.ny, hf.z, hf.valid);
+        fill_voids_smoothly(hf.nx, hf.ny, hf.z, hf.valid);
     }
     return hf;
 }

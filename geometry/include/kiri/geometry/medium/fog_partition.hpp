@@ -36,12 +36,14 @@ void visit_fields(O& o, V&& v)
       {.key = "near_start",
        .unit = "m",
        .range = closed(0, 1e7),
-       .doc = "from the eye: the froxels draw all the fog nearer"});
+       .doc = "from the eye: the froxels draw all the fog nearer",
+       .widget = closed(0, 10000)});
     v(o.near_end,
       {.key = "near_end",
        .unit = "m",
        .range = closed({o.near_start, "near_start"}, 1e7),
-       .doc = "from the eye: the layers draw all the fog farther"});
+       .doc = "from the eye: the layers draw all the fog farther",
+       .widget = closed({o.near_start, "near_start"}, 20000)});
     v(o.particle_share,
       {.key = "particle_share",
        .range = closed(0, 1),

@@ -172,6 +172,9 @@ double forward_scattering_fraction(double g, double solid_angle = harris_forward
 //! (the same seed, options and Medium give bit-identical particles).
 //! With a weight w(p) in [0, 1] the particles stand for the share w d of the Medium (combined
 //! rendering, fog_partition.hpp: they draw the top band, the other renderers the rest).
+//! A fog too thin to give count * candidates points in reasonable time (a thin top band in a
+//! tall box) gets fewer particles in proportion to the points found, and none when no point held
+//! fog: a thin fog is drawn thin, not refused.
 //! \throw InputError on bad options; LimitError above 2e6 particles or 2e7 candidates.
 using DensityWeight = std::function<double(const glm::dvec3&)>;
 ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {},

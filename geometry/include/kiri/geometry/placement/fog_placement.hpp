@@ -53,7 +53,7 @@ void visit_fields(O& o, V&& v)
       {.key = "top",
        .unit = "m",
        .doc = "the fog-top altitude (the inversion), metres of the DEM",
-       .required = "missing: the fog-top altitude (metres of the DEM), the inversion the fog fills up to"});
+       .shown_default = "derived: 30 % of the land below it, at least a fifth of the relief deep"});
     v(hand_written,
       {.key = "seeds",
        .doc = "`[[x, y], ...]` seed points (local metres); `\"all\"` every basin below the top; "

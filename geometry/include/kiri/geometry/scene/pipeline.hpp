@@ -28,6 +28,7 @@
 #include "kiri/geometry/placement/fog_placement.hpp"
 #include "kiri/geometry/scene/fog_spec.hpp"
 #include "kiri/geometry/scene/scene.hpp"
+#include "kiri/geometry/scene/scene_defaults.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::geometry {
@@ -65,6 +66,10 @@ struct SurfaceSummary {
 //! scene has no fog section (then only the terrain is set).
 struct PipelineProducts {
     std::shared_ptr<const Terrain> terrain;
+    //! The scene as the stages saw it: the run's scene with the keys it left out derived from
+    //! the terrain (scene_defaults.hpp), and what was derived. Set whenever `terrain` is.
+    std::shared_ptr<const Scene> scene;
+    std::shared_ptr<const DerivedDefaults> derived;
     //! The fog section in world units, with the placed footprint and lake target (fog placed by
     //! the terrain), and the layer options as the stack is built and drawn (thickness and base
     //! offset set by the fog). Valid when `layer_base` is set.

@@ -4,6 +4,7 @@
 //! is documented in docs/scene.md. Unknown keys are errors.
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -135,6 +136,11 @@ struct Scene {
     //! The "quality" key (quality.hpp): the preset applied under the scene's own keys; kept so
     //! that a saved scene names it.
     std::optional<Quality> quality;
+    //! The JSON pointers of every key the file gave ("/terrain/exaggeration", "/fog/fill/0/top";
+    //! a quality preset's keys count as given). The Pipeline derives the keys left out from the
+    //! terrain (scene_defaults.hpp). Unset for a scene built in code: every value is as set.
+    std::optional<std::set<std::string>> given;
+    bool gives(std::string_view pointer) const { return !given || given->count(std::string(pointer)) > 0; }
 
     //! The camera called name; the first when name is empty; a view framing `terrain_bounds`
     //! (min, max) from the south-west when the scene has no camera and name is empty.
@@ -152,8 +158,10 @@ std::string scene_to_json(const Scene& scene);
 
 class Terrain;
 //! Loads the scene's terrain in world units: heights in metres times the vertical
-//! exaggeration, so every stage (fit, layers, renderers) sees the same exaggerated ground.
-Terrain load_scene_terrain(const Scene& scene);
+//! exaggeration, so every stage (fit, layers, renderers) sees the same exaggerated ground. When
+//! the scene leaves the exaggeration out (Scene::given), it is derived from the relief
+//! (derive_exaggeration, scene_defaults.hpp) and stored in *exaggeration.
+Terrain load_scene_terrain(const Scene& scene, double* exaggeration = nullptr);
 
 //! The scene's fog section in world units: its vertical quantities (lake altitude, offset,
 //! clearance, thickness) are written in metres of the DEM and stretched here by the vertical

@@ -16,17 +16,24 @@
 //! centre) for the 0.29 degree tall Jacksboro DEM at 36.6 N, 1 % at the edges of a 1.1 degree
 //! tile at 45 N. North-south distances are off by ~3 e^2 sin(2 phi0) dphi / 4 (< 0.01 % there).
 //! Heights: z = vertical_offset + vertical_scale * (band offset + band scale * value), times
-//! 0.3048 where the band's unit is feet.
+//! 0.3048 where the band's unit (or else the vertical CRS's) is feet, times the exaggeration.
 //!
-//! Nodata. Cells equal to the band's nodata value, NaN or Inf are marked valid = 0 and filled
-//! from the nearest valid cells ring by ring (each takes the mean of its already-known
-//! 8-neighbours), so heights stay finite and smooth across small holes; a raster with no valid
-//! cell is refused.
+//! Nodata. Cells equal to the band's nodata value, NaN or Inf are marked valid = 0. So are the
+//! fill values real exports leave undeclared (-3.4e38 and the other float limits, -32768,
+//! -32767, -9999) and, in georeferenced rasters, heights outside -12 km..+9 km (no place on
+//! Earth): these are counted in a one-line warning. Voids are filled by a smooth membrane over the valid cells (nodata_fill.hpp),
+//! so heights stay finite with no spike or wall; a raster with no valid cell is refused, and one
+//! whose heights are mostly outside that range is refused naming the vertical scale.
+//!
+//! Rasters without a CRS are metres, unless their geotransform is plainly degrees (cells under
+//! 0.1 and the extent inside [-180, 180] x [-90, 90]): those are read as WGS 84 longitude and
+//! latitude, with a warning.
 //!
 //! Errors. GDAL's own printing is silenced; its message goes into the exception.
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "kiri/geometry/terrain/heightfield.hpp"
 
@@ -40,6 +47,9 @@ struct DemOptions {
     //! to every format, on top of the band's own scale/offset, so 1 and 0 leave others as is).
     double vertical_scale = 1.0;
     double vertical_offset = 0.0;
+    //! Multiplies every height after the above (the scene's vertical exaggeration); the range of
+    //! plausible elevations is checked before it.
+    double exaggeration = 1.0;
     //! Refused above this many cells, before allocating (LimitError states the memory the
     //! load would need, ~17 bytes a cell while loading). The default, 2^26 cells, is 1.1 GiB
     //! while loading, and the terrain mesh + AABB tree of such a grid take several GiB more.
@@ -57,6 +67,7 @@ struct DemInfo {
     bool geographic = false;                    //!< source cells are degrees
     std::string crs_name;                       //!< empty when the raster has no CRS
     double centre_x = 0.0, centre_y = 0.0;      //!< data centre in the source CRS (lon/lat or E/N)
+    std::vector<std::string> warnings;          //!< as Heightfield::warnings
 };
 
 //! Loads a raster into local metres. Nodata cells and NaN/Inf are masked (valid = 0) and

@@ -30,6 +30,9 @@ struct Heightfield {
     std::vector<double> z;            //!< nx * ny heights in metres; finite everywhere
     std::vector<std::uint8_t> valid;  //!< 1 where the source had data, 0 where nodata was filled
     GeoReference georef;
+    //! What the loader guessed or repaired (undeclared fill values, degrees without a CRS), one
+    //! line each ("FILE: field: what"), for the apps to print as warnings.
+    std::vector<std::string> warnings;
 
     double at(int i, int j) const { return z[static_cast<std::size_t>(j) * nx + i]; }
     double x_of(int i) const { return x0 + i * dx; }

@@ -1,0 +1,162 @@
+// The stress suite (ctest -L stress): the froxel fog at the edges of what a scene may ask, each
+// case finite, free of GL errors (GlTest's teardown) and held to the CPU reference ray marcher
+// or a closed form: an empty fog, a fog of 1e4 per km, g at the edge of (-1, 1) with its
+// documented clamp, coordinates near 1e7 m, a fog thinner than one froxel slice, the sun on the
+// horizon and below it. The layer stack with the eye on a base vertex (a patch corner) is
+// layer_stack_gpu_gltest's EyeOnAVertexIsFinite.
+#include <cmath>
+
+#include "render/froxel_fixture.hpp"
+
+namespace {
+
+using namespace kiri::test;
+
+// The fixture's slab over [x0 - half, x0 + half] x [y0 - half, y0 + half], coverage c.
+g::Medium slab_at(double bottom, double top, double sigma, double half, glm::dvec2 origin, double coverage = 1.0,
+                  double g_aniso = 0.6)
+{
+    g::MediumGrid grid;
+    grid.nx = grid.ny = 3;
+    grid.x0 = origin.x - half;
+    grid.y0 = origin.y - half;
+    grid.dx = grid.dy = half;
+    grid.floor.assign(9, bottom);
+    grid.bottom.assign(9, bottom);
+    grid.top.assign(9, top);
+    grid.coverage.assign(9, coverage);
+    g::MediumOptions o;
+    o.extinction = sigma;
+    o.albedo = 0.9;
+    o.anisotropy = g_aniso;
+    o.top_density = 1.0;
+    o.scattering_octaves = 1;
+    g::MediumDetail d;
+    d.detail = 0.0;
+    return g::Medium(std::move(grid), o, d);
+}
+
+g::Terrain flat_ground_at(glm::dvec2 origin, double half = 2000.0, double spacing = 50.0)
+{
+    g::Heightfield hf;
+    hf.nx = hf.ny = int(std::lround(2.0 * half / spacing)) + 1;
+    hf.dx = hf.dy = spacing;
+    hf.x0 = origin.x - half;
+    hf.y0 = origin.y - half;
+    hf.z.assign(std::size_t(hf.nx) * hf.ny, 0.0);
+    hf.valid.assign(hf.z.size(), 1);
+    return g::Terrain(std::move(hf));
+}
+
+Camera looking_at_slab(glm::dvec2 origin = {0.0, 0.0})
+{
+    Camera c;
+    c.position = {origin.x, origin.y - 1800.0, 150.0};
+    c.target = {origin.x, origin.y, 100.0};
+    return c;
+}
+
+class Stress : public FroxelGl {};
+
+TEST_F(Stress, EmptyFogDrawsNothing)
+{
+    // Coverage 0 everywhere: a legal fog with no density. Transmittance 1, no in-scattering,
+    // as the closed form says.
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = slab_at(0.0, 300.0, 0.01, 2000.0, {0.0, 0.0}, 0.0);
+    const Compared r = compare(ground, &fog, small(16, 9), looking_at_slab(), 64, 36);
+    float lowest_transmittance = 1.0f, most_light = 0.0f;
+    for (std::size_t k = 0; k < r.gpu.rgba.size(); k += 4) {
+        lowest_transmittance = std::min(lowest_transmittance, r.gpu.rgba[k + 3]);
+        most_light = std::max({most_light, r.gpu.rgba[k], r.gpu.rgba[k + 1], r.gpu.rgba[k + 2]});
+    }
+    EXPECT_GE(lowest_transmittance, 0.9999f);
+    EXPECT_LE(most_light, 1e-5f);
+    EXPECT_EQ(r.error.fog_pixels, 0);
+}
+
+TEST_F(Stress, FogOfTenThousandPerKilometre)
+{
+    // sigma = 10 per metre: opaque after a few decimetres; the froxels see a wall of fog.
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = slab_at(0.0, 300.0, 10.0, 2000.0, {0.0, 0.0});
+    const Compared r = compare(ground, &fog, small(16, 9), looking_at_slab(), 64, 36);
+    EXPECT_GT(r.error.fog_pixels, 64 * 36 / 4);
+    EXPECT_LT(r.error.mean_transmittance_error, 0.02);  // the wall's transmittance is exact
+    // Its sunlit skin is decimetres deep, far below a froxel's depth: the froxels light the
+    // wall 67 % off the reference (p99 4.2), a known gap (docs/froxel.md, "What is left"). A
+    // guard at what is reached, not the goal.
+    EXPECT_LT(r.error.mean_relative, 0.8);
+}
+
+TEST_F(Stress, AnisotropyAtTheEdgeIsClampedAsDocumented)
+{
+    // g in (-1, 1) is accepted; both the GPU and the reference clamp it to +-0.999 (medium.hpp),
+    // so g = +-0.999999 draws exactly what +-0.999 draws.
+    const g::Terrain ground = flat_ground();
+    SunLight light = sun();
+    light.direction = {0.0, 1.0, 0.12};  // low, straight ahead: the forward peak in view
+    for (double edge : {0.999999, -0.999999}) {
+        const g::Medium at_edge = slab_at(0.0, 300.0, 0.004, 2000.0, {0.0, 0.0}, 1.0, edge);
+        const g::Medium clamped = slab_at(0.0, 300.0, 0.004, 2000.0, {0.0, 0.0}, 1.0, edge > 0 ? 0.999 : -0.999);
+        const Compared a = compare(ground, &at_edge, small(16, 9), looking_at_slab(), 64, 36, light);
+        const Compared b = compare(ground, &clamped, small(16, 9), looking_at_slab(), 64, 36, light);
+        ASSERT_EQ(a.gpu.rgba.size(), b.gpu.rgba.size());
+        double largest = 0.0;
+        for (std::size_t k = 0; k < a.gpu.rgba.size(); ++k)
+            largest = std::max(largest, double(std::abs(a.gpu.rgba[k] - b.gpu.rgba[k])));
+        EXPECT_EQ(largest, 0.0) << edge;
+        EXPECT_LT(a.error.mean_relative, 0.03) << edge;
+    }
+}
+
+TEST_F(Stress, CoordinatesNearTenMillionMetres)
+{
+    // The same slab and view as at the origin, moved to (1e7, 1e7): float world coordinates
+    // there have a 1 m step, so the renderer must not lose the fog to them.
+    const glm::dvec2 far_away(1.0e7, 1.0e7);
+    const g::Terrain ground = flat_ground_at(far_away);
+    const g::Medium fog = slab_at(0.0, 300.0, 0.004, 2000.0, far_away);
+    const Compared moved = compare(ground, &fog, small(16, 9), looking_at_slab(far_away), 64, 36);
+    const g::Terrain home_ground = flat_ground();
+    const g::Medium home_fog = slab_at(0.0, 300.0, 0.004, 2000.0, {0.0, 0.0});
+    const Compared home = compare(home_ground, &home_fog, small(16, 9), looking_at_slab(), 64, 36);
+    // Not yet camera-relative: at 1e7 m the fog's edges are lost to float steps (1203 fog
+    // pixels and 1088 silhouettes against 2291 and 0 at home, mean 2.4 % against 1.5 %), a
+    // known gap (docs/froxel.md, "What is left"). A guard at what is reached, not the goal.
+    EXPECT_GT(moved.error.fog_pixels, home.error.fog_pixels / 2);
+    EXPECT_LT(moved.error.mean_relative, std::max(2.0 * home.error.mean_relative, 0.03));
+}
+
+TEST_F(Stress, FogThinnerThanOneSlice)
+{
+    // 0.5 m of ground fog seen from 3 m up over 1 km: thinner than any of the 64 slices there.
+    const g::Terrain ground = flat_ground(1200.0, 10.0);
+    const g::Medium fog = slab_at(0.0, 0.5, 0.2, 600.0, {0.0, 0.0});
+    Camera c;
+    c.position = {0.0, -500.0, 3.0};
+    c.target = {0.0, 0.0, 0.0};
+    g::FroxelOptions o = small(16, 9);
+    o.far = 1500.0;
+    const Compared r = compare(ground, &fog, o, c, 64, 36);
+    EXPECT_GT(r.error.fog_pixels, 64 * 36 / 4);
+    EXPECT_LT(r.error.mean_relative, 0.06);  // 4.2 % measured
+}
+
+TEST_F(Stress, SunOnTheHorizonAndBelowIt)
+{
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = slab_at(0.0, 300.0, 0.004, 2000.0, {0.0, 0.0});
+    for (double z : {0.0, -0.2}) {
+        SunLight light = sun();
+        light.direction = {0.6, 0.8, z};
+        const Compared r = compare(ground, &fog, small(16, 9), looking_at_slab(), 64, 36, light);
+        EXPECT_GT(r.error.fog_pixels, 64 * 36 / 4) << z;
+        // The froxels' sun march is short against a grazing sun's path through 2 km of fog, and
+        // below the horizon they still light the fog where the reference's ground blocks the
+        // sun: 21 % and 28 % off, a known gap (docs/froxel.md, "What is left"). A guard.
+        EXPECT_LT(r.error.mean_relative, 0.35) << z;
+    }
+}
+
+}  // namespace
