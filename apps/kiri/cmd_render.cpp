@@ -116,13 +116,7 @@ void run(const RenderArgs& a)
         sun.sky = false;
         renderer.set_sun(sun);
     }
-    // A still picture: the froxels' temporal filter's jittered frames first (its 16-frame
-    // Halton cycle), so the lighting's shadow edges are averaged over each froxel, not aliased.
-    for (int frame = 0; frame < rendering.warmup_frames(); ++frame) {
-        renderer.draw(camera, width, height);
-        if (!renderer.last_stats().froxel.visible)
-            break;  // no froxel fog in view: nothing to settle
-    }
+    // A still picture in one frame: the froxels' lighting takes its jittered samples at once.
     const render::Image image = renderer.render(camera, width, height);
     if (render::is_exr_path(a.out))
         render::write_exr_atomic(a.out, renderer.read_radiance());
@@ -131,7 +125,7 @@ void run(const RenderArgs& a)
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n", a.out.c_str());
     std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, render::to_string(mode), seconds);
-    if (a.timings) {  // the last frame's passes (GL timer queries; llvmpipe: CPU time)
+    if (a.timings) {  // the last frame's passes: device time (pass_timer.hpp) and issue time
         const render::FrameStats& stats = renderer.last_stats();
         for (const render::PassTime& t : stats.passes)
             std::fprintf(stderr, "kiri render: pass %-18s gpu %9.2f ms  cpu %9.2f ms\n", t.pass.c_str(), t.gpu_ms,

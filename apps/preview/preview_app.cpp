@@ -360,9 +360,10 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
         times_.scene_width = last_width_ = w;
         times_.scene_height = last_height_ = h;
         ++times_.scene_frames;
-        // The froxels' temporal filter refines a still view over its next frames (16 jittered
-        // ones); the pass itself stops once it has them, and so does the redrawing.
-        scene_dirty_ = froxels_on() && renderer_->last_stats().froxel.updated && scene_.froxel.temporal;
+        // A moving view's froxels refine once the view holds (one more frame, a still); then
+        // nothing reruns, and the view is not redrawn.
+        const render::FroxelStats& froxel = renderer_->last_stats().froxel;
+        scene_dirty_ = froxel.visible && !froxel.converged;
         last_frame_reduced_ = reduced;
     } else {
         ++times_.reused_frames;
@@ -387,15 +388,6 @@ int PreviewApp::run()
             apply(std::move(*p));
         if (!shown_.fog.terrain || ui_.message_is_error)
             throw Error(ui_.message.empty() ? "the scene could not be prepared" : ui_.message);
-        // A still picture, as kiri render makes it: the froxels' temporal filter gets its
-        // jittered frames first.
-        const int warmup = rendering_ ? rendering_->warmup_frames() : 0;
-        int w = 0, h = 0;
-        window_->framebuffer_size(w, h);
-        const render::Camera c = camera_path_.empty() ? camera_.camera() : camera_on_path(camera_path_, 0.0);
-        for (int i = 0; i < warmup; ++i)
-            renderer_->draw(c, std::max(1, int(std::lround(w * ui_.view.render_scale))),
-                            std::max(1, int(std::lround(h * ui_.view.render_scale))));
     }
     int frame = 0;
     std::vector<double> scene_ms;

@@ -18,8 +18,12 @@ namespace {
 constexpr int unit_tiles = 8, unit_volume = 9, unit_esm = 10, unit_medium = 11;  // 11, 12
 constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
 constexpr int unit_first = 5, unit_last = 6;
-// The temporal filter settles over one Halton cycle; after it a static frame reruns nothing.
-constexpr int halton_cycle = 16;
+// A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
+// whole cycle at once: the same samples the 16 frames of history held, so the same error
+// against the CPU reference (kiri bench --stage presets, agreement), where 4 or 8 samples are
+// up to 0.9 points worse on the presets' view and blur J over coarse froxels
+// (FroxelGl.TemporalFilterConvergesAndDoesNotGhost). Each sample costs one lighting pass.
+constexpr int halton_cycle = 16, still_samples = halton_cycle;
 enum Stage { shadow_map, tiles, density, lighting, temporal, integrate, apply_stage, stage_count };
 const char* const stage_names[stage_count] = {"froxel shadow map", "froxel tiles",    "froxel density",
                                               "froxel lighting",   "froxel temporal", "froxel integrate",
@@ -166,6 +170,7 @@ void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
     for (PassTimer& timer : timers_)
         timer.forget();
     stats_.updated = false;
+    stats_.converged = false;
     medium_gpu_.set_partition(frame.partitioned, frame.partition);
     visible_ = enabled_ && visible(frame);
     stats_.visible = visible_;
@@ -208,13 +213,15 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     }
     const geometry::FroxelOptions& o = options_;
     FroxelVolumeKey key = make_froxel_volume_key(frame, terrain.identity(), medium_, o);
-    if (key_ == key && apply_) {
-        ++static_frames_;
-        if (!options_.temporal || static_frames_ >= halton_cycle)
-            return;  // the volume is as good as it gets: reuse it
-    } else {
-        static_frames_ = 0;
+    const bool same_view = key_ == key && apply_;
+    if (same_view && (converged_ || !o.temporal)) {
+        stats_.converged = true;
+        return;  // the volume is as good as it gets: reuse it
     }
+    // A still: the view held since the last frame, or the first view of this fog. It takes its
+    // jittered samples at once and needs no history; a moving view takes one and the filter
+    // blends it with the reprojected history.
+    const bool still = o.temporal && (same_view || !key_);
     // The history stays usable across view, sun and fog changes (reprojection and the clamp
     // take care of them), not across a change of the volume's layout.
     const FroxelVolumeLayout layout = volume_layout(o);
@@ -229,9 +236,11 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     history_valid_ = history_valid_ && !light_jumped;
     std::copy(std::begin(light), std::end(light), std::begin(light_));
     key_ = std::move(key);
-    run_passes(frame, terrain, depth_texture);
+    run_passes(frame, terrain, depth_texture, still);
     apply_ = true;
+    converged_ = still || !o.temporal;
     stats_.updated = true;
+    stats_.converged = converged_;
     ++stats_.updates;
 }
 
@@ -254,18 +263,46 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
 }
 
-void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture)
+void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture, bool still)
 {
-    const Jitter jitter = advance_view(frame);
+    advance_view(frame);
     run_tiles(frame, depth_texture);
     run_density();
-    run_lighting(frame, options_.terrain_shadows && terrain.has_terrain(), jitter);
+    const bool shadows = options_.terrain_shadows && terrain.has_terrain();
+    if (!options_.temporal) {  // one sample at the froxel's centre, the sun steps' middles
+        const ScopedPassTimer timed(timers_[lighting]);
+        run_lighting(frame, shadows, {glm::vec3(0.5f), 0.5f});
+    } else if (!still) {  // this frame's sample, blended with the reprojected history
+        {
+            const ScopedPassTimer timed(timers_[lighting]);
+            run_lighting(frame, shadows, halton_jitter(frame_index_ % halton_cycle + 1));
+        }
+        const ScopedPassTimer timed(timers_[temporal]);
+        run_temporal(1 - current_, previous_, history_valid_, current_, float(options_.history_weight));
+    } else {  // the first samples through the filter at once; the history is the froxel itself
+        const ScopedPassTimer timed(timers_[lighting]);
+        for (int k = 0; k < still_samples; ++k) {
+            // Ping-pong between the two resolved volumes, ending in this frame's.
+            const int into = (still_samples - 1 - k) % 2 == 0 ? current_ : 1 - current_;
+            run_lighting(frame, shadows, halton_jitter(k + 1));
+            // The history holds the first k samples: weighted k / (k + 1), the result is their
+            // mean (within the clamp to this sample's neighbourhood).
+            run_temporal(1 - into, view_, k > 0, into, float(k) / float(k + 1), current_);
+        }
+    }
     if (options_.temporal)
-        run_temporal();
+        history_valid_ = true;
+    ++frame_index_;
     run_integrate();
 }
 
-FroxelPass::Jitter FroxelPass::advance_view(const FrameContext& frame)
+FroxelPass::Jitter FroxelPass::halton_jitter(int index)
+{
+    return {glm::vec3(float(halton(index, 2)), float(halton(index, 3)), float(halton(index, 5))),
+            float(halton(index, 7))};
+}
+
+void FroxelPass::advance_view(const FrameContext& frame)
 {
     const geometry::FroxelOptions& o = options_;
     // This frame's view (the previous one is kept for reprojection).
@@ -282,14 +319,6 @@ FroxelPass::Jitter FroxelPass::advance_view(const FrameContext& frame)
     view_.near = float(o.near);
     view_.far = float(o.far > 0.0 ? o.far : far_plane);
     view_.far = std::max(view_.far, view_.near * 1.01f);
-    const int jitter_index = o.temporal ? frame_index_ % halton_cycle + 1 : 0;
-    Jitter jitter;
-    jitter.froxel = o.temporal
-        ? glm::vec3(float(halton(jitter_index, 2)), float(halton(jitter_index, 3)), float(halton(jitter_index, 5)))
-        : glm::vec3(0.5f);
-    jitter.sun = o.temporal ? float(halton(jitter_index, 7)) : 0.5f;
-    ++frame_index_;
-    return jitter;
 }
 
 void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
@@ -336,7 +365,6 @@ void FroxelPass::run_lighting(const FrameContext& frame, bool terrain_shadows, c
 {
     const geometry::FroxelOptions& o = options_;
     const geometry::HeightFog& haze = o.height_fog;
-    const ScopedPassTimer timed(timers_[lighting]);
     bind_layout(lighting_);
     medium_gpu_.bind(lighting_, haze, unit_medium);
     shadow_.bind(lighting_, unit_esm, terrain_shadows);
@@ -363,27 +391,24 @@ void FroxelPass::run_lighting(const FrameContext& frame, bool terrain_shadows, c
     dispatch_volume(v_->size, v_->size.z);
 }
 
-void FroxelPass::run_temporal()
+void FroxelPass::run_temporal(int history, const View& from, bool history_valid, int into, float weight,
+                              int history_tiles)
 {
-    {
-        const ScopedPassTimer timed(timers_[temporal]);
-        bind_layout(temporal_);
-        temporal_.set("u_current", unit_light);
-        temporal_.set("u_history", unit_history);
-        temporal_.set("u_history_tiles", unit_history_tiles);
-        temporal_.set("u_history_valid", int(history_valid_));
-        temporal_.set("u_weight", float(options_.history_weight));
-        temporal_.set("u_previous_view_projection", previous_.view_projection);
-        temporal_.set("u_previous_eye", previous_.eye);
-        temporal_.set("u_previous_forward", previous_.forward);
-        temporal_.use();
-        glBindTextureUnit(unit_light, v_->light.get());
-        glBindTextureUnit(unit_history, v_->resolved[1 - current_].get());
-        glBindTextureUnit(unit_history_tiles, v_->tiles[1 - current_].get());
-        glBindImageTexture(0, v_->resolved[current_].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-        dispatch_volume(v_->size, v_->size.z);
-    }
-    history_valid_ = true;
+    bind_layout(temporal_);
+    temporal_.set("u_current", unit_light);
+    temporal_.set("u_history", unit_history);
+    temporal_.set("u_history_tiles", unit_history_tiles);
+    temporal_.set("u_history_valid", int(history_valid));
+    temporal_.set("u_weight", weight);
+    temporal_.set("u_previous_view_projection", from.view_projection);
+    temporal_.set("u_previous_eye", from.eye);
+    temporal_.set("u_previous_forward", from.forward);
+    temporal_.use();
+    glBindTextureUnit(unit_light, v_->light.get());
+    glBindTextureUnit(unit_history, v_->resolved[history].get());
+    glBindTextureUnit(unit_history_tiles, v_->tiles[history_tiles < 0 ? history : history_tiles].get());
+    glBindImageTexture(0, v_->resolved[into].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatch_volume(v_->size, v_->size.z);
 }
 
 void FroxelPass::run_integrate()

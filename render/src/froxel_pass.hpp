@@ -3,12 +3,13 @@
 // fog-aware slicing; docs/froxel.md). A frame:
 //   prepare   is the fog in view; the sun's shadow map of the terrain (kept while the sun and
 //             the terrain stay); then the scene is drawn and resolved, and
-//   update    only when the view, the sun or the fog changed (and until the temporal history
-//             has settled): tiles (the depths each screen tile's slices span, from the frame's
-//             depth and the rasterised shell, froxel_tile_bounds.hpp), density (extinction per
+//   update    only when the view, the sun or the fog changed, and once more when a moving view
+//             stops: tiles (the depths each screen tile's slices span, from the frame's depth
+//             and the rasterised shell, froxel_tile_bounds.hpp), density (extinction per
 //             froxel), lighting (J: the sun through the terrain's ESM and the fog, sky ambient,
-//             Henyey-Greenstein), temporal (reprojected, clamped history of J), integrate
-//             (front to back through the slices);
+//             Henyey-Greenstein; one jittered sample a froxel), temporal (reprojected, clamped
+//             history of J; a still runs its first samples through it at once),
+//             integrate (front to back through the slices);
 //   apply     every frame, the fog on the resolved frame (froxel_apply.comp).
 #include <memory>
 #include <optional>
@@ -82,27 +83,32 @@ private:
     } view_, previous_;
     std::optional<FroxelVolumeKey> key_;
     std::optional<FroxelVolumeLayout> layout_;
-    int static_frames_ = 0, frame_index_ = 0, current_ = 0;
+    int frame_index_ = 0, current_ = 0;
     bool history_valid_ = false;
-    glm::vec3 light_[3]{};  // sun direction, radiance, ambient of the last run
+    bool converged_ = false;  // the volume is final for its view (a still's, or without the filter)
+    glm::vec3 light_[3]{};    // sun direction, radiance, ambient of the last run
     FroxelStats stats_;
     std::vector<PassTimer> timers_;  // one per stage, in stage order
 
     bool visible(const FrameContext& frame) const;
     void bind_layout(const ShaderProgram& program) const;
     // The update's passes, in order; each times itself.
-    void run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
+    void run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture, bool still);
     struct Jitter {
         glm::vec3 froxel{0.5f};  // the sample's position in its froxel
         float sun = 0.5f;        // the start of its sun march
     };
-    //! The frame's view becomes the volume's (the last one is kept for reprojection); this
-    //! frame's jitter.
-    Jitter advance_view(const FrameContext& frame);
+    static Jitter halton_jitter(int index);
+    //! The frame's view becomes the volume's (the last one is kept for reprojection).
+    void advance_view(const FrameContext& frame);
     void run_tiles(const FrameContext& frame, GLuint depth_texture);
     void run_density();
     void run_lighting(const FrameContext& frame, bool terrain_shadows, const Jitter& jitter);
-    void run_temporal();
+    //! The lighting just run blended with resolved[history] (seen from `from`, its tiles those of
+    //! tiles[history_tiles], default tiles[history]; the history's weight `weight`) into
+    //! resolved[into].
+    void run_temporal(int history, const View& from, bool history_valid, int into, float weight,
+                      int history_tiles = -1);
     void run_integrate();
     void bind_apply_textures(const ShaderProgram& program) const;
 };

@@ -226,6 +226,9 @@ Image Renderer::render(const Camera& camera, int width, int height)
 {
     const auto start = std::chrono::steady_clock::now();
     draw(camera, width, height);
+    const FroxelStats& froxel = impl_->stats.froxel;
+    if (froxel.visible && !froxel.converged)  // a moving view's froxels: this view held is a still
+        draw(camera, width, height);
     Image image{width, height, impl_->targets.read_rgba()};
     detail::check_gl_errors("Renderer::render");
     impl_->stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

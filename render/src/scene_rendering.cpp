@@ -127,11 +127,6 @@ geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geo
     return light;
 }
 
-int warmup_frames(bool draws_froxels, const geometry::FroxelOptions& froxel)
-{
-    return draws_froxels && froxel.temporal ? 15 : 0;
-}
-
 SceneRendering::SceneRendering(const geometry::Scene& scene, const geometry::PipelineProducts& products, FogMode mode)
 {
     update(scene, products, mode);
@@ -209,7 +204,5 @@ void SceneRendering::apply(Renderer& renderer) const
     }
     renderer.set_fog_partition(partition);
 }
-
-int SceneRendering::warmup_frames() const { return render::warmup_frames(draws_froxels(), froxel_); }
 
 }  // namespace kiri::render

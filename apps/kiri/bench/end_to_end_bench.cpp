@@ -51,8 +51,7 @@ void end_to_end(Context& c)
 {
     const std::string scene = (c.data_dir() / "scenes/jacksboro.json").string();
     const std::string png = (c.out_dir() / "end_to_end_render.png").string();
-    // The default mode draws the froxels' 16 temporally filtered frames: --quick (the tests)
-    // keeps to small frames.
+    // --quick (the tests) keeps to small frames.
     std::vector<std::pair<int, int>> sizes = {{320, 180}, {640, 360}};
     if (!c.quick())
         sizes = {{640, 360}, {1280, 720}, {1920, 1080}};

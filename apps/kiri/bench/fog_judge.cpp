@@ -55,25 +55,60 @@ void FogJudge::prepare(const geometry::Scene& scene, render::FogMode mode)
 
 const geometry::Terrain& FogJudge::terrain() const { return *pipeline_.products().terrain; }
 
-double FogJudge::frame_ms(int width, int height, int frames)
+double FogJudge::frame_ms(int width, int height, int frames) { return frame_cost(width, height, frames).frame_ms; }
+
+namespace {
+
+double median(std::vector<double> v)
+{
+    if (v.empty())
+        return 0.0;
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
+}  // namespace
+
+FrameCost FogJudge::frame_cost(int width, int height, int frames)
 {
     std::vector<double> ms;
+    std::vector<std::vector<render::PassTime>> passes;
     for (int k = -1; k < frames; ++k) {
         render::Camera c = camera_;
         c.position.z += 1e-3 * (k + 2);  // a new view each frame: every pass reruns
         renderer_->draw(c, width, height);
-        if (k >= 0)  // the first frame uploads the layers, builds the buffer and the shadow map
+        if (k >= 0) {  // the first frame uploads the layers, builds the buffer and the shadow map
             ms.push_back(renderer_->last_stats().frame_ms);
+            passes.push_back(renderer_->last_stats().passes);
+        }
     }
-    std::nth_element(ms.begin(), ms.begin() + std::ptrdiff_t(ms.size() / 2), ms.end());
-    return ms[ms.size() / 2];
+    FrameCost cost;
+    cost.frame_ms = median(ms);
+    for (const render::PassTime& pass : passes.back()) {
+        std::vector<double> gpu, cpu;
+        for (const auto& frame : passes)
+            for (const render::PassTime& p : frame)
+                if (p.pass == pass.pass) {
+                    gpu.push_back(p.gpu_ms);
+                    cpu.push_back(p.cpu_ms);
+                }
+        cost.passes.push_back({pass.pass, median(gpu), median(cpu)});
+    }
+    return cost;
+}
+
+double FogJudge::still_ms(int width, int height)
+{
+    renderer_->clear_froxel_fog();  // the fog seen for the first time, as in a new process
+    rendering_->apply(*renderer_);
+    const auto start = std::chrono::steady_clock::now();
+    still_image_ = renderer_->render(camera_, width, height);
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 render::FogError FogJudge::error()
 {
-    // A still picture as kiri render draws it: the froxels' jittered cycle first.
-    for (int k = 0; k < rendering_->warmup_frames(); ++k)
-        renderer_->draw(camera_, width_, height_);
+    // A still picture as kiri render draws it.
     last_image_ = renderer_->render(camera_, width_, height_);
     const render::RadianceImage with = renderer_->read_radiance();
     // The terrain is shadowed only where the froxels built the sun's shadow map: the frame

@@ -1,12 +1,13 @@
 #pragma once
 // Any fog renderer's frame of a scene judged against the CPU reference (render::compare_frames):
 // the scene's JSON varied per measurement (quality ladders, presets), the reference computed
-// once per view, each configuration's cost per frame while the view moves and its error once
-// the frame is settled (the froxels' warm-up).
+// once per view, each configuration's cost per frame while the view moves and its error on a
+// still picture.
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,13 @@ struct SceneJson {
     geometry::Scene parse(const nlohmann::json& root) const;
 };
 
+//! A frame's cost: the median frame time and, per pass, the median device and issue times
+//! (FrameStats::passes, in the order of the last frame).
+struct FrameCost {
+    double frame_ms = 0.0;
+    std::vector<render::PassTime> passes;
+};
+
 class FogJudge {
 public:
     //! The reference of `base`'s fog (its Medium, and its froxel height fog when the scene has
@@ -45,9 +53,16 @@ public:
     //! Median Renderer draw time (ms) of `frames` frames at width x height while the view moves
     //! by a millimetre a frame (the froxels rerun their passes, as in a moving view).
     double frame_ms(int width, int height, int frames);
-    //! The settled frame (after the froxels' warm-up) at the judge's size against the reference.
+    //! The same frames' median time and their passes' median times.
+    FrameCost frame_cost(int width, int height, int frames);
+    //! The time (ms) of a still picture at width x height as kiri render draws it: the first
+    //! view of the fog, as a still (Renderer::render).
+    double still_ms(int width, int height);
+    //! The picture still_ms drew.
+    const render::Image& still_image() const { return still_image_; }
+    //! A still picture at the judge's size against the reference.
     render::FogError error();
-    //! The last settled frame, tone-mapped (for a look).
+    //! The last still picture error() drew, tone-mapped (for a look).
     const render::Image& last_image() const { return last_image_; }
 
 private:
@@ -60,7 +75,7 @@ private:
     std::unique_ptr<render::GlContext> context_;
     std::unique_ptr<render::Renderer> renderer_;
     std::optional<render::SceneRendering> rendering_;
-    render::Image last_image_;
+    render::Image last_image_, still_image_;
     std::optional<render::RadianceImage> plain_[2];  //!< without fog: [terrain shadows off, on]
 };
 

@@ -4,6 +4,7 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/end_to_end_bench.cpp
   bench/fit_bench.cpp
   bench/fog_judge.cpp
+  bench/frame_bench.cpp
   bench/froxel_bench.cpp
   bench/froxel_scene.cpp
   bench/layers_bench.cpp

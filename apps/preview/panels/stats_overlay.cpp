@@ -1,4 +1,4 @@
-// The timings overlay: frame times, each render pass's GPU and CPU time, what was uploaded,
+// The timings overlay: frame times, each render pass's device and issue time, what was uploaded,
 // the fog's own counters (particles, attenuation buffer builds: a static view rebuilds nothing),
 // and the recomputation stages (runs, last CPU time), with progress while one runs.
 #include <imgui.h>

@@ -44,8 +44,11 @@ struct ParticleStyle {
 
 struct PassTime {
     std::string pass;
-    double gpu_ms = 0.0;  //!< GL timer query
-    double cpu_ms = 0.0;
+    //! The device's time of the pass: a GL timer query on a GPU; on a software rasteriser
+    //! (llvmpipe), whose queries do not time passes, the wall time from an idle device through
+    //! the pass to an idle device (render/src/pass_timer.hpp).
+    double gpu_ms = 0.0;
+    double cpu_ms = 0.0;  //!< the time the pass's commands took to issue
 };
 
 //! What the froxel fog did in a frame.
@@ -53,7 +56,10 @@ struct FroxelStats {
     bool enabled = false;  //!< set_froxel_fog was called
     bool visible = false;  //!< the fog was in view (fog off-screen costs nothing)
     bool updated = false;  //!< its passes ran this frame (not for a static view and fog)
-    int updates = 0;       //!< frames whose passes ran since set_froxel_fog
+    //! The volume is final for this view: a still's (its lighting's jittered samples taken at
+    //! once), or one without temporal filtering. The same view again reruns nothing.
+    bool converged = false;
+    int updates = 0;  //!< frames whose passes ran since set_froxel_fog
     int shadow_map_updates = 0;
 };
 
@@ -65,7 +71,9 @@ struct FogBuffer {
 };
 
 struct FrameStats {
-    //! sky, terrain, layers, resolve, and overlays when any overlay is visible.
+    //! sky, terrain, layers, resolve, tonemap, then the particles', the overlays' and the froxel
+    //! passes that ran. They do not overlap (the particles' "attenuation" build is a part of
+    //! "particles"): their device times add up to no more than frame_ms.
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
     int uploads = 0;               //!< GPU resources (re)built during this frame
@@ -127,7 +135,8 @@ public:
     void draw(const Camera& camera, int width, int height);
     //! Copies the last drawn frame into the window's framebuffer (0), scaled to its size.
     void present(int framebuffer_width, int framebuffer_height) const;
-    //! Renders the frame offscreen and reads it back.
+    //! Renders a still picture offscreen and reads it back: final for its view (the froxels'
+    //! lighting converged; a view that differs from the last frame's draws twice).
     Image render(const Camera& camera, int width, int height);
     //! The last drawn frame's linear radiance, before the tone map (what the fog renderers are
     //! judged on against the CPU reference).

@@ -41,10 +41,6 @@ geometry::ReferenceView reference_view(const Camera& camera, int width, int heig
 geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
                                          const geometry::FroxelOptions& froxel);
 
-//! Frames a still picture draws before its final one: the froxels' temporal filter's jittered
-//! cycle (15 of its 16 frames) when froxels with temporal filtering are drawn, else 0.
-int warmup_frames(bool draws_froxels, const geometry::FroxelOptions& froxel);
-
 //! A scene drawn in one mode from the pipeline's products (pipeline_target(mode, scene)). It
 //! keeps the products it was given, so what the renderer refers to lives as long as it does.
 class SceneRendering {
@@ -60,8 +56,6 @@ public:
     //! Sets the renderer up for the mode: what it draws, and clears the rest. Parts the products
     //! do not have yet (a medium still being made) are left out.
     void apply(Renderer& renderer) const;
-    //! Frames to draw before a still picture is final (warmup_frames).
-    int warmup_frames() const;
 
     FogMode mode() const { return mode_; }
     bool draws_layers() const;

@@ -97,7 +97,10 @@ void visit_fields(O& o, V&& v)
       {.key = "fog_aware",
        .doc = "slices where the Medium is (per-tile ranges from the rasterised shell) and each pixel's "
               "own stretch of the shell; false: the classic froxel volume over [near, far]"});
-    v(o.temporal, {.key = "temporal", .doc = "Halton-jittered lighting blended with the reprojected, clamped history"});
+    v(o.temporal,
+      {.key = "temporal",
+       .doc = "Halton-jittered lighting: a sample a frame blended with the reprojected, clamped "
+              "history while the view moves, a still's 16 at once"});
     v(o.history_weight, {.key = "history_weight", .range = closed(0, 0.99), .doc = "weight of that history"});
     v(o.density_samples,
       {.key = "density_samples", .range = closed(1, 16), .doc = "density samples per froxel, spread over its depth"});

@@ -1,0 +1,181 @@
+// Frame: what the fog costs on top of the terrain under it. The default scene as users render
+// it (its height fog included) from its first camera and from a held-out view low in a valley,
+// inside the fog, in every mode: per pass the device time, the frame's fog cost (the frame less
+// the terrain-only frame of the same view, measured in the same run) as a ratio to that
+// terrain-only frame, the time of a still picture as kiri render draws it, and the error against
+// the CPU reference (of the Medium alone, as the agreement stage judges it: the height fog is
+// drawn by the froxels only). --quick: 640x360; else 1280x720 and 1920x1080.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/bench.hpp"
+#include "bench/fog_judge.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/terrain/terrain.hpp"
+#include "kiri/render/image.hpp"
+
+namespace kiri::bench {
+namespace {
+
+constexpr render::FogMode modes[] = {render::FogMode::terrain, render::FogMode::layers, render::FogMode::particles,
+                                     render::FogMode::froxel, render::FogMode::combined};
+
+// A view no scene file was tuned for: the eye a third of the way up the fog over the lowest
+// ground of the terrain's middle, looking 3 km along the azimuth whose ground stays lowest.
+geometry::CameraSpec valley_camera(const geometry::Scene& scene)
+{
+    geometry::Pipeline pipeline;
+    const geometry::PipelineProducts& p = pipeline.run(scene, {geometry::Stage::medium});
+    const geometry::Terrain& terrain = *p.terrain;
+    const geometry::Medium& medium = *p.medium;
+    const geometry::Bounds3 b = terrain.bounds();
+    const glm::dvec3 centre = 0.5 * (b.min + b.max), half = 0.35 * (b.max - b.min);
+    glm::dvec2 eye(centre);
+    double lowest = HUGE_VAL;
+    for (int j = 0; j <= 64; ++j)
+        for (int i = 0; i <= 64; ++i) {
+            const glm::dvec2 q(centre.x + half.x * (i / 32.0 - 1.0), centre.y + half.y * (j / 32.0 - 1.0));
+            const geometry::MediumColumn c = medium.column(q.x, q.y);
+            const double ground = terrain.height(q.x, q.y);
+            if (c.coverage > 0.9 && c.top - ground > 20.0 && ground < lowest) {
+                lowest = ground;
+                eye = q;
+            }
+        }
+    double best = HUGE_VAL, azimuth = 0.0;
+    for (int k = 0; k < 32; ++k) {
+        const double a = 2.0 * M_PI * k / 32.0;
+        double sum = 0.0;
+        for (int s = 1; s <= 8; ++s) {
+            const glm::dvec2 q = eye + 400.0 * s * glm::dvec2(std::cos(a), std::sin(a));
+            sum += terrain.height(std::clamp(q.x, b.min.x, b.max.x), std::clamp(q.y, b.min.y, b.max.y));
+        }
+        if (sum < best) {
+            best = sum;
+            azimuth = a;
+        }
+    }
+    const geometry::MediumColumn c = medium.column(eye.x, eye.y);
+    const double ground = terrain.height(eye.x, eye.y);
+    geometry::CameraSpec camera;
+    camera.name = "valley";
+    camera.position = {eye.x, eye.y, ground + std::max(5.0, (c.top - ground) / 3.0)};
+    const glm::dvec2 ahead = eye + 3000.0 * glm::dvec2(std::cos(azimuth), std::sin(azimuth));
+    camera.target = {ahead.x, ahead.y, camera.position.z - 60.0};
+    camera.fov_y_deg = 60.0;
+    return camera;
+}
+
+struct Measured {
+    render::FogMode mode;
+    FrameCost cost;
+    double still_ms = 0.0;
+    render::FogError error;
+};
+
+std::string passes_line(const FrameCost& cost)
+{
+    std::ostringstream s;
+    s.precision(3);
+    for (const render::PassTime& p : cost.passes)
+        s << (s.tellp() > 0 ? ", " : "") << p.pass << ' ' << p.gpu_ms;
+    return s.str();
+}
+
+void frame(Context& c)
+{
+    SceneJson source(c.data_dir() / "scenes/jacksboro.json");
+    geometry::Scene scene = source.parse(source.root);
+    nlohmann::json medium_only = source.root;
+    medium_only["froxel"].erase("height_fog");
+    geometry::Scene judged = source.parse(medium_only);
+    const geometry::CameraSpec valley = valley_camera(scene);
+    scene.cameras.push_back(valley);
+    judged.cameras.push_back(valley);
+    std::printf("  valley view: eye %.0f %.0f %.0f, target %.0f %.0f %.0f\n", valley.position.x, valley.position.y,
+                valley.position.z, valley.target.x, valley.target.y, valley.target.z);
+
+    std::vector<std::pair<int, int>> sizes = {{640, 360}};
+    if (!c.quick())
+        sizes = {{1280, 720}, {1920, 1080}};
+    const int ew = c.quick() ? 160 : 320, eh = c.quick() ? 90 : 180;
+    const int frames = c.quick() ? 2 : 3;
+    std::ofstream md(c.out_dir() / "frame.md");
+    std::ostringstream passes_md;
+    md << "Fog cost = frame - terrain-only frame of the same view and size, measured in the same run; error: "
+       << "mean relative luminance against the CPU reference at " << ew << "x" << eh
+       << " (the Medium alone). Still: a picture as kiri render draws it.\n\n"
+       << "| size | view | mode | frame (ms) | fog cost (ms) | fog cost / terrain | still (ms) | mean error | "
+          "p99 error |\n|---|---|---|---|---|---|---|---|---|\n";
+    passes_md << "\n| size | view | mode | pass | device (ms) | issue (ms) |\n|---|---|---|---|---|---|\n";
+    for (const char* view : {"default", "valley"}) {
+        const std::string camera = view == std::string("default") ? "" : view;
+        FogJudge judge(judged, camera, ew, eh);
+        std::printf("  %s view: reference %dx%d %.1f s\n", view, ew, eh, judge.reference_seconds());
+        for (const auto& [w, h] : sizes) {
+            const std::string size = std::to_string(w) + "x" + std::to_string(h);
+            std::vector<Measured> rows;
+            for (render::FogMode mode : modes) {
+                Measured m{mode};
+                judge.prepare(scene, mode);
+                m.cost = judge.frame_cost(w, h, frames);
+                m.still_ms = judge.still_ms(w, h);
+                if (mode == render::FogMode::terrain) {
+                    render::write_png_atomic(c.out_dir() / ("frame_" + std::string(view) + "_terrain.png"),
+                                             judge.still_image());
+                } else {
+                    render::write_png_atomic(
+                        c.out_dir() / ("frame_" + std::string(view) + "_" + render::to_string(mode) + ".png"),
+                        judge.still_image());
+                    judge.prepare(judged, mode);
+                    m.error = judge.error();
+                }
+                rows.push_back(m);
+            }
+            const double terrain_ms = rows.front().cost.frame_ms;
+            for (const Measured& m : rows) {
+                const std::string mode = render::to_string(m.mode);
+                const double fog_ms = m.cost.frame_ms - terrain_ms, ratio = fog_ms / terrain_ms;
+                const bool fog = m.mode != render::FogMode::terrain;
+                std::printf("  %-9s %-7s %-9s frame %8.1f ms  fog %8.1f ms = %5.2f x terrain  still %8.1f ms",
+                            size.c_str(), view, mode.c_str(), m.cost.frame_ms, fog_ms, ratio, m.still_ms);
+                if (fog)
+                    std::printf("  mean %5.2f %%  p99 %6.2f %%", m.error.mean_relative * 100,
+                                m.error.p99_relative * 100);
+                std::printf("\n    %s\n", passes_line(m.cost).c_str());
+                std::fflush(stdout);
+                md << "| " << size << " | " << view << " | " << mode << " | " << m.cost.frame_ms << " | ";
+                if (fog)
+                    md << fog_ms << " | " << ratio << " | ";
+                else
+                    md << "- | - | ";
+                md << m.still_ms << " | ";
+                if (fog)
+                    md << m.error.mean_relative * 100 << " % | " << m.error.p99_relative * 100 << " % |\n";
+                else
+                    md << "- | - |\n";
+                for (const render::PassTime& p : m.cost.passes)
+                    passes_md << "| " << size << " | " << view << " | " << mode << " | " << p.pass << " | " << p.gpu_ms
+                              << " | " << p.cpu_ms << " |\n";
+                if (fog)
+                    c.add({std::string(view) + " " + size, mode, ratio, m.cost.frame_ms / 1e3,
+                           "mean relative luminance error at " + std::to_string(ew) + "x" + std::to_string(eh),
+                           m.error.mean_relative, 0.0, 0.0});
+            }
+        }
+    }
+    md << passes_md.str();
+}
+
+}  // namespace
+
+KIRI_BENCH_STAGE({"frame",
+                  "The fog's cost per frame against the terrain-only frame, and its error against the CPU reference",
+                  {"fog cost / terrain-only frame", "error_value", "mean relative luminance error", false, false, true},
+                  frame});
+
+}  // namespace kiri::bench
