@@ -139,7 +139,7 @@ TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
         ASSERT_EQ(renderer.last_stats().layers, 10);
         const glm::dvec3 s = glm::normalize(sun.direction);
         const glm::dvec3 view = glm::normalize(glm::dvec3(xy, 100.0) - down.position);
-        const g::FogLight light{sun.color * sun.intensity, sun.ambient};
+        const g::FogLight light{sun.color * sun.intensity, sun.ambient, s.z};
         glm::dvec3 expected(radiance_of(ground_px[0]), radiance_of(ground_px[1]), radiance_of(ground_px[2]));
         for (int i = 0; i <= 10; ++i) {
             const double hi = i / 10.0, rho = 1.0 - 0.9 * hi;

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_lighting.hpp"
 #include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/geometry/particles/particles.hpp"
 #include "particles/sample_elimination.hpp"
@@ -90,7 +91,7 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
 
     ParticleCloud cloud;
     cloud.anisotropy = medium.options().anisotropy;
-    cloud.scattering_octaves = medium.options().scattering_octaves;
+    cloud.scattering_octaves = shader_octaves(medium.options());
     cloud.forward_scattering =
         options.forward_scattering >= 0.0 ? options.forward_scattering : forward_scattering_fraction(cloud.anisotropy);
     cloud.density_integral = integral;
