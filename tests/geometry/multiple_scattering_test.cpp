@@ -110,9 +110,10 @@ TEST(FittedMultipleScattering, IsPoissonsOrdersOfScattering)
     }
     EXPECT_NEAR(integral, p0 + k * (std::exp(-(1 - b) * tau) - p0), 1e-6);
     // Bad input stays finite and >= 0.
-    for (const double v : {fitted_sun_scattering(std::nan(""), g, a, tau, s), fitted_sun_scattering(0.2, 1.0, 2.0, tau, -1.0),
-                           fitted_sun_scattering(0.2, g, a, HUGE_VAL, s), fitted_sun_scattering(0.2, g, a, std::nan(""), 0.0),
-                           fitted_sun_scattering(0.2, g, a, 1.0, std::nan(""))})
+    for (const double v :
+         {fitted_sun_scattering(std::nan(""), g, a, tau, s), fitted_sun_scattering(0.2, 1.0, 2.0, tau, -1.0),
+          fitted_sun_scattering(0.2, g, a, HUGE_VAL, s), fitted_sun_scattering(0.2, g, a, std::nan(""), 0.0),
+          fitted_sun_scattering(0.2, g, a, 1.0, std::nan(""))})
         EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << v;
 }
 
@@ -132,7 +133,8 @@ TEST(FittedMultipleScattering, IsNearThePathTracerOnSlabs)
     ReferenceView inside = above;
     const double e = 30.0 * std::numbers::pi / 180.0;
     inside.eye = {0.0, 0.0, 50.0};
-    inside.target = inside.eye + 1000.0 * glm::dvec3(-std::cos(e) / std::sqrt(2.0), std::cos(e) / std::sqrt(2.0), std::sin(e));
+    inside.target =
+        inside.eye + 1000.0 * glm::dvec3(-std::cos(e) / std::sqrt(2.0), std::cos(e) / std::sqrt(2.0), std::sin(e));
     inside.fov_y_deg = 60.0;
     double noise = 0.0;
     const struct {

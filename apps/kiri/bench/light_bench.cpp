@@ -41,9 +41,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 struct LightView {
-    std::string name;    //!< file stem of its pictures
-    std::string scene;   //!< a generated slab (slab10, thin30, ...) or a stem of data/scenes
-    std::string camera;  //!< the scene's camera
+    std::string name;        //!< file stem of its pictures
+    std::string scene;       //!< a generated slab (slab10, thin30, ...) or a stem of data/scenes
+    std::string camera;      //!< the scene's camera
     bool fitted_on = false;  //!< one of the views the constants were fitted to
 };
 
@@ -92,10 +92,8 @@ fs::path write_slab_scene(const fs::path& dir, const std::string& name)
     const double mid = top / 2;
     json cameras = json::array();
     cameras.push_back({{"name", "above"}, {"position", {0, -400, 600}}, {"target", {0, 0, 50}}, {"fov", 40}});
-    cameras.push_back({{"name", "side"},
-                       {"position", {-5250, -150, thin ? 25 : 70}},
-                       {"target", {-4950, 0, mid}},
-                       {"fov", 40}});
+    cameras.push_back(
+        {{"name", "side"}, {"position", {-5250, -150, thin ? 25 : 70}}, {"target", {-4950, 0, mid}}, {"fov", 40}});
     cameras.push_back({{"name", "inside"},
                        {"position", {0, 0, mid}},
                        {"target", {-1000 * h, 1000 * h, mid + 1000 * std::sin(elevation)}},
@@ -203,9 +201,9 @@ Prepared prepare_view(const Context& c, const LightView& v, int width, int heigh
         geometry::PathTracerOptions po;
         po.samples = samples;
         po.ground = geometry::PathGround::black;
-        const geometry::PathTracedImage traced = geometry::render_path_traced(
-            {p.products.medium.get(), p.froxel.height_fog}, &p.products.terrain->heightfield(), p.reference_view,
-            p.light, po);
+        const geometry::PathTracedImage traced =
+            geometry::render_path_traced({p.products.medium.get(), p.froxel.height_fog},
+                                         &p.products.terrain->heightfield(), p.reference_view, p.light, po);
         p.path_seconds = traced.seconds;
         p.path = render::linear_radiance(traced);
         render::write_exr_atomic(cached, p.path);
@@ -217,7 +215,8 @@ Prepared prepare_view(const Context& c, const LightView& v, int width, int heigh
     p.coarse_truth.assign(std::size_t(p.coarse_view.width) * p.coarse_view.height, 0.0);
     for (int y = 0; y < 2 * p.coarse_view.height; ++y)
         for (int x = 0; x < 2 * p.coarse_view.width; ++x)
-            p.coarse_truth[std::size_t(y / 2) * p.coarse_view.width + x / 2] += 0.25 * p.truth[std::size_t(y) * width + x];
+            p.coarse_truth[std::size_t(y / 2) * p.coarse_view.width + x / 2] +=
+                0.25 * p.truth[std::size_t(y) * width + x];
     return p;
 }
 
@@ -328,10 +327,11 @@ void fit_constants(const std::vector<Prepared>& views)
     }
     const int best = int(std::min_element(f.begin(), f.end()) - f.begin());
     const geometry::MultipleScatteringFit b = to_fit(simplex[best]);
-    std::printf("  best: persistence %.4f eccentricity %.4f diffuse_eccentricity %.4f amplitude %.4f sun_power %.4f "
-                "low_sun_eccentricity %.4f (cost %.5f)\n",
-                b.persistence, b.eccentricity, b.diffuse_eccentricity, b.amplitude, b.sun_power, b.low_sun_eccentricity,
-                f[best]);
+    std::printf(
+        "  best: persistence %.4f eccentricity %.4f diffuse_eccentricity %.4f amplitude %.4f sun_power %.4f "
+        "low_sun_eccentricity %.4f (cost %.5f)\n",
+        b.persistence, b.eccentricity, b.diffuse_eccentricity, b.amplitude, b.sun_power, b.low_sun_eccentricity,
+        f[best]);
 }
 
 // Path tracer | fitted | octaves, tone-mapped, side by side.
@@ -421,8 +421,8 @@ void light(Context& c)
         return;
     }
     std::ofstream md(c.out_dir() / "light.md");
-    md << "The fog's own light (no sky, black ground), " << width << "x" << height << ", the path tracer at "
-       << samples << " paths per pixel. Brightness: mean luminance over the path tracer's; block: mean relative "
+    md << "The fog's own light (no sky, black ground), " << width << "x" << height << ", the path tracer at " << samples
+       << " paths per pixel. Brightness: mean luminance over the path tracer's; block: mean relative "
        << "error of 4x4-pixel blocks (signed in brackets).\n\n"
        << "| view | fitted brightness | fitted block | octaves brightness | octaves block | fitted on |\n"
        << "|---|---|---|---|---|---|\n";
@@ -464,8 +464,7 @@ void light(Context& c)
 
 KIRI_BENCH_STAGE({"light",
                   "The lighting model against the path tracer, view by view: brightness ratio vs block error",
-                  {"brightness ratio (model / path tracer)", "error_value", "mean 4x4-block error", false, true,
-                   true},
+                  {"brightness ratio (model / path tracer)", "error_value", "mean 4x4-block error", false, true, true},
                   light});
 
 }  // namespace kiri::bench
