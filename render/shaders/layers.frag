@@ -62,8 +62,8 @@ float henyey_greenstein(float cos_theta, float g)
 // scattering along the sun's path, with geometry::MultipleScatteringFit's constants.
 float fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
 {
-    const float amplitude = 3.11, sun_power = 0.262, persistence = 0.747, eccentricity = 0.539;
-    const float diffuse_eccentricity = -0.772, low_sun_eccentricity = 0.341;
+    const float amplitude = 3.09, sun_power = 0.454, persistence = 0.768, eccentricity = 0.491;
+    const float diffuse_eccentricity = -0.439, low_sun_eccentricity = 0.471;
     const int orders = 4;  // geometry::fitted_orders
     g = clamp(g, -0.999, 0.999);
     float s = clamp(sun_sine, 0.0, 1.0);

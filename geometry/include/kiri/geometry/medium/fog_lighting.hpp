@@ -49,12 +49,12 @@ inline constexpr int fitted_orders = 4;
 //! The fitted model's constants (of the file comment); the defaults are the fit (docs/medium.md,
 //! "Multiple scattering"), repeated in the shaders' fitted_sun_scattering.
 struct MultipleScatteringFit {
-    double amplitude = 3.11;               //!< K
-    double sun_power = 0.262;              //!< k
-    double low_sun_eccentricity = 0.341;   //!< e
-    double persistence = 0.747;            //!< b / albedo
-    double eccentricity = 0.539;           //!< c
-    double diffuse_eccentricity = -0.772;  //!< d: the light scattered many times comes back up
+    double amplitude = 3.09;               //!< K
+    double sun_power = 0.454;              //!< k
+    double low_sun_eccentricity = 0.471;   //!< e
+    double persistence = 0.768;            //!< b / albedo
+    double eccentricity = 0.491;           //!< c
+    double diffuse_eccentricity = -0.439;  //!< d: the light scattered many times comes back up
 };
 
 struct FogLight {
