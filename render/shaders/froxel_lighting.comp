@@ -88,7 +88,10 @@ void main()
     float visible = terrain_visibility(p, u_ts_bias);
     float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(p) : 0.0;
     vec3 sun = 3.14159265358979 * u_sun_radiance * visible;  // pi sun: fog_lighting.hpp
-    vec3 s = u_albedo.x * weights.x * (sun * sun_scattering(cos_theta, u_anisotropy.x, tau, u_octaves) + u_ambient) +
-             u_albedo.y * weights.y * (sun * sun_scattering(cos_theta, u_anisotropy.y, tau, u_octaves) + u_ambient);
+    float sun_sine = normalize(u_sun_direction).z;
+    vec3 s = u_albedo.x * weights.x *
+            (sun * sun_scattering(cos_theta, u_anisotropy.x, u_albedo.x, tau, sun_sine, u_octaves) + u_ambient) +
+        u_albedo.y * weights.y *
+            (sun * sun_scattering(cos_theta, u_anisotropy.y, u_albedo.y, tau, sun_sine, u_octaves) + u_ambient);
     imageStore(o_light, id, vec4(s / (weights.x + weights.y), 1.0));
 }

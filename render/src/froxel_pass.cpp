@@ -379,7 +379,9 @@ void FroxelPass::run_lighting(const FrameContext& frame, bool terrain_shadows, c
     lighting_.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
     lighting_.set("u_fog_shadows", int(o.fog_shadows));
     lighting_.set("u_sun_steps", o.sun_steps);
-    lighting_.set("u_octaves", geometry::scattering_octaves_of(medium_));
+    lighting_.set(
+        "u_octaves",
+        geometry::shader_octaves(geometry::multiple_scattering_of(medium_), geometry::scattering_octaves_of(medium_)));
     lighting_.set("u_whole_tiles", int(o.fog_aware));
     const glm::dvec3 box_lo = medium_ ? medium_->bounds().min : glm::dvec3(0.0);
     const glm::dvec3 box_hi = medium_ ? medium_->bounds().max : glm::dvec3(0.0);

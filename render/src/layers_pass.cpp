@@ -250,7 +250,7 @@ void LayersPass::draw_stack(const FrameContext& frame)
     p.set("u_medium", int(medium));
     p.set("u_extinction", float(o.optics.extinction));
     p.set("u_albedo", float(o.optics.albedo));
-    p.set("u_octaves", std::clamp(o.optics.scattering_octaves, 1, 8));
+    p.set("u_octaves", geometry::shader_octaves(o.optics));
     p.set("u_anisotropy", float(std::clamp(o.optics.anisotropy, -0.999, 0.999)));
     set_partition_uniforms(p, frame);
     p.use();

@@ -129,7 +129,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     p.set("u_ambient", frame.ambient);
     p.set("u_sky_horizon", frame.sky_horizon);
     p.set("u_haze_density", frame.haze_density);
-    p.set("u_octaves", std::clamp(cloud_->scattering_octaves, 1, 8));
+    p.set("u_octaves", std::clamp(cloud_->scattering_octaves, 0, 8));
     p.use();
     glBindTextureUnit(0, buffer_.texture());
     glBindTextureUnit(1, resolved_depth);

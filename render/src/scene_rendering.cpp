@@ -123,6 +123,7 @@ geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geo
     light.ambient = scene.sun.ambient;
     light.terrain_shadows = froxel.terrain_shadows;
     light.fog_shadows = froxel.fog_shadows;
+    light.multiple_scattering = geometry::multiple_scattering_of(medium);
     light.scattering_octaves = geometry::scattering_octaves_of(medium);
     return light;
 }

@@ -10,6 +10,7 @@ kiri_test(layer_export_test SOURCES layer_export_test.cpp LIBS kiri_geometry nlo
 kiri_test(medium_test SOURCES medium_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(reference_fog_test SOURCES reference_fog_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(path_tracer_test SOURCES path_tracer_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(multiple_scattering_test SOURCES multiple_scattering_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(froxel_options_test SOURCES froxel_options_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_find_openvdb()
 kiri_test(medium_vdb_test SOURCES medium_vdb_test.cpp LIBS kiri_geometry OpenVDB::openvdb LABELS unit)

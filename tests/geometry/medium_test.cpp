@@ -307,6 +307,7 @@ TEST(FogLighting, OctavesOfScattering)
     MediumOptions o;
     o.albedo = 0.9;
     o.anisotropy = 0.8;
+    o.multiple_scattering = MultipleScattering::octaves;
     o.scattering_octaves = 1;  // plain single scattering
     const double pi = std::numbers::pi;
     const glm::dvec3 single = fog_source(light, o, 0.3, 2.0);

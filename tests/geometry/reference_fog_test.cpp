@@ -95,14 +95,22 @@ TEST(ReferenceFog, HomogeneousSlabLitByTheSunThroughTheFog)
     MediumOptions optics;
     optics.albedo = a;
     optics.anisotropy = g;
+    optics.multiple_scattering = MultipleScattering::octaves;
     optics.scattering_octaves = 1;
-    const FogLight fl{light.sun_radiance, light.ambient};
+    const FogLight fl{light.sun_radiance, light.ambient, std::sin(e)};
     expect_rel(fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
                    (1.0 - std::exp(-sigma * d)),
                expected, 1e-12);
     light.scattering_octaves = optics.scattering_octaves = 3;
     const RayFog r3 = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
     expect_rel(r3.inscatter,
+               fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
+                   (1.0 - std::exp(-sigma * d)),
+               1e-9);
+    // And with the fitted multiple scattering.
+    light.multiple_scattering = optics.multiple_scattering = MultipleScattering::fitted;
+    const RayFog rf = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
+    expect_rel(rf.inscatter,
                fog_source(fl, optics, glm::dot(w, light.sun_direction), sigma * (H - z) / std::sin(e)) *
                    (1.0 - std::exp(-sigma * d)),
                1e-9);

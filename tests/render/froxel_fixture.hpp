@@ -3,6 +3,7 @@
 // the CPU reference ray marcher (geometry/reference_fog.hpp) at small resolution.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -37,7 +38,8 @@ inline g::Terrain flat_ground(double half = 2000.0, double spacing = 50.0, doubl
 }
 
 // A shell between bottom and top over [-half, half]^2, coverage 1.
-// Single scattering unless told (the tests judge the froxel machinery; the octaves are one sum).
+// Single scattering unless told (the tests judge the froxel machinery; the octaves are one sum);
+// octaves 0: the fitted multiple scattering.
 inline g::Medium slab(double bottom, double top, double sigma, double half = 2000.0, double g_aniso = 0.6,
                       int octaves = 1)
 {
@@ -54,7 +56,8 @@ inline g::Medium slab(double bottom, double top, double sigma, double half = 200
     o.albedo = 0.9;
     o.anisotropy = g_aniso;
     o.top_density = 1.0;
-    o.scattering_octaves = octaves;
+    o.multiple_scattering = octaves == 0 ? g::MultipleScattering::fitted : g::MultipleScattering::octaves;
+    o.scattering_octaves = std::max(octaves, 1);
     g::MediumDetail d;
     d.detail = 0.0;
     return g::Medium(std::move(grid), o, d);
@@ -78,6 +81,7 @@ inline g::FogLighting lighting(const SunLight& s, const g::FroxelOptions& o, con
     l.ambient = s.ambient;
     l.terrain_shadows = o.terrain_shadows;
     l.fog_shadows = o.fog_shadows;
+    l.multiple_scattering = g::multiple_scattering_of(medium);
     l.scattering_octaves = g::scattering_octaves_of(medium);
     return l;
 }

@@ -207,6 +207,7 @@ void thin_layer(Context& c)
     light.sun_direction = sun.direction;
     light.sun_radiance = sun.color * sun.intensity;
     light.ambient = sun.ambient;
+    light.multiple_scattering = geometry::multiple_scattering_of(&layer);
     light.scattering_octaves = geometry::scattering_octaves_of(&layer);
     const geometry::ReferenceImage reference =
         geometry::render_reference_fog({&layer, {}}, &ground.heightfield(), view, light);

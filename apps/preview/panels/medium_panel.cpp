@@ -28,7 +28,9 @@ bool medium_panel(geometry::Scene& scene, ViewOptions& view)
     changed |= edit("albedo", o, o.albedo, "%.3f");
     changed |= edit("anisotropy g", o, o.anisotropy, "%.2f");
     changed |= edit("top density", o, o.top_density, "%.2f");
-    changed |= edit("scattering octaves", o, o.scattering_octaves);
+    changed |= edit("multiple scattering", o, o.multiple_scattering);
+    if (o.multiple_scattering == geometry::MultipleScattering::octaves)
+        changed |= edit("scattering octaves", o, o.scattering_octaves);
     changed |= edit("detail", o, o.detail, "%.2f");
     changed |= edit("detail scale (m)", o, o.detail_scale, "%.0f");
     changed |= edit("wind (m/s)", o, o.wind, "%.1f");

@@ -55,12 +55,10 @@ namespace kiri::geometry {
 glm::dvec3 fog_source(const FogLight& light, const MediumOptions& optics, double cos_theta, double tau_sun,
                       double visibility)
 {
-    const int octaves = std::clamp(optics.scattering_octaves, 1, 8);
     const double tau = std::isfinite(tau_sun) ? std::max(tau_sun, 0.0) : 0.0;
     const double vis = std::isfinite(visibility) ? std::clamp(visibility, 0.0, 1.0) : 1.0;
-    double sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
-    for (int i = 0; i < octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
-        sun += a * henyey_greenstein(cos_theta, c * optics.anisotropy) * std::exp(-b * tau);
+    const double sun = sun_scattering(optics.multiple_scattering, optics.scattering_octaves, cos_theta,
+                                      optics.anisotropy, optics.albedo, tau, light.sun_elevation_sine);
     const double albedo = std::isfinite(optics.albedo) ? std::clamp(optics.albedo, 0.0, 1.0) : 0.0;
     const glm::dvec3 j = albedo * (std::numbers::pi * vis * sun * light.sun + light.ambient);
     return {std::isfinite(j.x) ? std::max(j.x, 0.0) : 0.0, std::isfinite(j.y) ? std::max(j.y, 0.0) : 0.0,

@@ -3,6 +3,7 @@
 #include <random>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_lighting.hpp"
 #include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/geometry/particles/particles.hpp"
 #include "particles/sample_elimination.hpp"
@@ -39,7 +40,7 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     if (!(d_max > 0.0) || !(extent.x > 0.0) || !(extent.y > 0.0) || !(extent.z > 0.0)) {
         ParticleCloud empty;  // no fog to sample: no particles, the other renderers draw nothing either
         empty.anisotropy = medium.options().anisotropy;
-        empty.scattering_octaves = medium.options().scattering_octaves;
+        empty.scattering_octaves = shader_octaves(medium.options());
         return empty;
     }
 
@@ -90,7 +91,7 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     draw(std::size_t(wanted));
     ParticleCloud cloud;
     cloud.anisotropy = medium.options().anisotropy;
-    cloud.scattering_octaves = medium.options().scattering_octaves;
+    cloud.scattering_octaves = shader_octaves(medium.options());
     cloud.forward_scattering =
         options.forward_scattering >= 0.0 ? options.forward_scattering : forward_scattering_fraction(cloud.anisotropy);
     cloud.candidate_count = candidates.size();

@@ -350,11 +350,12 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
                 visible = 0.0;
             }
         }
-        const int octaves = light_.scattering_octaves;
-        const double sun_m =
-            st.sigma_medium > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_m, tau_sun, octaves) : 0.0;
-        const double sun_h =
-            st.sigma_height > 0.0 && visible > 0.0 ? sun_scattering(cos_sun, g_h, tau_sun, octaves) : 0.0;
+        const auto phase = [&](double g, double albedo) {
+            return sun_scattering(light_.multiple_scattering, light_.scattering_octaves, cos_sun, g, albedo, tau_sun,
+                                  sun_.z, light_.fit);
+        };
+        const double sun_m = st.sigma_medium > 0.0 && visible > 0.0 ? phase(g_m, albedo_m) : 0.0;
+        const double sun_h = st.sigma_height > 0.0 && visible > 0.0 ? phase(g_h, albedo_h) : 0.0;
         // J of fog_lighting.hpp (pi sun: the sun's irradiance) per medium, times its extinction.
         const glm::dvec3 sun = std::numbers::pi * visible * light_.sun_radiance;
         const glm::dvec3 source = albedo_m * st.sigma_medium * (sun * sun_m + light_.ambient) +

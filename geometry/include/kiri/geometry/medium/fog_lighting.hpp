@@ -5,20 +5,36 @@
 //!
 //! Units follow the terrain's shading: `sun` is the radiance a white Lambertian surface facing
 //! the sun reflects (scene sun colour x intensity), so the sun's irradiance is pi sun; the sky
-//! is an isotropic radiance `ambient`. Single scattering of the sun plus the sky, with multiple
-//! scattering approximated by octaves ([Wrenninge13]):
-//! octave i scatters a^i of the light, sees the sun through b^i of the optical depth and has
-//! anisotropy c^i g (a = b = c = 1/2). One octave is plain single scattering. Thick fog seen
-//! with the sun behind the eye stays white instead of turning grey, as real fog does.
+//! is an isotropic radiance `ambient`. The source per unit extinction at a point, towards the eye:
 //!
-//! The source per unit extinction at a point, towards the eye:
-//!
-//!   J = albedo [ pi sun visibility sum_{i < octaves} a^i p_HG(cos_theta, c^i g) exp(-b^i tau_sun) + ambient ]
+//!   J = albedo [ pi sun visibility S(cos_theta, tau_sun) + ambient ]
 //!
 //! cos_theta between the direction to the sun and the direction from the point away from the
 //! eye (1: looking into the sun), tau_sun the fog's optical depth from the point towards the
 //! sun, visibility in [0, 1] the terrain's shadow. A segment of constant J and extinction
 //! sigma_t, length d, adds J (1 - exp(-sigma_t d)) times the transmittance in front of it.
+//!
+//! S, the sun's phase and transmittance (1/sr), by MultipleScattering:
+//! - none: single scattering, p_HG(cos_theta, g) exp(-tau_sun);
+//! - octaves ([Wrenninge13]): sum_{i < octaves} a^i p_HG(cos_theta, c^i g) exp(-b^i tau_sun),
+//!   a = b = c = 1/2;
+//! - fitted (the default): the orders of scattering along the sun's path. Of the sunlight that
+//!   crossed optical depth tau, the part scattered n times is taken as Poisson's
+//!   exp(-tau) (b tau)^n / n! (b = persistence x albedo: what each scattering keeps on its way),
+//!   its phase widening with each order:
+//!
+//!     S = p_HG(cos_theta, g) exp(-tau) + K s^k [ sum_{1 <= n < N-1} exp(-tau) (b tau)^n / n! p_HG(cos_theta, c^n g)
+//!                                               + R p_HG(cos_theta, d g) ]
+//!     R = exp(-(1 - b) tau) - sum_{n < N-1} exp(-tau) (b tau)^n / n!      (every higher order)
+//!
+//!   with N = fitted_orders lobes, s the sine of the sun's elevation (the light scattered more
+//!   than once is fed by the sunlight through the fog's top, s of the beam's), and c, d each
+//!   raised by e (1 - s) (under a low sun more of it still travels the sun's way). Light
+//!   scattered more than once met fog on its way first: where the sun crossed none (tau 0), S
+//!   is single scattering, so thin fog stays nearly single scattering; deep in thick fog the
+//!   light scattered many times dies out as exp(-(1 - b) tau), not as exp(-tau). K, k, b, c, d
+//!   and e (MultipleScatteringFit) were fitted to the path tracer (path_tracer.hpp) on uniform
+//!   slabs and thin layers at three sun elevations (docs/medium.md, "Multiple scattering").
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/medium/medium_options.hpp"
@@ -27,9 +43,24 @@ namespace kiri::geometry {
 
 class Medium;
 
+//! The fitted model's lobes: single scattering, the orders 1 .. N-2, and the rest.
+inline constexpr int fitted_orders = 4;
+
+//! The fitted model's constants (of the file comment); the defaults are the fit (docs/medium.md,
+//! "Multiple scattering"), repeated in the shaders' fitted_sun_scattering.
+struct MultipleScatteringFit {
+    double amplitude = 3.09;               //!< K
+    double sun_power = 0.454;              //!< k
+    double low_sun_eccentricity = 0.471;   //!< e
+    double persistence = 0.768;            //!< b / albedo
+    double eccentricity = 0.491;           //!< c
+    double diffuse_eccentricity = -0.439;  //!< d: the light scattered many times comes back up
+};
+
 struct FogLight {
-    glm::dvec3 sun{3.0};      //!< colour x intensity (SunSpec)
-    glm::dvec3 ambient{0.3};  //!< isotropic sky radiance (SunSpec::ambient)
+    glm::dvec3 sun{3.0};              //!< colour x intensity (SunSpec)
+    glm::dvec3 ambient{0.3};          //!< isotropic sky radiance (SunSpec::ambient)
+    double sun_elevation_sine = 1.0;  //!< s of the fitted model: the sun's direction's z
 };
 
 //! J of the file comment (radiance per unit of (1 - transmittance)); finite and >= 0 for any input.
@@ -46,7 +77,11 @@ struct FogLighting {
     glm::dvec3 ambient{0.25, 0.3, 0.38};       //!< FogLight::ambient: isotropic sky radiance
     bool terrain_shadows = true;               //!< visibility: the terrain hides the sun
     bool fog_shadows = true;                   //!< tau_sun: the fog dims the sun on its way
-    int scattering_octaves = 1;                //!< kiri render passes the Medium's (MediumOptions::scattering_octaves)
+    //! kiri render passes the Medium's (MediumOptions::multiple_scattering, scattering_octaves);
+    //! octaves with 1 octave is single scattering.
+    MultipleScattering multiple_scattering = MultipleScattering::octaves;
+    int scattering_octaves = 1;
+    MultipleScatteringFit fit{};
     //! false: no sky light at all, for comparisons with renderers set up in a black world: the
     //! ambient is taken as 0 and the sky seen behind the fog is black (`kiri render --no-sky`).
     bool sky = true;
@@ -56,8 +91,21 @@ struct FogLighting {
 //! g is clamped strictly inside (-1, 1) by henyey_greenstein, octaves to [1, 8].
 double sun_scattering(double cos_theta, double g, double tau_sun, int octaves);
 
+//! S of the file comment for the fitted model (1/sr): finite and >= 0 for any input.
+double fitted_sun_scattering(double cos_theta, double g, double albedo, double tau_sun, double sun_elevation_sine,
+                             const MultipleScatteringFit& fit = {});
+
+//! S of the file comment in the model `kind` (octaves: `octaves` of them).
+double sun_scattering(MultipleScattering kind, int octaves, double cos_theta, double g, double albedo, double tau_sun,
+                      double sun_elevation_sine, const MultipleScatteringFit& fit = {});
+
 //! The octaves a renderer lights the fog with: the Medium's, MediumOptions' default without one
 //! (a height fog alone).
 int scattering_octaves_of(const Medium* medium);
+//! The model a renderer lights the fog with: the Medium's, MediumOptions' default without one.
+MultipleScattering multiple_scattering_of(const Medium* medium);
+//! The shaders' `u_octaves`: 0 for the fitted model, else the octaves (none: 1).
+int shader_octaves(MultipleScattering kind, int octaves);
+int shader_octaves(const MediumOptions& optics);
 
 }  // namespace kiri::geometry

@@ -10,6 +10,16 @@
 
 namespace kiri::geometry {
 
+//! How the lighting model approximates the light scattered more than once (fog_lighting.hpp).
+enum class MultipleScattering {
+    fitted,   //!< the model fitted to the path tracer (docs/medium.md, "Multiple scattering")
+    octaves,  //!< `scattering_octaves` octaves ([Wrenninge13]); 1: single scattering
+    none,     //!< single scattering only
+};
+inline constexpr Choice multiple_scattering_names[] = {{"fitted", int(MultipleScattering::fitted)},
+                                                       {"octaves", int(MultipleScattering::octaves)},
+                                                       {"none", int(MultipleScattering::none)}};
+
 struct MediumOptions {
     double extinction = 0.02;  //!< visibility 196 m: a dense valley fog
     double albedo = 0.99;      //!< fog hardly absorbs
@@ -17,6 +27,7 @@ struct MediumOptions {
     double top_density = 0.1;  //!< (2.7): the layers' alpha at the top
     double grid_spacing = 0.0;
     int max_grid_side = 1024;
+    MultipleScattering multiple_scattering = MultipleScattering::fitted;
     int scattering_octaves = 3;
     double detail = 0.6;
     double detail_scale = 1500.0;
@@ -66,11 +77,16 @@ void visit_fields(O& o, V&& v)
       {.key = "max_grid_side",
        .range = closed(2, 8192),
        .doc = "the grid is coarsened to at most this many samples per side"});
+    v(o.multiple_scattering,
+      {.key = "multiple_scattering",
+       .doc = "the light scattered more than once: fitted to the path tracer, octaves, or none (single "
+              "scattering) ([medium.md](medium.md#lighting))",
+       .choices = multiple_scattering_names});
     v(o.scattering_octaves,
       {.key = "scattering_octaves",
        .range = closed(1, 8),
-       .doc =
-           "1: single scattering; more: multiple scattering approximated by octaves ([medium.md](medium.md#lighting))"});
+       .doc = "with `multiple_scattering` octaves: 1 is single scattering, more approximate multiple scattering "
+              "by octaves"});
     v(o.detail,
       {.key = "detail", .range = closed(0, 1), .doc = "strength of the drifting detail noise in the density"});
     v(o.detail_scale,

@@ -148,8 +148,10 @@ struct ParticleCloud {
     //! p(l,l)/4pi of (7): the fraction of the light a particle scatters that stays in the sun's
     //! beam (Harris's forward-scattering term), in [0, 1].
     double forward_scattering = 0.2;
-    double anisotropy = 0.8;     //!< Henyey-Greenstein g towards the eye (the Medium's)
-    int scattering_octaves = 3;  //!< the Medium's multiple-scattering octaves (fog_lighting.hpp)
+    double anisotropy = 0.8;  //!< Henyey-Greenstein g towards the eye (the Medium's)
+    //! The Medium's multiple scattering as the shaders take it (shader_octaves, fog_lighting.hpp):
+    //! 0 the fitted model, n >= 1 n octaves.
+    int scattering_octaves = 0;
     //! What the sampler found (for reports): the Medium's integral of density (m^3), the mean
     //! spacing at full density and the number of candidates drawn.
     double density_integral = 0.0, spacing = 0.0;

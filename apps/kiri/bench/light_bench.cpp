@@ -1,0 +1,476 @@
+// Light: the lighting model every renderer shares (fog_lighting.hpp), drawn exactly by the CPU
+// reference marcher, against the path tracer (every order of scattering), view by view: uniform
+// slabs seen from above, from the side and from inside at sun elevations of 10, 30 and 60
+// degrees, a thin layer, and the shipped scenes' cameras (jacksboro_lake is the thick valley
+// lake). The fog's own light only: no sky, a black ground (as scripts/crosscheck-cycles.sh).
+// Per view: the brightness ratio (mean luminance over the path tracer's) and the mean relative
+// error of 4x4-pixel blocks, for the fitted model and for the octaves it replaced, and their
+// pictures side by side (path tracer | fitted | octaves). Then the cost of the lighting in each
+// renderer, fitted against octaves, measured side by side.
+//
+// The path tracer's images are cached in OUT/light/ (NAME.SAMPLES.path.exr): a rerun only renders
+// the models. How the constants were found: KIRI_LIGHT_FIT=1 fits MultipleScatteringFit's
+// constants to the slab and thin-layer views (Nelder-Mead on the sum over the views of the
+// squared block and brightness errors plus the worst view's, with the model at half the size),
+// KIRI_LIGHT_FIT_ITERATIONS steps (40) from KIRI_LIGHT_CONSTANTS ("b,c,d,K,k,e"; the defaults
+// without), and prints them; KIRI_LIGHT_CONSTANTS also replaces the fitted model's constants in
+// the report, and KIRI_LIGHT_FITTED_ONLY=1 reports the views fitted on alone.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "bench/bench.hpp"
+#include "bench/fog_judge.hpp"
+#include "kiri/geometry/reference/path_tracer.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/render/exr_image.hpp"
+#include "kiri/render/tone_map.hpp"
+
+namespace kiri::bench {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct LightView {
+    std::string name;        //!< file stem of its pictures
+    std::string scene;       //!< a generated slab (slab10, thin30, ...) or a stem of data/scenes
+    std::string camera;      //!< the scene's camera
+    bool fitted_on = false;  //!< one of the views the constants were fitted to
+};
+
+std::vector<LightView> light_views(bool quick)
+{
+    std::vector<LightView> v;
+    for (const char* e : {"30", "10", "60"})
+        for (const char* c : {"above", "side", "inside"})
+            v.push_back({std::string("slab") + e + "_" + c, std::string("slab") + e, c, true});
+    v.push_back({"slab30_across", "slab30", "across", true});
+    v.push_back({"thin30_above", "thin30", "above", true});
+    v.push_back({"thin30_across", "thin30", "across", true});
+    v.push_back({"thin10_inside", "thin10", "inside", true});
+    v.push_back({"thin60_above", "thin60", "above", true});
+    const std::vector<std::pair<std::string, std::vector<std::string>>> shipped = {
+        {"jacksboro", {"default", "ridge", "top"}},
+        {"jacksboro_lake", {"default", "ridge", "sun", "top"}},
+        {"jacksboro_fill", {"default", "valley", "top"}},
+        {"jacksboro_wind", {"default", "wide"}},
+        {"jacksboro_descent", {"descent_1_far_above", "descent_2_just_above", "descent_3_inside", "descent_4_below"}}};
+    // Four of the shipped views are fitted on too (the default scene's thin blanket, from its
+    // camera and from inside; the lake and the fill from theirs); the others are held out.
+    const auto fitted_on = [](const std::string& name) {
+        return name == "jacksboro_default" || name == "jacksboro_lake_default" || name == "jacksboro_fill_default" ||
+            name == "jacksboro_descent_descent_3_inside";
+    };
+    for (const auto& [scene, cameras] : shipped)
+        for (const std::string& c : cameras)
+            if (!quick || c == cameras.front())
+                v.push_back({scene + "_" + c, scene, c, fitted_on(scene + "_" + c)});
+    return v;
+}
+
+// The slabs: a flat 10 km terrain at z = 0 filled with uniform fog (sigma_t 0.02 1/m, albedo
+// 0.99, g 0.8) up to 100 m (slab) or 15 m (thin), the sun at the elevation of the name.
+fs::path write_slab_scene(const fs::path& dir, const std::string& name)
+{
+    const fs::path file = dir / (name + ".json");
+    if (!fs::exists(dir / "flat.asc")) {
+        std::ofstream f(dir / "flat.asc");
+        f << "ncols 201\nnrows 201\nxllcorner 0\nyllcorner 0\ncellsize 50\nNODATA_value -9999\n";
+        for (int r = 0; r < 201; ++r) {
+            for (int c = 0; c < 201; ++c)
+                f << (c ? " 0" : "0");
+            f << "\n";
+        }
+    }
+    const bool thin = name.rfind("thin", 0) == 0;
+    const double top = thin ? 15.0 : 100.0, elevation = std::stod(name.substr(thin ? 4 : 4)) * std::numbers::pi / 180;
+    const double h = std::cos(elevation) / std::sqrt(2.0);
+    const json sun = {-h, h, std::sin(elevation)};
+    const double mid = top / 2;
+    json cameras = json::array();
+    cameras.push_back({{"name", "above"}, {"position", {0, -400, 600}}, {"target", {0, 0, 50}}, {"fov", 40}});
+    cameras.push_back(
+        {{"name", "side"}, {"position", {-5250, -150, thin ? 25 : 70}}, {"target", {-4950, 0, mid}}, {"fov", 40}});
+    cameras.push_back({{"name", "inside"},
+                       {"position", {0, 0, mid}},
+                       {"target", {-1000 * h, 1000 * h, mid + 1000 * std::sin(elevation)}},
+                       {"fov", 60}});
+    cameras.push_back({{"name", "across"}, {"position", {0, 0, mid}}, {"target", {1000, 1000, mid}}, {"fov", 60}});
+    const json scene = {
+        {"terrain", {{"path", "flat.asc"}}},
+        {"cameras", cameras},
+        {"sun", {{"direction", sun}, {"color", {1, 1, 1}}, {"intensity", 3.0}, {"ambient", {0, 0, 0}}}},
+        {"fog", {{"fill", {{"seeds", "all"}, {"top", top}}}}},
+        {"medium", {{"extinction", 0.02}, {"albedo", 0.99}, {"anisotropy", 0.8}, {"top_density", 1}, {"detail", 0}}}};
+    std::ofstream(file) << scene.dump(1);
+    return file;
+}
+
+// One view, authored, with the path tracer's luminance.
+struct Prepared {
+    LightView view;
+    geometry::PipelineProducts products;
+    geometry::FroxelOptions froxel;
+    geometry::ReferenceView reference_view;
+    geometry::FogLighting light;
+    render::RadianceImage path;
+    std::vector<double> truth;  //!< the path tracer's luminance
+    //! For the fit: the view at half the size and the truth's 2x2 means (4x4 blocks are 2x2).
+    geometry::ReferenceView coarse_view;
+    std::vector<double> coarse_truth;
+    double path_seconds = 0.0;
+};
+
+std::vector<double> luminances(const render::RadianceImage& image)
+{
+    std::vector<double> l(std::size_t(image.width) * image.height);
+    for (std::size_t k = 0; k < l.size(); ++k)
+        l[k] = geometry::luminance({image.rgba[4 * k], image.rgba[4 * k + 1], image.rgba[4 * k + 2]});
+    return l;
+}
+
+std::vector<double> luminances(const geometry::ReferenceImage& image)
+{
+    std::vector<double> l(image.inscatter.size());
+    for (std::size_t k = 0; k < l.size(); ++k)
+        l[k] = geometry::luminance(image.composed(k));
+    return l;
+}
+
+//! As scripts/cycles_medium.py's compare: the brightness ratio, the mean relative error of the
+//! 4x4 blocks the reference lights (above 1e-6 of its brightest) and its signed mean.
+struct LightError {
+    double ratio = 0.0, block = 0.0, signed_block = 0.0;
+};
+
+LightError light_error(const std::vector<double>& a, const std::vector<double>& b, int width, int height, int n = 4)
+{
+    LightError e;
+    double sa = 0.0, sb = 0.0;
+    for (std::size_t k = 0; k < a.size(); ++k) {
+        sa += a[k];
+        sb += b[k];
+    }
+    e.ratio = sb > 0.0 ? sa / sb : 0.0;
+    const int bw = width / n, bh = height / n;
+    std::vector<double> ba(std::size_t(bw) * bh, 0.0), bb(ba.size(), 0.0);
+    for (int y = 0; y < bh * n; ++y)
+        for (int x = 0; x < bw * n; ++x) {
+            ba[std::size_t(y / n) * bw + x / n] += a[std::size_t(y) * width + x];
+            bb[std::size_t(y / n) * bw + x / n] += b[std::size_t(y) * width + x];
+        }
+    const double top = *std::max_element(bb.begin(), bb.end());
+    int lit = 0;
+    for (std::size_t k = 0; k < bb.size(); ++k)
+        if (bb[k] > 1e-6 * std::max(top, 1e-30)) {
+            e.block += std::abs(ba[k] - bb[k]) / bb[k];
+            e.signed_block += (ba[k] - bb[k]) / bb[k];
+            ++lit;
+        }
+    if (lit > 0) {
+        e.block /= lit;
+        e.signed_block /= lit;
+    }
+    return e;
+}
+
+Prepared prepare_view(const Context& c, const LightView& v, int width, int height, int samples)
+{
+    const fs::path dir = c.out_dir() / "light";
+    fs::create_directories(dir);
+    const fs::path file = v.scene.rfind("slab", 0) == 0 || v.scene.rfind("thin", 0) == 0
+        ? write_slab_scene(dir, v.scene)
+        : c.data_dir() / "scenes" / (v.scene + ".json");
+    Prepared p;
+    p.view = v;
+    const geometry::Scene scene = geometry::load_scene(file.string());
+    p.products = geometry::author_scene(scene, render::pipeline_target(render::FogMode::froxel, scene));
+    const geometry::Bounds3 bounds = p.products.terrain->bounds();
+    const render::Camera camera = render::to_camera(scene.camera(v.camera, bounds.min, bounds.max));
+    p.froxel = render::scene_froxel_options(scene, *p.products.terrain);
+    p.reference_view = render::reference_view(camera, width, height, p.froxel.far);
+    p.light = render::scene_fog_lighting(scene, p.products.medium.get(), p.froxel);
+    p.light.sky = false;
+    const fs::path cached = dir / (v.name + "." + std::to_string(samples) + ".path.exr");
+    if (fs::exists(cached)) {
+        p.path = render::read_exr(cached);
+    } else {
+        geometry::PathTracerOptions po;
+        po.samples = samples;
+        po.ground = geometry::PathGround::black;
+        const geometry::PathTracedImage traced =
+            geometry::render_path_traced({p.products.medium.get(), p.froxel.height_fog},
+                                         &p.products.terrain->heightfield(), p.reference_view, p.light, po);
+        p.path_seconds = traced.seconds;
+        p.path = render::linear_radiance(traced);
+        render::write_exr_atomic(cached, p.path);
+    }
+    p.truth = luminances(p.path);
+    p.coarse_view = p.reference_view;
+    p.coarse_view.width = width / 2;
+    p.coarse_view.height = height / 2;
+    p.coarse_truth.assign(std::size_t(p.coarse_view.width) * p.coarse_view.height, 0.0);
+    for (int y = 0; y < 2 * p.coarse_view.height; ++y)
+        for (int x = 0; x < 2 * p.coarse_view.width; ++x)
+            p.coarse_truth[std::size_t(y / 2) * p.coarse_view.width + x / 2] +=
+                0.25 * p.truth[std::size_t(y) * width + x];
+    return p;
+}
+
+geometry::ReferenceImage model_image(const Prepared& p, geometry::MultipleScattering kind,
+                                     const geometry::MultipleScatteringFit& fit = {}, bool coarse = false)
+{
+    geometry::FogLighting light = p.light;
+    light.multiple_scattering = kind;
+    light.fit = fit;
+    geometry::ReferenceOptions ro;
+    ro.shade_terrain = false;
+    if (coarse)
+        ro.optical_step = 0.05;
+    return geometry::render_reference_fog({p.products.medium.get(), p.froxel.height_fog},
+                                          &p.products.terrain->heightfield(), coarse ? p.coarse_view : p.reference_view,
+                                          light, ro);
+}
+
+// Nelder-Mead over MultipleScatteringFit's constants on the views fitted on: the sum over the
+// views of the squared block error and the squared brightness error, plus the worst view's.
+void fit_constants(const std::vector<Prepared>& views)
+{
+    constexpr int D = 6;
+    using Point = std::array<double, D>;
+    const auto to_fit = [](const Point& x) {
+        geometry::MultipleScatteringFit f;
+        f.persistence = std::clamp(x[0], 0.0, 1.0);
+        f.eccentricity = std::clamp(x[1], 0.0, 1.0);
+        f.diffuse_eccentricity = std::clamp(x[2], -1.0, 1.0);
+        f.amplitude = std::max(x[3], 0.0);
+        f.sun_power = x[4];
+        f.low_sun_eccentricity = x[5];
+        return f;
+    };
+    const auto cost = [&](const Point& x) {
+        const geometry::MultipleScatteringFit f = to_fit(x);
+        double sum = 0.0, worst = 0.0;
+        for (const Prepared& p : views) {
+            const geometry::ReferenceImage r = model_image(p, geometry::MultipleScattering::fitted, f, true);
+            const LightError e = light_error(luminances(r), p.coarse_truth, r.width, r.height, 2);
+            const double v = e.block * e.block + (e.ratio - 1) * (e.ratio - 1);
+            sum += v;
+            worst = std::max(worst, v);
+        }
+        std::printf("    %.4f,%.4f,%.4f,%.4f,%.4f,%.4f: sum %.5f worst %.5f\n", f.persistence, f.eccentricity,
+                    f.diffuse_eccentricity, f.amplitude, f.sun_power, f.low_sun_eccentricity, sum, worst);
+        std::fflush(stdout);
+        return sum + worst;
+    };
+    const geometry::MultipleScatteringFit start;
+    std::array<Point, D + 1> simplex;
+    simplex.fill({start.persistence, start.eccentricity, start.diffuse_eccentricity, start.amplitude, start.sun_power,
+                  start.low_sun_eccentricity});
+    if (const char* k = std::getenv("KIRI_LIGHT_CONSTANTS"))
+        std::sscanf(k, "%lf,%lf,%lf,%lf,%lf,%lf", &simplex[0][0], &simplex[0][1], &simplex[0][2], &simplex[0][3],
+                    &simplex[0][4], &simplex[0][5]);
+    for (int i = 1; i <= D; ++i)
+        simplex[i] = simplex[0];
+    const double step[D] = {-0.05, -0.15, 0.3, 0.7, -0.4, 0.3};
+    for (int i = 0; i < D; ++i)
+        simplex[i + 1][i] += step[i];
+    std::array<double, D + 1> f;
+    for (int i = 0; i <= D; ++i)
+        f[i] = cost(simplex[i]);
+    const char* n = std::getenv("KIRI_LIGHT_FIT_ITERATIONS");
+    for (int it = 0, iterations = n ? std::atoi(n) : 40; it < iterations; ++it) {
+        std::array<int, D + 1> order;
+        for (int i = 0; i <= D; ++i)
+            order[i] = i;
+        std::sort(order.begin(), order.end(), [&](int a, int b) { return f[a] < f[b]; });
+        const int worst = order[D], second = order[D - 1], best = order[0];
+        Point centre{};
+        for (int i : order)
+            if (i != worst)
+                for (int d = 0; d < D; ++d)
+                    centre[d] += simplex[i][d] / D;
+        const auto along = [&](double t) {
+            Point x;
+            for (int d = 0; d < D; ++d)
+                x[d] = centre[d] + t * (simplex[worst][d] - centre[d]);
+            return x;
+        };
+        const Point reflected = along(-1.0);
+        const double fr = cost(reflected);
+        if (fr < f[best]) {
+            const Point expanded = along(-2.0);
+            const double fe = cost(expanded);
+            simplex[worst] = fe < fr ? expanded : reflected;
+            f[worst] = std::min(fe, fr);
+        } else if (fr < f[second]) {
+            simplex[worst] = reflected;
+            f[worst] = fr;
+        } else {
+            const Point contracted = along(0.5);
+            const double fc = cost(contracted);
+            if (fc < f[worst]) {
+                simplex[worst] = contracted;
+                f[worst] = fc;
+            } else {
+                for (int i : order)
+                    if (i != best) {
+                        for (int d = 0; d < D; ++d)
+                            simplex[i][d] = simplex[best][d] + 0.5 * (simplex[i][d] - simplex[best][d]);
+                        f[i] = cost(simplex[i]);
+                    }
+            }
+        }
+    }
+    const int best = int(std::min_element(f.begin(), f.end()) - f.begin());
+    const geometry::MultipleScatteringFit b = to_fit(simplex[best]);
+    std::printf(
+        "  best: persistence %.4f eccentricity %.4f diffuse_eccentricity %.4f amplitude %.4f sun_power %.4f "
+        "low_sun_eccentricity %.4f (cost %.5f)\n",
+        b.persistence, b.eccentricity, b.diffuse_eccentricity, b.amplitude, b.sun_power, b.low_sun_eccentricity,
+        f[best]);
+}
+
+// Path tracer | fitted | octaves, tone-mapped, side by side.
+render::Image side_by_side(const std::vector<render::Image>& images)
+{
+    render::Image out;
+    const int gap = 2;
+    out.height = images.front().height;
+    for (const render::Image& i : images)
+        out.width += i.width + gap;
+    out.width -= gap;
+    out.rgba.assign(std::size_t(out.width) * out.height * 4, 255);
+    int x0 = 0;
+    for (const render::Image& i : images) {
+        for (int y = 0; y < i.height; ++y)
+            std::copy_n(&i.rgba[std::size_t(y) * i.width * 4], i.width * 4,
+                        &out.rgba[(std::size_t(y) * out.width + x0) * 4]);
+        x0 += i.width + gap;
+    }
+    return out;
+}
+
+render::Image tone_mapped_path(const render::RadianceImage& r)
+{
+    geometry::ReferenceImage as_reference;
+    as_reference.width = r.width;
+    as_reference.height = r.height;
+    const std::size_t n = std::size_t(r.width) * r.height;
+    as_reference.inscatter.resize(n);
+    as_reference.transmittance.assign(n, 0.0);
+    as_reference.background.assign(n, glm::dvec3(0.0));
+    as_reference.depth.assign(n, 0.0);
+    for (std::size_t k = 0; k < n; ++k)
+        as_reference.inscatter[k] = {r.rgba[4 * k], r.rgba[4 * k + 1], r.rgba[4 * k + 2]};
+    return render::tone_mapped(as_reference);
+}
+
+// The cost of the lighting in each GL renderer: frames of the default scene's Medium with the
+// fitted model and with octaves, alternated, the median of each.
+void light_cost(Context& c, std::ofstream& md)
+{
+    SceneJson source(c.data_dir() / "scenes/jacksboro.json");
+    json base = source.root;
+    base["froxel"].erase("height_fog");
+    const int w = 320, h = 180, frames = c.quick() ? 3 : 7;
+    FogJudge judge(source.parse(base), "ridge", 80, 45);
+    md << "\n| renderer | frame, fitted (ms) | frame, octaves (ms) | fitted / octaves |\n|---|---|---|---|\n";
+    for (const render::FogMode mode : {render::FogMode::layers, render::FogMode::particles, render::FogMode::froxel}) {
+        double ms[2] = {0.0, 0.0};
+        std::vector<double> runs[2];
+        for (int round = 0; round < 3; ++round)
+            for (int m = 0; m < 2; ++m) {
+                json varied = base;
+                varied["medium"]["multiple_scattering"] = m == 0 ? "fitted" : "octaves";
+                judge.prepare(source.parse(varied), mode);
+                runs[m].push_back(judge.frame_ms(w, h, frames));
+            }
+        for (int m = 0; m < 2; ++m) {
+            std::sort(runs[m].begin(), runs[m].end());
+            ms[m] = runs[m][1];
+        }
+        const std::string series = render::to_string(mode);
+        std::printf("  %-9s frame %dx%d: fitted %.1f ms, octaves %.1f ms (%.2fx)\n", series.c_str(), w, h, ms[0], ms[1],
+                    ms[0] / ms[1]);
+        std::fflush(stdout);
+        md << "| " << series << " | " << ms[0] << " | " << ms[1] << " | " << ms[0] / ms[1] << " |\n";
+    }
+}
+
+void light(Context& c)
+{
+    const int width = 80, height = 45, samples = c.quick() ? 256 : 1024;
+    const char* fit = std::getenv("KIRI_LIGHT_FIT");
+    const bool fitting = fit && std::string(fit) == "1";
+    std::vector<Prepared> views;
+    for (const LightView& v : light_views(c.quick())) {
+        if ((fitting || std::getenv("KIRI_LIGHT_FITTED_ONLY")) && !v.fitted_on)
+            continue;
+        views.push_back(prepare_view(c, v, width, height, samples));
+        if (views.back().path_seconds > 0.0)
+            std::printf("  %-34s path traced (%d paths per pixel) in %.1f s\n", v.name.c_str(), samples,
+                        views.back().path_seconds);
+        std::fflush(stdout);
+    }
+    if (fitting) {
+        fit_constants(views);
+        return;
+    }
+    std::ofstream md(c.out_dir() / "light.md");
+    md << "The fog's own light (no sky, black ground), " << width << "x" << height << ", the path tracer at " << samples
+       << " paths per pixel. Brightness: mean luminance over the path tracer's; block: mean relative "
+       << "error of 4x4-pixel blocks (signed in brackets).\n\n"
+       << "| view | fitted brightness | fitted block | octaves brightness | octaves block | fitted on |\n"
+       << "|---|---|---|---|---|---|\n";
+    double time_fitted = 0.0, time_octaves = 0.0;
+    for (const Prepared& p : views) {
+        geometry::MultipleScatteringFit constants;
+        if (const char* k = std::getenv("KIRI_LIGHT_CONSTANTS"))
+            std::sscanf(k, "%lf,%lf,%lf,%lf,%lf,%lf", &constants.persistence, &constants.eccentricity,
+                        &constants.diffuse_eccentricity, &constants.amplitude, &constants.sun_power,
+                        &constants.low_sun_eccentricity);
+        const geometry::ReferenceImage fitted = model_image(p, geometry::MultipleScattering::fitted, constants);
+        const geometry::ReferenceImage octaves = model_image(p, geometry::MultipleScattering::octaves);
+        time_fitted += fitted.seconds;
+        time_octaves += octaves.seconds;
+        const LightError ef = light_error(luminances(fitted), p.truth, width, height);
+        const LightError eo = light_error(luminances(octaves), p.truth, width, height);
+        c.add({"fitted", p.view.name, ef.ratio, fitted.seconds, "mean 4x4-block error", ef.block, 0.0, 0.0});
+        c.add({"octaves", p.view.name, eo.ratio, octaves.seconds, "mean 4x4-block error", eo.block, 0.0, 0.0});
+        std::printf("  %-34s fitted: brightness %.3f  block %5.1f %% (%+5.1f %%)   octaves: %.3f  %5.1f %%\n",
+                    p.view.name.c_str(), ef.ratio, 100 * ef.block, 100 * ef.signed_block, eo.ratio, 100 * eo.block);
+        std::fflush(stdout);
+        char line[256];
+        std::snprintf(line, sizeof line, "| %s | %.3f | %.1f %% (%+.1f %%) | %.3f | %.1f %% | %s |\n",
+                      p.view.name.c_str(), ef.ratio, 100 * ef.block, 100 * ef.signed_block, eo.ratio, 100 * eo.block,
+                      p.view.fitted_on ? "yes" : "");
+        md << line;
+        render::write_png_atomic(
+            c.out_dir() / "light" / (p.view.name + ".png"),
+            side_by_side({tone_mapped_path(p.path), render::tone_mapped(fitted), render::tone_mapped(octaves)}));
+    }
+    std::printf("  CPU reference, all views: fitted %.2f s, octaves %.2f s (%.2fx)\n", time_fitted, time_octaves,
+                time_fitted / std::max(time_octaves, 1e-9));
+    md << "\nCPU reference over all views: fitted " << time_fitted << " s, octaves " << time_octaves << " s.\n";
+    if (!std::getenv("KIRI_LIGHT_FITTED_ONLY"))
+        light_cost(c, md);
+}
+
+}  // namespace
+
+KIRI_BENCH_STAGE({"light",
+                  "The lighting model against the path tracer, view by view: brightness ratio vs block error",
+                  {"brightness ratio (model / path tracer)", "error_value", "mean 4x4-block error", false, true, true},
+                  light});
+
+}  // namespace kiri::bench
