@@ -58,9 +58,10 @@ float henyey_greenstein(float cos_theta, float g)
     return (1.0 - g * g) / (4.0 * pi * d * sqrt(d));
 }
 
-// geometry::fitted_sun_scattering (fog_lighting.hpp): single scattering plus the orders of
+// geometry::fitted_sun_scattering (fog_lighting.hpp; named apart from froxel_medium.glsl's copy,
+// which combined mode links in too): single scattering plus the orders of
 // scattering along the sun's path, with geometry::MultipleScatteringFit's constants.
-float fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
+float layer_fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
 {
     const float amplitude = 3.09, sun_power = 0.454, persistence = 0.768, eccentricity = 0.491;
     const float diffuse_eccentricity = -0.439, low_sun_eccentricity = 0.471;
@@ -89,7 +90,7 @@ vec3 fog_source(float cos_theta, float tau_sun, float visibility)
 {
     float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
     if (u_octaves == 0)
-        sun = fitted_sun_scattering(cos_theta, u_anisotropy, u_albedo, tau_sun, u_sun_direction.z);
+        sun = layer_fitted_sun_scattering(cos_theta, u_anisotropy, u_albedo, tau_sun, u_sun_direction.z);
     for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
         sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(-b * tau_sun);
     return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient);

@@ -28,9 +28,10 @@ out vec4 o_color;
 
 const float pi = 3.14159265358979;
 
-// geometry::fitted_sun_scattering (fog_lighting.hpp): single scattering plus the orders of
+// geometry::fitted_sun_scattering (fog_lighting.hpp; named apart from froxel_medium.glsl's copy,
+// which combined mode links in too): single scattering plus the orders of
 // scattering along the sun's path, with geometry::MultipleScatteringFit's constants.
-float fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
+float particle_fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
 {
     const float amplitude = 3.09, sun_power = 0.454, persistence = 0.768, eccentricity = 0.491;
     const float diffuse_eccentricity = -0.439, low_sun_eccentricity = 0.471;
@@ -82,7 +83,7 @@ void main()
     float cos_theta = dot(view, u_sun_direction);
     float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
     if (u_octaves == 0)
-        sun = fitted_sun_scattering(cos_theta, u_anisotropy, p.optics.y, -log_gamma, u_sun_direction.z);
+        sun = particle_fitted_sun_scattering(cos_theta, u_anisotropy, p.optics.y, -log_gamma, u_sun_direction.z);
     for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
         sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(b * log_gamma);
     float sun_up = u_sun_direction.z > 0.0 ? 1.0 : 0.0;
