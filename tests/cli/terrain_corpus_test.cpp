@@ -89,7 +89,8 @@ std::vector<Dem> corpus()
          }},
         {"coast_km_cells", 120, 91, 1000.0, 32633,
          [](double x, double y) {
-             return -800.0 + 1800.0 * x + 200.0 * std::sin(8.0 * y) * x + 150.0 * std::sin(13.0 * x) * std::cos(7.0 * y);
+             return -800.0 + 1800.0 * x + 200.0 * std::sin(8.0 * y) * x +
+                 150.0 * std::sin(13.0 * x) * std::cos(7.0 * y);
          }},
         {"metre_cells", 150, 150, 1.0, 32633,
          [](double x, double y) {
@@ -164,8 +165,9 @@ protected:
     kiri::render::Image render(const fs::path& input, const std::string& mode, const std::string& camera = "")
     {
         const fs::path out = dir_ / (mode + camera + ".png");
-        const auto r = run_kiri("render " + input.string() + " -o " + out.string() + " --width 160 --height 90 --mode " +
-                                mode + (camera.empty() ? "" : " --camera " + camera));
+        const auto r =
+            run_kiri("render " + input.string() + " -o " + out.string() + " --width 160 --height 90 --mode " + mode +
+                     (camera.empty() ? "" : " --camera " + camera));
         EXPECT_EQ(r.exit_code, 0) << r.err;
         EXPECT_NE(r.err.find("kiri: derived: "), std::string::npos) << r.err;
         EXPECT_EQ(r.err.find("std::"), std::string::npos) << r.err;
@@ -226,14 +228,15 @@ TEST(TerrainStarter, KiriNewSpellsOutTheSceneItRenders)
     const auto made = run_kiri("new " + dem.string() + " -o " + scene.string());
     ASSERT_EQ(made.exit_code, 0) << made.err;
     const std::string text = read_all(scene);
-    for (const char* key : {"\"exaggeration\"", "\"patch_size\"", "\"top\"", "\"cameras\"", "\"overview\"", "\"valley\"",
-                            "\"inside\"", "\"direction\""})
+    for (const char* key : {"\"exaggeration\"", "\"patch_size\"", "\"top\"", "\"cameras\"", "\"overview\"",
+                            "\"valley\"", "\"inside\"", "\"direction\""})
         EXPECT_NE(text.find(key), std::string::npos) << key;
     EXPECT_NE(text.find("\"path\": \"peak.tif\""), std::string::npos) << "relative to the scene's folder";
     // The starter renders what the bare DEM renders: every derived value is in it.
     const fs::path a = dir / "dem.png", b = dir / "scene.png";
-    ASSERT_EQ(run_kiri("render " + dem.string() + " -o " + a.string() + " --width 96 --height 54 --mode layers").exit_code,
-              0);
+    ASSERT_EQ(
+        run_kiri("render " + dem.string() + " -o " + a.string() + " --width 96 --height 54 --mode layers").exit_code,
+        0);
     const auto r = run_kiri("render " + scene.string() + " -o " + b.string() + " --width 96 --height 54 --mode layers");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(r.err.find("kiri: derived"), std::string::npos) << "nothing left to derive: " << r.err;

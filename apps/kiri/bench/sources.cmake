@@ -8,6 +8,7 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/froxel_scene.cpp
   bench/layers_bench.cpp
   bench/layers_scene.cpp
+  bench/outputs_bench.cpp
   bench/particles_bench.cpp
   bench/particles_error_bench.cpp
   bench/particles_scene.cpp

@@ -15,7 +15,7 @@
 //! - a fill region without a top: the fog covers 30 % of the land, and is a fifth of the relief
 //!   deep at least (on a coast, it lies on the sea rather than on the sea floor);
 //! - the medium's visibility, when the scene gives no extinction: the fog's optical depth kept
-//!   between 0.8 and 6 (neither invisible nor an opaque plate), by Koschmieder's law [Koschmieder24];
+//!   between 2 and 6 (neither invisible nor an opaque plate), by Koschmieder's law [Koschmieder24];
 //! - the sun's direction: from the west-north-west, low enough for the slopes to cast shadows;
 //! - cameras: "overview" (oblique, the terrain filling the frame), "valley" (low over the lowest
 //!   valley) and "inside" (in the fog of that valley).
