@@ -121,7 +121,7 @@ TerrainFigures terrain_figures(const Heightfield& hf, double exaggeration)
     for (std::size_t k = 0; k < hf.z.size(); ++k) {
         if (hf.valid.empty() || hf.valid[k]) {
             ++valid;
-            below += hf.z[k] < 0.0;
+            below += hf.z[k] <= 0.0;  // SRTM's sea is exactly 0
             above += hf.z[k] > 0.0;
         }
     }

@@ -49,8 +49,8 @@ inline constexpr int max_triangles = 250000;
 
 //! What the rules read of a terrain, in metres of the DEM (its heights divided by the
 //! exaggeration it was loaded with). Land: the valid cells, above 0 when the DEM is a coast
-//! (at least 2 % of its valid cells below 0 and 2 % above), so that the sea floor counts no
-//! valleys.
+//! (at least 2 % of its valid cells at or below 0, as SRTM's sea, and 2 % above), so that the
+//! sea and its floor count no valleys.
 struct TerrainFigures {
     double low = 0.0, fill_level = 0.0, median = 0.0, high = 0.0;  //!< land quantiles 2, 30, 50, 98 %
     double width = 0.0, depth = 0.0;                               //!< extent along x and y (m)
