@@ -2,6 +2,7 @@
 // its medium as OpenVDB (medium.vdb) and DIR/report.json with the fit figures, counts and
 // timings. Every file is written under a temporary name and renamed into place, so DIR never
 // holds a half-written result.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -52,6 +53,27 @@ void write_text(const std::string& text, const fs::path& tmp)
     out.close();
     if (!out)
         throw IoError(tmp.string(), "", "cannot write");
+}
+
+// The terrain the glTF carries for context, at most 1024 samples a side: the layers are the
+// product, and a 3601 x 3601 DEM's own mesh would be most of the file and of the memory.
+Terrain glb_terrain(const Heightfield& hf)
+{
+    constexpr int most = 1024;
+    const int stride = std::max(1, (std::max(hf.nx, hf.ny) + most - 2) / (most - 1));
+    Heightfield out;
+    out.nx = (hf.nx - 1) / stride + 1;
+    out.ny = (hf.ny - 1) / stride + 1;
+    out.dx = hf.dx * stride;
+    out.dy = hf.dy * stride;
+    out.x0 = hf.x0;
+    out.y0 = hf.y0;
+    out.z.reserve(std::size_t(out.nx) * out.ny);
+    for (int j = 0; j < out.ny; ++j)
+        for (int i = 0; i < out.nx; ++i)
+            out.z.push_back(hf.at(i * stride, j * stride));
+    out.valid.assign(out.z.size(), 1);
+    return Terrain(std::move(out));
 }
 
 struct AuthorArgs {
@@ -135,7 +157,8 @@ int author(const AuthorArgs& args)
     }
     if (formats.count(AuthorFormat::glb))
         files.push_back({"layers.glb", [&](const fs::path& f) {
-                             write_layers_glb(f, *fog.layer_base, *fog.exports, fog.layers, &terrain.mesh());
+                             const Terrain context = glb_terrain(terrain.heightfield());
+                             write_layers_glb(f, *fog.layer_base, *fog.exports, fog.layers, &context.mesh());
                          }});
     if (formats.count(AuthorFormat::obj))
         files.push_back({"layers.obj", [&](const fs::path& f) { write_layers_obj(f, *fog.layer_base, *fog.exports); }});
@@ -177,6 +200,14 @@ int author(const AuthorArgs& args)
     return 0;
 }
 }  // namespace
+
+void run_author(const std::string& input, const std::string& out_dir)
+{
+    AuthorArgs args;
+    args.scene = input;
+    args.out = out_dir;
+    author(args);
+}
 
 //! Registers `kiri author`.
 void add_author_command(CLI::App& app)

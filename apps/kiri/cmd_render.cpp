@@ -93,7 +93,6 @@ void run(const RenderArgs& a)
     const geometry::PipelineProducts products = geometry::author_scene(given, render::pipeline_target(mode, given));
     // The scene as the pipeline completed it: the keys the file left out derived from the terrain.
     const geometry::Scene& scene = *products.scene;
-    print_derived(*products.derived, products.terrain->heightfield());
     const geometry::Bounds3 bounds = products.terrain->bounds();
     const render::Camera camera = render::to_camera(scene.camera(a.camera, bounds.min, bounds.max));
     const int width = a.width > 0 ? a.width : scene.image.width;
@@ -102,6 +101,7 @@ void run(const RenderArgs& a)
     if (cpu) {
         render_cpu(a, scene, products, camera, width, height);
         std::printf("%s\n", a.out.c_str());
+        print_derived(*products.derived, products.terrain->heightfield());
         std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, a.mode.c_str(),
                      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         return;
@@ -124,6 +124,8 @@ void run(const RenderArgs& a)
         render::write_png_atomic(a.out, image);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%s\n", a.out.c_str());
+    // After the picture: a failure stays the one line on stderr.
+    print_derived(*products.derived, products.terrain->heightfield());
     std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, render::to_string(mode), seconds);
     if (a.timings) {  // the last frame's passes: device time (pass_timer.hpp) and issue time
         const render::FrameStats& stats = renderer.last_stats();

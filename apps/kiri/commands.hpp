@@ -1,6 +1,8 @@
 #pragma once
 // Each subcommand of `kiri` registers itself on the app; its callback throws on failure and
 // main turns any exception into one line on stderr and exit code 2.
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 #include "kiri/geometry/scene/scene_defaults.hpp"
@@ -12,6 +14,9 @@ void add_render_command(CLI::App& app);
 void add_author_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_new_command(CLI::App& app);
+
+//! `kiri author INPUT -o OUT_DIR` with the default formats and limits (the outputs bench).
+void run_author(const std::string& input, const std::string& out_dir);
 
 //! Fails fast, before any expensive work, when `path` cannot be created: its folder must exist
 //! and be writable. \throw kiri::IoError naming the path.

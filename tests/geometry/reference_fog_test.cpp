@@ -346,3 +346,25 @@ TEST(ReferenceFog, NoSkyAndBlackGroundLeaveTheSunsLightAlone)
     EXPECT_EQ(dark.surface, glm::dvec3(0.0));
     EXPECT_EQ(dark.distance, lit.distance);
 }
+
+TEST(ReferenceFog, TheGridsEdgeIsNoWall)
+{
+    // A plate at 100 m over [-500, 500]^2: the terrain is a surface, as the GL terrain and the
+    // shadow map draw it, so a ray from outside passing under its edge sees no wall.
+    Heightfield plate;
+    plate.nx = plate.ny = 11;
+    plate.dx = plate.dy = 100.0;
+    plate.x0 = plate.y0 = -500.0;
+    plate.z.assign(121, 100.0);
+    plate.valid.assign(121, 1);
+    ReferenceView view;
+    view.width = view.height = 1;
+    view.fov_y_deg = 10.0;
+    view.eye = {-2000.0, 0.0, 50.0};
+    view.target = {0.0, 0.0, 50.0};
+    EXPECT_TRUE(std::isinf(render_reference_fog({}, &plate, view, FogLighting{}).depth[0]));
+    // From above, the same plate is hit where it is: 2000 m away, 500 m down.
+    view.eye = {-2000.0, 0.0, 600.0};
+    view.target = {0.0, 0.0, 100.0};
+    EXPECT_NEAR(render_reference_fog({}, &plate, view, FogLighting{}).depth[0], std::hypot(2000.0, 500.0), 1e-6);
+}

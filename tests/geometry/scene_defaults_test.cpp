@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include <glm/geometric.hpp>
 
@@ -212,4 +214,36 @@ TEST(SceneDefaults, TheOverviewFramesTheTerrainAndTheSunIsLow)
     const double ground = terrain.height(in.position.x, in.position.y);
     EXPECT_GT(in.position.z, ground);
     EXPECT_LT(in.position.z, ground + out.fog->fit.offset);
+}
+
+TEST(SceneDefaults, APointFileIsATerrain)
+{
+    // Points of the plane z = 100 + 0.1 x + 0.2 y on a jittered 21 x 21 lattice of 50 m: the
+    // triangulation reproduces a plane exactly, at about one point a cell (1000 m / 21 -> 48 m).
+    const std::filesystem::path file = std::filesystem::temp_directory_path() / "kiri_scene_defaults_points.xyz";
+    {
+        std::ofstream out(file);
+        out.precision(17);
+        for (int j = 0; j <= 20; ++j)
+            for (int i = 0; i <= 20; ++i) {
+                const double x = 1000.0 + 50.0 * i + ((i * 7 + j * 3) % 5 - 2) * (0 < i && i < 20 ? 3.0 : 0.0);
+                const double y = 2000.0 + 50.0 * j + ((i * 3 + j * 7) % 5 - 2) * (0 < j && j < 20 ? 3.0 : 0.0);
+                out << x << "," << y << "," << 100.0 + 0.1 * x + 0.2 * y << "\n";
+            }
+    }
+    const Scene s =
+        parse_scene(R"({"terrain": {"path": ")" + file.string() + R"(", "exaggeration": 1}})", "scene.json", ".");
+    const Terrain terrain = load_scene_terrain(s);
+    const Heightfield& hf = terrain.heightfield();
+    EXPECT_EQ(hf.dx, 48.0);
+    // Local coordinates are centred on the grid: input x = origin_x + local x.
+    const double ox = hf.georef.origin_x, oy = hf.georef.origin_y;
+    EXPECT_NEAR(ox, 1000.0 + 0.5 * 48.0 * (hf.nx - 1), 1e-9);
+    for (const glm::dvec2 p : {glm::dvec2(0.0, 0.0), glm::dvec2(-300.0, 250.0), glm::dvec2(420.0, -380.0)})
+        EXPECT_NEAR(terrain.height(p.x, p.y), 100.0 + 0.1 * (ox + p.x) + 0.2 * (oy + p.y), 1e-9);
+    DerivedDefaults record;
+    derive_scene_defaults(s, terrain, 1.0, record);
+    ASSERT_NE(find(record, "/terrain/cell_size"), nullptr);
+    EXPECT_EQ(find(record, "/terrain/cell_size")->value, "48");
+    std::filesystem::remove(file);
 }

@@ -10,6 +10,7 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/layers_bench.cpp
   bench/light_bench.cpp
   bench/layers_scene.cpp
+  bench/outputs_bench.cpp
   bench/particles_bench.cpp
   bench/particles_error_bench.cpp
   bench/particles_scene.cpp

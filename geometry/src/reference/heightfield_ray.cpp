@@ -1,6 +1,7 @@
 #include "reference/heightfield_ray.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -33,9 +34,21 @@ std::optional<double> HeightfieldRay::first_hit(const glm::dvec3& o, const glm::
         return std::nullopt;
     // A hit needs z_min <= z <= z_max: clip the segment to that slab first (rays towards the
     // sun leave it quickly, so shadow queries stay short).
+    const double t_start = t0;
     if (!clip_slab(o.z, d.z, -std::numeric_limits<double>::infinity(), z_max_, t0, t1))
         return std::nullopt;
     std::optional<double> hit;
+    // A ray from outside the grid that enters it under the terrain's edge passes beneath the
+    // surface, as the GL terrain (a surface, not a solid) and the shadow map draw it: the grid's
+    // edge is no wall. It hits only once it has come out above the surface.
+    const bool outside = o.x < hf_.x0 || o.x > hf_.x_max() || o.y < hf_.y0 || o.y > hf_.y_max();
+    // Where the ray enters the grid's footprint: before the slab (from above) it cannot be under.
+    double t_enter = t_start;
+    for (const auto [p, v, lo, hi] :
+         {std::array<double, 4>{o.x, d.x, hf_.x0, hf_.x_max()}, std::array<double, 4>{o.y, d.y, hf_.y0, hf_.y_max()}})
+        if (v != 0.0)
+            t_enter = std::max(t_enter, std::min((lo - p) / v, (hi - p) / v));
+    bool under = outside && t_enter >= t0;
     walk_grid(frame_, o, d, t0, t1, [&](int i, int j, double ta, double tb) {
         const double xi = hf_.x_of(i), yj = hf_.y_of(j);
         // Ray height above the terrain, piecewise linear in t with a kink where the ray
@@ -57,12 +70,18 @@ std::optional<double> HeightfieldRay::first_hit(const glm::dvec3& o, const glm::
             }
         }
         double g_prev = gap(ts[0]);
-        if (g_prev <= 0.0) {
+        under = under && g_prev <= 0.0;
+        if (!under && g_prev <= 0.0) {
             hit = ts[0];
             return false;
         }
         for (int k = 1; k < n; ++k) {
             const double g = gap(ts[k]);
+            if (under) {  // still beneath the surface it entered under
+                under = g <= 0.0;
+                g_prev = g;
+                continue;
+            }
             if (g <= 0.0) {  // linear on this piece: the crossing is exact
                 hit = ts[k - 1] + (ts[k] - ts[k - 1]) * g_prev / (g_prev - g);
                 return false;

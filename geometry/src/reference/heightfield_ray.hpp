@@ -14,7 +14,8 @@ class HeightfieldRay {
 public:
     explicit HeightfieldRay(const Heightfield& hf);
     //! The smallest t in [t0, t1] where o + t d is on or under the terrain (d need not be unit);
-    //! empty when the ray stays above it or leaves the grid first.
+    //! empty when the ray stays above it or leaves the grid first. A ray from outside the grid
+    //! entering it under the edge hits only after coming out above the surface (no walls).
     std::optional<double> first_hit(const glm::dvec3& o, const glm::dvec3& d, double t0, double t1) const;
     //! Unit normal of the triangle under (x, y) (z >= 0).
     glm::dvec3 normal(double x, double y) const;

@@ -18,6 +18,7 @@
 #include "scene/field_json.hpp"
 #include "scene/quality_json.hpp"
 #include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/terrain/scattered_points.hpp"
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 #include "kiri/geometry/scene/scene_defaults.hpp"
@@ -254,7 +255,20 @@ Terrain load_scene_terrain(const Scene& scene, double* exaggeration)
         !scene.gives("/terrain/exaggeration") && scene.terrain.exaggeration == TerrainSpec{}.exaggeration;
     // A derived exaggeration is the relief's at 1: loaded at 1, stretched here (not loaded twice).
     options.exaggeration = derived ? 1.0 : scene.terrain.exaggeration;
-    Heightfield hf = load_dem(scene.terrain.path, options);
+    Heightfield hf;
+    if (is_point_file(scene.terrain.path)) {
+        // Scattered points: triangulated and resampled to the grid the rest of kiri uses, at the
+        // scene's cell size or about one point a cell.
+        const std::vector<glm::dvec3> points = read_xyz_points(scene.terrain.path);
+        if (points.size() < 3)
+            throw InputError(scene.terrain.path.string(), "", "needs at least 3 points");
+        hf = heightfield_from_points(points, options.cell_size > 0.0 ? options.cell_size : point_cell_size(points));
+        const double scale = options.vertical_scale * options.exaggeration;
+        for (double& z : hf.z)
+            z = z * scale + options.vertical_offset * options.exaggeration;
+    } else {
+        hf = load_dem(scene.terrain.path, options);
+    }
     double e = options.exaggeration;
     if (derived) {
         e = derive_exaggeration(hf);

@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/terrain/scattered_points.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -121,7 +122,7 @@ TerrainFigures terrain_figures(const Heightfield& hf, double exaggeration)
     for (std::size_t k = 0; k < hf.z.size(); ++k) {
         if (hf.valid.empty() || hf.valid[k]) {
             ++valid;
-            below += hf.z[k] < 0.0;
+            below += hf.z[k] <= 0.0;  // SRTM's sea is exactly 0
             above += hf.z[k] > 0.0;
         }
     }
@@ -211,6 +212,11 @@ Scene derive_scene_defaults(const Scene& scene, const Terrain& terrain, double e
         add("/terrain/exaggeration", number(e),
             "relief " + number(round_to_two_digits(t.relief())) + " m over " +
                 number(round_to_two_digits(std::min(t.width, t.depth))) + " m");
+
+    if (is_point_file(scene.terrain.path) && open("/terrain/cell_size", scene.terrain.cell_size == 0.0)) {
+        s.terrain.cell_size = hf.dx;
+        add("/terrain/cell_size", number(hf.dx), "about one point a cell");
+    }
 
     double fog_depth = 0.0;  // the fog's depth in metres of the DEM, for its visibility
     if (s.fog) {

@@ -2,7 +2,10 @@
 // CGAL stays in this file (a separate translation unit from the AABB tree: each costs ~30 s).
 #include "kiri/geometry/terrain/scattered_points.hpp"
 
+#include <cctype>
+
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -174,6 +177,27 @@ Heightfield heightfield_from_points(const std::vector<glm::dvec3>& points, doubl
         fill_voids_smoothly(hf.nx, hf.ny, hf.z, hf.valid);
     }
     return hf;
+}
+
+bool is_point_file(const std::filesystem::path& path)
+{
+    std::string ext = path.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return ext == ".xyz" || ext == ".csv" || ext == ".txt";
+}
+
+double point_cell_size(const std::vector<glm::dvec3>& points)
+{
+    double x0 = points.front().x, x1 = x0, y0 = points.front().y, y1 = y0;
+    for (const glm::dvec3& p : points) {
+        x0 = std::min(x0, p.x);
+        x1 = std::max(x1, p.x);
+        y0 = std::min(y0, p.y);
+        y1 = std::max(y1, p.y);
+    }
+    const double cell = std::sqrt(std::max((x1 - x0) * (y1 - y0), 1e-6) / double(points.size()));
+    const double unit = std::pow(10.0, std::floor(std::log10(cell)) - 1.0);
+    return std::max(std::round(cell / unit) * unit, unit);
 }
 
 }  // namespace kiri::geometry

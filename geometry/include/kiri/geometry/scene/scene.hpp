@@ -36,8 +36,9 @@ void visit_fields(O& o, V&& v)
 {
     v(o.path,
       {.key = "path",
-       .doc = "elevation raster (GeoTIFF, ESRI ASCII grid, SRTM `.hgt`, 8/16-bit PNG); a relative path is "
-              "resolved against the **scene file's folder**, not the working directory",
+       .doc = "elevation raster (GeoTIFF, ESRI ASCII grid, SRTM `.hgt`, 8/16-bit PNG), or scattered points "
+              "(`.xyz`, `.csv`, `.txt`: x y z rows in metres, triangulated and resampled every `cell_size`); a "
+              "relative path is resolved against the **scene file's folder**, not the working directory",
        .required = "missing (the elevation raster to load)"});
     v(o.exaggeration,
       {.key = "exaggeration",
@@ -49,7 +50,8 @@ void visit_fields(O& o, V&& v)
       {.key = "cell_size",
        .unit = "m",
        .range = closed(0, 1e6),
-       .doc = "per cell, for rasters without georeferencing (PNG heightmaps); 0 = take it from the raster",
+       .doc = "per cell, for rasters without georeferencing (PNG heightmaps) and points; 0 = take it from the "
+              "raster, or about one point a cell",
        .widget = closed(0, 1000),
        .omit_default = true});
     v(o.vertical_scale,

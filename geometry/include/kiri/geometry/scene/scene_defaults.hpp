@@ -15,7 +15,7 @@
 //! - a fill region without a top: the fog covers 30 % of the land, and is a fifth of the relief
 //!   deep at least (on a coast, it lies on the sea rather than on the sea floor);
 //! - the medium's visibility, when the scene gives no extinction: the fog's optical depth kept
-//!   between 0.8 and 6 (neither invisible nor an opaque plate), by Koschmieder's law [Koschmieder24];
+//!   between 2 and 6 (neither invisible nor an opaque plate), by Koschmieder's law [Koschmieder24];
 //! - the sun's direction: from the west-north-west, low enough for the slopes to cast shadows;
 //! - cameras: "overview" (oblique, the terrain filling the frame), "valley" (low over the lowest
 //!   valley) and "inside" (in the fog of that valley).
@@ -49,8 +49,8 @@ inline constexpr int max_triangles = 250000;
 
 //! What the rules read of a terrain, in metres of the DEM (its heights divided by the
 //! exaggeration it was loaded with). Land: the valid cells, above 0 when the DEM is a coast
-//! (at least 2 % of its valid cells below 0 and 2 % above), so that the sea floor counts no
-//! valleys.
+//! (at least 2 % of its valid cells at or below 0, as SRTM's sea, and 2 % above), so that the
+//! sea and its floor count no valleys.
 struct TerrainFigures {
     double low = 0.0, fill_level = 0.0, median = 0.0, high = 0.0;  //!< land quantiles 2, 30, 50, 98 %
     double width = 0.0, depth = 0.0;                               //!< extent along x and y (m)
