@@ -194,8 +194,9 @@ TEST_P(TerrainCorpus, TheDerivedSceneShowsReliefAndFog)
     // The unusable pictures had 3.7 to 10.7 levels; the bundled scene 28.7.
     EXPECT_GT(contrast(bare), 15.0) << d.name;
     const double f = changed(bare, fog);
-    // The weakest case, 61 km of gentle relief seen whole, measured 3.4 %.
-    EXPECT_GT(f, 0.03) << d.name << ": the fog is invisible";
+    // The weakest case, 61 km of gentle relief seen whole, measured 3.4 % under the octaves and
+    // 2.7 % under the fitted multiple scattering (thin fog is single scattering: fainter).
+    EXPECT_GT(f, 0.02) << d.name << ": the fog is invisible";
     EXPECT_LT(f, 0.8) << d.name << ": the fog is a plate";
     // The named views exist and render.
     for (const char* camera : {"valley", "inside"})
