@@ -7,12 +7,12 @@
 #include <limits>
 #include <memory>
 #include <numbers>
-#include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "reference/grid_walk.hpp"
 #include "reference/heightfield_ray.hpp"
+#include "reference/parallel_rows.hpp"
 #include "reference/terrain_shading.hpp"
 
 namespace kiri::geometry {
@@ -460,11 +460,10 @@ PathTracedImage render_path_traced(const FogVolume& fog, const Heightfield* terr
     out.std_error.assign(n, glm::dvec3(0.0));
     const PathTracer tracer(fog, terrain, light, options);
     const glm::dvec3 forward = view.forward();
-    std::atomic<int> next_row{0};
     std::atomic<long long> vertices{0}, dropped{0};
-    auto work = [&] {
+    detail::for_rows_in_parallel(options.threads, out.height, [&](auto next_row) {
         long long my_vertices = 0, my_dropped = 0;
-        for (int y = next_row++; y < out.height; y = next_row++)
+        for (int y = next_row(); y < out.height; y = next_row())
             for (int x = 0; x < out.width; ++x) {
                 const glm::dvec3 w = view.ray(x, y);
                 const double cos_axis = glm::dot(w, forward);
@@ -476,15 +475,7 @@ PathTracedImage render_path_traced(const FogVolume& fog, const Heightfield* terr
             }
         vertices += my_vertices;
         dropped += my_dropped;
-    };
-    int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-    threads = std::clamp(threads, 1, std::max(1, out.height));
-    std::vector<std::thread> pool;
-    for (int k = 1; k < threads; ++k)
-        pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool)
-        t.join();
+    });
     out.vertices = vertices;
     out.dropped = dropped;
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

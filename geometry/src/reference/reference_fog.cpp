@@ -5,11 +5,11 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "reference/fog_marcher.hpp"
+#include "reference/parallel_rows.hpp"
 
 namespace kiri::geometry {
 
@@ -57,12 +57,11 @@ ReferenceImage render_reference_fog(const FogVolume& fog, const Heightfield* ter
     out.depth.assign(n, std::numeric_limits<double>::infinity());
     const detail::FogMarcher marcher(fog, terrain, light, options);
     const glm::dvec3 forward = view.forward();
-    std::atomic<int> next_row{0};
     std::atomic<long long> steps{0}, knots{0};
-    auto work = [&] {
+    detail::for_rows_in_parallel(options.threads, out.height, [&](auto next_row) {
         detail::MarchScratch scratch;
         long long my_steps = 0, my_knots = 0;
-        for (int y = next_row++; y < out.height; y = next_row++)
+        for (int y = next_row(); y < out.height; y = next_row())
             for (int x = 0; x < out.width; ++x) {
                 const glm::dvec3 w = view.ray(x, y);
                 const double cos_axis = glm::dot(w, forward);
@@ -79,15 +78,7 @@ ReferenceImage render_reference_fog(const FogVolume& fog, const Heightfield* ter
             }
         steps += my_steps;
         knots += my_knots;
-    };
-    int threads = options.threads > 0 ? options.threads : int(std::thread::hardware_concurrency());
-    threads = std::clamp(threads, 1, std::max(1, out.height));
-    std::vector<std::thread> pool;
-    for (int k = 1; k < threads; ++k)
-        pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool)
-        t.join();
+    });
     out.steps = steps;
     out.sun_knots = knots;
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
