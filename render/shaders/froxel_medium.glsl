@@ -126,31 +126,6 @@ float hg_phase(float cos_theta, float g)
     return (1.0 - g * g) / (12.566370614359172 * d * sqrt(d));
 }
 
-// geometry::fitted_sun_scattering (fog_lighting.hpp): single scattering plus the orders of
-// scattering along the sun's path, with geometry::MultipleScatteringFit's constants.
-float fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
-{
-    const float amplitude = 3.09, sun_power = 0.454, persistence = 0.768, eccentricity = 0.491;
-    const float diffuse_eccentricity = -0.439, low_sun_eccentricity = 0.471;
-    const int orders = 4;  // geometry::fitted_orders
-    g = clamp(g, -0.999, 0.999);
-    float s = clamp(sun_sine, 0.0, 1.0);
-    float b = persistence * clamp(albedo, 0.0, 1.0);
-    float forward = low_sun_eccentricity * (1.0 - s);  // the lower the sun, the more forward
-    float c = clamp(eccentricity + forward, 0.0, 1.0);
-    float single = exp(-tau);
-    float multiple = 0.0, weight = single * b * tau, taken = single, e = g * c;
-    for (int n = 1; n + 1 < orders; ++n) {
-        multiple += weight * hg_phase(cos_theta, e);
-        taken += weight;
-        weight *= b * tau / float(n + 1);
-        e *= c;
-    }
-    float rest = max(exp(-(1.0 - b) * tau) - taken, 0.0);  // every higher order
-    multiple += rest * hg_phase(cos_theta, clamp(diffuse_eccentricity + forward, -1.0, 1.0) * g);
-    return single * hg_phase(cos_theta, g) + amplitude * pow(max(s, 1e-6), sun_power) * multiple;
-}
-
 // The sun's phase and transmittance S (geometry::sun_scattering, fog_lighting.hpp): octaves 0,
 // the fitted model; else over the scattering octaves, octave i scattering 2^-i of the sun
 // through 2^-i of the optical depth with 2^-i of g.

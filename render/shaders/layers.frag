@@ -58,39 +58,13 @@ float henyey_greenstein(float cos_theta, float g)
     return (1.0 - g * g) / (4.0 * pi * d * sqrt(d));
 }
 
-// geometry::fitted_sun_scattering (fog_lighting.hpp; named apart from froxel_medium.glsl's copy,
-// which combined mode links in too): single scattering plus the orders of
-// scattering along the sun's path, with geometry::MultipleScatteringFit's constants.
-float layer_fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
-{
-    const float amplitude = 3.09, sun_power = 0.454, persistence = 0.768, eccentricity = 0.491;
-    const float diffuse_eccentricity = -0.439, low_sun_eccentricity = 0.471;
-    const int orders = 4;  // geometry::fitted_orders
-    g = clamp(g, -0.999, 0.999);
-    float s = clamp(sun_sine, 0.0, 1.0);
-    float b = persistence * clamp(albedo, 0.0, 1.0);
-    float forward = low_sun_eccentricity * (1.0 - s);  // the lower the sun, the more forward
-    float c = clamp(eccentricity + forward, 0.0, 1.0);
-    float single = exp(-tau);
-    float multiple = 0.0, weight = single * b * tau, taken = single, e = g * c;
-    for (int n = 1; n + 1 < orders; ++n) {
-        multiple += weight * henyey_greenstein(cos_theta, e);
-        taken += weight;
-        weight *= b * tau / float(n + 1);
-        e *= c;
-    }
-    float rest = max(exp(-(1.0 - b) * tau) - taken, 0.0);  // every higher order
-    multiple += rest * henyey_greenstein(cos_theta, clamp(diffuse_eccentricity + forward, -1.0, 1.0) * g);
-    return single * henyey_greenstein(cos_theta, g) + amplitude * pow(max(s, 1e-6), sun_power) * multiple;
-}
-
 // geometry::fog_source (fog_lighting.hpp): the source per unit extinction towards the eye;
 // u_octaves 0: the fitted model, else that many octaves.
 vec3 fog_source(float cos_theta, float tau_sun, float visibility)
 {
     float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
     if (u_octaves == 0)
-        sun = layer_fitted_sun_scattering(cos_theta, u_anisotropy, u_albedo, tau_sun, u_sun_direction.z);
+        sun = fitted_sun_scattering(cos_theta, u_anisotropy, u_albedo, tau_sun, u_sun_direction.z);
     for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
         sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(-b * tau_sun);
     return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient);

@@ -28,32 +28,6 @@ out vec4 o_color;
 
 const float pi = 3.14159265358979;
 
-// geometry::fitted_sun_scattering (fog_lighting.hpp; named apart from froxel_medium.glsl's copy,
-// which combined mode links in too): single scattering plus the orders of
-// scattering along the sun's path, with geometry::MultipleScatteringFit's constants.
-float particle_fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, float sun_sine)
-{
-    const float amplitude = 3.09, sun_power = 0.454, persistence = 0.768, eccentricity = 0.491;
-    const float diffuse_eccentricity = -0.439, low_sun_eccentricity = 0.471;
-    const int orders = 4;  // geometry::fitted_orders
-    g = clamp(g, -0.999, 0.999);
-    float s = clamp(sun_sine, 0.0, 1.0);
-    float b = persistence * clamp(albedo, 0.0, 1.0);
-    float forward = low_sun_eccentricity * (1.0 - s);  // the lower the sun, the more forward
-    float c = clamp(eccentricity + forward, 0.0, 1.0);
-    float single = exp(-tau);
-    float multiple = 0.0, weight = single * b * tau, taken = single, e = g * c;
-    for (int n = 1; n + 1 < orders; ++n) {
-        multiple += weight * henyey_greenstein(cos_theta, e);
-        taken += weight;
-        weight *= b * tau / float(n + 1);
-        e *= c;
-    }
-    float rest = max(exp(-(1.0 - b) * tau) - taken, 0.0);  // every higher order
-    multiple += rest * henyey_greenstein(cos_theta, clamp(diffuse_eccentricity + forward, -1.0, 1.0) * g);
-    return single * henyey_greenstein(cos_theta, g) + amplitude * pow(max(s, 1e-6), sun_power) * multiple;
-}
-
 float linear_depth(float d)
 {
     float z = d * 2.0 - 1.0;
@@ -83,7 +57,7 @@ void main()
     float cos_theta = dot(view, u_sun_direction);
     float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
     if (u_octaves == 0)
-        sun = particle_fitted_sun_scattering(cos_theta, u_anisotropy, p.optics.y, -log_gamma, u_sun_direction.z);
+        sun = fitted_sun_scattering(cos_theta, u_anisotropy, p.optics.y, -log_gamma, u_sun_direction.z);
     for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
         sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(b * log_gamma);
     float sun_up = u_sun_direction.z > 0.0 ? 1.0 : 0.0;

@@ -82,15 +82,16 @@ struct FroxelPass::Volumes {
 };
 
 FroxelPass::FroxelPass()
-    : v_(std::make_unique<Volumes>()),
-      density_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
-      lighting_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "terrain_shadow.glsl",
-                 "froxel_lighting.comp"}),
+    : v_(std::make_unique<Volumes>()), density_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
+                                                 "froxel_medium.glsl", "froxel_density.comp"}),
+      lighting_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
+                 "terrain_shadow.glsl", "froxel_lighting.comp"}),
       temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
-      opaque_({"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_opaque.comp"}),
-      apply_program_(
-          {"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"})
+      opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
+               "froxel_opaque.comp"}),
+      apply_program_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
+                      "froxel_apply.glsl", "froxel_apply.comp"})
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
@@ -465,8 +466,8 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
         return out;
     if (!readback_) {
         readback_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl",
-                                                    "froxel_apply.glsl", "froxel_readback.comp"});
+            std::initializer_list<std::string_view>{"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
+                                                    "froxel_medium.glsl", "froxel_apply.glsl", "froxel_readback.comp"});
         depth_program_ =
             std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
     }

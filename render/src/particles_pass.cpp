@@ -12,7 +12,8 @@
 namespace kiri::render::detail {
 
 ParticlesPass::ParticlesPass()
-    : program_({"particle_footprint.glsl", "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
+    : program_(
+          {"particle_footprint.glsl", "fog_lighting.glsl", "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
@@ -106,8 +107,8 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     // With froxel fog, the variant that reads it at each billboard's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "froxel_medium.glsl",
-            "froxel_apply.glsl", "particles.vert", "particles.frag"});
+            "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
+            "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert", "particles.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
