@@ -450,9 +450,13 @@ void FroxelPass::run_integrate()
 
 void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
 {
-    classified_ = options_.fog_aware;
+    // Worth it where most pixels' marches are long: the eye inside the Medium's shell (every
+    // ray marches from the eye) or a height fog (every ray marches its haze). Seen from outside
+    // without one, the pixels that could read the volume see no fog and already stop at once
+    // (on gabilan.bil and Mandakini.bil the same pictures, the classification's cost on top).
+    classified_ = options_.fog_aware && (!shell_ok_ || options_.height_fog.enabled());
     if (!classified_)
-        return;  // the standard apply reads the volume everywhere
+        return;  // the standard apply reads the volume everywhere; fog-aware, every pixel marches
     const ScopedPassTimer timed(timers_[classify]);
     const ShaderProgram& p = classify_;
     classified_ = false;  // the apply's library: every pixel's taps still to be decided
