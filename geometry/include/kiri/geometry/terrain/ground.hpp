@@ -1,0 +1,91 @@
+#pragma once
+//! \file ground.hpp
+//! The ground every renderer draws (the GL terrain and sky, the reference ray marcher, the path
+//! tracer): the DEM, the sea's surface over its sea, and the surround beyond the DEM's edge, so
+//! that a tile does not float in a void. One definition, so that they all draw one terrain.
+#include <optional>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/terrain/heightfield.hpp"
+
+namespace kiri::geometry {
+
+//! Height of the heightfield's triangles at (x, y): two per cell, split along
+//! (i, j)-(i + 1, j + 1), as Terrain::height; points outside the grid take the nearest edge's.
+double grid_height(const Heightfield& hf, double x, double y);
+
+//! The sea level of a DEM that holds a sea, else empty. A sea is 2 % of the valid cells at or
+//! below 0 where either 1 % of them are exactly 0 (SRTM writes the sea as a flat 0) or the grid
+//! reaches below -500 m (a bathymetric grid: no dry land on Earth lies that low). Its level is 0.
+std::optional<double> sea_level(const Heightfield& hf);
+
+class Ground {
+public:
+    //! `surround` false: the bare tile, nothing beyond the grid's edge.
+    explicit Ground(const Heightfield& hf, bool surround = true);
+
+    const Heightfield& heightfield() const { return hf_; }
+    bool surround() const { return surround_; }
+    //! Sample (i, j)'s height, raised to the sea's surface where the sea covers it (the water's
+    //! surface at the sea level over a bathymetric grid).
+    double sample(int i, int j) const
+    {
+        const double z = hf_.at(i, j);
+        return sea_ && z < *sea_ ? *sea_ : z;
+    }
+    //! Height at (x, y). Inside the grid: the triangles of sample(). Beyond it, with the surround:
+    //! e + (base - e) * smoothstep(d / ease), d the distance to the grid and e the mean of the
+    //! nearest edge's heights within d of the nearest edge point (in a corner, the two edges'
+    //! means weighted by the direction), so the edge's detail widens and fades outwards instead
+    //! of streaking; it is continuous at the edge (e is the edge's height at d = 0), base() from
+    //! ease() on, and flat to the horizon. Where the sea is the base, the easing heads a tenth of
+    //! the relief below the sea and the sea's surface covers it: the edge's land ends in a coast. Without the surround: the nearest edge point's height
+    //! (as Terrain::height). Finite for every input (NaN: base()).
+    double height(double x, double y) const;
+    //! Unit upward normal at (x, y): the triangle's inside the grid; beyond, central differences
+    //! of height() over a quarter cell (the surround has no triangles of its own).
+    glm::dvec3 normal(double x, double y) const;
+    //! Distance from (x, y) to the grid's rectangle (0 inside).
+    double distance_outside(double x, double y) const;
+    bool inside(double x, double y) const { return distance_outside(x, y) == 0.0; }
+
+    std::optional<double> sea_level() const { return sea_; }
+    //! Whether a point of the ground at height z is water: at the sea's surface (within a
+    //! millionth of the relief, for float positions).
+    bool is_water(double z) const { return sea_ && z <= *sea_ + water_tolerance(); }
+    double water_tolerance() const { return 1e-6 * (1.0 + z_max_ - z_min_); }
+    //! The surround's far level: the median of the grid's border samples (the sea's surface when
+    //! the border is mostly sea).
+    double base() const { return base_; }
+    //! How far beyond the edge the surround reaches base(): a quarter of the grid's longer side,
+    //! at least two cells.
+    double ease() const { return ease_; }
+    //! The heights of sample() (the surround lies between them and base()).
+    double z_min() const { return z_min_; }
+    double z_max() const { return z_max_; }
+
+private:
+    // One edge of the grid, sample() along it, with its running integral (trapezoids: exact
+    // for the piecewise linear profile), for means over windows in O(1).
+    struct Edge {
+        double start = 0.0, step = 1.0;
+        std::vector<double> z, integral;
+        double primitive(double s) const;  // integral of the profile from start to s
+        double mean(double a, double b) const;
+    };
+    Edge south_, north_, west_, east_;
+    const Heightfield& hf_;
+    bool surround_ = true;
+    std::optional<double> sea_;
+    double base_ = 0.0, ease_ = 1.0, z_min_ = 0.0, z_max_ = 0.0;
+    double drop_to_ = 0.0;  // where the easing heads: base_, or below the sea when the sea is the base
+    double sample_height(double x, double y) const;  // the triangles of sample(), clamped to the grid
+};
+
+//! The albedo of water: a dark, slightly blue Lambertian surface (open water sends back a few
+//! per cent of the light), shared by terrain.frag and the CPU renderers.
+inline constexpr double water_albedo[3] = {0.035, 0.065, 0.095};
+
+}  // namespace kiri::geometry
