@@ -47,17 +47,18 @@ double grid_height(const Heightfield& hf, double x, double y)
 
 std::optional<double> sea_level(const Heightfield& hf)
 {
-    std::size_t valid = 0, below = 0, zero = 0;
+    std::size_t valid = 0, below = 0, zero = 0, above = 0;
     double lowest = 0.0;
     for (std::size_t k = 0; k < hf.z.size(); ++k) {
         if (!hf.valid.empty() && !hf.valid[k])
             continue;
         ++valid;
         below += hf.z[k] <= 0.0;
+        above += hf.z[k] > 0.0;
         zero += hf.z[k] == 0.0;
         lowest = std::min(lowest, hf.z[k]);
     }
-    if (valid == 0 || double(below) < 0.02 * double(valid))
+    if (valid == 0 || double(below) < 0.02 * double(valid) || double(above) < 0.02 * double(valid))
         return std::nullopt;
     if (double(zero) >= 0.01 * double(valid) || lowest < -500.0)
         return 0.0;
@@ -188,7 +189,7 @@ glm::dvec3 Ground::normal(double x, double y) const
         }
         return glm::normalize(glm::dvec3(-zx, -zy, 1.0));
     }
-    const double hx = 0.25 * hf_.dx, hy = 0.25 * hf_.dy;
+    const double hx = 0.01 * hf_.dx, hy = 0.01 * hf_.dy;
     const double zx = (height(x + hx, y) - height(x - hx, y)) / (2.0 * hx);
     const double zy = (height(x, y + hy) - height(x, y - hy)) / (2.0 * hy);
     return glm::normalize(glm::dvec3(-zx, -zy, 1.0));

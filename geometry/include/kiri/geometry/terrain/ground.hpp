@@ -16,9 +16,10 @@ namespace kiri::geometry {
 //! (i, j)-(i + 1, j + 1), as Terrain::height; points outside the grid take the nearest edge's.
 double grid_height(const Heightfield& hf, double x, double y);
 
-//! The sea level of a DEM that holds a sea, else empty. A sea is 2 % of the valid cells at or
-//! below 0 where either 1 % of them are exactly 0 (SRTM writes the sea as a flat 0) or the grid
-//! reaches below -500 m (a bathymetric grid: no dry land on Earth lies that low). Its level is 0.
+//! The sea level of a DEM that holds a sea, else empty. A sea is on a coast: 2 % of the valid
+//! cells at or below 0 and 2 % above (as scene_defaults' coast), where either 1 % of them are
+//! exactly 0 (SRTM writes the sea as a flat 0) or the grid reaches below -500 m (a bathymetric
+//! grid: no dry land on Earth lies that low). Its level is 0. A flat plain at 0 is no sea.
 std::optional<double> sea_level(const Heightfield& hf);
 
 class Ground {
@@ -45,7 +46,7 @@ public:
     //! (as Terrain::height). Finite for every input (NaN: base()).
     double height(double x, double y) const;
     //! Unit upward normal at (x, y): the triangle's inside the grid; beyond, central differences
-    //! of height() over a quarter cell (the surround has no triangles of its own).
+    //! of height() over a hundredth of a cell (the surround has no triangles of its own).
     glm::dvec3 normal(double x, double y) const;
     //! Distance from (x, y) to the grid's rectangle (0 inside).
     double distance_outside(double x, double y) const;
