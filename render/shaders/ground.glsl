@@ -20,7 +20,7 @@ vec3 terrain_albedo(float height01, float steepness)
 vec3 ground_albedo(vec3 world, float normal_z)
 {
     if (u_water != 0 && world.z <= u_sea_level + u_water_tolerance)
-        return vec3(0.035, 0.065, 0.095);  // geometry::water_albedo
+        return vec3(0.02, 0.045, 0.09);  // geometry::water_albedo
     float height01 = clamp((world.z - u_z_min) / max(u_z_max - u_z_min, 1e-3), 0.0, 1.0);
     return terrain_albedo(height01, 1.0 - normal_z);
 }

@@ -61,7 +61,8 @@ TEST(Ground, TheSurroundEasesTheEdgesMeanToTheBase)
     EXPECT_NEAR(ground.height(-700.0, 400.0), 1000.0 + 350.0 * a * (1.0 - smoothstep(0.8)), 1e-12);
     // From the ease distance on, and to the horizon: the base.
     for (double d : {250.0, 251.0, 1e4, 1e9, 1e300})
-        for (const auto& [x, y] : {std::pair{-500.0 - d, 0.0}, std::pair{0.0, 500.0 + d}, std::pair{500.0 + d, -500.0 - d}})
+        for (const auto& [x, y] :
+             {std::pair{-500.0 - d, 0.0}, std::pair{0.0, 500.0 + d}, std::pair{500.0 + d, -500.0 - d}})
             EXPECT_EQ(ground.height(x, y), 1000.0) << x << " " << y;
     // Continuous at the edge: a millimetre out moves the height by less than the slope allows
     // (the easing starts flat: its share is (1e-3 / 250)^2 3 of the 150 m drop).
@@ -96,8 +97,9 @@ TEST(Ground, TheSurroundsNormalIsItsSlope)
     const Ground ground(hf);
     for (const auto& [x, y] : {std::pair{-620.0, 30.0}, std::pair{580.0, -610.0}, std::pair{100.0, 650.0}}) {
         const double h = 1e-3;
-        const glm::dvec3 expected = glm::normalize(glm::dvec3(-(ground.height(x + h, y) - ground.height(x - h, y)) / (2 * h),
-                                                              -(ground.height(x, y + h) - ground.height(x, y - h)) / (2 * h), 1.0));
+        const glm::dvec3 expected =
+            glm::normalize(glm::dvec3(-(ground.height(x + h, y) - ground.height(x - h, y)) / (2 * h),
+                                      -(ground.height(x, y + h) - ground.height(x, y - h)) / (2 * h), 1.0));
         EXPECT_NEAR(glm::length(ground.normal(x, y) - expected), 0.0, 2e-3) << x << " " << y;
     }
 }
@@ -120,8 +122,8 @@ TEST(Ground, FindsTheSea)
     const Heightfield bathymetry = grid([](double x, double) { return 1.5 * x; });
     const Ground sea(bathymetry);
     ASSERT_TRUE(sea.sea_level().has_value());
-    EXPECT_EQ(sea.sample(0, 5), 0.0);      // -750 m of water: its surface
-    EXPECT_EQ(sea.sample(10, 5), 750.0);   // land is land
+    EXPECT_EQ(sea.sample(0, 5), 0.0);     // -750 m of water: its surface
+    EXPECT_EQ(sea.sample(10, 5), 750.0);  // land is land
     EXPECT_EQ(sea.height(-300.0, 0.0), 0.0);
     EXPECT_TRUE(sea.is_water(sea.height(-300.0, 0.0)));
     EXPECT_FALSE(sea.is_water(sea.height(300.0, 0.0)));

@@ -95,11 +95,13 @@ Ground::Ground(const Heightfield& hf, bool surround) : hf_(hf), surround_(surrou
     border.insert(border.end(), east_.z.begin(), east_.z.end());
     std::nth_element(border.begin(), border.begin() + border.size() / 2, border.end());
     base_ = border[border.size() / 2];
-    // A sea at the border continues to the horizon: the surround eases down to below the sea and
+    // On a coast the sea continues to the horizon: the surround eases down to below the sea and
     // is raised to its surface, so that the edge's land slopes into the sea and ends in a coast.
     drop_to_ = base_;
-    if (sea_ && base_ <= *sea_ + water_tolerance())
+    if (sea_) {
+        base_ = *sea_;
         drop_to_ = *sea_ - 0.1 * (z_max_ - *sea_);
+    }
     const double longer = std::max((hf.nx - 1) * hf.dx, (hf.ny - 1) * hf.dy);
     ease_ = std::max(0.25 * longer, 2.0 * std::max(hf.dx, hf.dy));
 }

@@ -41,8 +41,9 @@ public:
     //! nearest edge's heights within d of the nearest edge point (in a corner, the two edges'
     //! means weighted by the direction), so the edge's detail widens and fades outwards instead
     //! of streaking; it is continuous at the edge (e is the edge's height at d = 0), base() from
-    //! ease() on, and flat to the horizon. Where the sea is the base, the easing heads a tenth of
-    //! the relief below the sea and the sea's surface covers it: the edge's land ends in a coast. Without the surround: the nearest edge point's height
+    //! ease() on, and flat to the horizon. On a coast the sea is the base: the easing heads a tenth
+    //! of the relief below the sea and the sea's surface covers it, so the edge's land ends in a
+    //! coast and the sea continues to the horizon. Without the surround: the nearest edge point's height
     //! (as Terrain::height). Finite for every input (NaN: base()).
     double height(double x, double y) const;
     //! Unit upward normal at (x, y): the triangle's inside the grid; beyond, central differences
@@ -57,8 +58,8 @@ public:
     //! millionth of the relief, for float positions).
     bool is_water(double z) const { return sea_ && z <= *sea_ + water_tolerance(); }
     double water_tolerance() const { return 1e-6 * (1.0 + z_max_ - z_min_); }
-    //! The surround's far level: the median of the grid's border samples (the sea's surface when
-    //! the border is mostly sea).
+    //! The surround's far level: the median of the grid's border samples; on a coast the sea's
+    //! surface.
     double base() const { return base_; }
     //! How far beyond the edge the surround reaches base(): a quarter of the grid's longer side,
     //! at least two cells.
@@ -87,6 +88,6 @@ private:
 
 //! The albedo of water: a dark, slightly blue Lambertian surface (open water sends back a few
 //! per cent of the light), shared by terrain.frag and the CPU renderers.
-inline constexpr double water_albedo[3] = {0.035, 0.065, 0.095};
+inline constexpr double water_albedo[3] = {0.02, 0.045, 0.09};
 
 }  // namespace kiri::geometry
