@@ -15,6 +15,7 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -261,6 +262,48 @@ TEST(TerrainCorpusSea, TheSeaReadsAsWater)
     const double sea = blue_share(coast), land = blue_share(raised);
     EXPECT_GT(sea, 0.25) << "the sea does not read as water";
     EXPECT_LT(land, 0.01) << "land drawn as water";
+    fs::remove_all(dir);
+}
+
+TEST(TerrainPoints, PlyCsvAndXyzOfTheSamePointsRenderAlike)
+{
+    // The same scattered points (a hill sampled on a jittered grid) as binary PLY, CSV with its
+    // columns in another order, and x y z text: triangulated and resampled alike, so the three
+    // frames are the same bytes.
+    const fs::path dir = kiri::test::temp_path("terrain_points");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::string ply_body, csv = "z,x,y\n", xyz;
+    int n = 0;
+    for (int j = 0; j < 40; ++j)
+        for (int i = 0; i < 40; ++i, ++n) {
+            const double x = 25.0 * i + 7.0 * std::sin(3.1 * i + j), y = 25.0 * j + 7.0 * std::cos(1.7 * j + i);
+            const double z = 200.0 + 300.0 * gauss(x / 1000.0, y / 1000.0, 0.5, 0.5, 0.2);
+            const std::string sx = std::to_string(x), sy = std::to_string(y), sz = std::to_string(z);
+            csv += sz + "," + sx + "," + sy + "\n";
+            xyz += sx + " " + sy + " " + sz + "\n";
+        }
+    // The text files carry 6 decimals: the PLY gets the same rounded values.
+    std::istringstream rounded(xyz);
+    for (double v; rounded >> v;)
+        ply_body.append(reinterpret_cast<const char*>(&v), sizeof v);
+    std::ofstream(dir / "pts.ply", std::ios::binary)
+        << "ply\nformat binary_little_endian 1.0\nelement vertex " << n
+        << "\nproperty double x\nproperty double y\nproperty double z\nend_header\n"
+        << ply_body;
+    std::ofstream(dir / "pts.csv") << csv;
+    std::ofstream(dir / "pts.xyz") << xyz;
+    std::vector<std::string> frames;
+    for (const char* name : {"pts.ply", "pts.csv", "pts.xyz"}) {
+        const fs::path out = dir / (std::string(name) + ".png");
+        const auto r = run_kiri("render " + (dir / name).string() + " -o " + out.string() +
+                                " --width 96 --height 54 --mode terrain");
+        ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+        EXPECT_NE(r.err.find("/terrain/cell_size 25"), std::string::npos) << r.err;
+        frames.push_back(read_all(out));
+    }
+    EXPECT_EQ(frames[0], frames[2]) << "PLY and xyz differ";
+    EXPECT_EQ(frames[1], frames[2]) << "CSV and xyz differ";
     fs::remove_all(dir);
 }
 

@@ -6,4 +6,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/terrain/dem.cpp
   src/terrain/nodata_fill.cpp
   src/terrain/scattered_points.cpp
+  src/terrain/point_files.cpp
 )
