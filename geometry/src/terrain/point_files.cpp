@@ -55,21 +55,21 @@ std::vector<std::string> split_commas(const std::string& line)
 int ply_size(const std::string& type)
 {
     static const std::array<std::pair<const char*, int>, 16> types = {{{"char", 1},
-                                                                      {"uchar", 1},
-                                                                      {"int8", 1},
-                                                                      {"uint8", 1},
-                                                                      {"short", 2},
-                                                                      {"ushort", 2},
-                                                                      {"int16", 2},
-                                                                      {"uint16", 2},
-                                                                      {"int", 4},
-                                                                      {"uint", 4},
-                                                                      {"int32", 4},
-                                                                      {"uint32", 4},
-                                                                      {"float", 4},
-                                                                      {"float32", 4},
-                                                                      {"double", 8},
-                                                                      {"float64", 8}}};
+                                                                       {"uchar", 1},
+                                                                       {"int8", 1},
+                                                                       {"uint8", 1},
+                                                                       {"short", 2},
+                                                                       {"ushort", 2},
+                                                                       {"int16", 2},
+                                                                       {"uint16", 2},
+                                                                       {"int", 4},
+                                                                       {"uint", 4},
+                                                                       {"int32", 4},
+                                                                       {"uint32", 4},
+                                                                       {"float", 4},
+                                                                       {"float32", 4},
+                                                                       {"double", 8},
+                                                                       {"float64", 8}}};
     for (const auto& [name, size] : types)
         if (type == name)
             return size;
@@ -131,9 +131,8 @@ std::vector<glm::dvec3> read_csv_points(const std::filesystem::path& path)
         }
     }
     double v = 0.0;
-    if (header.empty() || std::all_of(header.begin(), header.end(), [&](const std::string& c) {
-            return parse_number(c, v);
-        }))
+    if (header.empty() ||
+        std::all_of(header.begin(), header.end(), [&](const std::string& c) { return parse_number(c, v); }))
         return read_xyz_points(path);  // no header: "x,y,z" rows
     int column[3] = {-1, -1, -1};
     for (std::size_t c = 0; c < header.size(); ++c)
@@ -157,9 +156,9 @@ std::vector<glm::dvec3> read_csv_points(const std::filesystem::path& path)
         const std::vector<std::string> cells = split_commas(line);
         const std::string field = "line " + std::to_string(number);
         if (cells.size() < needed)
-            throw InputError(file, field,
-                             "expected " + std::to_string(header.size()) + " columns, found " +
-                                 std::to_string(cells.size()));
+            throw InputError(
+                file, field,
+                "expected " + std::to_string(header.size()) + " columns, found " + std::to_string(cells.size()));
         double p[3];
         for (int axis = 0; axis < 3; ++axis)
             if (!parse_number(cells[std::size_t(column[axis])], p[axis]))
@@ -277,15 +276,16 @@ std::vector<glm::dvec3> read_ply_points(const std::filesystem::path& path)
                 throw InputError(file, "vertex " + std::to_string(k), "truncated");
             double p[3];
             for (int axis = 0; axis < 3; ++axis)
-                p[axis] = ply_value(properties[std::size_t(column[axis])].type, row.data() + offset[std::size_t(column[axis])]);
+                p[axis] = ply_value(properties[std::size_t(column[axis])].type,
+                                    row.data() + offset[std::size_t(column[axis])]);
             finite_point(p, k);
         }
     } else {
         for (long long k = 0; k < count; ++k) {
             if (!std::getline(in, line))
-                throw InputError(file, "element vertex",
-                                 "truncated: " + std::to_string(count) + " vertices declared, " + std::to_string(k) +
-                                     " found");
+                throw InputError(
+                    file, "element vertex",
+                    "truncated: " + std::to_string(count) + " vertices declared, " + std::to_string(k) + " found");
             std::istringstream words(line);
             std::vector<std::string> values;
             for (std::string w; words >> w;)
