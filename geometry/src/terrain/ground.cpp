@@ -85,14 +85,20 @@ Ground::Ground(const Heightfield& hf, bool surround) : hf_(hf), surround_(surrou
         }
         return e;
     };
-    south_ = edge(hf.x0, hf.dx, hf.nx, [&](int i) { return sample(i, 0); });
-    north_ = edge(hf.x0, hf.dx, hf.nx, [&](int i) { return sample(i, hf.ny - 1); });
-    west_ = edge(hf.y0, hf.dy, hf.ny, [&](int j) { return sample(0, j); });
-    east_ = edge(hf.y0, hf.dy, hf.ny, [&](int j) { return sample(hf.nx - 1, j); });
-    std::vector<double> border = south_.z;
-    border.insert(border.end(), north_.z.begin(), north_.z.end());
-    border.insert(border.end(), west_.z.begin(), west_.z.end());
-    border.insert(border.end(), east_.z.begin(), east_.z.end());
+    const int in_x = std::min(1, hf.nx - 1), in_y = std::min(1, hf.ny - 1);  // the row inside the edge
+    south_ = {edge(hf.x0, hf.dx, hf.nx, [&](int i) { return sample(i, 0); }),
+              edge(hf.x0, hf.dx, hf.nx, [&](int i) { return (sample(i, 0) - sample(i, in_y)) / hf.dy; })};
+    north_ = {
+        edge(hf.x0, hf.dx, hf.nx, [&](int i) { return sample(i, hf.ny - 1); }),
+        edge(hf.x0, hf.dx, hf.nx, [&](int i) { return (sample(i, hf.ny - 1) - sample(i, hf.ny - 1 - in_y)) / hf.dy; })};
+    west_ = {edge(hf.y0, hf.dy, hf.ny, [&](int j) { return sample(0, j); }),
+             edge(hf.y0, hf.dy, hf.ny, [&](int j) { return (sample(0, j) - sample(in_x, j)) / hf.dx; })};
+    east_ = {
+        edge(hf.y0, hf.dy, hf.ny, [&](int j) { return sample(hf.nx - 1, j); }),
+        edge(hf.y0, hf.dy, hf.ny, [&](int j) { return (sample(hf.nx - 1, j) - sample(hf.nx - 1 - in_x, j)) / hf.dx; })};
+    std::vector<double> border = south_.z.z;
+    for (const Side* side : {&north_, &west_, &east_})
+        border.insert(border.end(), side->z.z.begin(), side->z.z.end());
     std::nth_element(border.begin(), border.begin() + border.size() / 2, border.end());
     base_ = border[border.size() / 2];
     // On a coast the sea continues to the horizon: the surround eases down to below the sea and
@@ -104,6 +110,7 @@ Ground::Ground(const Heightfield& hf, bool surround) : hf_(hf), surround_(surrou
     }
     const double longer = std::max((hf.nx - 1) * hf.dx, (hf.ny - 1) * hf.dy);
     ease_ = std::max(0.25 * longer, 2.0 * std::max(hf.dx, hf.dy));
+    slope_reach_ = std::min(ease_, 4.0 * std::max(hf.dx, hf.dy));
 }
 
 double Ground::Edge::primitive(double s) const
@@ -156,17 +163,22 @@ double Ground::height(double x, double y) const
         return base_;
     // The nearest edge point's coordinate along each edge, and the mean of that edge within d.
     const double cx = std::clamp(x, hf_.x0, hf_.x_max()), cy = std::clamp(y, hf_.y0, hf_.y_max());
-    const Edge& across_x = y < hf_.y0 ? south_ : north_;  // the edge running along x
-    const Edge& across_y = x < hf_.x0 ? west_ : east_;    // the edge running along y
-    double edge;
-    if (oy <= 0.0)
-        edge = across_y.mean(cy - d, cy + d);
-    else if (ox <= 0.0)
-        edge = across_x.mean(cx - d, cx + d);
-    else {  // a corner: from the edge along y (towards x) to the edge along x (towards y)
+    const Side& across_x = y < hf_.y0 ? south_ : north_;  // the edge running along x
+    const Side& across_y = x < hf_.x0 ? west_ : east_;    // the edge running along y
+    double edge, slope;
+    if (oy <= 0.0) {
+        edge = across_y.z.mean(cy - d, cy + d);
+        slope = across_y.slope.mean(cy - d, cy + d);
+    } else if (ox <= 0.0) {
+        edge = across_x.z.mean(cx - d, cx + d);
+        slope = across_x.slope.mean(cx - d, cx + d);
+    } else {  // a corner: from the edge along y (towards x) to the edge along x (towards y)
         const double w = std::atan2(oy, ox) / (0.5 * std::numbers::pi);
-        edge = (1.0 - w) * across_y.mean(cy - d, cy + d) + w * across_x.mean(cx - d, cx + d);
+        edge = (1.0 - w) * across_y.z.mean(cy - d, cy + d) + w * across_x.z.mean(cx - d, cx + d);
+        slope = (1.0 - w) * across_y.slope.mean(cy - d, cy + d) + w * across_x.slope.mean(cx - d, cx + d);
     }
+    const double fade = std::max(0.0, 1.0 - d / slope_reach_);
+    edge += slope * d * fade * fade;
     const double z = edge + (drop_to_ - edge) * smoothstep01(d / ease_);
     return sea_ ? std::max(z, *sea_) : z;
 }

@@ -37,14 +37,16 @@ public:
         return sea_ && z < *sea_ ? *sea_ : z;
     }
     //! Height at (x, y). Inside the grid: the triangles of sample(). Beyond it, with the surround:
-    //! e + (base - e) * smoothstep(d / ease), d the distance to the grid and e the mean of the
-    //! nearest edge's heights within d of the nearest edge point (in a corner, the two edges'
-    //! means weighted by the direction), so the edge's detail widens and fades outwards instead
-    //! of streaking; it is continuous at the edge (e is the edge's height at d = 0), base() from
-    //! ease() on, and flat to the horizon. On a coast the sea is the base: the easing heads a tenth
-    //! of the relief below the sea and the sea's surface covers it, so the edge's land ends in a
-    //! coast and the sea continues to the horizon. Without the surround: the nearest edge point's height
-    //! (as Terrain::height). Finite for every input (NaN: base()).
+    //! n + (base - n) * smoothstep(d / ease), d the distance to the grid and
+    //! n = e + s d (1 - d / r)^2 for d < r: e and s the means, over the nearest edge's samples
+    //! within d of the nearest edge point, of the edge's heights and of its outward slopes (in a
+    //! corner, the two edges' means weighted by the direction), r four cells. So the surround
+    //! meets the grid with the edge's height and slope (no crease), its detail widens and fades
+    //! outwards instead of streaking, it is base() from ease() on, and flat to the horizon. On a
+    //! coast the sea is the base: the easing heads a tenth of the relief below the sea and the
+    //! sea's surface covers it, so the edge's land ends in a coast and the sea continues to the
+    //! horizon. Without the surround: the nearest edge point's height (as Terrain::height).
+    //! Finite for every input (NaN: base()).
     double height(double x, double y) const;
     //! Unit upward normal at (x, y): the triangle's inside the grid; beyond, central differences
     //! of height() over a hundredth of a cell (the surround has no triangles of its own).
@@ -77,7 +79,11 @@ private:
         double primitive(double s) const;  // integral of the profile from start to s
         double mean(double a, double b) const;
     };
-    Edge south_, north_, west_, east_;
+    struct Side {
+        Edge z, slope;  // heights, and outward slopes (rise per metre away from the grid)
+    };
+    Side south_, north_, west_, east_;
+    double slope_reach_ = 1.0;  // how far out the edge's slope is continued
     const Heightfield& hf_;
     bool surround_ = true;
     std::optional<double> sea_;
