@@ -52,9 +52,9 @@ struct Renderer::Impl {
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
 
-void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration)
+void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround)
 {
-    if (impl_->terrain.set_terrain(terrain, exaggeration))
+    if (impl_->terrain.set_terrain(terrain, exaggeration, surround))
         ++impl_->pending_uploads;
     impl_->layers.set_ground(terrain.heightfield(), exaggeration);
 }
@@ -154,7 +154,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.targets.bind_for_drawing();
     {
         const ScopedPassTimer timed(r.sky_timer);
-        r.sky.draw(frame);
+        r.sky.draw(frame, r.terrain);
     }
     {
         const ScopedPassTimer timed(r.terrain_timer);

@@ -54,6 +54,7 @@ bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, con
         glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.5 * depth_range));
     matrix_ = glm::mat4(to_unit * projection * view);
     texel_m_ = float(std::max(b.x - a.x, b.y - a.y) / size);
+    depth_range_ = float(depth_range);
     k_ = float(sharpness / std::max(double(texel_m_), 1e-9));
 
     if (size != size_ || !fbo_) {
@@ -113,6 +114,7 @@ void ShadowMapPass::bind(const ShaderProgram& program, int unit, bool on) const
     program.set("u_ts_matrix", matrix_);
     program.set("u_ts_k", k_);
     program.set("u_ts_bias", texel_m_);
+    program.set("u_ts_depth", depth_range_);
     glBindTextureUnit(GLuint(unit), esm_[1].get());
 }
 

@@ -31,8 +31,8 @@ private:
     Framebuffer fbo_;
     Texture depth_, esm_[2];
     int size_ = 0, updates_ = 0;
-    glm::mat4 matrix_{1.0f};  // world -> [0, 1]^2 and light depth in metres
-    float k_ = 0.0f, texel_m_ = 0.0f;
+    glm::mat4 matrix_{1.0f};                                // world -> [0, 1]^2 and light depth in metres
+    float k_ = 0.0f, texel_m_ = 0.0f, depth_range_ = 0.0f;  // depth_range_: the map's depth extent (m)
     // What the map was built from.
     glm::vec3 sun_{0.0f};
     glm::dvec3 lo_{0.0}, hi_{-1.0};

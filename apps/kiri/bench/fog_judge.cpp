@@ -35,12 +35,14 @@ FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int w
     // The view ends where the froxel volume does (0: nowhere).
     const geometry::ReferenceView view = render::reference_view(camera_, width, height, froxel.far);
     const auto start = std::chrono::steady_clock::now();
+    geometry::ReferenceOptions options;
+    options.surround = base.terrain.surround;
     reference_ = geometry::render_reference_fog({fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
-                                                render::scene_fog_lighting(base, fog.medium.get(), froxel));
+                                                render::scene_fog_lighting(base, fog.medium.get(), froxel), options);
     reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     context_ = render::create_headless_context();
     renderer_ = std::make_unique<render::Renderer>();
-    renderer_->set_terrain(terrain);
+    renderer_->set_terrain(terrain, 1.0, base.terrain.surround);
     renderer_->set_sun(render::to_sun(base.sun));
 }
 
@@ -49,7 +51,7 @@ FogJudge::~FogJudge() = default;
 void FogJudge::prepare(const geometry::Scene& scene, render::FogMode mode)
 {
     rendering_.emplace(scene, pipeline_.run(scene, render::pipeline_target(mode, scene)), mode);
-    renderer_->set_terrain(*rendering_->products().terrain);  // uploads only when it changed
+    renderer_->set_terrain(*rendering_->products().terrain, 1.0, scene.terrain.surround);  // uploads when it changed
     rendering_->apply(*renderer_);
 }
 

@@ -92,8 +92,9 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     //! The terrain to draw (kept by reference: it must outlive the renderer's use of it).
-    //! Re-uploads only when the terrain or the exaggeration changed.
-    void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0);
+    //! Re-uploads only when the terrain, the exaggeration or the surround changed. `surround`:
+    //! the ground beyond the DEM's edge (kiri/geometry/terrain/ground.hpp); false: the bare tile.
+    void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0, bool surround = true);
     void set_sun(const SunLight& sun);
     //! The fog's layer stack over the terrain (base kept by reference: it must outlive the
     //! renderer's use of it). Uploads only when the base changed; options apply every frame.
