@@ -20,9 +20,9 @@ public:
     //! Returns true when it had to upload (the terrain or the exaggeration changed).
     bool set_terrain(const geometry::Terrain& terrain, double exaggeration);
     bool has_terrain() const { return index_count_ > 0; }
-    //! Draws the terrain; with `fog` (may be null) in the shadows of the sun's shadow map it
-    //! keeps (terrain_shadow.glsl).
-    void draw(const FrameContext& frame, const class FroxelPass* fog = nullptr) const;
+    //! Draws the terrain in the shadows of the sun's shadow map (terrain_shadow.glsl; null: no
+    //! shadows).
+    void draw(const FrameContext& frame, const class ShadowMapPass* shadow = nullptr) const;
     //! Draws the mesh with whatever program is bound (positions at attribute 0): depth passes.
     void draw_mesh() const;
     //! What is uploaded (changes when the terrain or the exaggeration do).
@@ -31,8 +31,8 @@ public:
     glm::dvec3 bounds_max() const { return max_; }
 
 private:
-    ShaderProgram program_;                               // no shadow map: no shadows
-    mutable std::unique_ptr<ShaderProgram> fog_program_;  // in the shadow map's shadows, built on first use
+    ShaderProgram program_;                                  // no shadow map: no shadows
+    mutable std::unique_ptr<ShaderProgram> shadow_program_;  // in the shadow map's shadows, built on first use
     VertexArray vao_;
     Buffer vertices_, indices_;
     GLsizei index_count_ = 0;
