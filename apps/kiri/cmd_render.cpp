@@ -114,7 +114,7 @@ void run(const RenderArgs& a)
     renderer.set_terrain(*products.terrain, 1.0, scene.terrain.surround);
     rendering.apply(renderer);
     if (a.no_sky) {
-        render::SunLight sun = render::to_sun(scene.sun);
+        render::SunLight sun = rendering.sun();
         sun.sky = false;
         renderer.set_sun(sun);
     }

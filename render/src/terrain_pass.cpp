@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "froxel_pass.hpp"
 #include "kiri/geometry/terrain/ground.hpp"
+#include "shadow_map_pass.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::render::detail {
@@ -158,16 +158,16 @@ void TerrainPass::draw_mesh() const
     glDrawElements(GL_TRIANGLES, grid_index_count_, GL_UNSIGNED_INT, nullptr);
 }
 
-void TerrainPass::draw(const FrameContext& frame, const FroxelPass* fog) const
+void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) const
 {
     if (!has_terrain())
         return;
-    if (fog && !fog_program_)
-        fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+    if (shadow && !shadow_program_)
+        shadow_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "terrain.vert", "terrain_shadow.glsl", "ground.glsl", "terrain.frag"});
-    const ShaderProgram& p = fog ? *fog_program_ : program_;
-    if (fog)
-        fog->bind_shadow(p);
+    const ShaderProgram& p = shadow ? *shadow_program_ : program_;
+    if (shadow)
+        shadow->bind(p, true);
     p.set("u_view_projection", frame.view_projection);
     p.set("u_eye", frame.eye);
     p.set("u_sun_direction", frame.sun_direction);

@@ -23,9 +23,9 @@ public:
     //! Returns true when it had to upload (the terrain, the exaggeration or the surround changed).
     bool set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround = true);
     bool has_terrain() const { return grid_index_count_ > 0; }
-    //! Draws the ground; with `fog` (may be null) in the shadows of the sun's shadow map it
-    //! keeps (terrain_shadow.glsl).
-    void draw(const FrameContext& frame, const class FroxelPass* fog = nullptr) const;
+    //! Draws the ground in the shadows of the sun's shadow map (terrain_shadow.glsl; null: no
+    //! shadows).
+    void draw(const FrameContext& frame, const class ShadowMapPass* shadow = nullptr) const;
     //! Draws the grid's mesh, without the surround, with whatever program is bound (positions at
     //! attribute 0): depth passes (the sun's shadow map ignores the surround).
     void draw_mesh() const;
@@ -39,8 +39,8 @@ public:
     glm::dvec3 bounds_max() const { return max_; }
 
 private:
-    ShaderProgram program_;                               // no shadow map: no shadows
-    mutable std::unique_ptr<ShaderProgram> fog_program_;  // in the shadow map's shadows, built on first use
+    ShaderProgram program_;                                  // no shadow map: no shadows
+    mutable std::unique_ptr<ShaderProgram> shadow_program_;  // in the shadow map's shadows, built on first use
     VertexArray vao_;
     Buffer vertices_, indices_;
     GLsizei grid_index_count_ = 0, surround_index_count_ = 0;

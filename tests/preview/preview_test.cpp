@@ -190,7 +190,8 @@ TEST_F(PreviewXvfb, ParticlesBuildTheAttenuationBufferOnceForAStaticView)
     // The first frame builds the buffer; the next three (the same view, sun and particles) reuse it.
     EXPECT_NE(log.find("20000 particles, attenuation buffer builds per frame: 1 0 0 0\n"), std::string::npos) << log;
     const Tone with = lower_half(particles), without = lower_half(bare);
-    EXPECT_GT(with.luminance, without.luminance + 8.0) << without.luminance << " -> " << with.luminance;
+    // +7.0 measured with the particles in the terrain's shadows (+8.4 lit everywhere).
+    EXPECT_GT(with.luminance, without.luminance + 5.0) << without.luminance << " -> " << with.luminance;
     EXPECT_LT(with.saturation, 0.8 * without.saturation) << without.saturation << " -> " << with.saturation;
 }
 

@@ -93,10 +93,13 @@ TEST_F(RendererGl, StaticSceneUploadsOnce)
     renderer.set_terrain(hill, 2.0);
     renderer.render(oblique_camera(), 64, 48);
     EXPECT_EQ(renderer.last_stats().uploads, 1);
-    ASSERT_EQ(renderer.last_stats().passes.size(), 5u);
-    EXPECT_EQ(renderer.last_stats().passes[1].pass, "terrain");
-    EXPECT_EQ(renderer.last_stats().passes[2].pass, "layers");
-    EXPECT_EQ(renderer.last_stats().passes[4].pass, "tonemap");
+    // The sun's shadow map of the terrain (rebuilt: a new exaggeration), then the frame.
+    ASSERT_EQ(renderer.last_stats().passes.size(), 6u);
+    EXPECT_EQ(renderer.last_stats().passes[0].pass, "shadow map");
+    EXPECT_EQ(renderer.last_stats().shadow_map_updates, 2);
+    EXPECT_EQ(renderer.last_stats().passes[2].pass, "terrain");
+    EXPECT_EQ(renderer.last_stats().passes[3].pass, "layers");
+    EXPECT_EQ(renderer.last_stats().passes[5].pass, "tonemap");
     EXPECT_EQ(renderer.last_stats().layers, 0);  // no fog: the layer pass draws nothing
 }
 

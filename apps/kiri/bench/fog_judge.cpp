@@ -113,10 +113,8 @@ render::FogError FogJudge::error()
     // A still picture as kiri render draws it.
     last_image_ = renderer_->render(camera_, width_, height_);
     const render::RadianceImage with = renderer_->read_radiance();
-    // The terrain is shadowed only where the froxels built the sun's shadow map: the frame
-    // without fog must see the same terrain.
-    const bool shadows = rendering_->draws_froxels() && rendering_->froxel_options().terrain_shadows;
-    const render::RadianceImage& plain = without_fog(shadows);
+    // The frame without fog sees the same terrain, in the same shadows (the sun's, as set).
+    const render::RadianceImage& plain = without_fog(rendering_->sun().terrain_shadows);
     rendering_->apply(*renderer_);  // back to the fog for what follows
     return render::compare_frames(with, plain, reference_);
 }
@@ -128,13 +126,7 @@ const render::RadianceImage& FogJudge::without_fog(bool shadows)
         renderer_->clear_layers();
         renderer_->clear_particles();
         renderer_->set_fog_partition(std::nullopt);
-        if (shadows) {  // no fog, only the sun's shadow map of the terrain
-            geometry::FroxelOptions o = rendering_->froxel_options();
-            o.height_fog.extinction = 0.0;
-            renderer_->set_froxel_fog(nullptr, o);
-        } else {
-            renderer_->clear_froxel_fog();
-        }
+        renderer_->clear_froxel_fog();
         renderer_->draw(camera_, width_, height_);
         renderer_->draw(camera_, width_, height_);
         plain = renderer_->read_radiance();

@@ -34,6 +34,12 @@ struct SunLight {
     //! false: no sky light at all (`kiri render --no-sky`): no ambient, a black sky without the
     //! sun's glow, for comparisons with renderers set up in a black world.
     bool sky = true;
+    //! The terrain's shadows from the sun: one exponential shadow map a frame ([Annen08]) that
+    //! every pass lit by the sun reads (the terrain, the froxels, the layers, the particles),
+    //! as the CPU reference shadows every point it lights (FogLighting::terrain_shadows).
+    bool terrain_shadows = true;
+    int shadow_map_size = 1024;  //!< texels a side
+    double esm_sharpness = 4.0;  //!< the ESM exponent per texel of light depth
 };
 
 //! How particle clouds are drawn (docs/particles.md).
@@ -60,7 +66,6 @@ struct FroxelStats {
     //! once), or one without temporal filtering. The same view again reruns nothing.
     bool converged = false;
     int updates = 0;  //!< frames whose passes ran since set_froxel_fog
-    int shadow_map_updates = 0;
 };
 
 //! Float pixels, rows top to bottom: the fog a frame's pixels received (froxel fog).
@@ -77,6 +82,7 @@ struct FrameStats {
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
     int uploads = 0;               //!< GPU resources (re)built during this frame
+    int shadow_map_updates = 0;    //!< the sun's shadow map's builds so far (kept while sun and terrain stay)
     int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
     int particles = 0;             //!< particle billboards drawn
     int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
