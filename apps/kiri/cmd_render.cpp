@@ -47,6 +47,7 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
     if (a.mode == "reference") {
         geometry::ReferenceOptions ro;
         ro.shade_terrain = !a.black_ground;
+        ro.surround = scene.terrain.surround;
         const geometry::ReferenceImage r =
             geometry::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, light, ro);
         if (exr)
@@ -60,6 +61,7 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
     po.max_bounces = a.bounces;
     po.seed = a.seed;
     po.ground = a.black_ground ? geometry::PathGround::black : geometry::PathGround::lambertian;
+    po.surround = scene.terrain.surround;
     const geometry::PathTracedImage p =
         geometry::render_path_traced({medium, options.height_fog}, &terrain.heightfield(), view, light, po);
     if (exr)
@@ -112,10 +114,10 @@ void run(const RenderArgs& a)
     const auto context = render::create_headless_context();
     const auto context_made = std::chrono::steady_clock::now();
     render::Renderer renderer;
-    renderer.set_terrain(*products.terrain);
+    renderer.set_terrain(*products.terrain, 1.0, scene.terrain.surround);
     rendering.apply(renderer);
     if (a.no_sky) {
-        render::SunLight sun = render::to_sun(scene.sun);
+        render::SunLight sun = rendering.sun();
         sun.sky = false;
         renderer.set_sun(sun);
     }

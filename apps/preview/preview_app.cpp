@@ -165,8 +165,8 @@ void PreviewApp::apply(Products p)
     // The renderer keeps the terrain and the fog by reference: the old products go once the
     // new ones are in.
     const Products old = std::exchange(shown_, std::move(p));
-    if (shown_.fog.terrain && shown_.fog.terrain != old.fog.terrain)
-        renderer_->set_terrain(*shown_.fog.terrain);
+    if (shown_.fog.terrain)  // uploads only when the terrain or its surround changed
+        renderer_->set_terrain(*shown_.fog.terrain, 1.0, shown_.scene.terrain.surround);
     apply_live_options();
     if (shown_.views != old.views)
         update_overlays();

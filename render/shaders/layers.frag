@@ -4,7 +4,8 @@
 //   1 - (1 - a)^(r / r0), gray, lit by an ad hoc sun and sky term;
 // - medium: the slab of fog the layer stands for (docs/medium.md): density = the layer's
 //   profile x border fade x detail, optical depth sigma_t density r / |cos(view, normal)|,
-//   single scattering albedo (sun HG(g) T_sun + ambient), T_sun through the fog above it.
+//   the fog's lighting model (fog_lighting.glsl), T_sun through the fog above it, in the
+//   terrain's shadow from the sun (terrain_shadow.glsl: the froxels' and the reference's).
 // Combined mode (fog_partition.glsl): the medium shading draws only the layers' share.
 // Both: world-space detail noise drifting with the wind and a soft fade where the layer meets
 // the ground. Output is premultiplied linear radiance.
@@ -104,7 +105,7 @@ void main()
         // (1 - h) - k (1 - h^2) / 2 of the thickness, along the slant of the sun.
         float h = v_height;
         float above = u_extinction * tex.a * u_thickness * ((1.0 - h) - 0.5 * u_top_loss * (1.0 - h * h));
-        float sun_up = u_sun_direction.z > 0.0 ? 1.0 : 0.0;
+        float sun_up = u_sun_direction.z > 0.0 ? terrain_visibility(v_world, u_ts_bias) : 0.0;
         radiance = fog_source(cos_sun, above / max(u_sun_direction.z, 0.02), sun_up);
     } else {
         a = v_alpha * u_opacity * tex.a * detail;

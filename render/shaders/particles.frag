@@ -3,12 +3,14 @@
 // (geometry::fog_source, fog_lighting.hpp) with the sun seen through the attenuation buffer:
 // Gamma at this fragment (the particle's own cylinder removed) stands for exp(-tau_sun), so
 // octave i sees Gamma^(b^i); hazed with distance like the terrain, faded out where it meets the
-// terrain (soft edge). Blended back to front, premultiplied linear radiance:
+// terrain (soft edge); in the terrain's shadow from the sun (the renderer's shadow map, as the
+// froxels and the CPU reference see it). Blended back to front, premultiplied linear radiance:
 // E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 in vec3 v_relative;
 in vec3 v_world;
 in vec2 v_offset;
+flat in float v_sun_visible;
 flat in uint v_id;
 uniform sampler3D u_log_gamma;
 uniform sampler2D u_depth;       // the terrain's depth, full resolution
@@ -60,7 +62,7 @@ void main()
         sun = fitted_sun_scattering(cos_theta, u_anisotropy, p.optics.y, -log_gamma, u_sun_direction.z);
     for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
         sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(b * log_gamma);
-    float sun_up = u_sun_direction.z > 0.0 ? 1.0 : 0.0;
+    float sun_up = u_sun_direction.z > 0.0 ? v_sun_visible : 0.0;
     vec3 radiance = clamp(p.optics.y, 0.0, 1.0) * (pi * sun_up * sun * u_sun_radiance + u_ambient);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);

@@ -10,6 +10,7 @@ uniform vec3 u_camera_up;
 out vec3 v_relative;  // relative to the cloud's centre
 out vec3 v_world;
 out vec2 v_offset;    // in radii, (0, 0) at the centre
+flat out float v_sun_visible;  // the terrain's shadow (terrain_shadow.glsl) at the particle
 flat out uint v_id;
 
 void main()
@@ -20,6 +21,9 @@ void main()
     v_relative = p.xyz + (corner.x * u_camera_right + corner.y * u_camera_up) * p.w;
     v_world = v_relative + u_centre;
     v_offset = corner;
+    // At the particle's centre, as the CPU reference lights the point the particle stands for
+    // (a corner may dip into the ground and read as shadowed).
+    v_sun_visible = terrain_visibility(p.xyz + u_centre, u_ts_bias);
     v_id = id;
     gl_Position = u_view_projection * vec4(v_world, 1.0);
 }

@@ -7,6 +7,7 @@ uniform sampler2D u_ts_esm;      // k * occluder depth (m), low-passed in log sp
 uniform mat4 u_ts_matrix;        // world -> shadow map [0, 1]^2 and light depth (m)
 uniform float u_ts_k;            // 1/m
 uniform float u_ts_bias;         // m: the receivers' offset towards the sun
+uniform float u_ts_depth;        // m: the map's depth extent
 
 float terrain_visibility(vec3 p, float bias)
 {
@@ -16,7 +17,9 @@ float terrain_visibility(vec3 p, float bias)
     if (any(lessThan(l.xy, vec2(0.0))) || any(greaterThan(l.xy, vec2(1.0))))
         return 1.0;
     float occluder = textureLod(u_ts_esm, l.xy, 0.0).r;
-    return clamp(exp(occluder - u_ts_k * (l.z - bias)), 0.0, 1.0);
+    // A receiver deeper than the map (the terrain's surround, beyond the box the map was made
+    // of) is judged at the map's far end: shadowed by what the map holds, not by its emptiness.
+    return clamp(exp(occluder - u_ts_k * (min(l.z, u_ts_depth) - bias)), 0.0, 1.0);
 }
 
 // The terrain's own shadow at a terrain point with normal n: looked up a little off the surface

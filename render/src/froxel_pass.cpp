@@ -15,7 +15,8 @@ namespace kiri::render::detail {
 namespace {
 
 // Texture units: the apply's (8..10) stay clear of the terrain's and layers' (0..2).
-constexpr int unit_tiles = 8, unit_volume = 9, unit_esm = 10, unit_medium = 11;  // 11, 12
+// Unit 10 is the sun's shadow map's (shadow_map_unit).
+constexpr int unit_tiles = 8, unit_volume = 9, unit_medium = 11;  // 11, 12
 constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
 constexpr int unit_first = 5, unit_last = 6;
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
@@ -24,10 +25,10 @@ constexpr int unit_first = 5, unit_last = 6;
 // up to 0.9 points worse on the presets' view and blur J over coarse froxels
 // (FroxelGl.TemporalFilterConvergesAndDoesNotGhost). Each sample costs one lighting pass.
 constexpr int halton_cycle = 16, still_samples = halton_cycle;
-enum Stage { shadow_map, tiles, density, lighting, temporal, integrate, classify, apply_stage, stage_count };
-const char* const stage_names[stage_count] = {"froxel shadow map", "froxel tiles",    "froxel density",
-                                              "froxel lighting",   "froxel temporal", "froxel integrate",
-                                              "froxel classify",   "froxel apply"};
+enum Stage { tiles, density, lighting, temporal, integrate, classify, apply_stage, stage_count };
+const char* const stage_names[stage_count] = {"froxel tiles",    "froxel density",   "froxel lighting",
+                                              "froxel temporal", "froxel integrate", "froxel classify",
+                                              "froxel apply"};
 // froxel_classify.comp: where the volume's lookup may stand for a pixel's own march. The error
 // a tap's bilinear lookup may make (in transmittance, or in radiance relative to its tile's
 // in-scattering) and how far the fog's edge may spread over a tile's slices. At 0.004 the
@@ -178,7 +179,7 @@ void FroxelPass::bind_layout(const ShaderProgram& p) const
     glBindTextureUnit(unit_tiles, v_->tiles[current_].get());
 }
 
-void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
+void FroxelPass::prepare(const FrameContext& frame, const ShadowMapPass* shadow)
 {
     for (PassTimer& timer : timers_)
         timer.forget();
@@ -193,15 +194,7 @@ void FroxelPass::prepare(const FrameContext& frame, const TerrainPass& terrain)
         history_valid_ = false;
         key_.reset();
     }
-    // The sun's view of the terrain (kept while the sun and the terrain stay): the terrain
-    // casts its shadows in the frame whether the fog is in view or not.
-    if (enabled_ && options_.terrain_shadows && terrain.has_terrain()) {
-        glm::dvec3 lo = terrain.bounds_min(), hi = terrain.bounds_max();
-        extend_bounds(lo, hi);
-        const ScopedPassTimer timed(timers_[shadow_map]);
-        if (shadow_.update(terrain, frame.sun_direction, lo, hi, options_.shadow_map_size, options_.esm_sharpness))
-            ++stats_.shadow_map_updates;
-    }
+    shadow_ = options_.terrain_shadows ? shadow : nullptr;
 }
 
 void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture)
@@ -227,7 +220,9 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     }
     const geometry::FroxelOptions& o = options_;
     FroxelVolumeKey key = make_froxel_volume_key(frame, terrain.identity(), medium_, o);
-    const bool same_view = key_ == key && apply_;
+    // A rebuilt shadow map (or none) lights the volume differently.
+    const int shadow_version = shadow_ ? shadow_->updates() : -1;
+    const bool same_view = key_ == key && apply_ && shadow_version == shadow_version_;
     if (same_view && (converged_ || !o.temporal)) {
         stats_.converged = true;
         return;  // the volume is as good as it gets: reuse it
@@ -250,8 +245,9 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     history_valid_ = history_valid_ && !light_jumped;
     std::copy(std::begin(light), std::end(light), std::begin(light_));
     key_ = std::move(key);
+    shadow_version_ = shadow_version;
     apply_ = true;  // before the passes: the classification reads the volume as the apply does
-    run_passes(frame, terrain, depth_texture, still);
+    run_passes(frame, depth_texture, still);
     converged_ = still || !o.temporal;
     stats_.updated = true;
     stats_.converged = converged_;
@@ -283,19 +279,18 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     applied_pixels_ = frame.width * frame.height;
 }
 
-void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture, bool still)
+void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, bool still)
 {
     advance_view(frame);
     run_tiles(frame, depth_texture);
     run_density();
-    const bool shadows = options_.terrain_shadows && terrain.has_terrain();
     if (!options_.temporal) {  // one sample at the froxel's centre, the sun steps' middles
         const ScopedPassTimer timed(timers_[lighting]);
-        run_lighting(frame, shadows, {glm::vec3(0.5f), 0.5f});
+        run_lighting(frame, {glm::vec3(0.5f), 0.5f});
     } else if (!still) {  // this frame's sample, blended with the reprojected history
         {
             const ScopedPassTimer timed(timers_[lighting]);
-            run_lighting(frame, shadows, halton_jitter(frame_index_ % halton_cycle + 1));
+            run_lighting(frame, halton_jitter(frame_index_ % halton_cycle + 1));
         }
         const ScopedPassTimer timed(timers_[temporal]);
         run_temporal(1 - current_, previous_, history_valid_, current_, float(options_.history_weight));
@@ -304,7 +299,7 @@ void FroxelPass::run_passes(const FrameContext& frame, const TerrainPass& terrai
         for (int k = 0; k < still_samples; ++k) {
             // Ping-pong between the two resolved volumes, ending in this frame's.
             const int into = (still_samples - 1 - k) % 2 == 0 ? current_ : 1 - current_;
-            run_lighting(frame, shadows, halton_jitter(k + 1));
+            run_lighting(frame, halton_jitter(k + 1));
             // The history holds the first k samples: weighted k / (k + 1), the result is their
             // mean (within the clamp to this sample's neighbourhood).
             run_temporal(1 - into, view_, k > 0, into, float(k) / float(k + 1), current_);
@@ -382,13 +377,13 @@ void FroxelPass::run_density()
     dispatch_volume(v_->size, v_->size.z);
 }
 
-void FroxelPass::run_lighting(const FrameContext& frame, bool terrain_shadows, const Jitter& jitter)
+void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
 {
     const geometry::FroxelOptions& o = options_;
     const geometry::HeightFog& haze = o.height_fog;
     bind_layout(lighting_);
     medium_gpu_.bind(lighting_, haze, unit_medium);
-    shadow_.bind(lighting_, unit_esm, terrain_shadows);
+    bind_terrain_shadow(lighting_, shadow_);
     lighting_.set("u_density", unit_density);
     lighting_.set("u_jitter", jitter.froxel);
     lighting_.set("u_sun_jitter", jitter.sun);
@@ -474,12 +469,6 @@ void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
     glBindImageTexture(0, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
     glDispatchCompute(GLuint((v_->size.x + 7) / 8), GLuint((v_->size.y + 7) / 8), 1);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
-void FroxelPass::bind_shadow(const ShaderProgram& p) const
-{
-    p.set("u_ts_esm", unit_esm);
-    shadow_.bind(p, unit_esm, enabled_ && options_.terrain_shadows);
 }
 
 void FroxelPass::bind_apply(const ShaderProgram& p) const

@@ -1,8 +1,8 @@
 #pragma once
 // Froxel volumetric fog ([Wronski14], with [Hillaire15]'s energy-conserving integration and
 // fog-aware slicing; docs/froxel.md). A frame:
-//   prepare   is the fog in view; the sun's shadow map of the terrain (kept while the sun and
-//             the terrain stay); then the scene is drawn and resolved, and
+//   prepare   is the fog in view (the renderer brought the sun's shadow map of the terrain up
+//             to date before); then the scene is drawn and resolved, and
 //   update    only when the view, the sun or the fog changed, and once more when a moving view
 //             stops: tiles (the depths each screen tile's slices span, from the frame's depth
 //             and the rasterised shell, froxel_tile_bounds.hpp), density (extinction per
@@ -45,14 +45,13 @@ public:
     bool enabled() const { return enabled_; }
     //! Grows (lo, hi) to hold the Medium (for the frame's near and far planes).
     void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
-    //! Before the scene is drawn: whether the fog is in view, and the sun's shadow map.
-    void prepare(const FrameContext& frame, const TerrainPass& terrain);
+    //! Before the scene is drawn: whether the fog is in view; the sun's shadow map of the
+    //! terrain its lighting reads (null: no terrain shadows), kept by pointer for the frame.
+    void prepare(const FrameContext& frame, const ShadowMapPass* shadow);
     //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's).
     void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
     //! The fog on the resolved frame (colour: RGBA8, read and written).
     void apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture);
-    //! terrain_shadow.glsl's uniforms and the shadow map on a program linking it.
-    void bind_shadow(const ShaderProgram& program) const;
     //! froxel_apply.glsl's uniforms and textures on a program linking froxel_common.glsl,
     //! froxel_medium.glsl and froxel_apply.glsl (for layers and particles: froxel_fog(world)).
     void bind_apply(const ShaderProgram& program) const;
@@ -70,7 +69,8 @@ private:
     std::unique_ptr<ShaderProgram> readback_, depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;
-    ShadowMapPass shadow_;
+    const ShadowMapPass* shadow_ = nullptr;  // this frame's, the renderer's
+    int shadow_version_ = -2;                // its updates() when the volume was lit (-1: none)
     ShellMesh shell_;
     const geometry::Medium* medium_ = nullptr;
     geometry::FroxelOptions options_;
@@ -97,7 +97,7 @@ private:
     bool visible(const FrameContext& frame) const;
     void bind_layout(const ShaderProgram& program) const;
     // The update's passes, in order; each times itself.
-    void run_passes(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture, bool still);
+    void run_passes(const FrameContext& frame, GLuint depth_texture, bool still);
     struct Jitter {
         glm::vec3 froxel{0.5f};  // the sample's position in its froxel
         float sun = 0.5f;        // the start of its sun march
@@ -107,7 +107,7 @@ private:
     void advance_view(const FrameContext& frame);
     void run_tiles(const FrameContext& frame, GLuint depth_texture);
     void run_density();
-    void run_lighting(const FrameContext& frame, bool terrain_shadows, const Jitter& jitter);
+    void run_lighting(const FrameContext& frame, const Jitter& jitter);
     //! The lighting just run blended with resolved[history] (seen from `from`, its tiles those of
     //! tiles[history_tiles], default tiles[history]; the history's weight `weight`) into
     //! resolved[into].

@@ -32,7 +32,8 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"layers.vert", "fog_partition.glsl", "fog_lighting.glsl", "froxel_fog_none.glsl", "layers.frag"}),
+    : program_({"layers.vert", "fog_partition.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
+                "layers.frag"}),
       composite_({"fullscreen.vert", "layers_composite.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
 {}
@@ -222,11 +223,12 @@ void LayersPass::draw_stack(const FrameContext& frame)
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
-            "froxel_apply.glsl", "layers.frag"});
+            "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
+            "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
+    bind_terrain_shadow(p, shadow_);
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;

@@ -16,6 +16,7 @@ struct Heightfield;
 namespace kiri::render::detail {
 
 class FroxelPass;
+class ShadowMapPass;
 
 //! The fog's layer stack: the base tessellation uploaded once, drawn as instances (one per
 //! layer) with the stack's formulas in the vertex shader, blended over the terrain with the
@@ -44,13 +45,19 @@ public:
     //! upsampling (a quarter of the fragments at scale 0.5). Returns true on an upload.
     bool draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth);
 
-    //! The froxel fog each layer reads at its own depth (nullptr: none); drawn after its apply.
-    void set_fog(const FroxelPass* fog) { fog_ = fog; }
+    //! The froxel fog each layer reads at its own depth (nullptr: none; drawn after its apply)
+    //! and the sun's shadow map of the terrain (nullptr: no terrain shadows), for the frame.
+    void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow)
+    {
+        fog_ = fog;
+        shadow_ = shadow;
+    }
 
 private:
     ShaderProgram program_, composite_;
     mutable std::unique_ptr<ShaderProgram> fog_program_;
     const FroxelPass* fog_ = nullptr;
+    const ShadowMapPass* shadow_ = nullptr;
     VertexArray empty_vao_;
     Texture noise_;
     // The reduced-resolution target.

@@ -12,8 +12,8 @@
 namespace kiri::render::detail {
 
 ParticlesPass::ParticlesPass()
-    : program_(
-          {"particle_footprint.glsl", "fog_lighting.glsl", "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
+    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
+                "particles.vert", "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
@@ -108,10 +108,11 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-            "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert", "particles.frag"});
+            "terrain_shadow.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert", "particles.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
+    bind_terrain_shadow(p, shadow_);
     set_grid_uniforms(p, g, cloud_->forward_scattering, buffer_.particle_centre());
     p.set("u_centre", glm::vec3(buffer_.particle_centre()));
     p.set("u_view_projection", frame.view_projection);

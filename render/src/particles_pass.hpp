@@ -29,14 +29,20 @@ public:
     //! Draws over `resolved_fbo`. Returns whether the attenuation buffer was rebuilt.
     bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth);
     const AttenuationBuffer& buffer() const { return buffer_; }
-    //! Froxel fog to read at each billboard's depth (null: none); drawn after its apply.
-    void set_fog(const FroxelPass* fog) { fog_ = fog; }
+    //! Froxel fog to read at each billboard's depth (null: none; drawn after its apply) and the
+    //! sun's shadow map of the terrain (null: no terrain shadows), for the frame.
+    void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow)
+    {
+        fog_ = fog;
+        shadow_ = shadow;
+    }
     std::size_t count() const { return has_particles() ? count_ : 0; }
 
 private:
     ShaderProgram program_, composite_;
     std::unique_ptr<ShaderProgram> fog_program_;  // the variant reading the froxel fog, built on first use
     const FroxelPass* fog_ = nullptr;
+    const ShadowMapPass* shadow_ = nullptr;
     VertexArray vao_;
     AttenuationBuffer buffer_;
     const geometry::ParticleCloud* cloud_ = nullptr;

@@ -18,6 +18,7 @@
 #include "particles_pass.hpp"
 #include "pass_timer.hpp"
 #include "render_targets.hpp"
+#include "shadow_map_pass.hpp"
 #include "sky_pass.hpp"
 #include "terrain_pass.hpp"
 #include "tonemap_pass.hpp"
@@ -36,7 +37,8 @@ struct Renderer::Impl {
     detail::OverlayPass overlays;
     detail::ToneMapPass tonemap;
     detail::ParticlesPass particles;
-    std::unique_ptr<detail::FroxelPass> froxel;  // built on first use
+    std::unique_ptr<detail::FroxelPass> froxel;         // built on first use
+    std::unique_ptr<detail::ShadowMapPass> shadow_map;  // built on first use
     std::optional<geometry::FogPartition> partition;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
@@ -45,16 +47,34 @@ struct Renderer::Impl {
     FrameStats stats;
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
-    PassTimer sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"}, resolve_timer{"resolve"},
-        overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"};
+    PassTimer shadow_timer{"shadow map"}, sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"},
+        resolve_timer{"resolve"}, overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"};
+
+    //! The sun's shadow map brought up to date for the frame; null without terrain shadows.
+    const detail::ShadowMapPass* update_shadow_map(const FrameContext& frame)
+    {
+        shadow_timer.forget();
+        if (!sun.terrain_shadows || !terrain.has_terrain())
+            return nullptr;
+        // Over the terrain alone, so that its shadows do not depend on the fog drawn: a point
+        // above the terrain's box is never in its shadow (the sun above the horizon), and
+        // terrain_shadow.glsl lights what lies outside the map. In view or not, the terrain
+        // casts its shadows into the frame.
+        if (!shadow_map)
+            shadow_map = std::make_unique<detail::ShadowMapPass>();
+        const ScopedPassTimer timed(shadow_timer);
+        shadow_map->update(terrain, frame.sun_direction, terrain.bounds_min(), terrain.bounds_max(),
+                           sun.shadow_map_size, sun.esm_sharpness);
+        return shadow_map.get();
+    }
 };
 
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
 
-void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration)
+void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround)
 {
-    if (impl_->terrain.set_terrain(terrain, exaggeration))
+    if (impl_->terrain.set_terrain(terrain, exaggeration, surround))
         ++impl_->pending_uploads;
     impl_->layers.set_ground(terrain.heightfield(), exaggeration);
 }
@@ -144,21 +164,22 @@ void Renderer::draw(const Camera& camera, int width, int height)
         frame.partition = glm::vec4(r.partition->near_start, r.partition->near_end, r.partition->particle_share,
                                     r.partition->particle_band);
     }
-    if (fog)  // before the scene: in view or not, the sun's shadow map for the terrain
-        r.froxel->prepare(frame, r.terrain);
+    const detail::ShadowMapPass* shadow = r.update_shadow_map(frame);
+    if (fog)  // before the scene: is the fog in view
+        r.froxel->prepare(frame, shadow);
     // With froxel fog the layers and the particles come after its apply and read it at their
     // own depth (FroxelPass::bind_apply + froxel_fog(world) in their fragment shaders).
     const bool layers_multisampled = r.layers_multisampled && !fog;
-    r.layers.set_fog(fog);
-    r.particles.set_fog(fog);
+    r.layers.set_fog(fog, shadow);
+    r.particles.set_fog(fog, shadow);
     r.targets.bind_for_drawing();
     {
         const ScopedPassTimer timed(r.sky_timer);
-        r.sky.draw(frame);
+        r.sky.draw(frame, r.terrain);
     }
     {
         const ScopedPassTimer timed(r.terrain_timer);
-        r.terrain.draw(frame, fog);
+        r.terrain.draw(frame, shadow);
     }
     if (layers_multisampled) {  // layers straight into the multisampled frame
         const ScopedPassTimer timed(r.layers_timer);
@@ -199,6 +220,9 @@ void Renderer::draw(const Camera& camera, int width, int height)
     detail::check_gl_errors("Renderer::draw");
 
     r.stats = {};
+    if (shadow && r.shadow_timer.ran())
+        r.stats.passes.push_back(r.shadow_timer.result());
+    r.stats.shadow_map_updates = r.shadow_map ? r.shadow_map->updates() : 0;
     for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer, &r.tonemap_timer})
         r.stats.passes.push_back(t->result());
     if (particles) {

@@ -181,9 +181,18 @@ const geometry::Medium* SceneRendering::medium() const
     return timed_medium_ ? timed_medium_.get() : products_.medium.get();
 }
 
+SunLight SceneRendering::sun() const
+{
+    SunLight sun = to_sun(scene_.sun);
+    sun.terrain_shadows = froxel_.terrain_shadows;
+    sun.shadow_map_size = froxel_.shadow_map_size;
+    sun.esm_sharpness = froxel_.esm_sharpness;
+    return sun;
+}
+
 void SceneRendering::apply(Renderer& renderer) const
 {
-    renderer.set_sun(to_sun(scene_.sun));
+    renderer.set_sun(sun());
     renderer.set_layer_resolution(scene_.layers.resolution);
     if (draws_layers())
         renderer.set_layers(*products_.layer_base, layers_);

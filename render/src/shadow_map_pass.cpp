@@ -54,6 +54,7 @@ bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, con
         glm::scale(glm::dmat4(1.0), glm::dvec3(0.5, 0.5, 0.5 * depth_range));
     matrix_ = glm::mat4(to_unit * projection * view);
     texel_m_ = float(std::max(b.x - a.x, b.y - a.y) / size);
+    depth_range_ = float(depth_range);
     k_ = float(sharpness / std::max(double(texel_m_), 1e-9));
 
     if (size != size_ || !fbo_) {
@@ -104,16 +105,27 @@ bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, con
     return true;
 }
 
-void ShadowMapPass::bind(const ShaderProgram& program, int unit, bool on) const
+void ShadowMapPass::bind(const ShaderProgram& program, bool on) const
 {
     program.set("u_ts_on", int(on && ready()));
+    program.set("u_ts_esm", shadow_map_unit);  // even when off: its unit must not be another type's
     if (!on || !ready())
         return;
-    program.set("u_ts_esm", unit);
     program.set("u_ts_matrix", matrix_);
     program.set("u_ts_k", k_);
     program.set("u_ts_bias", texel_m_);
-    glBindTextureUnit(GLuint(unit), esm_[1].get());
+    program.set("u_ts_depth", depth_range_);
+    glBindTextureUnit(GLuint(shadow_map_unit), esm_[1].get());
+}
+
+void bind_terrain_shadow(const ShaderProgram& program, const ShadowMapPass* map)
+{
+    if (map) {
+        map->bind(program, true);
+        return;
+    }
+    program.set("u_ts_on", 0);
+    program.set("u_ts_esm", shadow_map_unit);
 }
 
 }  // namespace kiri::render::detail

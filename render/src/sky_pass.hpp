@@ -4,11 +4,14 @@
 
 namespace kiri::render::detail {
 
-//! Background: sky gradient and sun glow, drawn first without depth.
+class TerrainPass;
+
+//! Background: sky gradient and sun glow, and below the horizon the flat ground beyond the
+//! terrain's surround (none without a terrain), drawn first without depth.
 class SkyPass {
 public:
     SkyPass();
-    void draw(const FrameContext& frame) const;
+    void draw(const FrameContext& frame, const TerrainPass& terrain) const;
 
 private:
     ShaderProgram program_;

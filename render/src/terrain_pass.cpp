@@ -5,7 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "froxel_pass.hpp"
+#include "kiri/geometry/terrain/ground.hpp"
+#include "shadow_map_pass.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::render::detail {
@@ -16,59 +17,96 @@ struct Vertex {
     float normal[3];
 };
 
-// Grid vertices with normals from central differences (one-sided at the border), in double.
-std::vector<Vertex> grid_vertices(const geometry::Heightfield& hf, double exaggeration)
+// Offsets of the surround's rings from the grid's edge: the first a cell out, each spacing 15 %
+// longer than the last (the mesh follows the surround's smoothstep within a per cent of its
+// drop), the last at the ease distance, where the surround is flat.
+std::vector<double> ring_offsets(double cell, double ease)
 {
-    std::vector<Vertex> out(std::size_t(hf.nx) * hf.ny);
-    for (int j = 0; j < hf.ny; ++j) {
-        const int jm = std::max(j - 1, 0), jp = std::min(j + 1, hf.ny - 1);
-        for (int i = 0; i < hf.nx; ++i) {
-            const int im = std::max(i - 1, 0), ip = std::min(i + 1, hf.nx - 1);
-            const double gx = ip > im ? exaggeration * (hf.at(ip, j) - hf.at(im, j)) / ((ip - im) * hf.dx) : 0.0;
-            const double gy = jp > jm ? exaggeration * (hf.at(i, jp) - hf.at(i, jm)) / ((jp - jm) * hf.dy) : 0.0;
-            const double inv = 1.0 / std::sqrt(gx * gx + gy * gy + 1.0);
-            Vertex& v = out[std::size_t(j) * hf.nx + i];
-            v.position[0] = float(hf.x_of(i));
-            v.position[1] = float(hf.y_of(j));
-            v.position[2] = float(exaggeration * hf.at(i, j));
-            v.normal[0] = float(-gx * inv);
-            v.normal[1] = float(-gy * inv);
-            v.normal[2] = float(inv);
-        }
+    std::vector<double> out;
+    double spacing = cell, offset = 0.0;
+    while (offset + spacing < ease) {
+        offset += spacing;
+        out.push_back(offset);
+        spacing *= 1.15;
     }
+    out.push_back(ease);
     return out;
 }
 
-// Two triangles per cell split along (i, j)-(i+1, j+1), as geometry::Terrain does, counter-
-// clockwise seen from above.
-std::vector<std::uint32_t> grid_indices(int nx, int ny)
+// The tensor grid's coordinates along one axis: the rings before the grid, its samples, the
+// rings after.
+std::vector<double> axis(double first, double step, int samples, const std::vector<double>& rings)
 {
-    std::vector<std::uint32_t> out;
-    out.reserve(std::size_t(nx - 1) * (ny - 1) * 6);
-    for (int j = 0; j + 1 < ny; ++j)
-        for (int i = 0; i + 1 < nx; ++i) {
-            const std::uint32_t a = std::uint32_t(j * nx + i), b = a + 1, c = a + 1 + std::uint32_t(nx),
-                                d = a + std::uint32_t(nx);
-            out.insert(out.end(), {a, b, c, a, c, d});
-        }
+    std::vector<double> out;
+    for (auto r = rings.rbegin(); r != rings.rend(); ++r)
+        out.push_back(first - *r);
+    for (int i = 0; i < samples; ++i)
+        out.push_back(first + i * step);
+    const double last = first + (samples - 1) * step;
+    for (double r : rings)
+        out.push_back(last + r);
     return out;
 }
 
 }  // namespace
 
-TerrainPass::TerrainPass() : program_({"terrain.vert", "froxel_none.glsl", "terrain.frag"}) {}
+TerrainPass::TerrainPass() : program_({"terrain.vert", "froxel_none.glsl", "ground.glsl", "terrain.frag"}) {}
 
-bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggeration)
+bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround)
 {
     const geometry::Heightfield& hf = terrain.heightfield();
-    if (uploaded_heights_ == hf.z.data() && uploaded_size_ == hf.z.size() && uploaded_exaggeration_ == exaggeration)
+    if (uploaded_heights_ == hf.z.data() && uploaded_size_ == hf.z.size() && uploaded_exaggeration_ == exaggeration &&
+        uploaded_surround_ == surround)
         return false;
     if (hf.nx < 2 || hf.ny < 2) {
-        index_count_ = 0;
+        grid_index_count_ = surround_index_count_ = 0;
         return false;
     }
-    const std::vector<Vertex> vertices = grid_vertices(hf, exaggeration);
-    const std::vector<std::uint32_t> indices = grid_indices(hf.nx, hf.ny);
+    const geometry::Ground ground(hf, surround);
+    const std::vector<double> rings =
+        surround ? ring_offsets(std::min(hf.dx, hf.dy), ground.ease()) : std::vector<double>{};
+    const int k = int(rings.size());
+    const std::vector<double> xs = axis(hf.x0, hf.dx, hf.nx, rings), ys = axis(hf.y0, hf.dy, hf.ny, rings);
+    const int nx = int(xs.size()), ny = int(ys.size());
+    const auto in_grid = [&](int i, int j) { return i >= k && i < k + hf.nx && j >= k && j < k + hf.ny; };
+    std::vector<Vertex> vertices(std::size_t(nx) * ny);
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            double z, gx, gy;  // height and slope, exaggeration applied
+            if (in_grid(i, j)) {
+                // The grid's samples with normals from central differences (one-sided at the border).
+                const int gi = i - k, gj = j - k;
+                const int im = std::max(gi - 1, 0), ip = std::min(gi + 1, hf.nx - 1);
+                const int jm = std::max(gj - 1, 0), jp = std::min(gj + 1, hf.ny - 1);
+                z = exaggeration * ground.sample(gi, gj);
+                gx = ip > im ? exaggeration * (ground.sample(ip, gj) - ground.sample(im, gj)) / ((ip - im) * hf.dx)
+                             : 0.0;
+                gy = jp > jm ? exaggeration * (ground.sample(gi, jp) - ground.sample(gi, jm)) / ((jp - jm) * hf.dy)
+                             : 0.0;
+            } else {
+                const glm::dvec3 n = ground.normal(xs[i], ys[j]);
+                z = exaggeration * ground.height(xs[i], ys[j]);
+                gx = -exaggeration * n.x / n.z;
+                gy = -exaggeration * n.y / n.z;
+            }
+            const double inv = 1.0 / std::sqrt(gx * gx + gy * gy + 1.0);
+            vertices[std::size_t(j) * nx + i] = {{float(xs[i]), float(ys[j]), float(z)},
+                                                 {float(-gx * inv), float(-gy * inv), float(inv)}};
+        }
+    // Two triangles per cell split along (i, j)-(i+1, j+1), as geometry::Terrain does, counter-
+    // clockwise seen from above: the grid's cells first, then the surround's.
+    std::vector<std::uint32_t> indices, outer;
+    indices.reserve(std::size_t(hf.nx - 1) * (hf.ny - 1) * 6);
+    for (int j = 0; j + 1 < ny; ++j)
+        for (int i = 0; i + 1 < nx; ++i) {
+            const std::uint32_t a = std::uint32_t(j * nx + i), b = a + 1, c = a + 1 + std::uint32_t(nx),
+                                d = a + std::uint32_t(nx);
+            auto& list = in_grid(i, j) && in_grid(i + 1, j + 1) ? indices : outer;
+            list.insert(list.end(), {a, b, c, a, c, d});
+        }
+    grid_index_count_ = GLsizei(indices.size());
+    surround_index_count_ = GLsizei(outer.size());
+    indices.insert(indices.end(), outer.begin(), outer.end());
     vao_ = make_vertex_array();
     vertices_ = make_buffer();
     indices_ = make_buffer();
@@ -81,16 +119,35 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
         glVertexArrayAttribFormat(vao_.get(), attribute, 3, GL_FLOAT, GL_FALSE, attribute * 3 * sizeof(float));
         glVertexArrayAttribBinding(vao_.get(), attribute, 0);
     }
-    index_count_ = GLsizei(indices.size());
     const auto [lo, hi] = std::minmax_element(hf.z.begin(), hf.z.end());
     min_ = {hf.x0, hf.y0, exaggeration * *lo};
     max_ = {hf.x_max(), hf.y_max(), exaggeration * *hi};
     if (exaggeration < 0.0)
         std::swap(min_.z, max_.z);
+    colour_z_min_ = float(exaggeration * ground.z_min());
+    colour_z_max_ = float(exaggeration * ground.z_max());
+    if (exaggeration < 0.0)
+        std::swap(colour_z_min_, colour_z_max_);
+    water_ = ground.sea_level().has_value();
+    sea_level_ = float(exaggeration * ground.sea_level().value_or(0.0));
+    water_tolerance_ = float(std::abs(exaggeration) * ground.water_tolerance());
+    base_z_ = float(exaggeration * ground.base());
     uploaded_heights_ = hf.z.data();
     uploaded_size_ = hf.z.size();
     uploaded_exaggeration_ = exaggeration;
+    uploaded_surround_ = surround;
     return true;
+}
+
+void TerrainPass::set_ground_uniforms(const ShaderProgram& p) const
+{
+    p.set("u_z_min", colour_z_min_);
+    p.set("u_z_max", colour_z_max_);
+    p.set("u_water", int(water_));
+    p.set("u_sea_level", sea_level_);
+    p.set("u_water_tolerance", water_tolerance_);
+    p.set("u_ground", int(has_terrain() && surround_index_count_ > 0));
+    p.set("u_ground_z", base_z_);
 }
 
 void TerrainPass::draw_mesh() const
@@ -98,33 +155,42 @@ void TerrainPass::draw_mesh() const
     if (!has_terrain())
         return;
     glBindVertexArray(vao_.get());
-    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, grid_index_count_, GL_UNSIGNED_INT, nullptr);
 }
 
-void TerrainPass::draw(const FrameContext& frame, const FroxelPass* fog) const
+void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) const
 {
     if (!has_terrain())
         return;
-    if (fog && !fog_program_)
-        fog_program_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"terrain.vert", "terrain_shadow.glsl", "terrain.frag"});
-    const ShaderProgram& p = fog ? *fog_program_ : program_;
-    if (fog)
-        fog->bind_shadow(p);
+    if (shadow && !shadow_program_)
+        shadow_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+            "terrain.vert", "terrain_shadow.glsl", "ground.glsl", "terrain.frag"});
+    const ShaderProgram& p = shadow ? *shadow_program_ : program_;
+    if (shadow)
+        shadow->bind(p, true);
     p.set("u_view_projection", frame.view_projection);
     p.set("u_eye", frame.eye);
     p.set("u_sun_direction", frame.sun_direction);
     p.set("u_sun_radiance", frame.sun_radiance);
     p.set("u_ambient", frame.ambient);
     p.set("u_sky_horizon", frame.sky_horizon);
-    p.set("u_z_min", float(min_.z));
-    p.set("u_z_max", float(max_.z));
     p.set("u_haze_density", frame.haze_density);
+    set_ground_uniforms(p);
     p.use();
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao_.get());
-    glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, grid_index_count_, GL_UNSIGNED_INT, nullptr);
+    if (surround_index_count_ > 0) {
+        // The frame's far plane is fitted to the grid: the surround beyond it is kept at the far
+        // depth (the sky pass's flat ground is what lies further still).
+        glEnable(GL_DEPTH_CLAMP);
+        glDepthFunc(GL_LEQUAL);
+        glDrawElements(GL_TRIANGLES, surround_index_count_, GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(std::size_t(grid_index_count_) * sizeof(std::uint32_t)));
+        glDisable(GL_DEPTH_CLAMP);
+        glDepthFunc(GL_LESS);
+    }
 }
 
 }  // namespace kiri::render::detail

@@ -13,34 +13,46 @@ class Terrain;
 
 namespace kiri::render::detail {
 
-//! The terrain as one indexed grid mesh, uploaded once per (terrain, exaggeration).
+//! The ground (kiri/geometry/terrain/ground.hpp) as one indexed mesh, uploaded once per
+//! (terrain, exaggeration, surround): the grid, then the surround's rings around it, spaced a
+//! cell at the edge and growing outwards to where the surround reaches its base level (the sky
+//! pass draws the flat ground beyond).
 class TerrainPass {
 public:
     TerrainPass();
-    //! Returns true when it had to upload (the terrain or the exaggeration changed).
-    bool set_terrain(const geometry::Terrain& terrain, double exaggeration);
-    bool has_terrain() const { return index_count_ > 0; }
-    //! Draws the terrain; with `fog` (may be null) in the shadows of the sun's shadow map it
-    //! keeps (terrain_shadow.glsl).
-    void draw(const FrameContext& frame, const class FroxelPass* fog = nullptr) const;
-    //! Draws the mesh with whatever program is bound (positions at attribute 0): depth passes.
+    //! Returns true when it had to upload (the terrain, the exaggeration or the surround changed).
+    bool set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround = true);
+    bool has_terrain() const { return grid_index_count_ > 0; }
+    //! Draws the ground in the shadows of the sun's shadow map (terrain_shadow.glsl; null: no
+    //! shadows).
+    void draw(const FrameContext& frame, const class ShadowMapPass* shadow = nullptr) const;
+    //! Draws the grid's mesh, without the surround, with whatever program is bound (positions at
+    //! attribute 0): depth passes (the sun's shadow map ignores the surround).
     void draw_mesh() const;
+    //! Sets ground.glsl's uniforms of `program` (colours by height, the sea), and sky.frag's
+    //! ground beyond the surround.
+    void set_ground_uniforms(const ShaderProgram& program) const;
     //! What is uploaded (changes when the terrain or the exaggeration do).
     const void* identity() const { return uploaded_heights_; }
+    //! The grid's bounds (the surround lies outside them).
     glm::dvec3 bounds_min() const { return min_; }
     glm::dvec3 bounds_max() const { return max_; }
 
 private:
-    ShaderProgram program_;                               // no shadow map: no shadows
-    mutable std::unique_ptr<ShaderProgram> fog_program_;  // in the shadow map's shadows, built on first use
+    ShaderProgram program_;                                  // no shadow map: no shadows
+    mutable std::unique_ptr<ShaderProgram> shadow_program_;  // in the shadow map's shadows, built on first use
     VertexArray vao_;
     Buffer vertices_, indices_;
-    GLsizei index_count_ = 0;
+    GLsizei grid_index_count_ = 0, surround_index_count_ = 0;
     glm::dvec3 min_{0.0}, max_{-1.0};
+    // ground.glsl's and sky.frag's ground uniforms.
+    float colour_z_min_ = 0.0f, colour_z_max_ = 0.0f, sea_level_ = 0.0f, water_tolerance_ = 0.0f, base_z_ = 0.0f;
+    bool water_ = false;
     // What is on the GPU now, to skip redundant uploads.
     const void* uploaded_heights_ = nullptr;
     std::size_t uploaded_size_ = 0;
     double uploaded_exaggeration_ = 0.0;
+    bool uploaded_surround_ = false;
 };
 
 }  // namespace kiri::render::detail

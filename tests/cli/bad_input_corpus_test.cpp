@@ -84,6 +84,39 @@ protected:
     }
 };
 
+// ---- Point files ------------------------------------------------------------------------------
+
+TEST_F(BadInputCorpus, TruncatedPly)
+{
+    const fs::path ply = file("cut.ply",
+                              "ply\nformat binary_little_endian 1.0\nelement vertex 100\nproperty float x\n"
+                              "property float y\nproperty float z\nend_header\n" +
+                                  std::string(120, '\x01'));
+    expect_refused(render(scene_for(ply)), {ply.string(), "element vertex", "truncated"}, out());
+}
+
+TEST_F(BadInputCorpus, PlyCoordinateOfTheWrongType)
+{
+    const fs::path ply = file("list.ply",
+                              "ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar float x\n"
+                              "property float y\nproperty float z\nend_header\n1 0 0 0\n");
+    expect_refused(render(scene_for(ply)), {ply.string(), "property x", "list"}, out());
+}
+
+TEST_F(BadInputCorpus, PlyNaN)
+{
+    const fs::path ply = file("nan.ply",
+                              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                              "property float z\nend_header\n0 0 1\n1 0 nan\n0 1 2\n");
+    expect_refused(render(scene_for(ply)), {ply.string(), "vertex 1", "not finite"}, out());
+}
+
+TEST_F(BadInputCorpus, CsvWithoutXyzColumns)
+{
+    const fs::path csv = file("pts.csv", "easting,northing,height\n0,0,1\n1,0,2\n0,1,3\n");
+    expect_refused(render(scene_for(csv)), {csv.string(), "line 1", "x, y, z", "easting, northing, height"}, out());
+}
+
 // ---- Rasters ---------------------------------------------------------------------------------
 
 TEST_F(BadInputCorpus, TruncatedPng)

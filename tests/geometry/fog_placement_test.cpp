@@ -198,6 +198,58 @@ TEST(FogPlacement, TheMediumOfAFillIsItsColumns)
     EXPECT_NEAR(m.shell_volume() / placed.figures.volume_m3, 1.0, 1e-9);
 }
 
+TEST(FogPlacement, TheMediumsGridSpansTheFogsBounds)
+{
+    // A flat terrain of 201 x 201 samples 10 m apart; fog 50 m deep over samples i 5..24,
+    // j 3..12 (a corner). The grid spans them with one sample of margin: i 4..26, j 2..14.
+    Heightfield hf;
+    hf.nx = hf.ny = 201;
+    hf.dx = hf.dy = 10.0;
+    hf.x0 = hf.y0 = -1000.0;
+    hf.z.assign(std::size_t(201) * 201, 0.0);
+    hf.valid.assign(hf.z.size(), 1);
+    const Terrain t(hf);
+    const auto placed_at = [&](const std::vector<std::pair<int, int>>& extra) {
+        PlacedFog p;
+        p.columns.nx = p.columns.ny = 201;
+        p.columns.mask.assign(hf.z.size(), 0);
+        p.columns.bottom.assign(hf.z.size(), 0.0);
+        p.columns.top.assign(hf.z.size(), 0.0);
+        p.medium_bottom.assign(hf.z.size(), 0.0);
+        const auto fog = [&](int i, int j) {
+            const std::size_t k = std::size_t(j) * 201 + i;
+            p.columns.mask[k] = 1;
+            p.columns.top[k] = 50.0;
+        };
+        for (int j = 3; j <= 12; ++j)
+            for (int i = 5; i <= 24; ++i)
+                fog(i, j);
+        for (const auto& [i, j] : extra)
+            fog(i, j);
+        return p;
+    };
+    const MediumDetail plain{.detail = 0.0};
+    const Medium corner = fill_medium(t, placed_at({}), MediumOptions{}, plain);
+    EXPECT_EQ(corner.grid().nx, 23);
+    EXPECT_EQ(corner.grid().ny, 13);
+    EXPECT_DOUBLE_EQ(corner.grid().x0, hf.x_of(4));
+    EXPECT_DOUBLE_EQ(corner.grid().y0, hf.y_of(2));
+    // The same fog with a speck at the far corner spans samples 4..200: inside the corner's fog
+    // and around it, both media are the same.
+    const Medium whole = fill_medium(t, placed_at({{200, 200}}), MediumOptions{}, plain);
+    EXPECT_EQ(whole.grid().nx, 197);
+    for (double x = hf.x_of(2); x <= hf.x_of(28); x += 3.7)
+        for (double y = hf.y_of(0); y <= hf.y_of(16); y += 4.1)
+            for (double z : {1.0, 25.0, 49.0})
+                EXPECT_EQ(corner.density({x, y, z}), whole.density({x, y, z})) << x << " " << y << " " << z;
+    // The memory budget counts the fog's bounds: 40 samples a side keep the corner's 10 m
+    // spacing, where the whole terrain needs every 6th sample.
+    MediumOptions budget;
+    budget.max_grid_side = 40;
+    EXPECT_DOUBLE_EQ(fill_medium(t, placed_at({}), budget, plain).grid().dx, 10.0);
+    EXPECT_DOUBLE_EQ(fill_medium(t, placed_at({{200, 200}}), budget, plain).grid().dx, 60.0);
+}
+
 TEST(FogPlacement, OpticsConversions)
 {
     // Koschmieder (medium.hpp): V = 3.912 / sigma; the engines' equivalents of sigma.

@@ -11,6 +11,7 @@
 #include "fog_test_terrains.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/terrain/ground.hpp"
 
 using namespace kiri::geometry;
 
@@ -349,22 +350,68 @@ TEST(ReferenceFog, NoSkyAndBlackGroundLeaveTheSunsLightAlone)
 
 TEST(ReferenceFog, TheGridsEdgeIsNoWall)
 {
-    // A plate at 100 m over [-500, 500]^2: the terrain is a surface, as the GL terrain and the
-    // shadow map draw it, so a ray from outside passing under its edge sees no wall.
+    // A plate at 100 m over [-500, 500]^2, bare (no surround): the terrain is a surface, as the
+    // GL terrain and the shadow map draw it, so a ray from outside passing under its edge sees no
+    // wall.
     Heightfield plate;
     plate.nx = plate.ny = 11;
     plate.dx = plate.dy = 100.0;
     plate.x0 = plate.y0 = -500.0;
     plate.z.assign(121, 100.0);
     plate.valid.assign(121, 1);
+    ReferenceOptions bare;
+    bare.surround = false;
     ReferenceView view;
     view.width = view.height = 1;
     view.fov_y_deg = 10.0;
     view.eye = {-2000.0, 0.0, 50.0};
     view.target = {0.0, 0.0, 50.0};
-    EXPECT_TRUE(std::isinf(render_reference_fog({}, &plate, view, FogLighting{}).depth[0]));
+    EXPECT_TRUE(std::isinf(render_reference_fog({}, &plate, view, FogLighting{}, bare).depth[0]));
     // From above, the same plate is hit where it is: 2000 m away, 500 m down.
     view.eye = {-2000.0, 0.0, 600.0};
     view.target = {0.0, 0.0, 100.0};
-    EXPECT_NEAR(render_reference_fog({}, &plate, view, FogLighting{}).depth[0], std::hypot(2000.0, 500.0), 1e-6);
+    EXPECT_NEAR(render_reference_fog({}, &plate, view, FogLighting{}, bare).depth[0], std::hypot(2000.0, 500.0), 1e-6);
+}
+
+TEST(ReferenceFog, RaysBeyondTheGridMeetItsSurround)
+{
+    // z = 1000 + 0.3 y over [-500, 500]^2: its surround (ground.hpp) is 1000 m from 250 m out.
+    Heightfield hf;
+    hf.nx = hf.ny = 11;
+    hf.dx = hf.dy = 100.0;
+    hf.x0 = hf.y0 = -500.0;
+    for (int j = 0; j < 11; ++j)
+        for (int i = 0; i < 11; ++i)
+            hf.z.push_back(1000.0 + 0.3 * hf.y_of(j));
+    hf.valid.assign(121, 1);
+    const Ground ground(hf);
+    FogLighting light;
+    // Down onto the flat ground 1500 m beyond the edge: the plane, exactly.
+    RayFog r =
+        reference_ray({}, &hf, {-3000.0, 0.0, 1500.0}, glm::normalize(glm::dvec3(1000.0, 0.0, -500.0)), 1e6, light);
+    ASSERT_TRUE(r.hit_terrain);
+    EXPECT_NEAR(r.distance, std::hypot(1000.0, 500.0), 1e-9);
+    // Straight down into the eased band, 125 m west of the edge at y = 100: the closed form.
+    r = reference_ray({}, &hf, {-625.0, 100.0, 2000.0}, {0.0, 0.0, -1.0}, 1e6, light);
+    ASSERT_TRUE(r.hit_terrain);
+    EXPECT_NEAR(2000.0 - r.distance, 1000.0 + 30.0 * 0.5, 1e-9);
+    // Oblique rays through the band: each ends on the ground, and above it before.
+    for (double azimuth = 0.0; azimuth < 6.28; azimuth += 0.37) {
+        const glm::dvec3 o(-700.0 * std::cos(azimuth), -700.0 * std::sin(azimuth), 1300.0);
+        const glm::dvec3 w = glm::normalize(glm::dvec3(std::cos(azimuth + 0.4), std::sin(azimuth + 0.4), -0.35));
+        r = reference_ray({}, &hf, o, w, 1e6, light);
+        ASSERT_TRUE(r.hit_terrain) << azimuth;
+        const glm::dvec3 p = o + w * r.distance;
+        EXPECT_NEAR(p.z, ground.height(p.x, p.y), 1e-6) << azimuth;
+        for (double t = 0.0; t < r.distance - 1.0; t += 5.0) {
+            const glm::dvec3 q = o + w * t;
+            ASSERT_GT(q.z, ground.height(q.x, q.y)) << azimuth << " " << t;
+        }
+    }
+    // Without the surround the same rays leave the bare tile.
+    ReferenceOptions bare;
+    bare.surround = false;
+    EXPECT_FALSE(reference_ray({}, &hf, {-3000.0, 0.0, 1500.0}, glm::normalize(glm::dvec3(1000.0, 0.0, -500.0)), 1e6,
+                               light, bare)
+                     .hit_terrain);
 }

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/terrain/point_files.hpp"
 #include "kiri/geometry/terrain/scattered_points.hpp"
 
 namespace fs = std::filesystem;
@@ -166,4 +167,90 @@ TEST_F(TempDir, ErrorsNameTheFileAndLine)
     expect_error(write("huge.xyz", "1 2 1e999\n"), "line 1", "'1e999'");
     expect_error(write("empty.xyz", "# nothing\n\n"), "", "no points");
     expect_error(dir / "missing.xyz", "file", "no such file");
+}
+
+// ---- Point files: CSV with a header, PLY (point_files.hpp) ---------------------------------
+
+namespace {
+
+std::string ply_binary(const std::string& properties, const std::string& body, int count)
+{
+    return "ply\nformat binary_little_endian 1.0\ncomment test\nelement vertex " + std::to_string(count) + "\n" +
+        properties + "element face 0\nproperty list uchar int vertex_indices\nend_header\n" + body;
+}
+
+template <class T>
+std::string bytes(T v)
+{
+    return std::string(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+}  // namespace
+
+TEST_F(TempDir, CsvColumnsAreNamedInAnyOrder)
+{
+    const auto path = write("pts.csv", "# survey\nid,Z,\"y\",x,quality\n1,300.5,20,10,good\n2,310,21.5,11,fair\n");
+    const auto pts = read_points(path);
+    ASSERT_EQ(pts.size(), 2u);
+    EXPECT_EQ(pts[0], glm::dvec3(10.0, 20.0, 300.5));
+    EXPECT_EQ(pts[1], glm::dvec3(11.0, 21.5, 310.0));
+    // Without a header: x,y,z rows, as before.
+    EXPECT_EQ(read_points(write("plain.csv", "1,2,3\n4,5,6\n"))[1], glm::dvec3(4.0, 5.0, 6.0));
+}
+
+TEST_F(TempDir, PlyVerticesAsciiAndBinary)
+{
+    const auto ascii = write("pts.ply",
+                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                             "property uchar red\nproperty double z\nend_header\n"
+                             "0 0 255 100\n10 0 0 101.5\n0 10 7 -3e2\n");
+    const auto a = read_points(ascii);
+    ASSERT_EQ(a.size(), 3u);
+    EXPECT_EQ(a[1], glm::dvec3(10.0, 0.0, 101.5));
+    EXPECT_EQ(a[2], glm::dvec3(0.0, 10.0, -300.0));
+    const std::string props = "property double x\nproperty double y\nproperty short intensity\nproperty float z\n";
+    std::string body;
+    for (const glm::dvec3& p : a)
+        body += bytes(p.x) + bytes(p.y) + bytes(std::int16_t(-7)) + bytes(float(p.z));
+    const auto b = read_points(write("bin.ply", ply_binary(props, body, 3)));
+    ASSERT_EQ(b.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k)
+        EXPECT_EQ(b[k], a[k]);
+}
+
+TEST_F(TempDir, PointFileErrorsNameTheFileAndWhere)
+{
+    const auto expect_error = [](const fs::path& p, const std::string& field, const std::string& part) {
+        try {
+            read_points(p);
+            ADD_FAILURE() << "no error for " << p;
+        } catch (const kiri::InputError& e) {
+            EXPECT_EQ(e.file(), p.string());
+            EXPECT_EQ(e.field(), field) << e.what();
+            EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+        }
+    };
+    expect_error(write("names.csv", "lon,lat,elev\n1,2,3\n"), "line 1", "needs columns x, y, z; found lon, lat, elev");
+    expect_error(write("short.csv", "x,y,z\n1,2,3\n4,5\n"), "line 3", "found 2");
+    expect_error(write("nan.csv", "z,y,x\nnan,1,2\n"), "line 2", "column z");
+    const std::string props = "property float x\nproperty float y\nproperty float z\n";
+    expect_error(write("cut.ply", ply_binary(props, std::string(20, '\0'), 2)), "element vertex", "truncated");
+    expect_error(write("huge.ply", ply_binary(props, "", 1000000000)), "element vertex", "truncated");
+    expect_error(write("list.ply",
+                       "ply\nformat ascii 1.0\nelement vertex 1\nproperty list uchar float x\n"
+                       "property float y\nproperty float z\nend_header\n1 0 0 0\n"),
+                 "property x", "is a list");
+    expect_error(write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty real x\nend_header\n"),
+                 "property x", "unknown type 'real'");
+    expect_error(write("noz.ply",
+                       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+                       "end_header\n1 2\n"),
+                 "element vertex", "has no property z");
+    expect_error(write("nan.ply", ply_binary(props, bytes(1.0f) + bytes(NAN) + bytes(3.0f), 1)), "vertex 0",
+                 "not finite");
+    expect_error(write("big.ply", "ply\nformat binary_big_endian 1.0\nelement vertex 0\nend_header\n"), "format",
+                 "binary_big_endian");
+    expect_error(write("text.ply", "solid cube\n"), "header", "not a PLY file");
+    expect_error(write("ascii_cut.ply", "ply\nformat ascii 1.0\nelement vertex 3\n" + props + "end_header\n1 2 3\n"),
+                 "element vertex", "3 vertices declared, 1 found");
 }

@@ -66,7 +66,7 @@ TEST(Scene, UnknownKeysAreErrors)
         "s.json: /colour: unknown key (expected one of: cameras, combined, fog, froxel, image, layers, medium, particles, quality, sun, terrain)");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif", "exagerration": 2}})"),
               "s.json: /terrain/exagerration: unknown key (expected one of: cell_size, exaggeration, path, "
-              "vertical_offset, vertical_scale)");
+              "surround, vertical_offset, vertical_scale)");
 }
 
 TEST(Scene, MalformedJsonGivesLineAndColumn)

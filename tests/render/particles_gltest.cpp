@@ -254,7 +254,7 @@ TEST_F(ParticlesGl, BillboardsAreSelfShadowed)
     for (int k = 0; k < 1500; ++k)
         c.particles.push_back({{600.0 * u() - 300.0, 600.0 * u() - 300.0, 200.0 + 200.0 * u()}, 35.0, 0.25, 0.95});
     kiri::render::Renderer r;
-    r.set_terrain(flat);
+    r.set_terrain(flat, 1.0, false);  // the bare tile: behind the slab the dark void, not the sunlit surround
     r.set_particles(c);
     kiri::render::SunLight sun;
     sun.direction = {0.0, 0.0, 1.0};

@@ -93,10 +93,13 @@ TEST_F(RendererGl, StaticSceneUploadsOnce)
     renderer.set_terrain(hill, 2.0);
     renderer.render(oblique_camera(), 64, 48);
     EXPECT_EQ(renderer.last_stats().uploads, 1);
-    ASSERT_EQ(renderer.last_stats().passes.size(), 5u);
-    EXPECT_EQ(renderer.last_stats().passes[1].pass, "terrain");
-    EXPECT_EQ(renderer.last_stats().passes[2].pass, "layers");
-    EXPECT_EQ(renderer.last_stats().passes[4].pass, "tonemap");
+    // The sun's shadow map of the terrain (rebuilt: a new exaggeration), then the frame.
+    ASSERT_EQ(renderer.last_stats().passes.size(), 6u);
+    EXPECT_EQ(renderer.last_stats().passes[0].pass, "shadow map");
+    EXPECT_EQ(renderer.last_stats().shadow_map_updates, 2);
+    EXPECT_EQ(renderer.last_stats().passes[2].pass, "terrain");
+    EXPECT_EQ(renderer.last_stats().passes[3].pass, "layers");
+    EXPECT_EQ(renderer.last_stats().passes[5].pass, "tonemap");
     EXPECT_EQ(renderer.last_stats().layers, 0);  // no fog: the layer pass draws nothing
 }
 
@@ -141,12 +144,13 @@ TEST_F(RendererGl, GaussianHillMatchesReferenceImage)
     }
     EXPECT_LE(sum / double(image.rgba.size()), 0.5);
     EXPECT_LE(large, int(image.rgba.size() / 200));
-    // And it is a picture, not a blank: the hill is lit differently from the sky.
+    // And it is a picture, not a blank: the hill's sunlit flank is lit differently from the
+    // plain around it (the surround, flat to the horizon: measured 182 and 140 levels).
     const auto luminance = [&](int x, int y) {
         const std::uint8_t* p = &image.rgba[(std::size_t(y) * 160 + x) * 4];
         return 0.3 * p[0] + 0.59 * p[1] + 0.11 * p[2];
     };
-    EXPECT_GT(std::abs(luminance(80, 2) - luminance(80, 90)), 30.0);
+    EXPECT_GT(std::abs(luminance(100, 55) - luminance(80, 110)), 30.0);
 }
 
 }  // namespace

@@ -35,12 +35,14 @@ FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int w
     // The view ends where the froxel volume does (0: nowhere).
     const geometry::ReferenceView view = render::reference_view(camera_, width, height, froxel.far);
     const auto start = std::chrono::steady_clock::now();
+    geometry::ReferenceOptions options;
+    options.surround = base.terrain.surround;
     reference_ = geometry::render_reference_fog({fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
-                                                render::scene_fog_lighting(base, fog.medium.get(), froxel));
+                                                render::scene_fog_lighting(base, fog.medium.get(), froxel), options);
     reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     context_ = render::create_headless_context();
     renderer_ = std::make_unique<render::Renderer>();
-    renderer_->set_terrain(terrain);
+    renderer_->set_terrain(terrain, 1.0, base.terrain.surround);
     renderer_->set_sun(render::to_sun(base.sun));
 }
 
@@ -49,7 +51,7 @@ FogJudge::~FogJudge() = default;
 void FogJudge::prepare(const geometry::Scene& scene, render::FogMode mode)
 {
     rendering_.emplace(scene, pipeline_.run(scene, render::pipeline_target(mode, scene)), mode);
-    renderer_->set_terrain(*rendering_->products().terrain);  // uploads only when it changed
+    renderer_->set_terrain(*rendering_->products().terrain, 1.0, scene.terrain.surround);  // uploads when it changed
     rendering_->apply(*renderer_);
 }
 
@@ -114,10 +116,8 @@ render::FogError FogJudge::error()
     // A still picture as kiri render draws it.
     last_image_ = renderer_->render(camera_, width_, height_);
     const render::RadianceImage with = renderer_->read_radiance();
-    // The terrain is shadowed only where the froxels built the sun's shadow map: the frame
-    // without fog must see the same terrain.
-    const bool shadows = rendering_->draws_froxels() && rendering_->froxel_options().terrain_shadows;
-    const render::RadianceImage& plain = without_fog(shadows);
+    // The frame without fog sees the same terrain, in the same shadows (the sun's, as set).
+    const render::RadianceImage& plain = without_fog(rendering_->sun().terrain_shadows);
     rendering_->apply(*renderer_);  // back to the fog for what follows
     return render::compare_frames(with, plain, reference_);
 }
@@ -129,13 +129,7 @@ const render::RadianceImage& FogJudge::without_fog(bool shadows)
         renderer_->clear_layers();
         renderer_->clear_particles();
         renderer_->set_fog_partition(std::nullopt);
-        if (shadows) {  // no fog, only the sun's shadow map of the terrain
-            geometry::FroxelOptions o = rendering_->froxel_options();
-            o.height_fog.extinction = 0.0;
-            renderer_->set_froxel_fog(nullptr, o);
-        } else {
-            renderer_->clear_froxel_fog();
-        }
+        renderer_->clear_froxel_fog();
         renderer_->draw(camera_, width_, height_);
         renderer_->draw(camera_, width_, height_);
         plain = renderer_->read_radiance();

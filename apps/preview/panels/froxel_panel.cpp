@@ -46,7 +46,7 @@ bool froxel_panel(geometry::Scene& scene, const render::FroxelStats& stats)
         changed |= field_drag("base (m)", h.base, geometry::field_of(h, h.base), 5.0);
         changed |= edit("scale height (m)", h, h.scale_height, "%.0f");
     }
-    ImGui::TextDisabled("updates %d, shadow map %d; %s", stats.updates, stats.shadow_map_updates,
+    ImGui::TextDisabled("updates %d; %s", stats.updates,
                         !stats.enabled      ? "off"
                             : stats.visible ? "in view"
                                             : "out of view");

@@ -34,11 +34,12 @@ void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, con
         }
         ImGui::EndTable();
     }
-    ImGui::Text("layers drawn %d, GPU uploads this frame %d", stats.layers + (stats.layers > 0), stats.uploads);
+    ImGui::Text("layers drawn %d, GPU uploads this frame %d, sun's shadow map built %d times",
+                stats.layers + (stats.layers > 0), stats.uploads, stats.shadow_map_updates);
     if (fog.froxels) {
         const render::FroxelStats& f = stats.froxel;
-        ImGui::Text("froxel passes: ran in %d frames (this frame %s), shadow map %d; %s", f.updates,
-                    f.updated ? "yes" : "no", f.shadow_map_updates, f.visible ? "in view" : "out of view");
+        ImGui::Text("froxel passes: ran in %d frames (this frame %s); %s", f.updates, f.updated ? "yes" : "no",
+                    f.visible ? "in view" : "out of view");
     }
     if (fog.particles > 0) {
         ImGui::Text("particles %zu (drawn %d)", fog.particles, stats.particles);

@@ -35,7 +35,7 @@ FogMarcher::FogMarcher(const FogVolume& fog, const Heightfield* terrain, const F
     : fog_(fog), heightfield_(terrain), light_(light), o_(o)
 {
     if (terrain && terrain->nx >= 2 && terrain->ny >= 2)
-        terrain_ = std::make_unique<HeightfieldRay>(*terrain);
+        terrain_ = std::make_unique<HeightfieldRay>(*terrain, o.surround);
     const double len = glm::length(light.sun_direction);
     sun_ = len > 0.0 && std::isfinite(len) ? light.sun_direction / len : glm::dvec3(0.0, 0.0, 1.0);
     if (!light_.sky)
@@ -280,9 +280,7 @@ glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s) co
     // render/shaders/terrain.frag without its distance haze, with the cast shadows and the
     // fog's shade of the sun that the lighting model adds.
     const glm::dvec3 n = terrain_->normal(p.x, p.y);
-    const double height01 =
-        std::clamp((p.z - terrain_->z_min()) / std::max(terrain_->z_max() - terrain_->z_min(), 1e-3), 0.0, 1.0);
-    const glm::dvec3 base = terrain_albedo(height01, n.z);
+    const glm::dvec3 base = ground_albedo(terrain_->ground(), p, n);
     double direct = std::max(glm::dot(n, sun_), 0.0);
     if (direct > 0.0) {
         const glm::dvec3 q = p + n * (0.01 + 1e-7 * glm::length(p));  // off the surface's own triangles

@@ -200,7 +200,7 @@ PathTracer::PathTracer(const FogVolume& fog, const Heightfield* terrain, const F
     albedo_haze_ = clamp_albedo(haze_.albedo);
     g_haze_ = clamp_g(haze_.anisotropy);
     if (terrain && terrain->nx >= 2 && terrain->ny >= 2 && terrain->z.size() == std::size_t(terrain->nx) * terrain->ny)
-        terrain_ = std::make_unique<detail::HeightfieldRay>(*terrain);
+        terrain_ = std::make_unique<detail::HeightfieldRay>(*terrain, options.surround);
     const double len = glm::length(light.sun_direction);
     sun_ = len > 0.0 && std::isfinite(len) ? light.sun_direction / len : glm::dvec3(0.0, 0.0, 1.0);
     sun_radiance_ = glm::max(finite_or_zero(light.sun_radiance), glm::dvec3(0.0));
@@ -368,9 +368,7 @@ glm::dvec3 PathTracer::sample(const glm::dvec3& origin, const glm::dvec3& dir, d
             ++vertices;
             const glm::dvec3 p = o + w * t_end;
             const glm::dvec3 n = terrain_->normal(p.x, p.y);
-            const double height01 =
-                std::clamp((p.z - terrain_->z_min()) / std::max(terrain_->z_max() - terrain_->z_min(), 1e-3), 0.0, 1.0);
-            throughput *= detail::terrain_albedo(height01, n.z);
+            throughput *= detail::ground_albedo(terrain_->ground(), p, n);
             const glm::dvec3 q = p + n * (0.01 + 1e-7 * glm::length(p));  // off the surface's own triangles
             // Lambert: albedo / pi times the sun's irradiance pi sun cos.
             if (const double c = glm::dot(n, sun_); sun_on_ && c > 0.0)

@@ -1,9 +1,12 @@
 #pragma once
 // Internal: the terrain's albedo as render/shaders/terrain.frag colours it (by height and
-// slope), shared by the reference ray marcher's and the path tracer's ground.
+// slope, water at the sea's surface), shared by the reference ray marcher's and the path
+// tracer's ground.
 #include <algorithm>
 
 #include <glm/vec3.hpp>
+
+#include "kiri/geometry/terrain/ground.hpp"
 
 namespace kiri::geometry::detail {
 
@@ -23,6 +26,17 @@ inline glm::dvec3 terrain_albedo(double height01, double normal_z)
         rock(0.40, 0.36, 0.32);
     glm::dvec3 base = height01 < 0.5 ? mix(valley, slope, height01 * 2.0) : mix(slope, upland, height01 * 2.0 - 1.0);
     return mix(base, rock, smoothstep(0.18, 0.55, 1.0 - normal_z));
+}
+
+//! The albedo of the ground's point p with unit normal n: water at the sea's surface, else
+//! terrain_albedo over the grid's heights (the surround takes the colour of its height).
+inline glm::dvec3 ground_albedo(const Ground& ground, const glm::dvec3& p, const glm::dvec3& n)
+{
+    if (ground.is_water(p.z))
+        return {water_albedo[0], water_albedo[1], water_albedo[2]};
+    const double height01 =
+        std::clamp((p.z - ground.z_min()) / std::max(ground.z_max() - ground.z_min(), 1e-3), 0.0, 1.0);
+    return terrain_albedo(height01, n.z);
 }
 
 }  // namespace kiri::geometry::detail

@@ -18,6 +18,7 @@
 #include "scene/field_json.hpp"
 #include "scene/quality_json.hpp"
 #include "kiri/geometry/terrain/dem.hpp"
+#include "kiri/geometry/terrain/point_files.hpp"
 #include "kiri/geometry/terrain/scattered_points.hpp"
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
@@ -259,7 +260,7 @@ Terrain load_scene_terrain(const Scene& scene, double* exaggeration)
     if (is_point_file(scene.terrain.path)) {
         // Scattered points: triangulated and resampled to the grid the rest of kiri uses, at the
         // scene's cell size or about one point a cell.
-        const std::vector<glm::dvec3> points = read_xyz_points(scene.terrain.path);
+        const std::vector<glm::dvec3> points = read_points(scene.terrain.path);
         if (points.size() < 3)
             throw InputError(scene.terrain.path.string(), "", "needs at least 3 points");
         hf = heightfield_from_points(points, options.cell_size > 0.0 ? options.cell_size : point_cell_size(points));

@@ -183,7 +183,7 @@ bool is_point_file(const std::filesystem::path& path)
 {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".xyz" || ext == ".csv" || ext == ".txt";
+    return ext == ".xyz" || ext == ".csv" || ext == ".txt" || ext == ".ply";
 }
 
 double point_cell_size(const std::vector<glm::dvec3>& points)

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "kiri/geometry/terrain/ground.hpp"
 #include "terrain/terrain_index.hpp"
 
 namespace kiri::geometry {
@@ -40,16 +41,7 @@ CellCoords locate(const Heightfield& hf, double x, double y)
 
 // Each cell is split along the diagonal (i, j)-(i+1, j+1): the lower-right triangle holds
 // s >= t, the upper-left one s < t. Interpolation is linear on the triangle.
-double Terrain::height(double x, double y) const
-{
-    if (hf_.nx < 2 || hf_.ny < 2)
-        return hf_.z.empty() ? 0.0 : hf_.z[0];
-    const auto [i, j, s, t] = locate(hf_, x, y);
-    const double z00 = hf_.at(i, j), z11 = hf_.at(i + 1, j + 1);
-    if (s >= t)
-        return z00 + s * (hf_.at(i + 1, j) - z00) + t * (z11 - hf_.at(i + 1, j));
-    return z00 + t * (hf_.at(i, j + 1) - z00) + s * (z11 - hf_.at(i, j + 1));
-}
+double Terrain::height(double x, double y) const { return grid_height(hf_, x, y); }
 
 glm::dvec3 Terrain::normal(double x, double y) const
 {

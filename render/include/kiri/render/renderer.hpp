@@ -34,6 +34,12 @@ struct SunLight {
     //! false: no sky light at all (`kiri render --no-sky`): no ambient, a black sky without the
     //! sun's glow, for comparisons with renderers set up in a black world.
     bool sky = true;
+    //! The terrain's shadows from the sun: one exponential shadow map a frame ([Annen08]) that
+    //! every pass lit by the sun reads (the terrain, the froxels, the layers, the particles),
+    //! as the CPU reference shadows every point it lights (FogLighting::terrain_shadows).
+    bool terrain_shadows = true;
+    int shadow_map_size = 1024;  //!< texels a side
+    double esm_sharpness = 4.0;  //!< the ESM exponent per texel of light depth
 };
 
 //! How particle clouds are drawn (docs/particles.md).
@@ -60,7 +66,6 @@ struct FroxelStats {
     //! once), or one without temporal filtering. The same view again reruns nothing.
     bool converged = false;
     int updates = 0;  //!< frames whose passes ran since set_froxel_fog
-    int shadow_map_updates = 0;
     //! The last apply: its pixels, and those that marched their own rays (fog-aware: where the
     //! volume's slices do not resolve the fog around them) instead of reading the volume.
     int applied_pixels = 0, marched_pixels = 0;
@@ -80,6 +85,7 @@ struct FrameStats {
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
     int uploads = 0;               //!< GPU resources (re)built during this frame
+    int shadow_map_updates = 0;    //!< the sun's shadow map's builds so far (kept while sun and terrain stay)
     int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
     int particles = 0;             //!< particle billboards drawn
     int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
@@ -95,8 +101,9 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     //! The terrain to draw (kept by reference: it must outlive the renderer's use of it).
-    //! Re-uploads only when the terrain or the exaggeration changed.
-    void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0);
+    //! Re-uploads only when the terrain, the exaggeration or the surround changed. `surround`:
+    //! the ground beyond the DEM's edge (kiri/geometry/terrain/ground.hpp); false: the bare tile.
+    void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0, bool surround = true);
     void set_sun(const SunLight& sun);
     //! The fog's layer stack over the terrain (base kept by reference: it must outlive the
     //! renderer's use of it). Uploads only when the base changed; options apply every frame.

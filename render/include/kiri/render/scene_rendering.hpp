@@ -66,6 +66,9 @@ public:
     //! The Medium the froxels draw, at the scene's time (null: none).
     const geometry::Medium* medium() const;
     const geometry::FroxelOptions& froxel_options() const { return froxel_; }
+    //! The scene's sun with the terrain's shadows as the scene sets them (its froxel keys
+    //! terrain_shadows, shadow_map_size, esm_sharpness: one shadow map for every renderer).
+    SunLight sun() const;
     const geometry::PipelineProducts& products() const { return products_; }
 
 private:

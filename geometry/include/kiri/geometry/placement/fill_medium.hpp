@@ -9,8 +9,9 @@
 
 namespace kiri::geometry {
 
-//! Shell on the terrain's grid (every s-th sample, s chosen so the spacing is at least
-//! options.grid_spacing and a side has at most options.max_grid_side samples): top = the fog's
+//! Shell on the terrain's grid over the fog's bounds (every s-th sample, from a sample before the
+//! fog's columns to one after them; s chosen so the spacing is at least options.grid_spacing and
+//! a side has at most options.max_grid_side samples over those bounds): top = the fog's
 //! top, floor = its bottom above the ground (a lifted base included), bottom = the density
 //! profile's h = 0 (placed.medium_bottom: the region's lowest bottom for the "fill" profile, the
 //! column's own for "blanket"), coverage 1 over fog, 0 elsewhere. Without fog a cell's shell

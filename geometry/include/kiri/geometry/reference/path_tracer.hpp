@@ -61,6 +61,8 @@ struct PathTracerOptions {
     std::uint64_t seed = 1;
     PathSky sky = PathSky::hemisphere;
     PathGround ground = PathGround::lambertian;
+    //! The ground beyond the DEM's edge (kiri/geometry/terrain/ground.hpp); false: the bare tile.
+    bool surround = true;
     int threads = 0;  //!< 0: every core
 };
 

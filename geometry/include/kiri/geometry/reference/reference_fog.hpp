@@ -65,6 +65,8 @@ struct ReferenceOptions {
     //! false: the terrain is black (it still ends rays and casts shadows), so the picture holds
     //! the fog's light alone (`kiri render --black-ground`).
     bool shade_terrain = true;
+    //! The ground beyond the DEM's edge (kiri/geometry/terrain/ground.hpp); false: the bare tile.
+    bool surround = true;
 };
 
 //! The fog along one ray.

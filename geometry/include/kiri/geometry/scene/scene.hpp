@@ -28,6 +28,7 @@ struct TerrainSpec {
     double cell_size = 0.0;
     double vertical_scale = 1.0;
     double vertical_offset = 0.0;
+    bool surround = true;  //!< the ground beyond the DEM's edge (terrain/ground.hpp), in every renderer
     bool operator==(const TerrainSpec&) const = default;
 };
 
@@ -66,6 +67,11 @@ void visit_fields(O& o, V&& v)
       {.key = "vertical_offset",
        .unit = "m",
        .doc = "added to every height (before the exaggeration)",
+       .omit_default = true});
+    v(o.surround,
+      {.key = "surround",
+       .doc = "the ground continues beyond the DEM's edge (its edge eased to the border's median height, then flat "
+              "to the horizon; the sea to the horizon on a coast), drawn by every renderer; false: the bare tile",
        .omit_default = true});
 }
 

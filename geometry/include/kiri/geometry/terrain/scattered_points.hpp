@@ -27,8 +27,8 @@ std::vector<glm::dvec3> read_xyz_points(const std::filesystem::path& path);
 //!        cell_size <= 0; LimitError above DemOptions{}.max_cells samples.
 Heightfield heightfield_from_points(const std::vector<glm::dvec3>& points, double cell_size);
 
-//! Whether path names a point file read by read_xyz_points (".xyz", ".csv", ".txt", any case)
-//! rather than a raster.
+//! Whether path names a point file read by read_points (point_files.hpp: ".xyz", ".csv",
+//! ".txt", ".ply", any case) rather than a raster.
 bool is_point_file(const std::filesystem::path& path);
 
 //! A grid spacing for the points: about one point a cell over their bounding box, to two
