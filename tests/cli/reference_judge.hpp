@@ -20,8 +20,7 @@
 namespace kiri::test {
 
 //! `kiri render SCENE --mode MODE ARGS -o x.exr`, read back.
-inline render::RadianceImage render_radiance(const std::string& scene, const std::string& mode,
-                                             const std::string& args)
+inline render::RadianceImage render_radiance(const std::string& scene, const std::string& mode, const std::string& args)
 {
     const std::filesystem::path out = temp_path("judged_" + mode + ".exr");
     const RunResult r = run_kiri("render " + scene + " -o " + out.string() + " --mode " + mode + " " + args);
