@@ -92,31 +92,6 @@ Tone lower_half(const Image& image)
     return t;
 }
 
-// The screenshot's linear radiance at the pixel centres of a width x height image of the same
-// view: the display curve (tone_map.hpp) inverted and averaged over the four screenshot pixels
-// around each centre.
-kiri::render::RadianceImage radiance_at(const Image& shot, int width, int height)
-{
-    kiri::render::RadianceImage r;
-    r.width = width;
-    r.height = height;
-    r.rgba.assign(std::size_t(width) * height * 4, 1.0f);
-    const int fx = shot.width / width, fy = shot.height / height;
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < width; ++x)
-            for (int c = 0; c < 3; ++c) {
-                double sum = 0.0;
-                for (int dy : {-1, 0})
-                    for (int dx : {-1, 0}) {
-                        const Rgb p = at(shot, x * fx + fx / 2 + dx, y * fy + fy / 2 + dy);
-                        const double v = std::min(double(c == 0 ? p.r : c == 1 ? p.g : p.b), 254.5) / 255.0;
-                        sum += -std::log(1.0 - std::pow(v, 2.2)) / kiri::render::display_exposure;
-                    }
-                r.rgba[(std::size_t(y) * width + x) * 4 + c] = float(0.25 * sum);
-            }
-    return r;
-}
-
 // A screenshot's fog judged against the CPU reference of the scene's fog (its Medium, and its
 // height fog when `height_fog`) at 64 x 36, as `kiri bench` judges a renderer: the fog changes
 // at least `min_fog_pixels` of its pixels, its mean error is below `bound`, and a grey veil as
@@ -125,7 +100,10 @@ void expect_agrees_with_reference(const Image& fog, const Image& bare, const std
                                   int min_fog_pixels, double bound)
 {
     const int w = 64, h = 36;
-    const kiri::render::RadianceImage with = radiance_at(fog, w, h), without = radiance_at(bare, w, h);
+    // The screenshots read back as radiance at the reference's pixel centres (the display curve
+    // inverted, tone_map.hpp).
+    const kiri::render::RadianceImage with = kiri::render::radiance_at(fog, w, h);
+    const kiri::render::RadianceImage without = kiri::render::radiance_at(bare, w, h);
     const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(scene, "", w, h, height_fog);
     const kiri::render::FogError e = kiri::render::compare_frames(with, without, reference);
     std::printf("    against the reference: %d fog pixels, mean error %.4f, p99 %.3f\n", e.fog_pixels, e.mean_relative,
