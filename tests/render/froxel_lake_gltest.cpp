@@ -31,13 +31,13 @@ TEST_F(FroxelGl, JacksboroFogLake)
     o.shadow_map_size = scene.froxel.shadow_map_size;  // 4096: narrow valleys in the low sun's shadow
     const Compared r = compare(terrain, fog.medium.get(), o, c, 320, 180, light);
     EXPECT_GT(r.error.fog_pixels, 5000);
-    // The lake's medium is dense (visibility 150 m, three scattering octaves): the fog's sunlit
-    // skin is metres deep and the narrow valleys' shadows are finer than the shadow map, so
-    // this is a guard against regressions at what is reached (4.5 % mean, the worst 1 % ~90 %
-    // off: pixels of fog in a valley's shadow that the ESM lights), not the 2 % goal, which
-    // the thin-layer, homogeneous and height-fog tests meet (docs/froxel.md).
-    EXPECT_LT(r.error.mean_relative, 0.055);
-    EXPECT_LT(r.error.p99_relative, 1.0);
+    // The lake's medium is dense (visibility 150 m): the fog's sunlit skin is metres deep and
+    // the narrow valleys' shadows are finer than the shadow map, so this is a guard against
+    // regressions at what is reached, not the 2 % goal, which the thin-layer, homogeneous and
+    // height-fog tests meet (docs/froxel.md). Measured: mean 3.5 %, p99 54 % (pixels of fog in
+    // a valley's shadow that the ESM lights); with a 512 shadow map instead, 4.6 % and 73 %.
+    EXPECT_LT(r.error.mean_relative, 0.045);
+    EXPECT_LT(r.error.p99_relative, 0.65);
 }
 
 }  // namespace

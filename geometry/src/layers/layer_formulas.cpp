@@ -25,15 +25,7 @@ double narrowed_spacing(double r0, double moved, double reference_distance)
     return r0 * (1.0 - fraction);
 }
 
-int layer_count_for_thickness(double spacing, double thickness, int min_count, int max_count)
-{
-    if (!(spacing > 0.0))
-        return max_count;  // the eye touches the surface: as many layers as allowed
-    const double n = std::floor(thickness / spacing * (1.0 + 1e-12));
-    return int(std::clamp(n, double(min_count), double(max_count)));
-}
-
-double layer_scale(double k, double theta, double rate) { return 1.0 + k * rate * std::sin(theta); }
+double layer_scale(double k, double sin_theta, double rate) { return 1.0 + k * rate * sin_theta; }
 
 double elevation_angle(const glm::dvec3& eye, const glm::dvec3& point, const glm::dvec3& normal)
 {

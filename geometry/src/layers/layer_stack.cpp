@@ -66,7 +66,7 @@ LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, con
         (o.shading == LayerShading::medium ? 1.0 - (1.0 - o.optics.top_density) * std::min(double(i), n) / n
                                            : layer_alpha(std::min(double(i), n), n));
     v.exponent = c.spacing / (o.thickness / o.count);
-    const double scale = 1.0 + i * o.enlargement_rate * c.sin_theta;
+    const double scale = layer_scale(i, c.sin_theta, o.enlargement_rate);
     const glm::dvec2 xy = centre + scale * (glm::dvec2(point) - centre);
     v.position = {xy.x, xy.y, point.z + i * c.spacing};
     return v;

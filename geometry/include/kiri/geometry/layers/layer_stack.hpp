@@ -35,12 +35,9 @@ double layer_alpha(double i, double l);
 //! distance L0: r' = r0 (1 - R). R is clamped to [0, 1] (moving away does not widen the
 //! spacing; reaching O gives 0), so r' is continuous in the eye position.
 double narrowed_spacing(double r0, double moved, double reference_distance);
-//! (2.9) the number of layers n at spacing r' for the reference thickness T0 = r0 l0: the
-//! largest n with r' n <= T0 (relative tolerance 1e-12, so r' = r0 gives l0), at least
-//! `min_count`, at most `max_count`.
-int layer_count_for_thickness(double spacing, double thickness, int min_count, int max_count);
-//! (2.10) P_k = 1 + (k / 1000) sin(theta); `rate` replaces 1/1000.
-double layer_scale(double k, double theta, double rate = 1e-3);
+//! (2.10) P_k = 1 + (k / 1000) sin(theta); `rate` replaces 1/1000. Takes sin(theta), which the
+//! column carries.
+double layer_scale(double k, double sin_theta, double rate = 1e-3);
 //! theta of (2.10): the angle in [0, pi/2] between the line from `point` to `eye` and the plane
 //! through `point` with unit normal `normal`; 0 when the eye is at the point.
 double elevation_angle(const glm::dvec3& eye, const glm::dvec3& point, const glm::dvec3& normal);
