@@ -92,7 +92,9 @@ void run(const RenderArgs& a)
         mode = render::FogMode::froxel;  // the CPU modes draw the Medium and the height fog
     else if (a.mode != "auto")
         render::parse_fog_mode(a.mode, mode);  // CLI11 checked the name
-    const geometry::PipelineProducts products = geometry::author_scene(given, render::pipeline_target(mode, given));
+    geometry::Pipeline pipeline;
+    const geometry::PipelineProducts products = pipeline.run(given, render::pipeline_target(mode, given));
+    const auto authored = std::chrono::steady_clock::now();
     // The scene as the pipeline completed it: the keys the file left out derived from the terrain.
     const geometry::Scene& scene = *products.scene;
     const geometry::Bounds3 bounds = products.terrain->bounds();
@@ -110,6 +112,7 @@ void run(const RenderArgs& a)
     }
     const render::SceneRendering rendering(scene, products, mode);
     const auto context = render::create_headless_context();
+    const auto context_made = std::chrono::steady_clock::now();
     render::Renderer renderer;
     renderer.set_terrain(*products.terrain, 1.0, scene.terrain.surround);
     rendering.apply(renderer);
@@ -119,7 +122,9 @@ void run(const RenderArgs& a)
         renderer.set_sun(sun);
     }
     // A still picture in one frame: the froxels' lighting takes its jittered samples at once.
+    const auto drawing = std::chrono::steady_clock::now();
     const render::Image image = renderer.render(camera, width, height);
+    const auto drawn = std::chrono::steady_clock::now();
     if (render::is_exr_path(a.out))
         render::write_exr_atomic(a.out, renderer.read_radiance());
     else
@@ -129,12 +134,29 @@ void run(const RenderArgs& a)
     // After the picture: a failure stays the one line on stderr.
     print_derived(*products.derived, products.terrain->heightfield());
     std::fprintf(stderr, "kiri render: %dx%d, mode %s, %.2f s\n", width, height, render::to_string(mode), seconds);
-    if (a.timings) {  // the last frame's passes: device time (pass_timer.hpp) and issue time
+    if (a.timings) {  // where a cold start goes: the pipeline's stages, GL, the frame's passes
+        auto ms = [](auto from, auto to) { return std::chrono::duration<double, std::milli>(to - from).count(); };
+        for (int k = 0; k < geometry::stage_count; ++k)
+            if (pipeline.ran(geometry::Stage(k)))
+                std::fprintf(stderr, "kiri render: stage %-18s %9.2f ms\n", geometry::to_string(geometry::Stage(k)),
+                             1e3 * pipeline.stages()[std::size_t(k)].seconds);
+        std::fprintf(stderr, "kiri render: load and author      %9.2f ms\n", ms(start, authored));
+        std::fprintf(stderr, "kiri render: GL context           %9.2f ms\n", ms(authored, context_made));
+        std::fprintf(stderr, "kiri render: uploads and programs %9.2f ms\n", ms(context_made, drawing));
+        std::fprintf(stderr, "kiri render: render               %9.2f ms\n", ms(drawing, drawn));
+        std::fprintf(stderr, "kiri render: read back and write  %9.2f ms\n",
+                     ms(drawn, std::chrono::steady_clock::now()));
+        // The last frame's passes: device time (pass_timer.hpp) and issue time.
         const render::FrameStats& stats = renderer.last_stats();
         for (const render::PassTime& t : stats.passes)
             std::fprintf(stderr, "kiri render: pass %-18s gpu %9.2f ms  cpu %9.2f ms\n", t.pass.c_str(), t.gpu_ms,
                          t.cpu_ms);
         std::fprintf(stderr, "kiri render: frame %.2f ms\n", stats.frame_ms);
+        if (stats.froxel.applied_pixels > 0)
+            std::fprintf(stderr,
+                         "kiri render: froxel apply marched %d of %d pixels (%.1f %%), read the volume elsewhere\n",
+                         stats.froxel.marched_pixels, stats.froxel.applied_pixels,
+                         100.0 * stats.froxel.marched_pixels / stats.froxel.applied_pixels);
     }
     if (const geometry::ParticleCloud* particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();

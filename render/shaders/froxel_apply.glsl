@@ -5,11 +5,12 @@
 // (each with its own slices; fog-aware, tiles whose central ray meets the ground before that
 // depth weigh little). That is Wronski's apply, what any surface (layers, particles) can read.
 //
-// froxel_pixel_fog is the fog-aware apply for the terrain and the sky: each pixel's own ray is
-// integrated over its own stretch of the Medium's shell (the shell's entry and exit rasterised
-// at full resolution, cut at the pixel's depth) with the Medium's exact density and the height
-// fog's closed-form optical depth, lit by the froxels' lighting J: thin layers and narrow
-// valleys smaller than a tile keep their shape.
+// froxel_pixel_fog is the fog-aware apply for the terrain and the sky: where the volume's
+// slices resolve the fog around a pixel (froxel_classify.comp, froxel_resolved) the same
+// lookup; elsewhere the pixel's own ray is integrated over its own stretch of the Medium's
+// shell (the shell's entry and exit rasterised at full resolution, cut at the pixel's depth)
+// with the Medium's exact density and the height fog's closed-form optical depth, lit by the
+// froxels' lighting J: thin layers and narrow valleys smaller than a tile keep their shape.
 // Needs froxel_common.glsl and froxel_medium.glsl before it.
 uniform int u_fx_apply;               // 0: no froxel fog, 1: standard, 2: fog-aware
 uniform sampler3D u_fx_volume;        // (in-scattered radiance, transmittance) at slice ends
@@ -20,6 +21,7 @@ uniform float u_fx_near;              // the volume's first depth
 uniform sampler3D u_fx_light;         // (J, lit) per froxel, linear filtering
 uniform sampler2D u_fx_first;         // per pixel: the shell's nearest depth (3e38: none)
 uniform sampler2D u_fx_last;          // per pixel: the shell's farthest depth (0: none)
+uniform int u_fx_classified;          // the tiles' w marks where pixels march (froxel_classify.comp)
 
 vec4 froxel_column(ivec2 tile, float depth)
 {
@@ -149,12 +151,77 @@ void froxel_march(inout vec4 fog, vec2 uv, FroxelTaps taps, float a, float b, in
     }
 }
 
+// The stretch [first, last] of view depths over which pixel px's ray (its surface at `end`, at
+// most the volume's far depth) is in the Medium's shell, cut where the fog turns opaque (`cut`:
+// the farthest end of the ranges of the tiles it reads, which end there: froxel_opaque.comp;
+// 0: no cut) and where the froxels' share ends (combined mode); last <= first: none. Only with
+// the shell's per-pixel depths (u_fx_shell).
+vec2 froxel_pixel_stretch(ivec2 px, float end, float cut)
+{
+    float first = max(texelFetch(u_fx_first, px, 0).r, u_fx_near);
+    float last = min(texelFetch(u_fx_last, px, 0).r, end);
+    if (!(u_hf.x > 0.0) && cut > first)  // without height fog the tiles' ranges end where the fog turns opaque
+        last = min(last, cut);
+    if (u_partitioned != 0)  // combined mode: the froxels' share ends at near_end from the eye
+        last = min(last, u_partition.y);
+    return vec2(first, last);
+}
+
+float froxel_taps_cut(FroxelTaps taps)
+{
+    float cut = 0.0;
+    for (int k = 0; k < 4; ++k)
+        cut = taps.range[k].y > taps.range[k].x ? max(cut, taps.range[k].y) : cut;
+    return cut;
+}
+
+// Whether the volume resolves the fog of pixel px (screen point uv, its surface at view depth
+// `depth`): none of the four tiles its lookup reads was marked to march (froxel_classify.comp
+// writes w), and those the lookup weighs (fog-aware: whose central ray reaches the pixel's
+// depth, if any) have slices as deep as the pixel's fog goes, or are opaque by then (not so
+// at a ground edge, where the tiles' ranges end at different grounds).
+bool froxel_resolved(ivec2 px, vec2 uv, float depth)
+{
+    if (u_fx_classified == 0)
+        return false;
+    float end = min(depth, u_fx_far);
+    float fog_end = end;  // where the pixel's fog ends: its surface, or where it leaves the shell
+    if (u_fx_shell != 0 && !(u_hf.x > 0.0)) {
+        fog_end = min(texelFetch(u_fx_last, px, 0).r, end);
+        if (!(fog_end > max(texelFetch(u_fx_first, px, 0).r, u_fx_near)))
+            fog_end = 0.0;
+    }
+    vec2 p = uv * vec2(u_fx_size.xy) - 0.5;
+    vec2 f = p - floor(p);
+    ivec2 base = ivec2(floor(p));
+    bool aware = false, all_reach = true, aware_reach = true;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 tile = clamp(base + o, ivec2(0), u_fx_size.xy - 1);
+        vec4 c = texelFetch(u_fx_tiles, tile, 0);
+        if (c.w != 0.0)
+            return false;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        if (w <= 0.0 || fog_end <= 0.0)
+            continue;
+        bool deep = (c.y > c.x && c.y * 1.001 >= fog_end) ||
+            texelFetch(u_fx_volume, ivec3(tile, u_fx_size.z - 1), 0).a < 1e-3;
+        all_reach = all_reach && deep;
+        if (c.z >= end * 0.999) {
+            aware = true;
+            aware_reach = aware_reach && deep;
+        }
+    }
+    return aware ? aware_reach : all_reach;
+}
+
 // The fog in front of pixel px (screen point uv) whose surface lies at view depth `depth`
-// (3e38: sky). Fog-aware: the pixel's own ray, over its stretch of the shell (or all of it
-// where the fog is everywhere), the height fog over the rest.
+// (3e38: sky). Fog-aware: where the slices resolve the fog around the pixel, the volume's
+// lookup (froxel_fog_at, as [Wronski14] applies it); elsewhere the pixel's own ray, over its
+// stretch of the shell (or all of it where the fog is everywhere), the height fog over the rest.
 vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
 {
-    if (u_fx_apply != 2)
+    if (u_fx_apply != 2 || froxel_resolved(px, uv, depth))
         return froxel_fog_at(uv, depth);
     float end = min(depth, u_fx_far);
     float near = u_fx_near;
@@ -165,17 +232,8 @@ vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
         froxel_march(fog, uv, taps, near, end, u_fx_pixel_steps, true);
         return fog;
     }
-    float first = max(texelFetch(u_fx_first, px, 0).r, near);
-    float last = min(texelFetch(u_fx_last, px, 0).r, end);
-    if (!haze) {  // the tiles' ranges end where the fog turns opaque (froxel_opaque.comp): so do the steps
-        float cut = 0.0;
-        for (int k = 0; k < 4; ++k)
-            cut = taps.range[k].y > taps.range[k].x ? max(cut, taps.range[k].y) : cut;
-        if (cut > first)
-            last = min(last, cut);
-    }
-    if (u_partitioned != 0)  // combined mode: the froxels' share ends at near_end from the eye
-        last = min(last, u_partition.y);
+    vec2 stretch = froxel_pixel_stretch(px, end, froxel_taps_cut(taps));
+    float first = stretch.x, last = stretch.y;
     int haze_steps = max(u_fx_pixel_steps / 2, 1);
     if (!(last > first)) {
         if (haze)

@@ -73,14 +73,24 @@ vec3 fog_source(float cos_theta, float tau_sun, float visibility)
 
 void main()
 {
+    // Both shadings' opacity is a product of v_alpha, the atlas's alpha and the ground fade:
+    // where one is 0 the fragment adds nothing (and would be discarded below), so it stops
+    // before its lighting. Most of a stack's fragments: the layers above a column's count
+    // (faded in only near the eye, drawn for the whole stack), the atlas's border, the ground.
+    if (v_alpha <= 0.0)
+        discard;
     vec4 tex = texture(u_atlas, v_uv);
-    float detail = 1.0;
-    if (u_detail > 0.0)
-        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, float(v_layer)));
     vec2 h_uv = (v_world.xy - u_height_rect.xy) * u_height_rect.zw;
     h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
     float clearance = v_world.z - texture(u_heights, h_uv).r;
     float ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
+    // Combined mode: the medium shading draws only the layers' share (none near the eye).
+    float share = u_medium != 0 ? layers_share(length(v_world - u_eye), v_height) : 1.0;
+    if (tex.a <= 0.0 || ground <= 0.0 || share <= 0.0)
+        discard;
+    float detail = 1.0;
+    if (u_detail > 0.0)
+        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, float(v_layer)));
     vec3 view = normalize(v_world - u_eye);
     float cos_sun = dot(view, u_sun_direction);
     float a;
@@ -88,7 +98,7 @@ void main()
     if (u_medium != 0) {
         // In combined mode the layers draw only their share of the fog (fog_partition.glsl);
         // the sun still sees all of it.
-        float density = v_alpha * tex.a * detail * ground * layers_share(length(v_world - u_eye), v_height);
+        float density = v_alpha * tex.a * detail * ground * share;
         float cos_view = max(abs(dot(normalize(v_normal), view)), 0.02);
         a = 1.0 - exp(-u_extinction * density * v_spacing / cos_view);
         // Fog above this layer towards the sun: the profile integrated from h to the top,

@@ -19,6 +19,7 @@ uniform float u_rate;        // 1/1000 of (2.10)
 uniform int u_narrowing;
 uniform int u_enlargement;
 uniform int u_top;           // layers above the base drawn this frame
+uniform int u_first_instance; // this draw's first instance of the stack (a stack in two draws)
 uniform int u_bottom_first;
 uniform float u_time;
 uniform float u_half_life;   // 0: no dissipation
@@ -35,7 +36,8 @@ flat out int v_layer;
 
 void main()
 {
-    int i = u_bottom_first != 0 ? gl_InstanceID : u_top - gl_InstanceID;
+    int instance = gl_InstanceID + u_first_instance;
+    int i = u_bottom_first != 0 ? instance : u_top - instance;
     vec3 p = a_position;
     v_uv = a_uv;
     v_layer = i;

@@ -25,9 +25,16 @@ constexpr int unit_first = 5, unit_last = 6;
 // up to 0.9 points worse on the presets' view and blur J over coarse froxels
 // (FroxelGl.TemporalFilterConvergesAndDoesNotGhost). Each sample costs one lighting pass.
 constexpr int halton_cycle = 16, still_samples = halton_cycle;
-enum Stage { tiles, density, lighting, temporal, integrate, apply_stage, stage_count };
+enum Stage { tiles, density, lighting, temporal, integrate, classify, apply_stage, stage_count };
 const char* const stage_names[stage_count] = {"froxel tiles",    "froxel density",   "froxel lighting",
-                                              "froxel temporal", "froxel integrate", "froxel apply"};
+                                              "froxel temporal", "froxel integrate", "froxel classify",
+                                              "froxel apply"};
+// froxel_classify.comp: where the volume's lookup may stand for a pixel's own march. The error
+// a tap's bilinear lookup may make (in transmittance, or in radiance relative to its tile's
+// in-scattering) and how far the fog's edge may spread over a tile's slices. At 0.004 the
+// stress tests' anisotropic and far-off slabs drifted up to a point from the reference; at
+// 0.002 they stay within 0.1 point of the march everywhere (tests/render/stress_gltest.cpp).
+constexpr float classify_tolerance = 0.002f, classify_edge_slices = 1.0f;
 
 double halton(int index, int base)
 {
@@ -90,9 +97,14 @@ FroxelPass::FroxelPass()
       integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
                "froxel_opaque.comp"}),
+      classify_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
+                 "froxel_apply.glsl", "froxel_classify.comp"}),
       apply_program_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
-                      "froxel_apply.glsl", "froxel_apply.comp"})
+                      "froxel_apply.glsl", "froxel_apply.comp"}),
+      marched_(make_buffer())
 {
+    const GLuint zero = 0;
+    glNamedBufferStorage(marched_.get(), sizeof(GLuint), &zero, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
     for (const char* name : stage_names)
         timers_.emplace_back(name);
 }
@@ -121,6 +133,7 @@ void FroxelPass::clear()
 {
     enabled_ = false;
     apply_ = false;
+    classified_ = false;
     medium_ = nullptr;
     history_valid_ = false;
     key_.reset();
@@ -172,6 +185,7 @@ void FroxelPass::prepare(const FrameContext& frame, const ShadowMapPass* shadow)
         timer.forget();
     stats_.updated = false;
     stats_.converged = false;
+    applied_pixels_ = 0;
     medium_gpu_.set_partition(frame.partitioned, frame.partition);
     visible_ = enabled_ && visible(frame);
     stats_.visible = visible_;
@@ -232,8 +246,8 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     std::copy(std::begin(light), std::end(light), std::begin(light_));
     key_ = std::move(key);
     shadow_version_ = shadow_version;
+    apply_ = true;  // before the passes: the classification reads the volume as the apply does
     run_passes(frame, depth_texture, still);
-    apply_ = true;
     converged_ = still || !o.temporal;
     stats_.updated = true;
     stats_.converged = converged_;
@@ -255,8 +269,14 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     p.use();
     glBindTextureUnit(0, depth_texture);
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
+    const GLuint zero = 0;
+    glNamedBufferSubData(marched_.get(), 0, sizeof(GLuint), &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, marched_.get());
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
-    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
+                    GL_BUFFER_UPDATE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    applied_pixels_ = frame.width * frame.height;
 }
 
 void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, bool still)
@@ -289,6 +309,7 @@ void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, boo
         history_valid_ = true;
     ++frame_index_;
     run_integrate();
+    run_classify(frame, depth_texture);
 }
 
 FroxelPass::Jitter FroxelPass::halton_jitter(int index)
@@ -422,6 +443,34 @@ void FroxelPass::run_integrate()
     dispatch_volume(v_->size, 1);
 }
 
+void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
+{
+    // Worth it where most pixels' marches are long: the eye inside the Medium's shell (every
+    // ray marches from the eye) or a height fog (every ray marches its haze). Seen from outside
+    // without one, the pixels that could read the volume see no fog and already stop at once
+    // (on gabilan.bil and Mandakini.bil the same pictures, the classification's cost on top).
+    classified_ = options_.fog_aware && (!shell_ok_ || options_.height_fog.enabled());
+    if (!classified_)
+        return;  // the standard apply reads the volume everywhere; fog-aware, every pixel marches
+    const ScopedPassTimer timed(timers_[classify]);
+    const ShaderProgram& p = classify_;
+    classified_ = false;  // the apply's library: every pixel's taps still to be decided
+    bind_apply(p);
+    classified_ = true;
+    p.set("u_depth", 0);
+    p.set("u_raster", glm::ivec2(frame.width, frame.height));
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    p.set("u_near_plane", float(p32 / (p22 - 1.0)));
+    p.set("u_far_plane", float(p32 / (p22 + 1.0)));
+    p.set("u_tolerance", classify_tolerance);
+    p.set("u_edge_slices", classify_edge_slices);
+    p.use();
+    glBindTextureUnit(0, depth_texture);
+    glBindImageTexture(0, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    glDispatchCompute(GLuint((v_->size.x + 7) / 8), GLuint((v_->size.y + 7) / 8), 1);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 void FroxelPass::bind_apply(const ShaderProgram& p) const
 {
     // Every sampler on its own unit, even unused ones: types may not share a unit.
@@ -433,6 +482,7 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
     p.set("u_md_grid", unit_medium);
     p.set("u_md_noise", unit_medium + 1);
     p.set("u_fx_apply", visible_ && apply_ ? (options_.fog_aware ? 2 : 1) : 0);
+    p.set("u_fx_classified", int(classified_));
     if (!visible_ || !apply_)
         return;
     bind_layout(p);
@@ -515,6 +565,13 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
 
 void FroxelPass::append_timings(std::vector<PassTime>& out) const
 {
+    stats_.applied_pixels = applied_pixels_;
+    stats_.marched_pixels = 0;
+    if (applied_pixels_ > 0) {
+        GLuint marched = 0;
+        glGetNamedBufferSubData(marched_.get(), 0, sizeof(GLuint), &marched);
+        stats_.marched_pixels = int(marched);
+    }
     for (const PassTimer& timer : timers_)
         if (timer.ran())
             out.push_back(timer.result());

@@ -9,7 +9,8 @@
 //             froxel), lighting (J: the sun through the terrain's ESM and the fog, sky ambient,
 //             Henyey-Greenstein; one jittered sample a froxel), temporal (reprojected, clamped
 //             history of J; a still runs its first samples through it at once),
-//             integrate (front to back through the slices);
+//             integrate (front to back through the slices), classify (per tile: may the
+//             apply read the volume, or must the pixels around it march their own rays);
 //   apply     every frame, the fog on the resolved frame (froxel_apply.comp).
 #include <memory>
 #include <optional>
@@ -63,7 +64,8 @@ public:
 private:
     struct Volumes;
     std::unique_ptr<Volumes> v_;
-    ShaderProgram density_, lighting_, temporal_, integrate_, opaque_, apply_program_;
+    ShaderProgram density_, lighting_, temporal_, integrate_, opaque_, classify_, apply_program_;
+    Buffer marched_;  // the apply's count of pixels that marched their own rays
     std::unique_ptr<ShaderProgram> readback_, depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;
@@ -85,9 +87,11 @@ private:
     std::optional<FroxelVolumeLayout> layout_;
     int frame_index_ = 0, current_ = 0;
     bool history_valid_ = false;
-    bool converged_ = false;  // the volume is final for its view (a still's, or without the filter)
-    glm::vec3 light_[3]{};    // sun direction, radiance, ambient of the last run
-    FroxelStats stats_;
+    bool converged_ = false;     // the volume is final for its view (a still's, or without the filter)
+    glm::vec3 light_[3]{};       // sun direction, radiance, ambient of the last run
+    mutable FroxelStats stats_;  // the apply's counts read with the timings, after the frame
+    bool classified_ = false;    // the tiles say where the apply reads the volume (fog-aware)
+    int applied_pixels_ = 0;
     std::vector<PassTimer> timers_;  // one per stage, in stage order
 
     bool visible(const FrameContext& frame) const;
@@ -110,6 +114,8 @@ private:
     void run_temporal(int history, const View& from, bool history_valid, int into, float weight,
                       int history_tiles = -1);
     void run_integrate();
+    //! Per tile: may the apply read the volume, or must the pixels around it march?
+    void run_classify(const FrameContext& frame, GLuint depth_texture);
     void bind_apply_textures(const ShaderProgram& program) const;
 };
 

@@ -5,6 +5,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/geometric.hpp>
+
 #include "froxel_pass.hpp"
 #include "layer_stack_uniforms.hpp"
 #include "kiri/geometry/terrain/heightfield.hpp"
@@ -65,6 +67,7 @@ bool LayersPass::set_base(const geometry::LayerBase& base)
         glVertexArrayAttribBinding(vao_.get(), a, 0);
     }
     index_count_ = GLsizei(base.triangles.size());
+    near_reach_ = -1.0;  // a new base: its triangles near the eye are still to be found
 
     const geometry::LayerTexture& t = base.texture;
     atlas_ = make_texture(GL_TEXTURE_2D);
@@ -266,9 +269,60 @@ void LayersPass::draw_stack(const FrameContext& frame)
     glBlendFuncSeparate(GL_ONE, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDisable(GL_CULL_FACE);
     glBindVertexArray(vao_.get());
-    glDrawElementsInstanced(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr, top + 1);
+    // Away from the eye a column holds layers 0..count (layer_column: the spacing narrows, and
+    // the count grows past l0, only within L0 = divisor r0 of the eye); the layers above are
+    // drawn for the triangles with a vertex nearer than that alone. The same fragments in the
+    // same order (bottom first or top first): those skipped had zero opacity.
+    const int everywhere = std::min(top, o.count);
+    const double reach = o.spacing_divisor * o.thickness / std::max(o.count, 1);
+    auto draw = [&](int first_instance, int instances, bool near) {
+        if (instances <= 0)
+            return;
+        p.set("u_first_instance", first_instance);
+        glVertexArrayElementBuffer(vao_.get(), near ? near_indices_.get() : indices_.get());
+        glDrawElementsInstanced(GL_TRIANGLES, near ? near_count_ : index_count_, GL_UNSIGNED_INT, nullptr, instances);
+    };
+    if (top > everywhere && o.narrowing) {
+        update_near(eye, reach);
+        const int above = top - everywhere;
+        if (bottom_first) {
+            draw(0, everywhere + 1, false);
+            draw(everywhere + 1, above, true);
+        } else {
+            draw(0, above, true);
+            draw(above, everywhere + 1, false);
+        }
+        glVertexArrayElementBuffer(vao_.get(), indices_.get());
+    } else {
+        draw(0, top + 1, false);
+    }
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
+}
+
+void LayersPass::update_near(const glm::dvec3& eye, double reach)
+{
+    if (eye == near_eye_ && reach == near_reach_ && near_indices_)
+        return;
+    // 1 % more than L0: float and double agree about the columns at its edge.
+    const double reach2 = (1.01 * reach) * (1.01 * reach);
+    std::vector<char> near(base_->position.size());
+    for (std::size_t v = 0; v < near.size(); ++v) {
+        const glm::dvec3 d = base_->position[v] - eye;
+        near[v] = glm::dot(d, d) < reach2;
+    }
+    std::vector<std::uint32_t> indices;
+    const std::vector<std::uint32_t>& all = base_->triangles;
+    for (std::size_t t = 0; t + 2 < all.size(); t += 3)
+        if (near[all[t]] || near[all[t + 1]] || near[all[t + 2]])
+            indices.insert(indices.end(), {all[t], all[t + 1], all[t + 2]});
+    near_indices_ = make_buffer();
+    glNamedBufferStorage(near_indices_.get(),
+                         GLsizeiptr(std::max<std::size_t>(indices.size(), 1) * sizeof(std::uint32_t)),
+                         indices.empty() ? nullptr : indices.data(), 0);
+    near_count_ = GLsizei(indices.size());
+    near_eye_ = eye;
+    near_reach_ = reach;
 }
 
 }  // namespace kiri::render::detail

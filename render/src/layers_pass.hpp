@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <memory>
 
@@ -69,6 +70,13 @@ private:
     void draw_stack(const FrameContext& frame);
     VertexArray vao_;
     Buffer vertices_, indices_;
+    // The layers above `count` fade in only where the eye narrows the spacing ([Thesis] (2.8)):
+    // they are drawn for the triangles near it alone (near_eye_ of the eye it was built for).
+    Buffer near_indices_;
+    GLsizei near_count_ = 0;
+    glm::dvec3 near_eye_{HUGE_VAL};
+    double near_reach_ = -1.0;
+    void update_near(const glm::dvec3& eye, double reach);
     Texture atlas_, heights_;
     GLsizei index_count_ = 0;
     geometry::LayerOptions options_;

@@ -86,6 +86,9 @@ FrameCost FogJudge::frame_cost(int width, int height, int frames)
     }
     FrameCost cost;
     cost.frame_ms = median(ms);
+    const render::FroxelStats& froxel = renderer_->last_stats().froxel;
+    if (froxel.applied_pixels > 0)
+        cost.marched = double(froxel.marched_pixels) / froxel.applied_pixels;
     for (const render::PassTime& pass : passes.back()) {
         std::vector<double> gpu, cpu;
         for (const auto& frame : passes)

@@ -35,6 +35,8 @@ struct SceneJson {
 struct FrameCost {
     double frame_ms = 0.0;
     std::vector<render::PassTime> passes;
+    //! The froxel apply's pixels that marched their own rays, of all it applied (last frame; -1: none).
+    double marched = -1.0;
 };
 
 class FogJudge {

@@ -83,6 +83,8 @@ std::string passes_line(const FrameCost& cost)
     s.precision(3);
     for (const render::PassTime& p : cost.passes)
         s << (s.tellp() > 0 ? ", " : "") << p.pass << ' ' << p.gpu_ms;
+    if (cost.marched >= 0.0)
+        s << "; froxel apply marched " << 100.0 * cost.marched << " % of the pixels";
     return s.str();
 }
 

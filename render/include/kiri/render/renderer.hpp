@@ -66,6 +66,9 @@ struct FroxelStats {
     //! once), or one without temporal filtering. The same view again reruns nothing.
     bool converged = false;
     int updates = 0;  //!< frames whose passes ran since set_froxel_fog
+    //! The last apply: its pixels, and those that marched their own rays (fog-aware: where the
+    //! volume's slices do not resolve the fog around them) instead of reading the volume.
+    int applied_pixels = 0, marched_pixels = 0;
 };
 
 //! Float pixels, rows top to bottom: the fog a frame's pixels received (froxel fog).

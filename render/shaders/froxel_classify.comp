@@ -1,0 +1,131 @@
+#version 450 core
+// After the integration: per tile, whether the apply may read the volume there (one lookup,
+// froxel_fog_at, as [Wronski14] applies it) or must march the pixels' own rays
+// (froxel_pixel_fog). A tile is read by the pixels within one tile of its centre (the bilinear
+// lookup's four taps): where its own pixels and a pixel around cannot be resolved, the pixels
+// between it and its neighbours march (w = 1): where its slices cannot resolve the fog along
+// their rays:
+//   - the fog's edge lies among them: some rays meet the shell and others not, or where they
+//     enter or leave it spreads over more than u_edge_slices of the tile's slices;
+//   - the fog changes across tiles faster than the bilinear lookup follows: the second
+//     difference to the neighbouring tiles at the tile's slice ends, over 8 (the lookup's error
+//     midway), exceeds u_tolerance in transmittance or in in-scattered radiance relative to
+//     the tile's total;
+//   - a pixel's surface lies in a slice too dense to interpolate within (transmittance falling
+//     by more than u_tolerance * 8 across it, where the lookup is linear and the fog
+//     exponential): a thin dense layer within a slice.
+// (A tap without slices as deep as a pixel's fog goes, a ground edge, is the apply's own check:
+// froxel_resolved.)
+// Needs froxel_common.glsl, froxel_medium.glsl and froxel_apply.glsl before it.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(rgba32f, binding = 0) uniform image2D io_tiles;
+uniform sampler2D u_depth;   // the frame's
+uniform ivec2 u_raster;      // the frame's size
+uniform float u_near_plane;  // of the frame's projection
+uniform float u_far_plane;
+uniform float u_tolerance;
+uniform float u_edge_slices;
+
+float view_depth(ivec2 px)
+{
+    float d = texelFetch(u_depth, px, 0).r;
+    if (d >= 1.0)
+        return 3e38;
+    float z = d * 2.0 - 1.0;
+    return 2.0 * u_near_plane * u_far_plane / (u_far_plane + u_near_plane - z * (u_far_plane - u_near_plane));
+}
+
+float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+bool march(ivec2 t)
+{
+    vec2 range = fx_tile_range(t);
+    float n = float(u_fx_size.z);
+    vec2 cell = vec2(u_raster) / vec2(u_fx_size.xy);
+    ivec2 r0 = max(ivec2(floor(vec2(t) * cell)) - 1, ivec2(0));
+    ivec2 r1 = min(ivec2(ceil(vec2(t + 1) * cell)) + 1, u_raster);
+    bool haze = u_hf.x > 0.0;
+    int with_fog = 0, without_fog = 0;
+    vec2 enter = vec2(3e38, 0.0), leave = vec2(3e38, 0.0), surface = vec2(3e38, 0.0);
+    float deepest = 0.0;  // the farthest surface among the pixels
+    float cut = 0.0;      // the pixels' taps' farthest range (froxel_taps_cut), over the tiles around
+    for (int k = 0; k < 9; ++k) {
+        vec2 r = fx_tile_range(clamp(t + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), u_fx_size.xy - 1));
+        cut = r.y > r.x ? max(cut, r.y) : cut;
+    }
+    for (int y = r0.y; y < r1.y; ++y)
+        for (int x = r0.x; x < r1.x; ++x) {
+            ivec2 px = ivec2(x, y);
+            float end = min(view_depth(px), u_fx_far);
+            float fog_end = end;
+            deepest = max(deepest, end);
+            if (u_fx_shell != 0) {
+                vec2 s = froxel_pixel_stretch(px, end, cut);
+                if (s.y > s.x) {
+                    ++with_fog;
+                    enter = vec2(min(enter.x, s.x), max(enter.y, s.x));
+                    if (s.y < end) // the ray leaves the fog in front of its surface
+                        leave = vec2(min(leave.x, s.y), max(leave.y, s.y));
+                } else {
+                    ++without_fog;
+                }
+                fog_end = s.y > s.x ? s.y : 0.0;
+                if (haze)
+                    fog_end = end;
+            }
+            if (end < u_fx_far && end <= fog_end)  // the surface lies in the fog
+                surface = vec2(min(surface.x, end), max(surface.y, end));
+        }
+    if (with_fog > 0 && without_fog > 0)
+        return true;
+    if (!(range.y > range.x))
+        return false;  // no fog here (a pixel's taps that do not reach its fog: froxel_resolved)
+    if (enter.y > enter.x && (fx_slice_coordinate(enter.y, range) - fx_slice_coordinate(enter.x, range)) * n > u_edge_slices)
+        return true;
+    if (leave.y > leave.x && (fx_slice_coordinate(leave.y, range) - fx_slice_coordinate(leave.x, range)) * n > u_edge_slices)
+        return true;
+    // The bilinear lookup across tiles, at the tile's slice ends in front of its pixels'
+    // surfaces; along each axis only where the three tiles' central rays all reach (the
+    // fog-aware lookup hardly weighs a tile whose ground lies nearer).
+    float scale = max(max3(froxel_column(t, range.y).rgb), 1e-6);
+    ivec2 lo = ivec2(0), hi = u_fx_size.xy - 1;
+    ivec2 x0 = clamp(t - ivec2(1, 0), lo, hi), x1 = clamp(t + ivec2(1, 0), lo, hi);
+    ivec2 y0 = clamp(t - ivec2(0, 1), lo, hi), y1 = clamp(t + ivec2(0, 1), lo, hi);
+    float ground = fx_tile_ground(t);
+    float across = 0.999 * min(ground, min(fx_tile_ground(x0), fx_tile_ground(x1)));
+    float down = 0.999 * min(ground, min(fx_tile_ground(y0), fx_tile_ground(y1)));
+    for (int k = 0; k < u_fx_size.z; ++k) {
+        if (fx_slice_depth(float(k) / n, range) > deepest)
+            break;  // no pixel's surface lies behind this slice's start
+        float d = fx_slice_depth(float(k + 1) / n, range);
+        vec4 c = froxel_column(t, d);
+        vec4 worst = vec4(0.0);
+        if (d < across)
+            worst = abs(froxel_column(x0, d) + froxel_column(x1, d) - 2.0 * c);
+        if (d < down)
+            worst = max(worst, abs(froxel_column(y0, d) + froxel_column(y1, d) - 2.0 * c));
+        worst /= 8.0;
+        if (worst.a > u_tolerance || max3(worst.rgb) > u_tolerance * scale)
+            return true;
+    }
+    // Surfaces inside a slice whose transmittance falls steeply.
+    if (surface.y >= surface.x) {
+        int k0 = int(fx_slice_coordinate(surface.x, range) * n), k1 = int(fx_slice_coordinate(surface.y, range) * n);
+        for (int k = clamp(k0, 0, u_fx_size.z - 1); k <= clamp(k1, 0, u_fx_size.z - 1); ++k) {
+            float before = k == 0 ? 1.0 : texelFetch(u_fx_volume, ivec3(t, k - 1), 0).a;
+            if (before - texelFetch(u_fx_volume, ivec3(t, k), 0).a > 8.0 * u_tolerance)
+                return true;
+        }
+    }
+    return false;
+}
+
+void main()
+{
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(t, u_fx_size.xy)))
+        return;
+    vec4 tile = imageLoad(io_tiles, t);
+    tile.w = march(t) ? 1.0 : 0.0;
+    imageStore(io_tiles, t, tile);
+}
