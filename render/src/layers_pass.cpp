@@ -34,7 +34,8 @@ void set_sampling(GLuint texture, GLint filter)
 LayersPass::LayersPass()
     : program_({"layers.vert", "fog_partition.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
                 "layers.frag"}),
-      composite_({"fullscreen.vert", "layers_composite.frag"}), empty_vao_(make_vertex_array()),
+      composite_({"fullscreen.vert", "layers_composite.frag"}),
+      depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
 {}
 
@@ -185,13 +186,23 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     const int w = std::max(1, int(std::ceil(frame.width * scale))),
               h = std::max(1, int(std::ceil(frame.height * scale)));
     ensure_low(w, h);
-    // The terrain's depth, one sample per low-resolution texel.
-    glBlitNamedFramebuffer(resolved_fbo, low_fbo_.get(), 0, 0, frame.width, frame.height, 0, 0, w, h,
-                           GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-    const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
+    // The terrain's depth per low-resolution texel: the farthest it covers (layers_depth_max.frag).
     glBindFramebuffer(GL_FRAMEBUFFER, low_fbo_.get());
     glViewport(0, 0, w, h);
+    depth_max_.set("u_depth", 0);
+    depth_max_.set("u_scale", glm::vec2(float(double(w) / frame.width), float(double(h) / frame.height)));
+    depth_max_.use();
+    glBindTextureUnit(0, resolved_depth);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glBindVertexArray(empty_vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_LESS);
+    const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
     draw_stack(frame);
 
     const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];

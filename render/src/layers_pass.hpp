@@ -54,7 +54,7 @@ public:
     }
 
 private:
-    ShaderProgram program_, composite_;
+    ShaderProgram program_, composite_, depth_max_;
     mutable std::unique_ptr<ShaderProgram> fog_program_;
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
