@@ -112,7 +112,12 @@ protected:
     {
         Renderer r;
         r.set_terrain(terrain);
-        r.set_sun(light);
+        // The sun's shadow map as the options set it (SceneRendering::sun does the same).
+        SunLight shadowed = light;
+        shadowed.terrain_shadows = options.terrain_shadows;
+        shadowed.shadow_map_size = options.shadow_map_size;
+        shadowed.esm_sharpness = options.esm_sharpness;
+        r.set_sun(shadowed);
         r.set_froxel_fog(medium, options);
         r.render(camera, width, height);
         Compared c;

@@ -100,7 +100,8 @@ TEST_F(LayersReducedGl, ThinFogOverAPlainAtAGrazingAngleHasNoStripes)
         sum += full[k] - reduced[k];
         ++rows;
     }
-    std::printf("row-to-row change: reduced %.3f, full %.3f levels; reduced darker by %.2f\n", jump_reduced, jump_full, sum / rows);
+    std::printf("row-to-row change: reduced %.3f, full %.3f levels; reduced darker by %.2f\n", jump_reduced, jump_full,
+                sum / rows);
     EXPECT_LT(jump_reduced, 0.3);
     EXPECT_LT(std::abs(sum / rows), 1.5);
 }

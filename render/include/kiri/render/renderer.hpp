@@ -130,6 +130,9 @@ public:
     //! Froxel volumetric fog (docs/froxel.md) of `medium` (kept by pointer: it must outlive the
     //! renderer's use of it; null for the options' height fog alone), drawn over the terrain and
     //! the sky. The passes rerun only when the view, the sun or the fog (e.g. its time) change.
+    //! The terrain's shadows are the sun's shadow map (SunLight::terrain_shadows, its size and
+    //! sharpness; SceneRendering::sun copies the options' keys there): options.terrain_shadows
+    //! only says whether the froxels' lighting reads it.
     //! \throw kiri::InputError for options out of range.
     void set_froxel_fog(const geometry::Medium* medium, const geometry::FroxelOptions& options);
     void clear_froxel_fog();
