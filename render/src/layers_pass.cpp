@@ -186,11 +186,15 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     const int w = std::max(1, int(std::ceil(frame.width * scale))),
               h = std::max(1, int(std::ceil(frame.height * scale)));
     ensure_low(w, h);
-    // The terrain's depth per low-resolution texel: the farthest it covers (layers_depth_max.frag).
+    // The terrain's depth per low-resolution texel: the farthest it covers, the nearest across a
+    // silhouette (layers_depth_max.frag).
     glBindFramebuffer(GL_FRAMEBUFFER, low_fbo_.get());
     glViewport(0, 0, w, h);
     depth_max_.set("u_depth", 0);
     depth_max_.set("u_scale", glm::vec2(float(double(w) / frame.width), float(double(h) / frame.height)));
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    depth_max_.set("u_near", float(p32 / (p22 - 1.0)));
+    depth_max_.set("u_far", float(p32 / (p22 + 1.0)));
     depth_max_.use();
     glBindTextureUnit(0, resolved_depth);
     glEnable(GL_DEPTH_TEST);
@@ -205,7 +209,6 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
     draw_stack(frame);
 
-    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
     composite_.set("u_layers", 0);
     composite_.set("u_low_depth", 1);
     composite_.set("u_depth", 2);
