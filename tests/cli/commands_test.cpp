@@ -56,8 +56,8 @@ TEST(KiriRender, DefaultSceneWritesAPictureAndPrintsItsPath)
     std::printf("    combined against the reference: %d fog pixels, mean error %.4f, p99 %.3f (%.1f s)\n", e.fog_pixels,
                 e.mean_relative, e.p99_relative, reference.seconds);
     EXPECT_GT(e.fog_pixels, 64 * 36 / 3);
-    // Measured 0.104, grey veils at least 0.239. (The frame without fog, --mode terrain, has no
-    // terrain shadows; the combined frame's froxels shadow the terrain.)
+    // Measured 0.105, grey veils at least 0.239. (Both frames draw the terrain in the sun's one
+    // shadow map.)
     const double bound = 0.125;
     EXPECT_LT(e.mean_relative, bound);
     for (double opacity : {0.2, 0.4, 0.6}) {  // a grey veil as bright as the fog does not pass

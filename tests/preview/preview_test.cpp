@@ -166,7 +166,7 @@ TEST_F(PreviewXvfb, ScriptedScreenshotShowsTerrainAndFog)
     const Tone with = lower_half(fog), without = lower_half(bare);
     EXPECT_GT(without.hi - without.lo, 60) << "the terrain view is uniform";
     EXPECT_GT(with.hi - with.lo, 30) << "the fog view is uniform";
-    // Measured 0.112 (the layers do not see the terrain's shadows), grey veils at least 0.204.
+    // Measured 0.112 (the layers' light, docs/combined.md), grey veils at least 0.204.
     expect_agrees_with_reference(fog, bare, scene_path(), false, 1000, 0.13);
 }
 
@@ -209,7 +209,8 @@ TEST_F(PreviewXvfb, ParticlesBuildTheAttenuationBufferOnceForAStaticView)
     const Image bare = screenshot("--no-fog");
     // The first frame builds the buffer; the next three (the same view, sun and particles) reuse it.
     EXPECT_NE(log.find("20000 particles, attenuation buffer builds per frame: 1 0 0 0\n"), std::string::npos) << log;
-    // Measured 0.063 (the particles do not see the terrain's shadows), grey veils at least 0.180.
+    // Measured 0.063 (in the terrain's shadows, as without them: this view's sun casts few into
+    // the fog), grey veils at least 0.149.
     expect_agrees_with_reference(particles, bare, scene_path(), false, 1000, 0.08);
 }
 
