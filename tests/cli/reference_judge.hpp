@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -71,6 +72,26 @@ inline render::RadianceImage grey_veil(const render::RadianceImage& bare, const 
         for (int c = 0; c < 3; ++c)
             veiled.rgba[k + c] = float((1.0 - opacity) * veiled.rgba[k + c] + opacity * grey);
     return veiled;
+}
+
+//! The fog of `fog` (over the frame without it, `bare`) against `reference`: more than
+//! `min_fog_pixels` pixels of fog, a mean relative error below `bound`, and a grey veil of
+//! opacity 0.2, 0.4 and 0.6 in place of the fog above it (a grey overlay does not pass). Prints
+//! the figures, named `label`.
+inline void expect_fog_agrees(const std::string& label, const render::RadianceImage& fog,
+                              const render::RadianceImage& bare, const geometry::ReferenceImage& reference,
+                              int min_fog_pixels, double bound)
+{
+    const render::FogError e = render::compare_frames(fog, bare, reference);
+    std::printf("    %s against the reference: %d fog pixels, mean error %.4f, p99 %.3f (%.1f s)\n", label.c_str(),
+                e.fog_pixels, e.mean_relative, e.p99_relative, reference.seconds);
+    EXPECT_GT(e.fog_pixels, min_fog_pixels);
+    EXPECT_LT(e.mean_relative, bound);
+    for (double opacity : {0.2, 0.4, 0.6}) {
+        const render::FogError grey = render::compare_frames(grey_veil(bare, fog, opacity), bare, reference);
+        std::printf("    a grey veil of opacity %.1f: mean error %.4f\n", opacity, grey.mean_relative);
+        EXPECT_GT(grey.mean_relative, bound) << "a grey veil of opacity " << opacity << " passes";
+    }
 }
 
 }  // namespace kiri::test
