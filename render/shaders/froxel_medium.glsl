@@ -1,11 +1,7 @@
-// Library (after fog_partition.glsl and froxel_common.glsl): the Medium (geometry/src/medium/medium.cpp) and the height fog
+// Library (after fog_partition.glsl, froxel_common.glsl and medium_shell.glsl): the Medium (geometry/src/medium/medium.cpp) and the height fog
 // (geometry/src/volume/height_fog.cpp) as the reference evaluates them, and the HG phase.
 uniform int u_md_on;
-uniform sampler2D u_md_grid;     // RGBA32F: floor, bottom, top, coverage per grid sample (linear, clamp)
 uniform sampler2D u_md_noise;    // R32F: fog_noise_tile (linear, repeat)
-uniform vec2 u_md_origin;        // grid sample (0, 0)
-uniform vec2 u_md_last;          // grid sample (nx - 1, ny - 1)
-uniform vec2 u_md_cells;         // nx, ny
 uniform float u_md_extinction;   // sigma_t at density 1
 uniform float u_md_top_density;
 uniform float u_md_detail;
@@ -21,10 +17,9 @@ uniform vec4 u_hf_extent;        // its horizontal extent: min x, min y, max x, 
 float medium_density_at(vec3 p, out float h)
 {
     h = 0.0;
-    if (u_md_on == 0 || p.x < u_md_origin.x || p.y < u_md_origin.y || p.x > u_md_last.x || p.y > u_md_last.y)
+    if (u_md_on == 0 || !shell_covers(p.xy))
         return 0.0;
-    vec2 st = ((p.xy - u_md_origin) / (u_md_last - u_md_origin) * (u_md_cells - 1.0) + 0.5) / u_md_cells;
-    vec4 c = textureLod(u_md_grid, st, 0.0);  // floor, bottom, top, coverage
+    vec4 c = shell_column(p.xy);  // floor, bottom, top, coverage
     if (c.w <= 0.0 || p.z < c.x || p.z > c.z || !(c.z > c.y))
         return 0.0;
     h = clamp((p.z - c.y) / (c.z - c.y), 0.0, 1.0);

@@ -4,8 +4,9 @@
 //   1 - (1 - a)^(r / r0), gray, lit by an ad hoc sun and sky term;
 // - medium: the slab of fog the layer stands for (docs/medium.md): density = the layer's
 //   profile x border fade x detail, optical depth sigma_t density r / |cos(view, normal)|,
-//   the fog's lighting model (fog_lighting.glsl), T_sun through the fog above it, in the
-//   terrain's shadow from the sun (terrain_shadow.glsl: the froxels' and the reference's).
+//   the fog's lighting model (fog_lighting.glsl) with tau_sun from the sun volume
+//   (sun_volume.glsl), in the terrain's shadow from the sun (terrain_shadow.glsl: the froxels'
+//   and the reference's).
 // Combined mode (fog_partition.glsl): the medium shading draws only the layers' share.
 // Both: world-space detail noise drifting with the wind and a soft fade where the layer meets
 // the ground. Output is premultiplied linear radiance.
@@ -16,6 +17,7 @@ in float v_exponent;
 in float v_spacing;
 in float v_height;
 in vec3 v_normal;
+in float v_tau_sun;
 flat in int v_layer;
 
 uniform sampler2D u_atlas;
@@ -101,12 +103,21 @@ void main()
         float density = v_alpha * tex.a * detail * ground * share;
         float cos_view = max(abs(dot(normalize(v_normal), view)), 0.02);
         a = 1.0 - exp(-u_extinction * density * v_spacing / cos_view);
-        // Fog above this layer towards the sun: the profile integrated from h to the top,
-        // (1 - h) - k (1 - h^2) / 2 of the thickness, along the slant of the sun.
-        float h = v_height;
-        float above = u_extinction * tex.a * u_thickness * ((1.0 - h) - 0.5 * u_top_loss * (1.0 - h * h));
         float sun_up = u_sun_direction.z > 0.0 ? terrain_visibility(v_world, u_ts_bias) : 0.0;
-        radiance = fog_source(cos_sun, above / max(u_sun_direction.z, 0.02), sun_up);
+        float tau_sun;
+        if (v_tau_sun >= 0.0) {
+            // The fog's optical depth towards the sun, as the froxels and the reference take it:
+            // the whole Medium along the slanted path (its top and coverage over the columns the
+            // path crosses, the detail), from the sun volume at the vertices, and the height fog.
+            tau_sun = v_tau_sun;
+        } else {
+            // No Medium given: the slab above this layer, the profile integrated from h to the
+            // top, (1 - h) - k (1 - h^2) / 2 of the thickness, along the slant of the sun.
+            float h = v_height;
+            float above = u_extinction * tex.a * u_thickness * ((1.0 - h) - 0.5 * u_top_loss * (1.0 - h * h));
+            tau_sun = above / max(u_sun_direction.z, 0.02);
+        }
+        radiance = fog_source(cos_sun, tau_sun, sun_up);
     } else {
         a = v_alpha * u_opacity * tex.a * detail;
         a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);

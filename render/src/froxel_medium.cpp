@@ -50,26 +50,41 @@ bool FroxelMedium::set(const geometry::Medium* medium)
     return true;
 }
 
-void FroxelMedium::bind(const ShaderProgram& p, const geometry::HeightFog& haze, int unit) const
+void FroxelMedium::bind_height_fog(const ShaderProgram& p, const geometry::HeightFog& haze)
 {
     p.set("u_hf",
           glm::vec4(float(haze.enabled() ? haze.extinction : 0.0), float(haze.base), float(haze.scale_height), 0.0f));
     const auto bounded = [](double v) { return float(std::clamp(v, -1e30, 1e30)); };
     p.set("u_hf_extent", glm::vec4(bounded(haze.min.x), bounded(haze.min.y), bounded(haze.max.x), bounded(haze.max.y)));
+}
+
+bool FroxelMedium::bind_grid(const ShaderProgram& p, int unit) const
+{
+    if (!medium_ || !uploaded_)
+        return false;
+    const geometry::MediumGrid& g = medium_->grid();
+    p.set("u_md_grid", unit);
+    p.set("u_md_origin", glm::vec2(float(g.x0), float(g.y0)));
+    p.set("u_md_last", glm::vec2(float(g.x0 + (g.nx - 1) * g.dx), float(g.y0 + (g.ny - 1) * g.dy)));
+    p.set("u_md_cells", glm::vec2(float(g.nx), float(g.ny)));
+    p.set("u_md_ceiling", float(medium_->bounds().max.z));
+    glBindTextureUnit(GLuint(unit), grid_.get());
+    return true;
+}
+
+void FroxelMedium::bind(const ShaderProgram& p, const geometry::HeightFog& haze, int unit) const
+{
+    bind_height_fog(p, haze);
     const bool on = medium_ && uploaded_ && medium_->max_extinction() > 0.0;
     p.set("u_md_on", int(on));
     p.set("u_partitioned", int(partitioned_));
     p.set("u_partition", partition_);
     if (!on)
         return;
-    const geometry::MediumGrid& g = medium_->grid();
     const geometry::MediumOptions& o = medium_->options();
     const geometry::MediumDetail& d = medium_->detail();
-    p.set("u_md_grid", unit);
+    bind_grid(p, unit);
     p.set("u_md_noise", unit + 1);
-    p.set("u_md_origin", glm::vec2(float(g.x0), float(g.y0)));
-    p.set("u_md_last", glm::vec2(float(g.x0 + (g.nx - 1) * g.dx), float(g.y0 + (g.ny - 1) * g.dy)));
-    p.set("u_md_cells", glm::vec2(float(g.nx), float(g.ny)));
     p.set("u_md_extinction", float(o.extinction));
     p.set("u_md_top_density", float(o.top_density));
     p.set("u_md_detail", float(d.detail));
@@ -78,7 +93,6 @@ void FroxelMedium::bind(const ShaderProgram& p, const geometry::HeightFog& haze,
     p.set("u_md_drift", glm::vec2(d.wind * d.time));
     p.set("u_md_time", float(d.time));
     p.set("u_md_half_life", float(d.dissipation_half_life));
-    glBindTextureUnit(GLuint(unit), grid_.get());
     glBindTextureUnit(GLuint(unit + 1), noise_.get());
 }
 

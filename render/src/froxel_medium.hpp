@@ -18,6 +18,12 @@ public:
     //! Sets froxel_medium.glsl's uniforms (the medium's current time and options) and binds the
     //! textures to units grid_unit and grid_unit + 1.
     void bind(const ShaderProgram& program, const geometry::HeightFog& haze, int grid_unit) const;
+    //! Sets medium_shell.glsl's uniforms (the grid and the ceiling) and binds the grid to
+    //! grid_unit; false (nothing set) without a Medium.
+    bool bind_grid(const ShaderProgram& program, int grid_unit) const;
+    //! Sets froxel_medium.glsl's height fog uniforms.
+    static void bind_height_fog(const ShaderProgram& program, const geometry::HeightFog& haze);
+    const geometry::Medium* medium() const { return uploaded_ ? medium_ : nullptr; }
     //! Combined mode: the froxels draw their share of the Medium (fog_partition.glsl), set
     //! with the other uniforms by bind().
     void set_partition(bool partitioned, const glm::vec4& partition)

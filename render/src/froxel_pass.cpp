@@ -9,6 +9,7 @@
 
 #include "kiri/geometry/medium/fog_lighting.hpp"
 #include "kiri/geometry/medium/medium.hpp"
+#include "sun_volume.hpp"
 #include "terrain_pass.hpp"
 
 namespace kiri::render::detail {
@@ -19,6 +20,7 @@ namespace {
 constexpr int unit_tiles = 8, unit_volume = 9, unit_medium = 11;  // 11, 12
 constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
 constexpr int unit_first = 5, unit_last = 6;
+constexpr int unit_sun = 16;  // 16, 17, 18
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
 // whole cycle at once: the same samples the 16 frames of history held, so the same error
 // against the CPU reference (kiri bench --stage presets, agreement), where 4 or 8 samples are
@@ -72,15 +74,6 @@ void dispatch_volume(const glm::ivec3& size, int depth)
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-// Exactly zero components would make the box exit of the sun march 0 * inf.
-glm::vec3 safe_direction(glm::vec3 d)
-{
-    for (int c = 0; c < 3; ++c)
-        if (std::abs(d[c]) < 1e-6f)
-            d[c] = 1e-6f;
-    return glm::normalize(d);
-}
-
 }  // namespace
 
 struct FroxelPass::Volumes {
@@ -90,17 +83,18 @@ struct FroxelPass::Volumes {
 
 FroxelPass::FroxelPass()
     : v_(std::make_unique<Volumes>()), density_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-                                                 "froxel_medium.glsl", "froxel_density.comp"}),
-      lighting_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
-                 "terrain_shadow.glsl", "froxel_lighting.comp"}),
+                                                 "medium_shell.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
+      lighting_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
+                 "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "terrain_shadow.glsl",
+                 "froxel_lighting.comp"}),
       temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
-      opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
-               "froxel_opaque.comp"}),
-      classify_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
-                 "froxel_apply.glsl", "froxel_classify.comp"}),
-      apply_program_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "froxel_medium.glsl",
-                      "froxel_apply.glsl", "froxel_apply.comp"}),
+      opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
+               "froxel_medium.glsl", "froxel_opaque.comp"}),
+      classify_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
+                 "froxel_medium.glsl", "froxel_apply.glsl", "froxel_classify.comp"}),
+      apply_program_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
+                      "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"}),
       marched_(make_buffer())
 {
     const GLuint zero = 0;
@@ -382,19 +376,27 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
     const geometry::FroxelOptions& o = options_;
     const geometry::HeightFog& haze = o.height_fog;
     bind_layout(lighting_);
+    // tau_sun: the sun volume's Medium is this one (Renderer::draw), so its grid and uniforms
+    // are the same as those bound next.
+    if (sun_) {
+        sun_->bind(lighting_, unit_sun, o.sun_steps, o.sun_volume);
+    } else {
+        lighting_.set("u_sv_on", 0);
+        lighting_.set("u_sv_steps", o.sun_steps);
+        lighting_.set("u_sv_volume", unit_sun + 2);
+    }
     medium_gpu_.bind(lighting_, haze, unit_medium);
     bind_terrain_shadow(lighting_, shadow_);
     lighting_.set("u_density", unit_density);
     lighting_.set("u_jitter", jitter.froxel);
     lighting_.set("u_sun_jitter", jitter.sun);
-    lighting_.set("u_sun_direction", safe_direction(frame.sun_direction));
+    lighting_.set("u_sun_direction", sun_march_direction(frame.sun_direction));
     lighting_.set("u_sun_radiance", frame.sun_radiance);
     lighting_.set("u_ambient", frame.ambient);
     const double albedo = medium_ ? medium_->options().albedo : 0.0, g = medium_ ? medium_->options().anisotropy : 0.0;
     lighting_.set("u_albedo", glm::vec2(float(albedo), float(haze.albedo)));
     lighting_.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
     lighting_.set("u_fog_shadows", int(o.fog_shadows));
-    lighting_.set("u_sun_steps", o.sun_steps);
     lighting_.set(
         "u_octaves",
         geometry::shader_octaves(geometry::multiple_scattering_of(medium_), geometry::scattering_octaves_of(medium_)));
@@ -503,9 +505,9 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     if (!enabled_ || frame.width <= 0 || frame.height <= 0)
         return out;
     if (!readback_) {
-        readback_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-                                                    "froxel_medium.glsl", "froxel_apply.glsl", "froxel_readback.comp"});
+        readback_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "froxel_medium.glsl",
+            "froxel_apply.glsl", "froxel_readback.comp"});
         depth_program_ =
             std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
     }

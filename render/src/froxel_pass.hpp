@@ -34,6 +34,7 @@ class Medium;
 namespace kiri::render::detail {
 
 class TerrainPass;
+class SunVolume;
 
 class FroxelPass {
 public:
@@ -48,6 +49,12 @@ public:
     //! Before the scene is drawn: whether the fog is in view; the sun's shadow map of the
     //! terrain its lighting reads (null: no terrain shadows), kept by pointer for the frame.
     void prepare(const FrameContext& frame, const ShadowMapPass* shadow);
+    //! The sun volume the lighting reads tau_sun from (null, or FroxelOptions::sun_volume off:
+    //! the lighting marches it), kept by pointer for the frame.
+    void set_sun_volume(const SunVolume* sun) { sun_ = sun; }
+    //! The Medium drawn (null: the height fog alone).
+    const geometry::Medium* medium() const { return medium_; }
+    const geometry::FroxelOptions& options() const { return options_; }
     //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's).
     void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
     //! The fog on the resolved frame (colour: RGBA8, read and written).
@@ -70,6 +77,7 @@ private:
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;
     const ShadowMapPass* shadow_ = nullptr;  // this frame's, the renderer's
+    const SunVolume* sun_ = nullptr;         // this frame's, the renderer's
     int shadow_version_ = -2;                // its updates() when the volume was lit (-1: none)
     ShellMesh shell_;
     const geometry::Medium* medium_ = nullptr;

@@ -11,6 +11,7 @@
 #include "layer_stack_uniforms.hpp"
 #include "kiri/geometry/terrain/heightfield.hpp"
 #include "noise_texture.hpp"
+#include "sun_volume.hpp"
 
 namespace kiri::render::detail {
 namespace {
@@ -20,6 +21,10 @@ struct Vertex {
     float normal[3];
     float uv[2];
 };
+
+constexpr int unit_sun = 16;  // 16, 17, 18: sun_volume.glsl's (the froxels' apply takes 5 to 15)
+// Steps of the sun's march where a fragment lies outside the sun volume's grid.
+constexpr int sun_march_steps = 32;
 
 void set_sampling(GLuint texture, GLint filter)
 {
@@ -32,8 +37,9 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"layers.vert", "fog_partition.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
-                "layers.frag"}),
+    : program_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
+                "medium_shell.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "layers.vert",
+                "froxel_fog_none.glsl", "layers.frag"}),
       composite_({"fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
@@ -237,12 +243,22 @@ void LayersPass::draw_stack(const FrameContext& frame)
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
-            "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
+            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "medium_shell.glsl",
+            "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "layers.vert", "froxel_apply.glsl",
+            "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
     bind_terrain_shadow(p, shadow_);
+    // tau_sun from the sun volume (after the froxels' uniforms: the same Medium, Renderer::draw);
+    // without a Medium the layer's own slab above it.
+    if (sun_) {
+        sun_->bind(p, unit_sun, sun_march_steps);
+    } else {
+        p.set("u_md_on", 0);
+        p.set("u_sv_on", 0);
+        p.set("u_sv_volume", unit_sun + 2);
+    }
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
@@ -260,7 +276,7 @@ void LayersPass::draw_stack(const FrameContext& frame)
     p.set("u_detail", float(o.optics.detail));
     p.set("u_detail_scale", float(o.optics.detail_scale));
     p.set("u_drift", glm::vec2(o.optics.wind * o.optics.time));
-    p.set("u_sun_direction", frame.sun_direction);
+    p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
     p.set("u_sun_radiance", frame.sun_radiance);
     p.set("u_ambient", frame.ambient);
     p.set("u_sky_horizon", frame.sky_horizon);

@@ -17,6 +17,7 @@ namespace kiri::render::detail {
 
 class FroxelPass;
 class ShadowMapPass;
+class SunVolume;
 
 //! The fog's layer stack: the base tessellation uploaded once, drawn as instances (one per
 //! layer) with the stack's formulas in the vertex shader, blended over the terrain with the
@@ -47,10 +48,13 @@ public:
 
     //! The froxel fog each layer reads at its own depth (nullptr: none; drawn after its apply)
     //! and the sun's shadow map of the terrain (nullptr: no terrain shadows), for the frame.
-    void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow)
+    //! The sun volume the medium shading reads tau_sun from (nullptr: the slab above each
+    //! layer), for the frame.
+    void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow, const SunVolume* sun)
     {
         fog_ = fog;
         shadow_ = shadow;
+        sun_ = sun;
     }
 
 private:
@@ -58,6 +62,7 @@ private:
     mutable std::unique_ptr<ShaderProgram> fog_program_;
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
+    const SunVolume* sun_ = nullptr;
     VertexArray empty_vao_;
     Texture noise_;
     // The reduced-resolution target.

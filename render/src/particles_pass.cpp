@@ -108,7 +108,8 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-            "terrain_shadow.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert", "particles.frag"});
+            "terrain_shadow.glsl", "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert",
+            "particles.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);

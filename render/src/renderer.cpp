@@ -20,6 +20,7 @@
 #include "render_targets.hpp"
 #include "shadow_map_pass.hpp"
 #include "sky_pass.hpp"
+#include "sun_volume.hpp"
 #include "terrain_pass.hpp"
 #include "tonemap_pass.hpp"
 
@@ -39,6 +40,8 @@ struct Renderer::Impl {
     detail::ParticlesPass particles;
     std::unique_ptr<detail::FroxelPass> froxel;         // built on first use
     std::unique_ptr<detail::ShadowMapPass> shadow_map;  // built on first use
+    std::unique_ptr<detail::SunVolume> sun_volume;      // built on first use
+    std::optional<std::pair<const geometry::Medium*, geometry::HeightFog>> sun_medium;
     std::optional<geometry::FogPartition> partition;
     double layer_scale = 0.5;
     bool layers_multisampled = false;
@@ -48,7 +51,8 @@ struct Renderer::Impl {
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
     PassTimer shadow_timer{"shadow map"}, sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"},
-        resolve_timer{"resolve"}, overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"};
+        resolve_timer{"resolve"}, overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"},
+        sun_volume_timer{"sun volume"};
 
     //! The sun's shadow map brought up to date for the frame; null without terrain shadows.
     const detail::ShadowMapPass* update_shadow_map(const FrameContext& frame)
@@ -66,6 +70,34 @@ struct Renderer::Impl {
         shadow_map->update(terrain, frame.sun_direction, terrain.bounds_min(), terrain.bounds_max(),
                            sun.shadow_map_size, sun.esm_sharpness);
         return shadow_map.get();
+    }
+
+    //! The sun volume brought up to date for the frame: of the Medium set_sun_medium gave, else
+    //! of the froxel fog's. Null without a Medium.
+    const detail::SunVolume* update_sun_volume(const FrameContext& frame, const detail::FroxelPass* fog)
+    {
+        sun_volume_timer.forget();
+        const geometry::Medium* medium = nullptr;
+        geometry::HeightFog haze;
+        if (sun_medium) {
+            medium = sun_medium->first;
+            haze = sun_medium->second;
+        } else if (fog) {
+            medium = fog->medium();
+            haze = fog->options().height_fog;
+        }
+        if (!medium && !sun_volume)
+            return nullptr;
+        if (!sun_volume)
+            sun_volume = std::make_unique<detail::SunVolume>();
+        sun_volume->set(medium, haze);
+        if (sun_volume->stale(frame.sun_direction)) {
+            const ScopedPassTimer timed(sun_volume_timer);
+            sun_volume->update(frame.sun_direction);
+        } else {
+            sun_volume->update(frame.sun_direction);  // drops the volume of a Medium gone
+        }
+        return sun_volume.get();
     }
 };
 
@@ -108,6 +140,13 @@ void Renderer::set_overlay_style(const std::string& name, const OverlayStyle& st
 void Renderer::remove_overlay(const std::string& name) { impl_->overlays.remove(name); }
 
 void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
+
+void Renderer::set_sun_medium(const geometry::Medium* medium, const geometry::HeightFog& haze)
+{
+    impl_->sun_medium.emplace(medium, haze);
+}
+
+void Renderer::clear_sun_medium() { impl_->sun_medium.reset(); }
 
 void Renderer::set_fog_partition(const std::optional<geometry::FogPartition>& partition)
 {
@@ -165,12 +204,15 @@ void Renderer::draw(const Camera& camera, int width, int height)
                                     r.partition->particle_band);
     }
     const detail::ShadowMapPass* shadow = r.update_shadow_map(frame);
-    if (fog)  // before the scene: is the fog in view
+    const detail::SunVolume* sun_volume = r.update_sun_volume(frame, fog);
+    if (fog) {  // before the scene: is the fog in view
         r.froxel->prepare(frame, shadow);
+        r.froxel->set_sun_volume(sun_volume);
+    }
     // With froxel fog the layers and the particles come after its apply and read it at their
     // own depth (FroxelPass::bind_apply + froxel_fog(world) in their fragment shaders).
     const bool layers_multisampled = r.layers_multisampled && !fog;
-    r.layers.set_fog(fog, shadow);
+    r.layers.set_fog(fog, shadow, sun_volume);
     r.particles.set_fog(fog, shadow);
     r.targets.bind_for_drawing();
     {
@@ -223,6 +265,9 @@ void Renderer::draw(const Camera& camera, int width, int height)
     if (shadow && r.shadow_timer.ran())
         r.stats.passes.push_back(r.shadow_timer.result());
     r.stats.shadow_map_updates = r.shadow_map ? r.shadow_map->updates() : 0;
+    if (r.sun_volume_timer.ran())
+        r.stats.passes.push_back(r.sun_volume_timer.result());
+    r.stats.sun_volume_updates = r.sun_volume ? r.sun_volume->updates() : 0;
     for (const PassTimer* t : {&r.sky_timer, &r.terrain_timer, &r.layers_timer, &r.resolve_timer, &r.tonemap_timer})
         r.stats.passes.push_back(t->result());
     if (particles) {

@@ -51,7 +51,7 @@ geometry::PipelineTarget pipeline_target(FogMode mode, const geometry::Scene& sc
     target.particles = geometry::ParticleSet::none;
     switch (mode) {
     case FogMode::terrain: target.up_to = geometry::Stage::terrain; break;
-    case FogMode::layers: break;
+    case FogMode::layers: target.up_to = geometry::Stage::medium; break;  // the sun volume's
     case FogMode::froxel: target.up_to = geometry::Stage::medium; break;
     case FogMode::particles:
         target.up_to = geometry::Stage::particles;
@@ -181,6 +181,13 @@ const geometry::Medium* SceneRendering::medium() const
     return timed_medium_ ? timed_medium_.get() : products_.medium.get();
 }
 
+const geometry::Medium* SceneRendering::sun_medium() const
+{
+    if (!(draws_layers() || draws_froxels()) || !products_.has_fog())
+        return nullptr;
+    return timed_medium_ ? timed_medium_.get() : products_.medium.get();
+}
+
 SunLight SceneRendering::sun() const
 {
     SunLight sun = to_sun(scene_.sun);
@@ -206,6 +213,7 @@ void SceneRendering::apply(Renderer& renderer) const
         renderer.set_froxel_fog(medium(), froxel_);
     else
         renderer.clear_froxel_fog();
+    renderer.set_sun_medium(sun_medium(), froxel_.height_fog);
     std::optional<geometry::FogPartition> partition;
     if (mode_ == FogMode::combined) {
         partition = scene_.combined;

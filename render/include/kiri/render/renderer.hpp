@@ -22,6 +22,7 @@ struct LayerBase;
 struct LayerOptions;
 struct FroxelOptions;
 struct FogPartition;
+struct HeightFog;
 }  // namespace kiri::geometry
 
 namespace kiri::render {
@@ -84,8 +85,11 @@ struct FrameStats {
     //! "particles"): their device times add up to no more than frame_ms.
     std::vector<PassTime> passes;
     double frame_ms = 0.0;
-    int uploads = 0;               //!< GPU resources (re)built during this frame
-    int shadow_map_updates = 0;    //!< the sun's shadow map's builds so far (kept while sun and terrain stay)
+    int uploads = 0;             //!< GPU resources (re)built during this frame
+    int shadow_map_updates = 0;  //!< the sun's shadow map's builds so far (kept while sun and terrain stay)
+    //! The sun volume's builds so far (kept while the sun, the Medium and its time stay): the
+    //! fog's optical depth towards the sun that the froxels and the layers read.
+    int sun_volume_updates = 0;
     int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
     int particles = 0;             //!< particle billboards drawn
     int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
@@ -105,6 +109,13 @@ public:
     //! the ground beyond the DEM's edge (kiri/geometry/terrain/ground.hpp); false: the bare tile.
     void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0, bool surround = true);
     void set_sun(const SunLight& sun);
+    //! The fog the sun shines through, for every renderer's tau_sun (the sun volume,
+    //! docs/medium.md): the Medium (kept by pointer: it must outlive the renderer's use of it;
+    //! null: none) and the height fog. Until it is called (or after clear_sun_medium), the
+    //! froxel fog's Medium and height fog. Without a Medium the layers take the slab above each
+    //! layer and the froxels march the sun's path.
+    void set_sun_medium(const geometry::Medium* medium, const geometry::HeightFog& haze);
+    void clear_sun_medium();
     //! The fog's layer stack over the terrain (base kept by reference: it must outlive the
     //! renderer's use of it). Uploads only when the base changed; options apply every frame.
     void set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options);

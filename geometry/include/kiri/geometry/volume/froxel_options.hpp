@@ -35,6 +35,9 @@ struct FroxelOptions {
     double history_weight = 0.9;
     int density_samples = 2;
     int sun_steps = 12;
+    //! tau_sun from the sun volume (built once per sun, Medium and time, shared with the
+    //! layers); false: each froxel marches it in sun_steps steps for each lighting sample.
+    bool sun_volume = true;
     int pixel_steps = 24;  //!< fog-aware apply
     bool terrain_shadows = true;
     bool fog_shadows = true;
@@ -105,7 +108,12 @@ void visit_fields(O& o, V&& v)
     v(o.density_samples,
       {.key = "density_samples", .range = closed(1, 16), .doc = "density samples per froxel, spread over its depth"});
     v(o.sun_steps,
-      {.key = "sun_steps", .range = closed(1, 64), .doc = "steps of the sun's optical depth through the Medium"});
+      {.key = "sun_steps",
+       .range = closed(1, 64),
+       .doc = "steps of the sun's optical depth through the Medium where it is marched (sun_volume false)"});
+    v(o.sun_volume,
+      {.key = "sun_volume",
+       .doc = "tau_sun read from the sun volume that the layers read too, built once per sun, Medium and time"});
     v(o.pixel_steps,
       {.key = "pixel_steps",
        .range = closed(1, 256),
