@@ -33,7 +33,7 @@ out float v_spacing;        // r (m): the slab this layer stands for
 out float v_height;         // h = i / n in [0, 1]: where in the fog's thickness
 out vec3 v_normal;
 // The fog's optical depth towards the sun at the vertex (sun_volume.glsl: the Medium along the
-// sun's slanted path, the height fog), smooth enough to interpolate over a triangle; -1 without
+// sun's slanted path and the height fog), smooth enough to interpolate over a triangle; -1 without
 // a Medium (the fragment then takes the slab above its layer).
 out float v_tau_sun;
 uniform vec3 u_sun_direction;

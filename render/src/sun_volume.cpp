@@ -7,6 +7,22 @@
 
 namespace kiri::render::detail {
 
+namespace {
+
+// Columns a side for a grid of n samples a side: a grid finer than max_columns is spread over
+// max_columns; a coarser one than min_columns is divided evenly, so that every sample is a column
+// (a step in the shell's top between two samples stays between two columns).
+int columns(int n, const SunVolumeResolution& r)
+{
+    const int lo = std::max(r.min_columns, 2), hi = std::max(r.max_columns, lo);
+    if (n > hi)
+        return hi;
+    const int split = (lo - 1 + (n - 2)) / std::max(n - 1, 1);  // ceil((lo - 1) / (n - 1))
+    return std::min(std::max(split, 1) * (n - 1) + 1, std::max(hi, n));
+}
+
+}  // namespace
+
 glm::vec3 sun_march_direction(glm::vec3 d)
 {
     for (int c = 0; c < 3; ++c)
@@ -16,8 +32,8 @@ glm::vec3 sun_march_direction(glm::vec3 d)
 }
 
 SunVolume::SunVolume()
-    : fill_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
-             "froxel_medium.glsl", "sun_march.glsl", "sun_volume.comp"})
+    : fill_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "froxel_medium.glsl",
+             "sun_march.glsl", "sun_volume.comp"})
 {}
 
 void SunVolume::set(const geometry::Medium* medium, const geometry::HeightFog& haze)
@@ -33,8 +49,13 @@ std::optional<SunVolume::Key> SunVolume::key(const glm::vec3& sun) const
     const geometry::Medium* medium = medium_gpu_.medium();
     if (!medium)
         return std::nullopt;
-    return Key{sun_march_direction(sun), medium,           medium->grid().top.data(), medium->options(),
-               medium->detail(),         resolution_};
+    return Key{sun_march_direction(sun),
+               medium,
+               medium->grid().top.data(),
+               medium->options(),
+               medium->detail(),
+               haze_,
+               resolution_};
 }
 
 bool SunVolume::stale(const glm::vec3& sun) const
@@ -56,8 +77,7 @@ bool SunVolume::update(const glm::vec3& sun)
     const geometry::Medium* medium = key->medium;
     const glm::vec3 sun_direction = key->sun;
     const geometry::MediumGrid& g = medium->grid();
-    const glm::ivec3 size(std::clamp(g.nx, 2, std::max(resolution_.max_columns, 2)),
-                          std::clamp(g.ny, 2, std::max(resolution_.max_columns, 2)), std::max(resolution_.levels, 2));
+    const glm::ivec3 size(columns(g.nx, resolution_), columns(g.ny, resolution_), std::max(resolution_.levels, 2));
     if (size != size_ || !volume_) {
         volume_ = make_texture(GL_TEXTURE_3D);
         glTextureStorage3D(volume_.get(), 1, GL_R32F, size.x, size.y, size.z);
@@ -99,7 +119,7 @@ void SunVolume::bind(const ShaderProgram& p, int unit, int march_steps, bool use
 }
 
 std::vector<float> SunVolume::probe(const std::vector<glm::vec3>& points, const glm::vec3& sun, int march_steps,
-                                   bool use_volume) const
+                                    bool use_volume) const
 {
     if (points.empty())
         return {};

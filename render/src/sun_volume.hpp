@@ -23,9 +23,12 @@ glm::vec3 sun_march_direction(glm::vec3 direction);
 
 //! The volume's resolution and the march that fills it.
 struct SunVolumeResolution {
-    int max_columns = 160;  //!< columns a side at most (the grid's samples, or fewer spread over it)
-    int levels = 64;        //!< levels a column (medium_shell.glsl: 60 % of them from floor to top)
-    int steps = 64;         //!< steps of each level's march towards the sun
+    //! Columns a side: the grid's samples, at most max_columns, and at least min_columns (each
+    //! cell divided evenly: tau_sun bends where the sun's path leaves through the Medium's side,
+    //! however coarse its grid).
+    int min_columns = 64, max_columns = 128;
+    int levels = 48;  //!< levels a column (medium_shell.glsl: 60 % of them from floor to top)
+    int steps = 48;   //!< steps of each level's march towards the sun
     bool operator==(const SunVolumeResolution&) const = default;
 };
 
@@ -35,8 +38,8 @@ public:
     //! The Medium the sun shines through (null: none; kept by pointer) and the height fog.
     void set(const geometry::Medium* medium, const geometry::HeightFog& haze);
     void set_resolution(const SunVolumeResolution& resolution) { resolution_ = resolution; }
-    //! Builds the volume unless the sun, the Medium (its grids, options and time) and the
-    //! resolution are those of the last build; true when it built.
+    //! Builds the volume unless the sun, the Medium (its grids, options and time), the height
+    //! fog and the resolution are those of the last build; true when it built.
     bool update(const glm::vec3& sun_direction);
     //! Whether update would build.
     bool stale(const glm::vec3& sun_direction) const;
@@ -61,6 +64,7 @@ private:
         const void* grids = nullptr;
         geometry::MediumOptions options;
         geometry::MediumDetail detail;
+        geometry::HeightFog haze;
         SunVolumeResolution resolution;
         bool operator==(const Key&) const = default;
     };

@@ -202,6 +202,7 @@ TEST_F(FroxelGl, EveryOptionChangeReruns)
         {"history_weight", [](g::FroxelOptions& o) { o.history_weight = 0.5; }},
         {"density_samples", [](g::FroxelOptions& o) { o.density_samples = 3; }},
         {"sun_steps", [](g::FroxelOptions& o) { o.sun_steps = 8; }},
+        {"sun_volume", [](g::FroxelOptions& o) { o.sun_volume = !o.sun_volume; }},
         {"pixel_steps", [](g::FroxelOptions& o) { o.pixel_steps = 16; }},
         {"terrain_shadows", [](g::FroxelOptions& o) { o.terrain_shadows = !o.terrain_shadows; }},
         {"fog_shadows", [](g::FroxelOptions& o) { o.fog_shadows = !o.fog_shadows; }},
