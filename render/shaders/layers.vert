@@ -3,7 +3,7 @@
 // layer i (bottom first or top first). Mirrors geometry::layer_column / layer_vertex
 // (geometry/src/layers/layer_stack.cpp): per-vertex spacing narrowed near the eye (2.8),
 // real-valued count keeping the thickness (2.9) with the partial top layer faded in, alpha
-// (2.7), enlargement about the centre (2.10). After the libraries up to sun_volume.glsl.
+// (2.7), enlargement about the centre (2.10).
 layout(location = 0) in vec3 a_position;  // base surface, world metres
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in vec2 a_uv;        // into the border-mask atlas
@@ -33,13 +33,22 @@ out float v_spacing;        // r (m): the slab this layer stands for
 out float v_height;         // h = i / n in [0, 1]: where in the fog's thickness
 out vec3 v_normal;
 // The fog's optical depth towards the sun at the vertex (sun_volume.glsl: the Medium along the
-// sun's slanted path and the height fog), smooth enough to interpolate over a triangle; -1 without
-// a Medium (the fragment then takes the slab above its layer).
+// sun's slanted path and the height fog), smooth enough to interpolate over a triangle: from the
+// column of it above the base vertex (layers_sun.comp), linear between its levels; -1 without one
+// (the fragment then takes the slab above its layer).
 out float v_tau_sun;
-uniform vec3 u_sun_direction;
-uniform int u_medium;
+layout(std430, binding = 2) readonly buffer SunColumns { float sun_columns[]; };
+uniform int u_sun_columns;  // levels a column; 0: none
+uniform float u_sun_column_height;
 
-float layer_tau_sun(vec3 world) { return u_medium != 0 && u_md_on != 0 ? sun_optical_depth(world, u_sun_direction, 0.5) : -1.0; }
+float layer_tau_sun(float above_base)
+{
+    if (u_sun_columns < 2)
+        return -1.0;
+    float f = clamp(above_base / u_sun_column_height, 0.0, 1.0) * float(u_sun_columns - 1);
+    int k = min(int(f), u_sun_columns - 2), first = gl_VertexID * u_sun_columns;
+    return mix(sun_columns[first + k], sun_columns[first + k + 1], f - float(k));
+}
 flat out int v_layer;
 
 void main()
@@ -56,7 +65,7 @@ void main()
         v_spacing = u_thickness;
         v_height = 0.0;
         v_normal = a_normal;
-        v_tau_sun = layer_tau_sun(p);
+        v_tau_sun = layer_tau_sun(0.0);
         gl_Position = u_view_projection * vec4(p, 1.0);
         return;
     }
@@ -83,6 +92,6 @@ void main()
     float scale = 1.0 + fi * u_rate * sin_theta;
     vec2 xy = u_centre + scale * (p.xy - u_centre);
     v_world = vec3(xy, p.z + fi * r);
-    v_tau_sun = layer_tau_sun(v_world);
+    v_tau_sun = layer_tau_sun(fi * r);
     gl_Position = u_view_projection * vec4(v_world, 1.0);
 }

@@ -22,9 +22,11 @@ struct Vertex {
     float uv[2];
 };
 
-constexpr int unit_sun = 16;  // 16, 17, 18: sun_volume.glsl's (the froxels' apply takes 5 to 15)
-// Steps of the sun's march where a fragment lies outside the sun volume's grid.
+constexpr int unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.comp
+// Steps of the sun's march where a base vertex lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
+// Levels of tau_sun along the column above each base vertex (linear between them).
+constexpr int sun_column_levels = 16;
 
 void set_sampling(GLuint texture, GLint filter)
 {
@@ -37,9 +39,8 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
-                "medium_shell.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "layers.vert",
-                "froxel_fog_none.glsl", "layers.frag"}),
+    : program_({"layers.vert", "fog_partition.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
+                "layers.frag"}),
       composite_({"fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
@@ -243,27 +244,24 @@ void LayersPass::draw_stack(const FrameContext& frame)
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "medium_shell.glsl",
-            "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "layers.vert", "froxel_apply.glsl",
-            "layers.frag"});
+            "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
+            "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
     bind_terrain_shadow(p, shadow_);
-    // tau_sun from the sun volume (after the froxels' uniforms: the same Medium, Renderer::draw);
-    // without a Medium the layer's own slab above it.
-    if (sun_) {
-        sun_->bind(p, unit_sun, sun_march_steps);
-    } else {
-        p.set("u_md_on", 0);
-        p.set("u_sv_on", 0);
-        p.set("u_sv_volume", unit_sun + 2);
-    }
+    // tau_sun from the sun volume, along the column above each base vertex; without a Medium
+    // the slab above each layer.
+    const auto& o = options_;
+    const bool columns = update_sun_columns(frame);
+    p.set("u_sun_columns", columns ? sun_column_levels : 0);
+    p.set("u_sun_column_height", float(sun_column_height()));
+    if (columns)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, sun_columns_.get());
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
     const bool bottom_first = eye.z >= 0.5 * (base_->min.z + base_->max.z);
-    const auto& o = options_;
     p.set("u_view_projection", frame.view_projection);
     set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, bottom_first);
     p.set("u_atlas", 0);
@@ -328,6 +326,59 @@ void LayersPass::draw_stack(const FrameContext& frame)
     }
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, 0);
+}
+
+double LayersPass::sun_column_height() const
+{
+    return options_.thickness * (1.0 + 1.0 / std::max(options_.count, 1));  // the partial top layer too
+}
+
+std::optional<LayersPass::SunColumnsKey> LayersPass::sun_columns_key() const
+{
+    if (!sun_ || !sun_->ready() || !base_ || index_count_ <= 0 || !(sun_column_height() > 0.0) ||
+        options_.shading != geometry::LayerShading::medium)
+        return std::nullopt;
+    return SunColumnsKey{sun_, sun_->updates(), uploaded_base_, index_count_, sun_column_height()};
+}
+
+bool LayersPass::sun_columns_stale() const
+{
+    const std::optional<SunColumnsKey> key = sun_columns_key();
+    return key && !(sun_columns_key_ && *sun_columns_key_ == *key);
+}
+
+bool LayersPass::update_sun_columns(const FrameContext& frame)
+{
+    const std::optional<SunColumnsKey> key = sun_columns_key();
+    if (!key)
+        return false;
+    if (sun_columns_key_ && *sun_columns_key_ == *key)
+        return true;
+    const double height = key->height;
+    if (!sun_columns_program_)
+        sun_columns_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "froxel_medium.glsl",
+            "sun_march.glsl", "sun_volume.glsl", "layers_sun.comp"});
+    const ShaderProgram& c = *sun_columns_program_;
+    const GLsizei vertices = GLsizei(base_->position.size());
+    sun_columns_ = make_buffer();
+    glNamedBufferStorage(sun_columns_.get(), GLsizeiptr(std::size_t(vertices) * sun_column_levels * sizeof(float)),
+                         nullptr, 0);
+    sun_->bind(c, unit_sun, sun_march_steps);
+    c.set("u_sun_direction", sun_march_direction(frame.sun_direction));
+    c.set("u_vertices", int(vertices));
+    c.set("u_levels", sun_column_levels);
+    c.set("u_height", float(height));
+    c.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sun_columns_.get());
+    glDispatchCompute(GLuint((vertices + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    sun_columns_key_ = key;
+    return true;
 }
 
 void LayersPass::update_near(const glm::dvec3& eye, double reach)

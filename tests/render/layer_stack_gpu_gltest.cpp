@@ -50,9 +50,7 @@ struct Captured {
 std::vector<Captured> gpu_stack(const g::LayerOptions& o, const std::vector<BaseVertex>& base, const glm::dvec2& centre,
                                 const glm::dvec3& eye)
 {
-    ShaderProgram program({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
-                           "medium_shell.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
-                           "layers.vert"});
+    ShaderProgram program({"layers.vert"});
     const char* varyings[] = {"v_world", "v_alpha", "v_exponent", "v_spacing", "v_height"};
     glTransformFeedbackVaryings(program.id(), 5, varyings, GL_INTERLEAVED_ATTRIBS);
     glLinkProgram(program.id());  // the varyings take effect at link time
