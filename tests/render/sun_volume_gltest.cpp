@@ -179,12 +179,19 @@ TEST_F(SunVolumeGl, RebuiltOnlyWhenTheSunOrTheFogChanges)
     camera.position = {-900.0, -900.0, 600.0};
     camera.target = {0.0, 0.0, 50.0};
     const auto updates = [&] { return renderer.last_stats().sun_volume_updates; };
+    const auto timed = [&] {  // the frame reports the pass only when it ran
+        const auto& passes = renderer.last_stats().passes;
+        return std::any_of(passes.begin(), passes.end(), [](const auto& p) { return p.pass == "sun volume"; });
+    };
     renderer.draw(camera, 64, 36);
     EXPECT_EQ(updates(), 1);
+    EXPECT_TRUE(timed());
     renderer.draw(camera, 64, 36);
+    EXPECT_FALSE(timed());
     camera.position.x += 300.0;
     renderer.draw(camera, 64, 36);
     EXPECT_EQ(updates(), 1) << "the same sun and fog from another view";
+    EXPECT_FALSE(timed());
     kiri::render::SunLight sun;
     sun.direction = {0.2, 0.4, 0.7};
     renderer.set_sun(sun);
