@@ -100,7 +100,8 @@ std::vector<View> views(Context& c)
     fs::create_directories(dir);
     const auto dem = [&](const std::string& name, int nx, int ny, double cell,
                          const std::function<double(double, double)>& height) {
-        geometry::Scene s = medium_alone(geometry::dem_scene(write_ascii_grid(dir / (name + ".asc"), nx, ny, cell, height)));
+        geometry::Scene s =
+            medium_alone(geometry::dem_scene(write_ascii_grid(dir / (name + ".asc"), nx, ny, cell, height)));
         v.push_back({name + "/derived", s, ""});
         s.cameras.push_back(inside_camera(s));
         v.push_back({name + "/inside", s, "inside"});
@@ -108,7 +109,8 @@ std::vector<View> views(Context& c)
     // A meandering canyon 300 m deep in a plateau rising northwards (10 m cells).
     dem("canyon", 240, 180, 10.0, [](double x, double y) {
         const double axis = 0.5 + 0.1 * std::sin(6.0 * y);
-        return 900.0 - 300.0 * std::exp(-(x - axis) * (x - axis) / 0.008) + 60.0 * y + 20.0 * std::sin(9.0 * x + 3.0 * y);
+        return 900.0 - 300.0 * std::exp(-(x - axis) * (x - axis) / 0.008) + 60.0 * y +
+            20.0 * std::sin(9.0 * x + 3.0 * y);
     });
     // A lone peak 900 m above a rippled plain (30 m cells).
     dem("peak", 200, 200, 30.0, [](double x, double y) {
@@ -161,7 +163,8 @@ void views_stage(Context& c)
     }
     md << "\nWorst mean:";
     for (std::size_t m = 0; m < std::size(modes); ++m)
-        md << " " << render::to_string(modes[m]) << " " << worst[m] * 100 << " %" << (m + 1 < std::size(modes) ? ";" : ".\n");
+        md << " " << render::to_string(modes[m]) << " " << worst[m] * 100 << " %"
+           << (m + 1 < std::size(modes) ? ";" : ".\n");
 }
 
 }  // namespace

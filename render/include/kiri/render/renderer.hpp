@@ -87,6 +87,7 @@ struct FrameStats {
     int uploads = 0;               //!< GPU resources (re)built during this frame
     int shadow_map_updates = 0;    //!< the sun's shadow map's builds so far (kept while sun and terrain stay)
     int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
+    int layer_triangles = 0;       //!< the base's triangles drawn for each layer (the level of detail's)
     int particles = 0;             //!< particle billboards drawn
     int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
     FroxelStats froxel;
