@@ -139,8 +139,8 @@ TEST(LayerLod, MixedLevelsAreCrackFreeAndCoverTheSameFootprint)
     double negative = 0.0;
     const double full_area = signed_xy_area(base, base.triangles, negative);
     ASSERT_GT(full_area, 0.0);
-    for (const std::vector<int>& pattern : {std::vector<int>{1, 2, 4, 8}, std::vector<int>{1}, std::vector<int>{2, 1},
-                                            std::vector<int>{8, 1, 1, 4, 2}}) {
+    for (const std::vector<int>& pattern :
+         {std::vector<int>{1, 2, 4, 8}, std::vector<int>{1}, std::vector<int>{2, 1}, std::vector<int>{8, 1, 1, 4, 2}}) {
         std::vector<int> levels(std::size_t(g.patches));
         for (std::size_t f = 0; f < levels.size(); ++f)
             levels[f] = pattern[f % pattern.size()];
@@ -216,10 +216,9 @@ TEST(LayerLod, NonsenseKeepsTheFullLevelAndBadLevelsAreRefused)
     const LayerBase& base = hills().base;
     const int n = base.grid.level;
     const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
-    for (const auto& levels : {layer_lod_levels(base, {nan, 0, 0}, 500.0, 8.0, 0.0),
-                               layer_lod_levels(base, {0, 0, 1e7}, inf, 8.0, 0.0),
-                               layer_lod_levels(base, {0, 0, 1e7}, 500.0, 0.0, 0.0),
-                               layer_lod_levels(base, {0, 0, 1e7}, 500.0, 8.0, nan)})
+    for (const auto& levels :
+         {layer_lod_levels(base, {nan, 0, 0}, 500.0, 8.0, 0.0), layer_lod_levels(base, {0, 0, 1e7}, inf, 8.0, 0.0),
+          layer_lod_levels(base, {0, 0, 1e7}, 500.0, 0.0, 0.0), layer_lod_levels(base, {0, 0, 1e7}, 500.0, 8.0, nan)})
         EXPECT_EQ(levels, std::vector<int>(std::size_t(base.grid.patches), n));
     EXPECT_THROW(layer_lod_triangles(base.grid, {1, 2}), InputError);
     EXPECT_THROW(layer_lod_triangles(base.grid, std::vector<int>(std::size_t(base.grid.patches), 3)), InputError);

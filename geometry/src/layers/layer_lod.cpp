@@ -40,8 +40,8 @@ LayerPatchGrid make_layer_patch_grid(const Tessellation& tessellation, const std
     const TriMesh& mesh = tessellation.mesh;
     const std::vector<int>& levels = tessellation.patch_level;
     OpenMesh::VPropHandleT<int> patch_id;
-    if (levels.empty() || !mesh.get_property_handle(patch_id, patch_id_property) ||
-        !mesh.has_vertex_texcoords2D() || position.size() != mesh.n_vertices())
+    if (levels.empty() || !mesh.get_property_handle(patch_id, patch_id_property) || !mesh.has_vertex_texcoords2D() ||
+        position.size() != mesh.n_vertices())
         return {};
     const int n = levels.front();
     if (n < 1 || std::any_of(levels.begin(), levels.end(), [n](int l) { return l != n; }))
