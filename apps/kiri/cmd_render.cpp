@@ -152,6 +152,9 @@ void run(const RenderArgs& a)
             std::fprintf(stderr, "kiri render: pass %-18s gpu %9.2f ms  cpu %9.2f ms\n", t.pass.c_str(), t.gpu_ms,
                          t.cpu_ms);
         std::fprintf(stderr, "kiri render: frame %.2f ms\n", stats.frame_ms);
+        if (stats.layers > 0)
+            std::fprintf(stderr, "kiri render: %d layers above the base, %d triangles each (level of detail)\n",
+                         stats.layers, stats.layer_triangles);
         if (stats.froxel.applied_pixels > 0)
             std::fprintf(stderr,
                          "kiri render: froxel apply marched %d of %d pixels (%.1f %%), read the volume elsewhere\n",

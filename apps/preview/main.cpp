@@ -29,6 +29,12 @@ int main(int argc, char** argv)
     app.add_option("--screenshot", args.screenshot, "scripted mode: the PNG written after the last frame");
     app.add_option("--save", args.save, "scripted mode: also save the scene (JSON) after the last frame");
     app.add_option("--camera-path", args.camera_path, "scripted mode: key views 'px py pz tx ty tz [fov]' per line");
+    app.add_flag("--moving", args.moving,
+                 "scripted mode: draw the camera path's frames as a moving view (dynamic resolution), the last "
+                 "as the still");
+    app.add_option("--moving-fps", args.moving_fps,
+                   "the frame rate a moving view keeps by lowering its resolution (default 10)")
+        ->check(CLI::Range(0.1, 1000.0));
     app.add_flag("--no-ui", args.no_ui, "hide the panel and the timings (H and T toggle them)");
     try {
         app.parse(argc, argv);
@@ -42,8 +48,8 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "kiri-preview: --frames and --screenshot go together\n");
         return 2;
     }
-    if (!args.scripted() && (!args.save.empty() || !args.camera_path.empty())) {
-        std::fprintf(stderr, "kiri-preview: --save and --camera-path need --frames and --screenshot\n");
+    if (!args.scripted() && (!args.save.empty() || !args.camera_path.empty() || args.moving)) {
+        std::fprintf(stderr, "kiri-preview: --save, --camera-path and --moving need --frames and --screenshot\n");
         return 2;
     }
     try {

@@ -76,6 +76,7 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     else if (!render::parse_fog_mode(args.mode, ui_.view.mode) || ui_.view.mode == render::FogMode::terrain)
         throw Error("--mode: '" + args.mode + "' is not layers, particles, froxel or combined");
     ui_.view.show_panel = ui_.view.show_stats = !args.no_ui;
+    ui_.view.moving_fps = args.moving_fps;
     apply_view_args(args.views, ui_.view);
     const fs::path scene_path(args.scene);
     ui_.save_path = (scene_path.parent_path() / (scene_path.stem().string() + "-edited.json")).string();
@@ -345,11 +346,13 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
     }
     const ViewOptions& v = ui_.view;
     float scale = v.render_scale;
+    const FrameBudget budget{1000.0 / std::clamp(double(v.moving_fps), 0.1, 1000.0), 0.125f, v.render_scale};
     // Dragging a slider redraws every frame too: reduced as well, so the panel keeps up.
+    const float moving_scale = next_moving_scale(moving_scale_, 0.0, budget);  // within the budget's range
     const bool reduced =
-        (camera_moved || ImGui::IsAnyItemActive()) && !force && v.reduce_while_moving && v.moving_scale < scale;
+        (camera_moved || ImGui::IsAnyItemActive()) && !force && v.reduce_while_moving && moving_scale < scale;
     if (reduced)
-        scale = v.moving_scale;
+        scale = moving_scale;
     const int w = std::max(1, int(std::lround(fb_w * scale))), h = std::max(1, int(std::lround(fb_h * scale)));
     const bool redraw = force || scene_dirty_ || camera_moved || w != last_width_ || h != last_height_ ||
         (last_frame_reduced_ && !reduced);
@@ -357,6 +360,9 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
         last_camera_ = camera_.camera();
         renderer_->draw(last_camera_, w, h);
         times_.scene_ms = renderer_->last_stats().frame_ms;
+        // The next moving frame's scale follows this one's cost; a still's says nothing of it.
+        if ((camera_moved || ImGui::IsAnyItemActive()) && v.reduce_while_moving && !force)
+            moving_scale_ = next_moving_scale(scale, times_.scene_ms, budget);
         times_.scene_width = last_width_ = w;
         times_.scene_height = last_height_ = h;
         ++times_.scene_frames;
@@ -391,7 +397,8 @@ int PreviewApp::run()
     }
     int frame = 0;
     std::vector<double> scene_ms;
-    std::string rebuilds, froxel_runs;  // per drawn frame (scripted): attenuation builds, froxel passes run
+    // Per drawn frame (scripted): attenuation builds, froxel passes run, the 3D view's size.
+    std::string rebuilds, froxel_runs, sizes;
     auto last = Clock::now();
     while (!window_->should_close()) {
         const auto start = Clock::now();
@@ -425,8 +432,13 @@ int PreviewApp::run()
         ImGui::Render();
         do_actions();
         const bool moved = !same(camera_.camera(), last_camera_);
-        if (draw_scene(fb_w, fb_h, moved, args_.scripted()) && args_.scripted()) {
+        // Scripted with --moving: the camera path's frames are drawn as an interactive session
+        // draws a moving view, the last one as the still it refines to.
+        const bool still = args_.scripted() && (!args_.moving || frame + 1 >= args_.frames);
+        if (draw_scene(fb_w, fb_h, moved, still) && args_.scripted()) {
             scene_ms.push_back(times_.scene_ms);
+            sizes += ' ';
+            sizes += std::to_string(times_.scene_width) + "x" + std::to_string(times_.scene_height);
             rebuilds += ' ';  // (" " + to_string trips GCC 12's -Wrestrict false positive)
             rebuilds += std::to_string(renderer_->last_stats().attenuation_rebuilds);
             froxel_runs += renderer_->last_stats().froxel.updated ? " 1" : " 0";
@@ -453,6 +465,13 @@ int PreviewApp::run()
                     sum += ms;
                 std::fprintf(stderr, "kiri-preview: %d frames of %dx%d, 3D view %.1f ms mean (%.1f..%.1f)\n", frame,
                              times_.scene_width, times_.scene_height, sum / double(scene_ms.size()), *lo, *hi);
+            }
+            if (args_.moving) {
+                std::fprintf(stderr, "kiri-preview: 3D view size per frame:%s\n", sizes.c_str());
+                std::fprintf(stderr, "kiri-preview: 3D view time per frame (ms):");
+                for (double ms : scene_ms)
+                    std::fprintf(stderr, " %.0f", ms);
+                std::fprintf(stderr, "\n");
             }
             if (const geometry::ParticleCloud* cloud = rendering_ ? rendering_->particles() : nullptr)
                 std::fprintf(stderr, "kiri-preview: %zu particles, attenuation buffer builds per frame:%s\n",

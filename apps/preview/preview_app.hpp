@@ -13,6 +13,7 @@
 #include "kiri/render/renderer.hpp"
 #include "kiri/render/scene_rendering.hpp"
 #include "kiri/render/window_context.hpp"
+#include "frame_budget.hpp"
 #include "orbit_camera.hpp"
 #include "panels/panels.hpp"
 #include "pipeline.hpp"
@@ -24,6 +25,8 @@ struct Args {
     std::vector<std::string> views;  //!< surface, deviation, clearance, triangles, patches, control
     int frames = 0, width = 1280, height = 720;
     bool no_fog = false, no_ui = false;
+    bool moving = false;       //!< scripted: draw the camera path's frames as a moving view
+    float moving_fps = 10.0f;  //!< the moving view's frame budget (ViewOptions::moving_fps)
     bool scripted() const { return frames > 0; }
 };
 
@@ -57,6 +60,7 @@ private:
     bool scene_dirty_ = true, last_frame_reduced_ = false;
     render::Camera last_camera_;
     int last_width_ = 0, last_height_ = 0;
+    float moving_scale_ = 0.5f;  // the next moving frame's scale (frame_budget.hpp)
 
     float ui_scale_ = 1.0f;
     //! Queues the scene with what the render mode needs.

@@ -1,5 +1,7 @@
 #include "layers_pass.hpp"
 
+#include "kiri/geometry/layers/layer_lod.hpp"
+
 #include <algorithm>
 #include <array>
 #include <memory>
@@ -76,6 +78,8 @@ bool LayersPass::set_base(const geometry::LayerBase& base)
     }
     index_count_ = GLsizei(base.triangles.size());
     near_reach_ = -1.0;  // a new base: its triangles near the eye are still to be found
+    lod_levels_.clear();
+    lod_active_ = false;
 
     const geometry::LayerTexture& t = base.texture;
     atlas_ = make_texture(GL_TEXTURE_2D);
@@ -152,6 +156,7 @@ bool LayersPass::visible(const FrameContext& frame) const
 bool LayersPass::ready(const FrameContext& frame, bool& uploaded)
 {
     last_layers_ = 0;
+    last_triangles_ = 0;
     uploaded = false;
     if (!visible(frame))
         return false;
@@ -163,7 +168,7 @@ bool LayersPass::draw(const FrameContext& frame)
 {
     bool uploaded = false;
     if (ready(frame, uploaded))
-        draw_stack(frame);
+        draw_stack(frame, frame.height);
     return uploaded;
 }
 
@@ -214,7 +219,7 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     glDepthFunc(GL_LESS);
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
-    draw_stack(frame);
+    draw_stack(frame, h);
 
     composite_.set("u_layers", 0);
     composite_.set("u_low_depth", 1);
@@ -239,8 +244,35 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     return uploaded;
 }
 
-void LayersPass::draw_stack(const FrameContext& frame)
+void LayersPass::update_lod(const FrameContext& frame, int target_height)
 {
+    const bool wanted = options_.lod > 0.0 && !base_->grid.empty();
+    if (!wanted) {
+        if (lod_active_)
+            near_reach_ = -1.0;  // the near triangles were the level of detail's
+        lod_active_ = false;
+        lod_levels_.clear();
+        return;
+    }
+    const double pixels_per_radian = 0.5 * double(target_height) * frame.projection[1][1];
+    std::vector<int> levels =
+        geometry::layer_lod_levels(*base_, glm::dvec3(frame.eye), pixels_per_radian, options_.lod, options_.thickness);
+    if (lod_active_ && levels == lod_levels_)
+        return;
+    lod_triangles_ = geometry::layer_lod_triangles(base_->grid, levels);
+    lod_levels_ = std::move(levels);
+    lod_indices_ = make_buffer();
+    glNamedBufferStorage(lod_indices_.get(),
+                         GLsizeiptr(std::max<std::size_t>(lod_triangles_.size(), 1) * sizeof(std::uint32_t)),
+                         lod_triangles_.empty() ? nullptr : lod_triangles_.data(), 0);
+    lod_count_ = GLsizei(lod_triangles_.size());
+    lod_active_ = true;
+    near_reach_ = -1.0;  // the near triangles come from the new list
+}
+
+void LayersPass::draw_stack(const FrameContext& frame, int target_height)
+{
+    update_lod(frame, target_height);
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
@@ -261,6 +293,7 @@ void LayersPass::draw_stack(const FrameContext& frame)
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
+    last_triangles_ = int(drawn_triangles().size() / 3);
     const bool bottom_first = eye.z >= 0.5 * (base_->min.z + base_->max.z);
     p.set("u_view_projection", frame.view_projection);
     set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, bottom_first);
@@ -307,8 +340,10 @@ void LayersPass::draw_stack(const FrameContext& frame)
         if (instances <= 0)
             return;
         p.set("u_first_instance", first_instance);
-        glVertexArrayElementBuffer(vao_.get(), near ? near_indices_.get() : indices_.get());
-        glDrawElementsInstanced(GL_TRIANGLES, near ? near_count_ : index_count_, GL_UNSIGNED_INT, nullptr, instances);
+        const GLuint all = lod_active_ ? lod_indices_.get() : indices_.get();
+        const GLsizei all_count = lod_active_ ? lod_count_ : index_count_;
+        glVertexArrayElementBuffer(vao_.get(), near ? near_indices_.get() : all);
+        glDrawElementsInstanced(GL_TRIANGLES, near ? near_count_ : all_count, GL_UNSIGNED_INT, nullptr, instances);
     };
     if (top > everywhere && o.narrowing) {
         update_near(eye, reach);
@@ -393,7 +428,7 @@ void LayersPass::update_near(const glm::dvec3& eye, double reach)
         near[v] = glm::dot(d, d) < reach2;
     }
     std::vector<std::uint32_t> indices;
-    const std::vector<std::uint32_t>& all = base_->triangles;
+    const std::vector<std::uint32_t>& all = drawn_triangles();
     for (std::size_t t = 0; t + 2 < all.size(); t += 3)
         if (near[all[t]] || near[all[t + 1]] || near[all[t + 2]])
             indices.insert(indices.end(), {all[t], all[t + 1], all[t + 2]});

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -41,6 +42,8 @@ public:
     bool update_sun_columns(const FrameContext& frame);
     //! Layers above the base the last draw used (0 when culled or empty).
     int last_layer_count() const { return last_layers_; }
+    //! The base's triangles the last draw used for a layer (the level of detail's; 0 when culled).
+    int last_triangle_count() const { return last_triangles_; }
     //! Grows (lo, hi) to hold every layer (for the frame's near and far planes).
     void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
     //! False when the stack's bounds lie outside the view (the pass then costs nothing).
@@ -93,7 +96,8 @@ private:
     void ensure_low(int width, int height);
     //! Whether there is anything to draw this frame; uploads the ground first if needed.
     bool ready(const FrameContext& frame, bool& uploaded);
-    void draw_stack(const FrameContext& frame);
+    //! target_height: the height in pixels of the target drawn into (the level of detail's scale).
+    void draw_stack(const FrameContext& frame, int target_height);
     VertexArray vao_;
     Buffer vertices_, indices_;
     // The layers above `count` fade in only where the eye narrows the spacing ([Thesis] (2.8)):
@@ -103,6 +107,18 @@ private:
     glm::dvec3 near_eye_{HUGE_VAL};
     double near_reach_ = -1.0;
     void update_near(const glm::dvec3& eye, double reach);
+    // The level of detail for the last eye (layer_lod.hpp): its triangles replace the base's.
+    std::vector<int> lod_levels_;
+    std::vector<std::uint32_t> lod_triangles_;
+    Buffer lod_indices_;
+    GLsizei lod_count_ = 0;
+    bool lod_active_ = false;
+    int last_triangles_ = 0;
+    void update_lod(const FrameContext& frame, int target_height);
+    const std::vector<std::uint32_t>& drawn_triangles() const
+    {
+        return lod_active_ ? lod_triangles_ : base_->triangles;
+    }
     Texture atlas_, heights_;
     GLsizei index_count_ = 0;
     geometry::LayerOptions options_;

@@ -293,6 +293,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     }
     r.stats.uploads = std::exchange(r.pending_uploads, 0);
     r.stats.layers = r.layers.last_layer_count();
+    r.stats.layer_triangles = r.layers.last_triangle_count();
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     r.last_frame = frame;
 }

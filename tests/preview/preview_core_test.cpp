@@ -6,10 +6,12 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
 #include "camera_path.hpp"
+#include "frame_budget.hpp"
 #include "cli/kiri_runner.hpp"
 #include "fog_views.hpp"
 #include "geometry/fog_test_terrains.hpp"
@@ -269,4 +271,35 @@ TEST(SaveScene, WritesTheTerrainRelativeAndLoadsBackEqual)
     std::ofstream(dir / "s-preview-1.png") << "x";
     EXPECT_EQ(kiri::preview::next_screenshot_path(dir, "s"), dir / "s-preview-2.png");
     fs::remove_all(dir.parent_path());
+}
+
+// Dynamic resolution (frame_budget.hpp): the step is sqrt(target / measured), the exact scale
+// for a frame whose whole cost is per pixel, damped to [0.7, 1.25] a frame.
+TEST(FrameBudget, StepsTowardsTheBudgetDampedAndClamped)
+{
+    using kiri::preview::FrameBudget;
+    using kiri::preview::next_moving_scale;
+    const FrameBudget budget{100.0, 0.125f, 1.0f};
+    // Within the damping: 400 ms at 0.8 -> 0.8 sqrt(100 / 400) = 0.4 is below 0.7 x 0.8.
+    EXPECT_FLOAT_EQ(next_moving_scale(0.8f, 400.0, budget), 0.56f);
+    EXPECT_FLOAT_EQ(next_moving_scale(0.5f, 156.25, budget), 0.4f);  // sqrt(0.64) = 0.8
+    EXPECT_FLOAT_EQ(next_moving_scale(0.5f, 100.0, budget), 0.5f);   // on budget: stays
+    EXPECT_FLOAT_EQ(next_moving_scale(0.4f, 81.0, budget), 0.4f * 10.0f / 9.0f);
+    EXPECT_FLOAT_EQ(next_moving_scale(0.4f, 1.0, budget), 0.5f);  // 1.25 at most
+    // A frame whose cost is all per pixel reaches its budget and stays there.
+    float s = 1.0f;
+    for (int i = 0; i < 20; ++i)
+        s = next_moving_scale(s, 400.0 * double(s) * double(s), budget);
+    EXPECT_NEAR(s, 0.5f, 1e-4f);
+    // The range: never below min_scale nor above max_scale.
+    EXPECT_FLOAT_EQ(next_moving_scale(0.13f, 1e6, budget), 0.125f);
+    EXPECT_FLOAT_EQ(next_moving_scale(0.95f, 1.0, FrameBudget{100.0, 0.125f, 0.9f}), 0.9f);
+    // Nothing measured, or nonsense: the last scale, within the range.
+    EXPECT_FLOAT_EQ(next_moving_scale(0.3f, 0.0, budget), 0.3f);
+    EXPECT_FLOAT_EQ(next_moving_scale(0.3f, std::nan(""), budget), 0.3f);
+    EXPECT_FLOAT_EQ(next_moving_scale(0.3f, 50.0, FrameBudget{std::numeric_limits<double>::infinity(), 0.125f, 1.0f}),
+                    0.3f);
+    EXPECT_FLOAT_EQ(next_moving_scale(std::nanf(""), 50.0, budget), 1.0f);  // from the top
+    EXPECT_FLOAT_EQ(next_moving_scale(5.0f, 100.0, budget), 1.0f);
+    EXPECT_FLOAT_EQ(next_moving_scale(0.5f, 100.0, FrameBudget{100.0, std::nanf(""), 0.1f}), 0.125f);
 }

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <functional>
 #include <string>
 
@@ -309,6 +310,43 @@ TEST_F(PreviewXvfb, CameraPathEndsAtItsLastKey)
     fs::remove(path);
     EXPECT_LT(mean_difference(along, at_top, 0, 0, 640, 360), 1.0);
     EXPECT_GT(mean_difference(along, at_first, 0, 0, 640, 360), 10.0);
+}
+
+// Dynamic resolution: a camera path drawn as a moving view keeps to the frame budget by its
+// resolution, and the last frame is the full-scale still. The budgets are extreme (a thousand
+// frames a second, one frame in ten seconds) so the steps' direction does not depend on the
+// machine's speed: frame_budget.hpp's damped steps (x0.7 down, x1.25 up a frame from 0.5).
+TEST_F(PreviewXvfb, AMovingViewKeepsItsFrameBudgetByItsResolutionAndEndsFullScale)
+{
+    kiri::geometry::Scene scene = kiri::geometry::load_scene(scene_path());
+    const auto& a = scene.cameras.at(0);
+    const auto& b = scene.cameras.at(1);
+    const fs::path path = kiri::test::temp_path("moving_path.txt");
+    {
+        std::ofstream out(path);
+        for (const auto* c : {&a, &b})
+            out << c->position.x << " " << c->position.y << " " << c->position.z << "  " << c->target.x << " "
+                << c->target.y << " " << c->target.z << " " << c->fov_y_deg << "\n";
+    }
+    const auto sizes = [&](const std::string& fps) {
+        std::string log;
+        const Image still = screenshot("--mode layers --moving --moving-fps " + fps + " --camera-path " + path.string(),
+                                       scene_path(), &log, 6);
+        EXPECT_EQ(still.width, 640);
+        const std::string key = "3D view size per frame:";
+        const std::size_t at = log.find(key);
+        EXPECT_NE(at, std::string::npos) << log;
+        std::istringstream in(log.substr(at == std::string::npos ? 0 : at + key.size()));
+        std::vector<std::string> out;
+        for (std::string s; out.size() < 6 && in >> s;)
+            out.push_back(s);
+        return out;
+    };
+    const std::vector<std::string> fast = sizes("1000");
+    EXPECT_EQ(fast, (std::vector<std::string>{"320x180", "224x126", "157x88", "110x62", "80x45", "640x360"}));
+    const std::vector<std::string> slow = sizes("0.1");
+    EXPECT_EQ(slow, (std::vector<std::string>{"320x180", "400x225", "500x281", "625x352", "640x360", "640x360"}));
+    fs::remove(path);
 }
 
 TEST_F(PreviewXvfb, DrivenSessionOrbitsPansJumpsHidesResizesSwitchesModeSavesAndCloses)

@@ -202,6 +202,63 @@ TEST_F(LayersGl, StackBelowTheGroundDrawsNothing)
     EXPECT_EQ(fog.rgba, bare.rgba);
 }
 
+// The level of detail (layer_lod.hpp): seen from afar every patch is a few pixels and is drawn
+// as its two corner triangles; from close by the patches near the eye keep the full grid and
+// the far ones get coarser. The picture is the full tessellation's: the cells are points of the
+// same surface.
+TEST_F(LayersGl, LevelOfDetailCoarsensFarPatchesAndKeepsThePicture)
+{
+    const int w = 240, h = 160;
+    Renderer renderer;
+    renderer.set_terrain(*hill());
+    g::LayerOptions o = options();
+    o.shading = g::LayerShading::medium;
+    o.optics.extinction = 0.01;
+    const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
+    ASSERT_EQ(base.grid.level, 6);
+    const int patches = base.grid.patches, full = int(base.triangles.size() / 3);
+    ASSERT_EQ(full, patches * 2 * 6 * 6);
+    struct View {
+        Camera camera;
+        double lod;
+    };
+    View far{{}, 16.0}, low{{}, 64.0};  // the default; and cells of 64 pixels, to see levels mix
+    far.camera.position = {0.0, -20000.0, 5000.0};
+    far.camera.target = {0.0, 0.0, 100.0};
+    far.camera.fov_y_deg = 12.0;
+    low.camera.position = {-300.0, -700.0, 260.0};
+    low.camera.target = {400.0, 600.0, 60.0};
+    low.camera.fov_y_deg = 50.0;
+    for (const View* v : {&far, &low}) {
+        o.lod = 0.0;
+        renderer.set_layers(base, o);
+        const Image exact = renderer.render(v->camera, w, h);
+        EXPECT_EQ(renderer.last_stats().layer_triangles, full);
+        o.lod = v->lod;
+        renderer.set_layers(base, o);
+        const Image lod = renderer.render(v->camera, w, h);
+        const int drawn = renderer.last_stats().layer_triangles;
+        if (v == &far) {
+            EXPECT_EQ(drawn, 2 * patches);
+        } else {
+            EXPECT_GT(drawn, 2 * patches);
+            EXPECT_LT(drawn, full);
+        }
+        double sum = 0.0;
+        int most = 0;
+        for (std::size_t k = 0; k < exact.rgba.size(); ++k) {
+            const int d = std::abs(int(exact.rgba[k]) - int(lod.rgba[k]));
+            sum += d;
+            most = std::max(most, d);
+        }
+        const double mean = sum / double(exact.rgba.size());
+        std::printf("level of detail %.0f px: %d of %d triangles, mean difference %.3f, most %d levels\n", v->lod,
+                    drawn, full, mean, most);
+        EXPECT_LT(mean, 0.25);
+        EXPECT_LE(most, 8);
+    }
+}
+
 TEST_F(LayersGl, OffScreenStackIsCulledAndUploadsHappenOnce)
 {
     const int w = 160, h = 120;

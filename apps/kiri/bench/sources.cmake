@@ -19,4 +19,5 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/surface_bench.cpp
   bench/terrain_bench.cpp
   bench/tessellation_bench.cpp
+  bench/views_bench.cpp
 )

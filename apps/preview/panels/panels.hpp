@@ -24,10 +24,12 @@ struct ViewOptions {
     bool tessellation = false;  //!< the surface's triangles as lines
     bool patches = false;       //!< patch borders
     bool control_mesh = false;
-    bool play_time = false;           //!< advance the medium's time (wind, dissipation) in real time
-    float render_scale = 1.0f;        //!< of the window's framebuffer
-    bool reduce_while_moving = true;  //!< render at moving_scale while the camera moves
-    float moving_scale = 0.5f;
+    bool play_time = false;     //!< advance the medium's time (wind, dissipation) in real time
+    float render_scale = 1.0f;  //!< of the window's framebuffer
+    //! While the camera moves (or a slider is dragged), draw at the scale that keeps the frame
+    //! within 1 / moving_fps (frame_budget.hpp); the still view is drawn at render_scale.
+    bool reduce_while_moving = true;
+    float moving_fps = 10.0f;
     bool show_panel = true, show_stats = true;
 };
 

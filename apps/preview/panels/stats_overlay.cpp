@@ -34,8 +34,8 @@ void stats_overlay(const FrameTimes& times, const render::FrameStats& stats, con
         }
         ImGui::EndTable();
     }
-    ImGui::Text("layers drawn %d, GPU uploads this frame %d, sun's shadow map built %d times",
-                stats.layers + (stats.layers > 0), stats.uploads, stats.shadow_map_updates);
+    ImGui::Text("layers drawn %d of %d triangles each, GPU uploads this frame %d, sun's shadow map built %d times",
+                stats.layers + (stats.layers > 0), stats.layer_triangles, stats.uploads, stats.shadow_map_updates);
     if (fog.froxels) {
         const render::FroxelStats& f = stats.froxel;
         ImGui::Text("froxel passes: ran in %d frames (this frame %s); %s", f.updates, f.updated ? "yes" : "no",

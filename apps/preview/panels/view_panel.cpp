@@ -52,7 +52,7 @@ bool view_panel(ViewOptions& view, const FogViews* views)
     if (view.reduce_while_moving) {
         ImGui::SameLine();
         ImGui::SetNextItemWidth(ImGui::GetContentRegionAvail().x * 0.4f);
-        changed |= ImGui::SliderFloat("##moving", &view.moving_scale, 0.125f, 1.0f, "%.2f");
+        changed |= ImGui::SliderFloat("##moving", &view.moving_fps, 1.0f, 60.0f, "%.0f frames/s");
     }
     return changed;
 }

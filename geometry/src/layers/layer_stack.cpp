@@ -1,5 +1,7 @@
 #include "kiri/geometry/layers/layer_stack.hpp"
 
+#include "kiri/geometry/layers/layer_lod.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -136,6 +138,7 @@ LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessel
     for (auto fh : mesh.faces())
         for (auto vh : mesh.fv_range(fh))
             base.triangles.push_back(std::uint32_t(vh.idx()));
+    base.grid = make_layer_patch_grid(tessellation, base.position);
     return base;
 }
 

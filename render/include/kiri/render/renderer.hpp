@@ -91,6 +91,7 @@ struct FrameStats {
     //! fog's optical depth towards the sun that the froxels and the layers read.
     int sun_volume_updates = 0;
     int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
+    int layer_triangles = 0;       //!< the base's triangles drawn for each layer (the level of detail's)
     int particles = 0;             //!< particle billboards drawn
     int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
     FroxelStats froxel;

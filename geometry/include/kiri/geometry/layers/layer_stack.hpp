@@ -19,6 +19,7 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/core/fields.hpp"
+#include "kiri/geometry/layers/layer_patch_grid.hpp"
 #include "kiri/geometry/layers/layer_texture.hpp"
 #include "kiri/geometry/medium/medium_options.hpp"
 #include "kiri/geometry/fog/tessellate.hpp"
@@ -77,6 +78,9 @@ struct LayerOptions {
     //! The layers are smooth: half resolution costs a quarter and barely shows (`kiri bench
     //! --stage layers`).
     double resolution = 0.5;
+    //! Level of detail (layer_lod.hpp): away from the eye the base's cells span about this many
+    //! pixels of the layer pass; 0 draws the authored tessellation everywhere.
+    double lod = 16.0;
     //! The fog's medium (world_layer_options copies the scene's): its optics shade the layers
     //! (LayerShading::medium) and its detail noise, wind, time and dissipation move them, so the
     //! layers and the volume renderers draw the same fog.
@@ -130,6 +134,13 @@ void visit_fields(O& o, V&& v)
        .range = closed(0.125, 1),
        .doc = "of the target the layers are drawn into, relative to the frame (1: full resolution, "
               "multisampled with the terrain; below 1: reduced, upsampled by depth)"});
+    v(o.lod,
+      {.key = "lod",
+       .unit = "px",
+       .range = at_least(0),
+       .doc = "level of detail: away from the eye the base's cells span about this many pixels of the layer "
+              "pass, on a coarser grid of the same surface points; 0 draws the authored tessellation everywhere",
+       .widget = closed(0, 32)});
 }
 
 //! What a layer vertex needs, evaluated per vertex for one eye (the GPU mirrors this in
@@ -163,6 +174,7 @@ struct LayerBase {
     glm::dvec2 centre{0.0};                //!< footprint centroid (x, y)
     glm::dvec3 min{0.0}, max{0.0};         //!< bounds of the base
     LayerTexture texture;
+    LayerPatchGrid grid;  //!< the vertices per patch, for a uniform tessellation (layer_lod.hpp)
 };
 //! \throw InputError (label names the scene) on bad options.
 LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessellation, const LayerOptions& options,

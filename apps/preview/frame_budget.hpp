@@ -1,0 +1,24 @@
+#pragma once
+// Dynamic resolution while the view moves: the preview draws a moving view at the scale that
+// keeps its frame time within a budget (a frame rate the user picks), and the still view at the
+// full scale once the camera stops, as game engines' dynamic resolution and DCC viewports'
+// "lower while navigating" do.
+
+namespace kiri::preview {
+
+struct FrameBudget {
+    double target_ms = 100.0;  //!< the moving frame's budget (10 frames a second)
+    float min_scale = 0.125f;  //!< of the window's framebuffer: never coarser than this
+    float max_scale = 1.0f;    //!< never finer than the still view's scale
+};
+
+//! The scale of the next moving frame, from the last one's scale and its measured time. A frame's
+//! cost is part fixed (vertices, the fog's volume passes) and part per pixel (~ scale^2), and
+//! which part dominates differs by mode and machine, so the step assumes all of it per pixel,
+//! scale * sqrt(target / measured), and damps it to [0.7, 1.25] of the last scale a frame: a
+//! fixed-cost-bound frame then walks down to min_scale in a few frames instead of oscillating, and
+//! climbs back as the frame gets cheaper. Non-finite or non-positive inputs keep the scale,
+//! clamped to the budget's range.
+float next_moving_scale(float scale, double measured_ms, const FrameBudget& budget);
+
+}  // namespace kiri::preview
