@@ -30,7 +30,8 @@ constexpr double quanta = 1073741824.0;
 double box_exit(const Bounds3& b, const glm::dvec3& o, const glm::dvec3& w)
 {
     double t0 = 0.0, t1 = inf;
-    if (!detail::clip_slab(o.x, w.x, b.min.x, b.max.x, t0, t1) || !detail::clip_slab(o.y, w.y, b.min.y, b.max.y, t0, t1) ||
+    if (!detail::clip_slab(o.x, w.x, b.min.x, b.max.x, t0, t1) ||
+        !detail::clip_slab(o.y, w.y, b.min.y, b.max.y, t0, t1) ||
         !detail::clip_slab(o.z, w.z, b.min.z, b.max.z, t0, t1))
         return -1.0;
     return t1;
@@ -197,8 +198,8 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     LightVolume v;
     const Medium* medium = fog.medium;
     const double len = glm::length(sun_direction);
-    if (!medium || !(medium->max_extinction() > 0.0) || !std::isfinite(medium->max_extinction()) ||
-        !(len > 0.0) || !std::isfinite(len))
+    if (!medium || !(medium->max_extinction() > 0.0) || !std::isfinite(medium->max_extinction()) || !(len > 0.0) ||
+        !std::isfinite(len))
         return v;
     const glm::dvec3 sun = sun_direction / len;
     if (!(sun.z > 0.0))
