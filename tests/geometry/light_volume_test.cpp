@@ -121,11 +121,13 @@ TEST(LightVolume, SphericalHarmonicsAreOrthonormal)
     std::vector<double> gram(std::size_t(n) * n, 0.0);
     for (int a = 0; a < n; ++a)
         for (int b = a; b < n; ++b) {
-            gram[std::size_t(a) * n + b] = over_sphere([&](const glm::dvec3& d) {
-                std::array<double, max_q> y{};
-                real_spherical_harmonics(d, bands, y.data());
-                return y[a] * y[b];
-            }, 24, 48);
+            gram[std::size_t(a) * n + b] = over_sphere(
+                [&](const glm::dvec3& d) {
+                    std::array<double, max_q> y{};
+                    real_spherical_harmonics(d, bands, y.data());
+                    return y[a] * y[b];
+                },
+                24, 48);
             EXPECT_NEAR(gram[std::size_t(a) * n + b], a == b ? 1.0 : 0.0, 1e-9) << a << ", " << b;
         }
     // Y_00 and Y_1m in closed form.
@@ -219,10 +221,9 @@ TEST(LightVolume, BakedSlabAgreesWithThePathTracer)
     po.sky = PathSky::none;
     po.ground = PathGround::black;
     const glm::dvec3 s = light.sun_direction;
-    const std::pair<glm::dvec3, glm::dvec3> rays[] = {
-        {{0.0, 0.0, 300.0}, glm::normalize(glm::dvec3(0.3, -0.2, -1.0))},
-        {{0.0, 0.0, 50.0}, glm::normalize(glm::dvec3(-s.y, s.x, 0.0))},
-        {{0.0, 0.0, 50.0}, s}};
+    const std::pair<glm::dvec3, glm::dvec3> rays[] = {{{0.0, 0.0, 300.0}, glm::normalize(glm::dvec3(0.3, -0.2, -1.0))},
+                                                      {{0.0, 0.0, 50.0}, glm::normalize(glm::dvec3(-s.y, s.x, 0.0))},
+                                                      {{0.0, 0.0, 50.0}, s}};
     for (const auto& [origin, dir] : rays) {
         const RayFog model = reference_ray({&m, {}}, &ground, origin, dir, 1e6, light, ro);
         FogLighting single = light;
