@@ -9,7 +9,7 @@
 //! It stores, per cell, the real spherical-harmonic moments L_lm = integral L_d(w) Y_lm(w) dw of
 //! the diffuse radiance L_d (the light travelling in direction w that has scattered at least
 //! once) for a sun of unit radiance (irradiance pi). Henyey-Greenstein's Legendre coefficients are
-//! g^l ([HG41]), so by the addition theorem the light it scatters towards a direction o is
+//! g^l ([HG41]), so by the Funk-Hecke theorem ([Ramamoorthi01]) the light it scatters towards o is
 //!
 //!   integral p_HG(w . o, g) L_d(w) dw = sum_l g^l sum_m L_lm Y_lm(o)
 //!

@@ -3,7 +3,7 @@
 //! The bake of the light-transport volume (kiri/geometry/medium/light_volume.hpp): the sun's light
 //! traced forward through the fog with the path tracer's own pieces (path_tracer.hpp: delta
 //! tracking against its majorants, Henyey-Greenstein sampling, the heightfield), every segment
-//! after the first scattering accumulated by a track-length estimator into the spherical-harmonic
+//! after the first scattering accumulated by a track-length estimator ([Spanier69]) into the spherical-harmonic
 //! moments of the diffuse radiance.
 //!
 //! Photons enter over the faces of the Medium's box that face the sun, with the sun's irradiance
