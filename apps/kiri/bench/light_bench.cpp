@@ -4,9 +4,13 @@
 // degrees, a thin layer, and the shipped scenes' cameras (jacksboro_lake is the thick valley
 // lake). The fog's own light only: no sky, a black ground (as scripts/crosscheck-cycles.sh).
 // Per view: the brightness ratio (mean luminance over the path tracer's) and the mean relative
-// error of 4x4-pixel blocks, for the fitted model and for the octaves it replaced, and their
-// pictures side by side (path tracer | fitted | octaves). Then the cost of the lighting in each
-// renderer, fitted against octaves, measured side by side.
+// error of 4x4-pixel blocks, for the baked model (its light-transport volume baked per view,
+// light_volume_bake.hpp; the bake's time reported), the fitted model and the octaves it replaced,
+// their pictures side by side (path tracer | baked | fitted | octaves), and the medians and the
+// views meeting the goal (10 % brightness, 15 % block error). Then the cost of the lighting in
+// each GL renderer, fitted against octaves, measured side by side (KIRI_LIGHT_NO_COST=1 skips it).
+// KIRI_LIGHT_VIEWS=TEXT keeps the views whose name holds TEXT; KIRI_LIGHT_BAKE="photons per
+// column,levels,bands,max side" sets the bake's options.
 //
 // The path tracer's images are cached in OUT/light/ (NAME.SAMPLES.path.exr): a rerun only renders
 // the models. How the constants were found: KIRI_LIGHT_FIT=1 fits MultipleScatteringFit's
