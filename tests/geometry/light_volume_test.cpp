@@ -320,6 +320,17 @@ TEST(LightVolume, BadInputStaysFinite)
     EXPECT_TRUE(bake_light_volume({&m, {}}, nullptr, glm::dvec3(0.0), small_bake(100)).empty());
     EXPECT_TRUE(bake_light_volume({&m, {}}, nullptr, glm::dvec3(std::nan("")), small_bake(100)).empty());
     EXPECT_TRUE(bake_light_volume({nullptr, {}}, nullptr, sun, small_bake(100)).empty());
+    // Impossible sizes are bounded: at most 2^23 sums.
+    LightVolumeOptions huge = small_bake(100);
+    huge.max_side = 1 << 30;
+    huge.levels = 1 << 20;
+    huge.bands = 99;
+    huge.cell_size = 1e-9;
+    const LightVolume bounded = bake_light_volume({&m, {}}, nullptr, sun, huge);
+    EXPECT_EQ(bounded.nz, 64);
+    EXPECT_EQ(bounded.bands, light_volume_max_bands);
+    EXPECT_LE(double(bounded.nx) * bounded.ny * bounded.nz * bounded.bands * bounded.bands, double(1 << 23));
+    EXPECT_GE(bounded.nx, 8);
     const LightVolume v = bake_light_volume({&m, {}}, nullptr, sun, small_bake(2000));
     const double nan = std::nan("");
     for (const double x : {nan, 0.0, 1e30})

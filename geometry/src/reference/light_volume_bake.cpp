@@ -25,6 +25,7 @@ constexpr int max_coefficients = light_volume_max_bands * light_volume_max_bands
 constexpr long long photons_per_task = 1024;
 // Fixed point of the sums: a deposit of a full-weight photon over the longest step is 2^30 quanta.
 constexpr double quanta = 1073741824.0;
+constexpr long long max_cells = 1 << 23;
 
 // The exit distance of o + t w (w unit) from the box, or -1 when the ray misses it.
 double box_exit(const Bounds3& b, const glm::dvec3& o, const glm::dvec3& w)
@@ -211,12 +212,14 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     double cell = options.cell_size > 0.0 && std::isfinite(options.cell_size)
         ? options.cell_size
         : std::max({g.dx, g.dy, 1.0 / medium->options().extinction});
-    const int side = std::clamp(options.max_side, 1, 4096);
+    v.nz = std::clamp(options.levels, 1, 64);
+    v.bands = std::clamp(options.bands, 1, light_volume_max_bands);
+    // At most max_cells sums per thread (64 MiB of fixed point): the side shrinks to fit.
+    const double columns = double(max_cells) / (double(v.nz) * v.bands * v.bands);
+    const int side = std::clamp(std::min(options.max_side, int(std::sqrt(columns))), 1, 1024);
     cell = std::max({cell, width / side, height / side});
     v.nx = std::clamp(int(std::ceil(width / cell - 1e-9)), 1, side);
     v.ny = std::clamp(int(std::ceil(height / cell - 1e-9)), 1, side);
-    v.nz = std::clamp(options.levels, 1, 256);
-    v.bands = std::clamp(options.bands, 1, light_volume_max_bands);
     v.x0 = g.x0;
     v.y0 = g.y0;
     v.dx = width / v.nx;

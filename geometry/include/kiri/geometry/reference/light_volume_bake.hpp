@@ -28,10 +28,10 @@ struct LightVolumeOptions {
     //! Photons traced; 0: photons_per_column per (x, y) cell.
     long long photons = 0;
     int photons_per_column = 400;
-    int levels = 8;  //!< cells in h between the floor and the top
+    int levels = 8;  //!< cells in h between the floor and the top, [1, 64]
     int bands = 6;   //!< spherical-harmonic bands, [1, light_volume_max_bands]
     //! Cells in (x, y), metres; 0: the Medium's grid spacing or the mean free path 1 / extinction,
-    //! the larger, with at most max_side cells a side.
+    //! the larger, with at most max_side cells a side (fewer where the sums would pass 2^23 a thread).
     double cell_size = 0.0;
     int max_side = 32;
     int max_bounces = 1000;  //!< scatterings a photon may have
