@@ -182,8 +182,10 @@ private:
             const int k = std::min(int(h * v_.nz), v_.nz - 1);
             std::int64_t* cell = &sums[((std::size_t(k) * v_.ny + j) * v_.nx + i) * nc_];
             const double scale = weight * seg / quantum_;
-            for (int q = 0; q < nc_; ++q)
-                cell[q] += std::int64_t(std::llround(scale * y[q]));
+            for (int q = 0; q < nc_; ++q) {  // rounded half away from zero, as llround, without its call
+                const double x = scale * y[q];
+                cell[q] += std::int64_t(x >= 0.0 ? x + 0.5 : x - 0.5);
+            }
             ++count;
         }
         return count;
