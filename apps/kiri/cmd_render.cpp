@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/scene/dem_scene.hpp"
@@ -48,6 +49,15 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
         geometry::ReferenceOptions ro;
         ro.shade_terrain = !a.black_ground;
         ro.surround = scene.terrain.surround;
+        if (light.multiple_scattering == geometry::MultipleScattering::baked) {
+            geometry::LightVolumeOptions bake;
+            bake.surround = scene.terrain.surround;
+            light.light_volume = std::make_shared<const geometry::LightVolume>(geometry::bake_light_volume(
+                {medium, options.height_fog}, &terrain.heightfield(), light.sun_direction, bake));
+            std::fprintf(stderr, "kiri render: light volume %dx%dx%d, %d bands, %lld photons, baked in %.2f s\n",
+                         light.light_volume->nx, light.light_volume->ny, light.light_volume->nz,
+                         light.light_volume->bands, light.light_volume->photons, light.light_volume->seconds);
+        }
         const geometry::ReferenceImage r =
             geometry::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, light, ro);
         if (exr)
