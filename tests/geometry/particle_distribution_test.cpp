@@ -208,7 +208,7 @@ TEST(ParticleDistribution, TheTopBandFollowsItsDensity)
     // A fraction of the trials the whole box needed: the box's acceptance is integral / (box d_max).
     const Bounds3& box = m.bounds();
     const double box_trials = double(n) * (box.max - box.min).x * (box.max - box.min).y * (box.max - box.min).z *
-                              (m.max_extinction() / m.options().extinction) / integral;
+        (m.max_extinction() / m.options().extinction) / integral;
     EXPECT_LT(double(c.trial_count), 0.1 * box_trials) << c.trial_count << " trials, the box " << box_trials;
 }
 
