@@ -1,19 +1,21 @@
 #version 450 core
 // A particle billboard: opacity 1 - T from its Gaussian footprint, lit by the fog's shared model
 // (geometry::fog_source, fog_lighting.hpp) with the sun seen through the attenuation buffer:
-// Gamma (read at the billboard's corners, particles.vert) stands for exp(-tau_sun), so octave i
-// sees Gamma^(b^i); the phase function per fragment (its forward peak is narrower than a
-// billboard near the eye); hazed with distance like the terrain, faded out where it meets the
+// Gamma at this fragment (the particle's own cylinder removed) stands for exp(-tau_sun), so
+// octave i sees Gamma^(b^i); hazed with distance like the terrain, faded out where it meets the
 // terrain (soft edge); in the terrain's shadow from the sun (the renderer's shadow map, as the
 // froxels and the CPU reference see it). Blended back to front, premultiplied linear radiance:
 // E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
+in vec3 v_relative;
 in vec3 v_world;
 in vec2 v_offset;
-in float v_log_gamma;
 flat in float v_sun_visible;
+in vec4 v_fog;
 flat in uint v_id;
+uniform sampler3D u_log_gamma;
 uniform sampler2D u_depth;       // the terrain's depth, full resolution
+uniform int u_lit;               // 0: no buffer (every particle fully lit)
 uniform float u_near;
 uniform float u_far;
 uniform float u_soft_edge;       // metres
@@ -47,7 +49,11 @@ void main()
     alpha *= u_soft_edge > 0.0 ? clamp((scene - here) / u_soft_edge, 0.0, 1.0) : step(here, scene);
     if (alpha < 1e-5)
         discard;
-    float log_gamma = v_log_gamma;
+    float log_gamma = 0.0;
+    if (u_lit != 0) {
+        vec3 self_grid = shadow_grid(grid_of(p.position_radius.xyz));
+        log_gamma = particle_log_gamma(u_log_gamma, grid_of(v_relative), self_grid, vec3(p.position_radius.w, p.optics.xy));
+    }
     // geometry::fog_source: u_octaves 0, the fitted model (tau_sun = -log Gamma); else octave i
     // scatters a^i, sees b^i of the optical depth, has c^i g.
     vec3 view = normalize(v_world - u_eye);
@@ -61,8 +67,7 @@ void main()
     vec3 radiance = clamp(p.optics.y, 0.0, 1.0) * (pi * sun_up * sun * u_sun_radiance + u_ambient);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
-    // The froxel fog in front of this billboard (froxel_apply.glsl; none without it), as the
+    // The froxel fog in front of this billboard (read at its corners, particles.vert), as the
     // layers read it: over the already fogged frame, T C + a S composes to S + T (...).
-    vec4 fog = froxel_fog(v_world);
-    o_color = vec4((radiance * fog.a + fog.rgb) * alpha, alpha);
+    o_color = vec4((radiance * v_fog.a + v_fog.rgb) * alpha, alpha);
 }
