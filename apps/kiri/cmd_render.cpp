@@ -174,10 +174,12 @@ void run(const RenderArgs& a)
     if (const geometry::ParticleCloud* particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();
         const auto& size = b.grid().size;
-        std::fprintf(
-            stderr, "kiri render: %zu particles, attenuation buffer %dx%dx%d %s (%.1f MiB), built in %.1f ms\n",
-            particles->particles.size(), size[0], size[1], size[2], scene.particles.half_float ? "R16F" : "R32F",
-            double(b.texture_bytes()) / 1048576.0, b.last_build_ms());
+        std::fprintf(stderr,
+                     "kiri render: %zu particles of %zu candidates (%zu trials), attenuation buffer %dx%dx%d %s "
+                     "(%.1f MiB), built in %.1f ms\n",
+                     particles->particles.size(), particles->candidate_count, particles->trial_count, size[0], size[1],
+                     size[2], scene.particles.half_float ? "R16F" : "R32F", double(b.texture_bytes()) / 1048576.0,
+                     b.last_build_ms());
     }
 }
 
