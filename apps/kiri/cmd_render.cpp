@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/scene/dem_scene.hpp"
@@ -48,6 +49,15 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
         geometry::ReferenceOptions ro;
         ro.shade_terrain = !a.black_ground;
         ro.surround = scene.terrain.surround;
+        if (light.multiple_scattering == geometry::MultipleScattering::baked) {
+            geometry::LightVolumeOptions bake;
+            bake.surround = scene.terrain.surround;
+            light.light_volume = std::make_shared<const geometry::LightVolume>(geometry::bake_light_volume(
+                {medium, options.height_fog}, &terrain.heightfield(), light.sun_direction, bake));
+            std::fprintf(stderr, "kiri render: light volume %dx%dx%d, %d bands, %lld photons, baked in %.2f s\n",
+                         light.light_volume->nx, light.light_volume->ny, light.light_volume->nz,
+                         light.light_volume->bands, light.light_volume->photons, light.light_volume->seconds);
+        }
         const geometry::ReferenceImage r =
             geometry::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, light, ro);
         if (exr)
@@ -164,10 +174,12 @@ void run(const RenderArgs& a)
     if (const geometry::ParticleCloud* particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();
         const auto& size = b.grid().size;
-        std::fprintf(
-            stderr, "kiri render: %zu particles, attenuation buffer %dx%dx%d %s (%.1f MiB), built in %.1f ms\n",
-            particles->particles.size(), size[0], size[1], size[2], scene.particles.half_float ? "R16F" : "R32F",
-            double(b.texture_bytes()) / 1048576.0, b.last_build_ms());
+        std::fprintf(stderr,
+                     "kiri render: %zu particles of %zu candidates (%zu trials), attenuation buffer %dx%dx%d %s "
+                     "(%.1f MiB), built in %.1f ms\n",
+                     particles->particles.size(), particles->candidate_count, particles->trial_count, size[0], size[1],
+                     size[2], scene.particles.half_float ? "R16F" : "R32F", double(b.texture_bytes()) / 1048576.0,
+                     b.last_build_ms());
     }
 }
 

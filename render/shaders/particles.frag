@@ -11,6 +11,7 @@ in vec3 v_relative;
 in vec3 v_world;
 in vec2 v_offset;
 flat in float v_sun_visible;
+in vec4 v_fog;
 flat in uint v_id;
 uniform sampler3D u_log_gamma;
 uniform sampler2D u_depth;       // the terrain's depth, full resolution
@@ -66,8 +67,7 @@ void main()
     vec3 radiance = clamp(p.optics.y, 0.0, 1.0) * (pi * sun_up * sun * u_sun_radiance + u_ambient);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
-    // The froxel fog in front of this billboard (froxel_apply.glsl; none without it), as the
+    // The froxel fog in front of this billboard (read at its corners, particles.vert), as the
     // layers read it: over the already fogged frame, T C + a S composes to S + T (...).
-    vec4 fog = froxel_fog(v_world);
-    o_color = vec4((radiance * fog.a + fog.rgb) * alpha, alpha);
+    o_color = vec4((radiance * v_fog.a + v_fog.rgb) * alpha, alpha);
 }

@@ -260,8 +260,7 @@ TEST(ParticleSampling, AWeightSamplesAShareOfTheMedium)
     FogPartition partition;
     partition.particle_share = 1.0;
     partition.particle_band = 0.5;
-    const DensityWeight weight = [&](const glm::dvec3& p) { return particle_share(partition, m.height_fraction(p)); };
-    const ParticleCloud c = sample_particles(m, options(3000), "", weight);
+    const ParticleCloud c = sample_particles(m, options(3000), "", particle_height_share(partition));
     double expected = 0.0;
     const int n = 100000;
     for (int i = 0; i < n; ++i) {  // midpoint rule
@@ -284,7 +283,7 @@ TEST(ParticleSampling, AThinFogGetsFewParticlesNotAnError)
     // thin fog does): far fewer candidates than count * candidates can be found in reasonable
     // time, so the particles are fewer, in proportion, and still carry the share's extinction.
     const Medium m = slab_medium(1000.0, 100.0, 300.0, false, 0.03);
-    const DensityWeight sliver = [&](const glm::dvec3& p) { return m.height_fraction(p) > 1.0 - 1e-5 ? 1.0 : 0.0; };
+    const HeightShare sliver{[](double h) { return h > 1.0 - 1e-5 ? 1.0 : 0.0; }};
     const ParticleCloud c = sample_particles(m, options(20000), "", sliver);
     EXPECT_LT(c.particles.size(), 20000u);
     EXPECT_EQ(c.particles.size(), std::max<std::size_t>(1, std::size_t(double(c.candidate_count) / 5.0)));
@@ -297,7 +296,7 @@ TEST(ParticleSampling, AThinFogGetsFewParticlesNotAnError)
     if (!c.particles.empty())
         EXPECT_NEAR(carried, 0.03 * c.density_integral, 1e-9 * carried);
     // No fog at all under the weight: no particles, and no error.
-    const ParticleCloud none = sample_particles(m, options(2000), "", [](const glm::dvec3&) { return 0.0; });
+    const ParticleCloud none = sample_particles(m, options(2000), "", {[](double) { return 0.0; }});
     EXPECT_TRUE(none.particles.empty());
     EXPECT_EQ(none.candidate_count, 0u);
 }

@@ -3,3 +3,4 @@ kiri_test(particle_footprint_test SOURCES particle_footprint_test.cpp LIBS kiri_
 kiri_test(particle_sampling_test SOURCES particle_sampling_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(harris_reference_test SOURCES harris_reference_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(attenuation_cpu_test SOURCES attenuation_cpu_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(particle_distribution_test SOURCES particle_distribution_test.cpp LIBS kiri_geometry LABELS unit)

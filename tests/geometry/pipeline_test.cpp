@@ -208,8 +208,7 @@ TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)
     EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 3, 0}));
     ASSERT_TRUE(shared.particles);
     const Medium& m = *shared.medium;
-    const ParticleCloud top = sample_particles(
-        m, s.particles, {}, [&](const glm::dvec3& q) { return particle_share(s.combined, m.height_fraction(q)); });
+    const ParticleCloud top = sample_particles(m, s.particles, {}, particle_height_share(s.combined));
     ASSERT_EQ(top.particles.size(), shared.particles->particles.size());
     EXPECT_EQ(top.particles[77].position, shared.particles->particles[77].position);
     EXPECT_NE(top.particles[77].position, more.particles->particles[77].position);

@@ -56,7 +56,8 @@ double sun_scattering(MultipleScattering kind, int octaves, double cos_theta, do
     case MultipleScattering::fitted:
         return fitted_sun_scattering(cos_theta, g, albedo, tau_sun, sun_elevation_sine, fit);
     case MultipleScattering::octaves: return sun_scattering(cos_theta, g, tau_sun, octaves);
-    case MultipleScattering::none: break;
+    case MultipleScattering::none:
+    case MultipleScattering::baked: break;  // the baked volume adds its part where it is read
     }
     return sun_scattering(cos_theta, g, tau_sun, 1);
 }
@@ -68,7 +69,9 @@ MultipleScattering multiple_scattering_of(const Medium* medium)
 
 int shader_octaves(MultipleScattering kind, int octaves)
 {
-    return kind == MultipleScattering::fitted ? 0 : kind == MultipleScattering::none ? 1 : std::clamp(octaves, 1, 8);
+    if (kind == MultipleScattering::fitted)
+        return 0;
+    return kind == MultipleScattering::octaves ? std::clamp(octaves, 1, 8) : 1;
 }
 
 int shader_octaves(const MediumOptions& optics)

@@ -5,4 +5,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/medium/medium.cpp
   src/medium/fog_partition.cpp
   src/medium/fog_lighting.cpp
+  src/medium/light_volume.cpp
 )

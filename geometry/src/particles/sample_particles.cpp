@@ -7,18 +7,17 @@
 #include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/geometry/particles/particles.hpp"
 #include "particles/sample_elimination.hpp"
+#include "particles/shell_envelope.hpp"
 
 namespace kiri::geometry {
 namespace {
+
+using detail::uniform;
 
 constexpr double max_particles = 2e6, max_candidates = 2e7;
 // Below 1/64 of the full density the local spacing stops growing (4x the spacing at full
 // density): the thin rims of the fog get a few large particles, not a handful of huge ones.
 constexpr double min_relative_density = 1.0 / 64.0;
-
-// Uniform in [0, 1) from the top 53 bits: the same numbers on every platform (the standard
-// distributions are implementation-defined).
-double uniform(std::mt19937_64& rng) { return double(rng() >> 11) * 0x1.0p-53; }
 
 }  // namespace
 
@@ -31,13 +30,12 @@ void validate_particle_options(const ParticleOptions& o, const std::string& labe
 }
 
 ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label,
-                               const DensityWeight& weight)
+                               const HeightShare& share)
 {
     validate_particle_options(options, label);
-    const Bounds3& box = medium.bounds();
-    const glm::dvec3 extent = box.max - box.min;
-    const double d_max = medium.max_extinction() / medium.options().extinction;
-    if (!(d_max > 0.0) || !(extent.x > 0.0) || !(extent.y > 0.0) || !(extent.z > 0.0)) {
+    const double share_max = share.share ? std::clamp(share.max, 0.0, 1.0) : 1.0;
+    const detail::ShellEnvelope envelope(medium, share.share ? share.from : 0.0, share_max);
+    if (envelope.empty()) {
         ParticleCloud empty;  // no fog to sample: no particles, the other renderers draw nothing either
         empty.anisotropy = medium.options().anisotropy;
         empty.scattering_octaves = shader_octaves(medium.options());
@@ -47,14 +45,21 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     // The count: given, or from the spacing at full density and a first estimate of the density
     // integral (a pilot run of the same sampler).
     std::mt19937_64 rng(options.seed);
-    const double box_volume = extent.x * extent.y * extent.z;
     std::size_t trials = 0, hits = 0;
     std::vector<glm::dvec3> candidates;
     std::vector<double> density;
-    // Rejection: uniform in the box, kept with probability d(p) / d_max. A fog too thin for the
-    // wanted candidates (a thin top band, a thin layer in a tall box) stops at `give_up` trials,
-    // or earlier once that is plainly out of reach, and keeps what it found: a thin fog gets few
-    // particles, or none, not an error.
+    // The density the particles stand for: d(p), or d(p) share(h) above `from`.
+    const auto target = [&](const glm::dvec3& p) {
+        const double d = medium.density(p);
+        if (!share.share || !(d > 0.0))
+            return d;
+        const double h = medium.height_fraction(p);
+        return h > share.from ? d * std::clamp(share.share(h), 0.0, share_max) : 0.0;
+    };
+    // Rejection: uniform under the envelope, kept with probability q(p) / bound. A fog too thin
+    // for the wanted candidates (a thin top band) stops at `give_up` trials, or earlier once that
+    // is plainly out of reach, and keeps what it found: a thin fog gets few particles, or none,
+    // not an error.
     const auto draw = [&](std::size_t wanted) {
         const std::size_t give_up = std::max<std::size_t>(wanted, 1000) * 2000;
         for (std::size_t t = 0; candidates.size() < wanted; ++t) {
@@ -63,22 +68,20 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
             if (t >= 1000000 && t % 65536 == 0 &&
                 double(wanted) * double(trials) > 4.0 * double(give_up) * double(hits + 1))
                 return;
-            const glm::dvec3 p = box.min + extent * glm::dvec3(uniform(rng), uniform(rng), uniform(rng));
-            double d = medium.density(p);
-            if (weight && d > 0.0)  // a share of the Medium: still below d_max
-                d *= std::clamp(weight(p), 0.0, 1.0);
+            const detail::ShellEnvelope::Proposal proposal = envelope.draw(rng);
+            const double q = target(proposal.position);
             ++trials;
-            if (uniform(rng) * d_max < d) {
+            if (uniform(rng) * proposal.bound < q) {
                 ++hits;
-                candidates.push_back(p);
-                density.push_back(d);
+                candidates.push_back(proposal.position);
+                density.push_back(q);
             }
         }
     };
     std::size_t count = std::size_t(options.count);
     if (options.spacing > 0.0) {
         draw(20000);
-        const double integral = box_volume * d_max * double(hits) / double(trials);
+        const double integral = envelope.volume() * double(hits) / double(trials);
         const double n = std::round(integral / std::pow(options.spacing, 3.0));
         if (n > max_particles)
             throw LimitError(label, "/particles/spacing",
@@ -95,12 +98,13 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     cloud.forward_scattering =
         options.forward_scattering >= 0.0 ? options.forward_scattering : forward_scattering_fraction(cloud.anisotropy);
     cloud.candidate_count = candidates.size();
+    cloud.trial_count = trials;
     if (candidates.empty())
         return cloud;  // no particle found any fog: the other renderers draw it
     // Fewer candidates than wanted (a thin fog): fewer particles, in the same proportion.
     if (double(candidates.size()) < wanted)
         count = std::max<std::size_t>(1, std::min(count, std::size_t(double(candidates.size()) / options.candidates)));
-    const double integral = box_volume * d_max * double(hits) / double(trials);
+    const double integral = envelope.volume() * double(hits) / double(trials);
 
     // Local spacing where each candidate lies: the distance between particles at that density.
     const double spacing_full = std::cbrt(integral / double(count));
@@ -117,17 +121,23 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     const double r_max = options.radius_max > 0.0 ? options.radius_max : 2.0 * options.radius_scale * spacing_full;
     // Every particle carries the same share of the extinction integral (the candidates were
     // drawn in proportion to the density): tau r^2 footprint_area = extinction * integral / count.
-    const double share = extinction * integral / double(kept.size());
+    const double carried = extinction * integral / double(kept.size());
     cloud.particles.reserve(kept.size());
     for (std::size_t i : kept) {
         Particle p;
         p.position = candidates[i];
         p.radius = std::clamp(options.radius_scale * spacing[i], r_min, std::max(r_min, r_max));
-        p.optical_depth = share / (footprint_area() * p.radius * p.radius);
+        p.optical_depth = carried / (footprint_area() * p.radius * p.radius);
         p.albedo = albedo;
         cloud.particles.push_back(p);
     }
     return cloud;
+}
+
+HeightShare particle_height_share(const FogPartition& partition)
+{
+    return {[partition](double h) { return particle_share(partition, h); }, 1.0 - partition.particle_band,
+            partition.particle_share};
 }
 
 }  // namespace kiri::geometry

@@ -2,6 +2,7 @@
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/particles/particle_footprint.cpp
   src/particles/sample_elimination.cpp
+  src/particles/shell_envelope.cpp
   src/particles/sample_particles.cpp
   src/particles/particle_ply.cpp
   src/particles/light_grid.cpp

@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "kiri/geometry/medium/light_volume.hpp"
 #include "reference/grid_walk.hpp"
 #include "reference/terrain_shading.hpp"
 
@@ -329,6 +330,17 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
         place_knots(o, w, s);
         split_at_shadow_edges(s);
     }
+    // The baked multiple scattering: the direction's part of the volume's source once per ray.
+    const LightVolume* volume = light_.multiple_scattering == MultipleScattering::baked && light_.light_volume &&
+            !light_.light_volume->empty() && fog_.medium
+        ? light_.light_volume.get()
+        : nullptr;
+    double weights_m[light_volume_max_bands * light_volume_max_bands] = {},
+                                              weights_h[light_volume_max_bands * light_volume_max_bands] = {};
+    if (volume) {
+        volume->phase_weights(-w, g_m, weights_m);
+        volume->phase_weights(-w, g_h, weights_h);
+    }
     std::size_t k = 0;
     double tau = 0.0;
     for (const MarchStep& st : s.steps) {
@@ -356,8 +368,16 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
         const double sun_h = st.sigma_height > 0.0 && visible > 0.0 ? phase(g_h, albedo_h) : 0.0;
         // J of fog_lighting.hpp (pi sun: the sun's irradiance) per medium, times its extinction.
         const glm::dvec3 sun = std::numbers::pi * visible * light_.sun_radiance;
-        const glm::dvec3 source = albedo_m * st.sigma_medium * (sun * sun_m + light_.ambient) +
+        glm::dvec3 source = albedo_m * st.sigma_medium * (sun * sun_m + light_.ambient) +
             albedo_h * st.sigma_height * (sun * sun_h + light_.ambient);
+        if (volume) {  // inside the shell; not hidden by the terrain's shadow
+            const glm::dvec3 p = o + w * st.t;
+            const double h = shell_height(fog_.medium->column(p.x, p.y), p.z);
+            if (h >= 0.0)
+                source += light_.sun_radiance *
+                    (albedo_m * st.sigma_medium * volume->in_scattered(p.x, p.y, h, weights_m) +
+                     albedo_h * st.sigma_height * volume->in_scattered(p.x, p.y, h, weights_h));
+        }
         const double sigma = st.sigma_medium + st.sigma_height;
         r.inscatter += std::exp(-st.tau_before) * source * step_weight(sigma, st.dt);
         tau = st.tau_before + sigma * st.dt;

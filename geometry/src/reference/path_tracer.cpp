@@ -10,58 +10,22 @@
 
 #include <glm/geometric.hpp>
 
-#include "reference/grid_walk.hpp"
-#include "reference/heightfield_ray.hpp"
+#include "reference/path_tracer_core.hpp"
 #include "reference/parallel_rows.hpp"
 #include "reference/terrain_shading.hpp"
 
 namespace kiri::geometry {
 namespace {
 
+using detail::around;
+using detail::Random;
+using detail::sample_phase;
+
 constexpr double inf = std::numeric_limits<double>::infinity();
 // Where a ray that meets nothing ends (as the reference's sky rays).
 constexpr double far_distance = 1e6;
 // Ratio tracking rolls the dice once the transmittance estimate falls below this.
 constexpr double transmittance_roulette = 0.05;
-
-// splitmix64 (a 64-bit mixer), used to seed the generator from (seed, stream).
-std::uint64_t splitmix64(std::uint64_t& x)
-{
-    std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
-// xoshiro256** [Blackman21]: one independent stream per pixel.
-class Random {
-public:
-    Random(std::uint64_t seed, std::uint64_t stream)
-    {
-        std::uint64_t x = seed;
-        const std::uint64_t a = splitmix64(x);
-        x = stream ^ a;
-        for (std::uint64_t& v : s_)
-            v = splitmix64(x);
-    }
-    //! Uniform in [0, 1).
-    double uniform() { return double(next() >> 11) * 0x1.0p-53; }
-
-private:
-    std::uint64_t s_[4];
-    static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
-    std::uint64_t next()
-    {
-        const std::uint64_t result = rotl(s_[1] * 5, 7) * 9, t = s_[1] << 17;
-        s_[2] ^= s_[0];
-        s_[3] ^= s_[1];
-        s_[1] ^= s_[2];
-        s_[0] ^= s_[3];
-        s_[2] ^= t;
-        s_[3] = rotl(s_[3], 45);
-        return result;
-    }
-};
 
 double finite_or(double v, double fallback) { return std::isfinite(v) ? v : fallback; }
 glm::dvec3 finite_or_zero(const glm::dvec3& v)
@@ -72,29 +36,6 @@ bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.
 double clamp_g(double g) { return std::isfinite(g) ? std::clamp(g, -0.999, 0.999) : 0.0; }
 double clamp_albedo(double a) { return std::isfinite(a) ? std::clamp(a, 0.0, 1.0) : 0.0; }
 
-// A unit vector about `axis` (unit) at cos_theta from it and azimuth phi.
-glm::dvec3 around(const glm::dvec3& axis, double cos_theta, double phi)
-{
-    const glm::dvec3 helper = std::abs(axis.x) < 0.9 ? glm::dvec3(1.0, 0.0, 0.0) : glm::dvec3(0.0, 1.0, 0.0);
-    const glm::dvec3 t = glm::normalize(glm::cross(helper, axis));
-    const glm::dvec3 b = glm::cross(axis, t);
-    const double c = std::clamp(cos_theta, -1.0, 1.0), s = std::sqrt(std::max(0.0, 1.0 - c * c));
-    return glm::normalize(axis * c + (t * std::cos(phi) + b * std::sin(phi)) * s);
-}
-
-// The scattered direction of light travelling along w, drawn from the Henyey-Greenstein phase
-// function ([HG41]) by inverting its cumulative distribution in cos_theta.
-glm::dvec3 sample_phase(const glm::dvec3& w, double g, Random& rng)
-{
-    const double u = rng.uniform(), phi = 2.0 * std::numbers::pi * rng.uniform();
-    double c = 1.0 - 2.0 * u;
-    if (std::abs(g) >= 1e-4) {
-        const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
-        c = (1.0 + g * g - s * s) / (2.0 * g);
-    }
-    return around(w, c, phi);
-}
-
 // Cosine-weighted about the normal n: the Lambertian bounce (weight = albedo).
 glm::dvec3 sample_cosine(const glm::dvec3& n, Random& rng)
 {
@@ -102,47 +43,9 @@ glm::dvec3 sample_cosine(const glm::dvec3& n, Random& rng)
     return around(n, std::sqrt(1.0 - u), phi);
 }
 
-// The majorant of the Medium over one cell of its grid: sigma_t <= sigma there, and the
-// Medium is empty outside z_lo <= z <= z_hi. Between core_lo and core_hi every point of the
-// cell is inside the shell and sigma_t >= control there (the control variate of residual ratio
-// tracking; 0 where there is no such bound).
-struct MajorantCell {
-    double sigma = 0.0, z_lo = 0.0, z_hi = 0.0;
-    double control = 0.0, core_lo = 0.0, core_hi = 0.0;
-};
+}  // namespace
 
-class PathTracer {
-public:
-    PathTracer(const FogVolume& fog, const Heightfield* terrain, const FogLighting& light,
-               const PathTracerOptions& options);
-    glm::dvec3 sample(const glm::dvec3& origin, const glm::dvec3& dir, double t_max, Random& rng,
-                      long long& vertices) const;
-
-private:
-    const Medium* medium_ = nullptr;
-    HeightFog haze_;
-    bool haze_on_ = false;
-    std::unique_ptr<detail::HeightfieldRay> terrain_;
-    detail::GridFrame frame_;
-    std::vector<MajorantCell> cells_;
-    double z_lo_ = 0.0, z_hi_ = 0.0;  // the Medium's bounds in z
-    double albedo_medium_ = 0.0, g_medium_ = 0.0, albedo_haze_ = 0.0, g_haze_ = 0.0;
-    glm::dvec3 sun_{0.0, 0.0, 1.0}, sun_radiance_{0.0}, ambient_{0.0};
-    bool sun_on_ = false, terrain_shadows_ = true, fog_shadows_ = true;
-    PathSky sky_ = PathSky::hemisphere;
-    bool lambertian_ = true;
-    int max_bounces_ = 128, roulette_after_ = 3;
-
-    double medium_collision(const glm::dvec3& o, const glm::dvec3& w, double t1, Random& rng) const;
-    double medium_transmittance(const glm::dvec3& o, const glm::dvec3& w, Random& rng) const;
-    double haze_collision(const glm::dvec3& o, const glm::dvec3& w, double t1, Random& rng) const;
-    double sun_transmittance(const glm::dvec3& p, Random& rng) const;
-    glm::dvec3 sky(const glm::dvec3& w) const;
-    //! Calls visit(cell, a, b) for each piece [a, b] of o + t w, t in [t0, t1], inside a cell
-    //! that may hold fog, nearest first, until visit returns false.
-    template <class Visit>
-    void walk_cells(const glm::dvec3& o, const glm::dvec3& w, double t0, double t1, Visit&& visit) const;
-};
+namespace detail {
 
 PathTracer::PathTracer(const FogVolume& fog, const Heightfield* terrain, const FogLighting& light,
                        const PathTracerOptions& options)
@@ -200,7 +103,7 @@ PathTracer::PathTracer(const FogVolume& fog, const Heightfield* terrain, const F
     albedo_haze_ = clamp_albedo(haze_.albedo);
     g_haze_ = clamp_g(haze_.anisotropy);
     if (terrain && terrain->nx >= 2 && terrain->ny >= 2 && terrain->z.size() == std::size_t(terrain->nx) * terrain->ny)
-        terrain_ = std::make_unique<detail::HeightfieldRay>(*terrain, options.surround);
+        terrain_ = std::make_unique<HeightfieldRay>(*terrain, options.surround);
     const double len = glm::length(light.sun_direction);
     sun_ = len > 0.0 && std::isfinite(len) ? light.sun_direction / len : glm::dvec3(0.0, 0.0, 1.0);
     sun_radiance_ = glm::max(finite_or_zero(light.sun_radiance), glm::dvec3(0.0));
@@ -217,12 +120,12 @@ PathTracer::PathTracer(const FogVolume& fog, const Heightfield* terrain, const F
 template <class Visit>
 void PathTracer::walk_cells(const glm::dvec3& o, const glm::dvec3& w, double t0, double t1, Visit&& visit) const
 {
-    if (!detail::clip_slab(o.z, w.z, z_lo_, z_hi_, t0, t1))
+    if (!clip_slab(o.z, w.z, z_lo_, z_hi_, t0, t1))
         return;
     const std::size_t row = std::size_t(frame_.nx - 1);
-    detail::walk_grid(frame_, o, w, t0, t1, [&](int i, int j, double ta, double tb) {
+    walk_grid(frame_, o, w, t0, t1, [&](int i, int j, double ta, double tb) {
         const MajorantCell& cell = cells_[std::size_t(j) * row + std::size_t(i)];
-        if (!(cell.sigma > 0.0) || !detail::clip_slab(o.z, w.z, cell.z_lo, cell.z_hi, ta, tb) || !(tb > ta))
+        if (!(cell.sigma > 0.0) || !clip_slab(o.z, w.z, cell.z_lo, cell.z_hi, ta, tb) || !(tb > ta))
             return true;
         return visit(cell, ta, tb);
     });
@@ -278,7 +181,7 @@ double PathTracer::medium_transmittance(const glm::dvec3& o, const glm::dvec3& w
     };
     walk_cells(o, w, 0.0, inf, [&](const MajorantCell& cell, double a, double b) {
         double c0 = a, c1 = b;
-        if (!(cell.control > 0.0) || !detail::clip_slab(o.z, w.z, cell.core_lo, cell.core_hi, c0, c1) || !(c1 > c0))
+        if (!(cell.control > 0.0) || !clip_slab(o.z, w.z, cell.core_lo, cell.core_hi, c0, c1) || !(c1 > c0))
             return track(a, b, 0.0, cell.sigma);
         return track(a, c0, 0.0, cell.sigma) && track(c0, c1, cell.control, cell.sigma) &&
             track(c1, b, 0.0, cell.sigma);
@@ -368,7 +271,7 @@ glm::dvec3 PathTracer::sample(const glm::dvec3& origin, const glm::dvec3& dir, d
             ++vertices;
             const glm::dvec3 p = o + w * t_end;
             const glm::dvec3 n = terrain_->normal(p.x, p.y);
-            throughput *= detail::ground_albedo(terrain_->ground(), p, n);
+            throughput *= ground_albedo(terrain_->ground(), p, n);
             const glm::dvec3 q = p + n * (0.01 + 1e-7 * glm::length(p));  // off the surface's own triangles
             // Lambert: albedo / pi times the sun's irradiance pi sun cos.
             if (const double c = glm::dot(n, sun_); sun_on_ && c > 0.0)
@@ -392,6 +295,12 @@ glm::dvec3 PathTracer::sample(const glm::dvec3& origin, const glm::dvec3& dir, d
     }
     return radiance;
 }
+
+}  // namespace detail
+
+namespace {
+
+using detail::PathTracer;
 
 // Welford's running mean and variance per channel.
 struct Accumulator {

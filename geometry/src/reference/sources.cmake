@@ -5,4 +5,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/reference/fog_marcher.cpp
   src/reference/reference_fog.cpp
   src/reference/path_tracer.cpp
+  src/reference/light_volume_bake.cpp
 )

@@ -36,9 +36,8 @@ std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const
         if (!(in.partition.particle_share > 0.0))
             return nullptr;
         const FogPartition partition = in.partition;
-        return std::make_shared<const ParticleCloud>(sample_particles(
-            medium, in.options, label,
-            [&](const glm::dvec3& p) { return particle_share(partition, medium.height_fraction(p)); }));
+        return std::make_shared<const ParticleCloud>(
+            sample_particles(medium, in.options, label, particle_height_share(partition)));
     }
     return std::make_shared<const ParticleCloud>(sample_particles(medium, in.options, label));
 }

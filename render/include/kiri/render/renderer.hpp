@@ -129,7 +129,7 @@ public:
     void set_layer_resolution(double scale, bool multisampled = false);
     //! Combined mode (docs/combined.md): the layers, the froxels and the particles each draw
     //! their share of the one Medium (geometry/fog_partition.hpp); empty: each draws all of it.
-    //! The particles' share is chosen when they are sampled (sample_particles' weight).
+    //! The particles' share is chosen when they are sampled (sample_particles' HeightShare).
     void set_fog_partition(const std::optional<geometry::FogPartition>& partition);
     //! A particle cloud lit through the 3D attenuation buffer, drawn as billboards over the
     //! terrain and the layers (kept by reference: it must outlive the renderer's use of it).

@@ -35,6 +35,12 @@
 //!   light scattered many times dies out as exp(-(1 - b) tau), not as exp(-tau). K, k, b, c, d
 //!   and e (MultipleScatteringFit) were fitted to the path tracer (path_tracer.hpp) on uniform
 //!   slabs and thin layers at three sun elevations (docs/medium.md, "Multiple scattering").
+//! - baked: single scattering as `none`, and the light scattered more than once read from a
+//!   light-transport volume (light_volume.hpp) baked by tracing the sun's light through the fog:
+//!   the source gains albedo sun sum_l g^l L_lm Y_lm(towards the eye), not dimmed by the terrain's
+//!   shadow V (light reaches the shadow from the sunlit fog beside it). Without a volume, `none`.
+#include <memory>
+
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/medium/medium_options.hpp"
@@ -42,6 +48,7 @@
 namespace kiri::geometry {
 
 class Medium;
+struct LightVolume;
 
 //! The fitted model's lobes: single scattering, the orders 1 .. N-2, and the rest.
 inline constexpr int fitted_orders = 4;
@@ -82,6 +89,8 @@ struct FogLighting {
     MultipleScattering multiple_scattering = MultipleScattering::octaves;
     int scattering_octaves = 1;
     MultipleScatteringFit fit{};
+    //! The multiple scattering `baked` reads (bake_light_volume, for this sun); null: none.
+    std::shared_ptr<const LightVolume> light_volume;
     //! false: no sky light at all, for comparisons with renderers set up in a black world: the
     //! ambient is taken as 0 and the sky seen behind the fog is black (`kiri render --no-sky`).
     bool sky = true;

@@ -15,10 +15,14 @@ enum class MultipleScattering {
     fitted,   //!< the model fitted to the path tracer (docs/medium.md, "Multiple scattering")
     octaves,  //!< `scattering_octaves` octaves ([Wrenninge13]); 1: single scattering
     none,     //!< single scattering only
+    //! single scattering plus the light scattered more than once from a light-transport volume
+    //! baked by tracing the sun's light (light_volume.hpp; docs/medium.md)
+    baked,
 };
 inline constexpr Choice multiple_scattering_names[] = {{"fitted", int(MultipleScattering::fitted)},
                                                        {"octaves", int(MultipleScattering::octaves)},
-                                                       {"none", int(MultipleScattering::none)}};
+                                                       {"none", int(MultipleScattering::none)},
+                                                       {"baked", int(MultipleScattering::baked)}};
 
 struct MediumOptions {
     double extinction = 0.02;  //!< visibility 196 m: a dense valley fog
@@ -79,8 +83,9 @@ void visit_fields(O& o, V&& v)
        .doc = "the grid is coarsened to at most this many samples per side"});
     v(o.multiple_scattering,
       {.key = "multiple_scattering",
-       .doc = "the light scattered more than once: fitted to the path tracer, octaves, or none (single "
-              "scattering) ([medium.md](medium.md#lighting))",
+       .doc = "the light scattered more than once: fitted to the path tracer, octaves, none (single "
+              "scattering), or baked (a light-transport volume traced from the sun; the CPU reference only, "
+              "the GL renderers draw single scattering) ([medium.md](medium.md#lighting))",
        .choices = multiple_scattering_names});
     v(o.scattering_octaves,
       {.key = "scattering_octaves",

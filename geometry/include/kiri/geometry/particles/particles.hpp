@@ -13,6 +13,7 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/core/fields.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::geometry {
@@ -153,9 +154,9 @@ struct ParticleCloud {
     //! 0 the fitted model, n >= 1 n octaves.
     int scattering_octaves = 0;
     //! What the sampler found (for reports): the Medium's integral of density (m^3), the mean
-    //! spacing at full density and the number of candidates drawn.
+    //! spacing at full density, the number of candidates drawn and the trials that found them.
     double density_integral = 0.0, spacing = 0.0;
-    std::size_t candidate_count = 0;
+    std::size_t candidate_count = 0, trial_count = 0;
 };
 
 //! Harris's read-back solid angle (0.09 sr, [SkyWorks]): the forward cone whose scattered light
@@ -172,15 +173,28 @@ double forward_scattering_fraction(double g, double solid_angle = harris_forward
 //! Medium. Each particle carries the same share of the Medium's extinction integral:
 //! tau_k = extinction * density_integral / (count * footprint_area(r_k)). Deterministic for a seed
 //! (the same seed, options and Medium give bit-identical particles).
-//! With a weight w(p) in [0, 1] the particles stand for the share w d of the Medium (combined
-//! rendering, fog_partition.hpp: they draw the top band, the other renderers the rest).
+//! With a share the particles stand for the share(h) d of the Medium (combined rendering,
+//! fog_partition.hpp: they draw the top band, the other renderers the rest).
+//! The candidates are drawn by rejection under an envelope of the density per cell of the
+//! Medium's grid, from the lowest height where the share can be non-zero to the cell's top
+//! (shell_envelope.hpp): the same distribution as from the Medium's whole box, with a fraction of
+//! the trials where the shell follows the terrain or only its top band is drawn.
 //! A fog too thin to give count * candidates points in reasonable time (a thin top band in a
 //! tall box) gets fewer particles in proportion to the points found, and none when no point held
 //! fog: a thin fog is drawn thin, not refused.
 //! \throw InputError on bad options; LimitError above 2e6 particles or 2e7 candidates.
-using DensityWeight = std::function<double(const glm::dvec3&)>;
+struct HeightShare {
+    //! The share at height fraction h in [0, 1] of the shell (Medium::height_fraction); clamped
+    //! to [0, max], and taken as 0 at h <= from.
+    std::function<double(double h)> share;
+    double from = 0.0;
+    double max = 1.0;
+};
 ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {},
-                               const DensityWeight& weight = {});
+                               const HeightShare& share = {});
+//! Combined rendering's share for the particles (fog_partition.hpp): zero up to the top band,
+//! rising to particle_share at the top.
+HeightShare particle_height_share(const FogPartition& partition);
 
 //! Binary little-endian PLY of the particles: x y z (float), radius, optical_depth, albedo,
 //! with the forward-scattering fraction and the anisotropy in comments. Written atomically.

@@ -1,0 +1,68 @@
+#pragma once
+//! \file light_volume.hpp
+//! The light scattered at least once inside the fog, precomputed: a light-transport volume in
+//! the Medium's shell coordinates, baked by tracing the sun's light forward through the fog
+//! (kiri/geometry/reference/light_volume_bake.hpp) and read by the lighting model's `baked`
+//! multiple scattering (fog_lighting.hpp, docs/medium.md "Multiple scattering from a baked
+//! light-transport volume").
+//!
+//! It stores, per cell, the real spherical-harmonic moments L_lm = integral L_d(w) Y_lm(w) dw of
+//! the diffuse radiance L_d (the light travelling in direction w that has scattered at least
+//! once) for a sun of unit radiance (irradiance pi). Henyey-Greenstein's Legendre coefficients are
+//! g^l ([HG41]), so by the Funk-Hecke theorem ([Ramamoorthi01]) the light it scatters towards o is
+//!
+//!   integral p_HG(w . o, g) L_d(w) dw = sum_l g^l sum_m L_lm Y_lm(o)
+//!
+//! (the convolution is exact; the truncation at `bands` bands is the approximation). The cells
+//! follow the shell: (x, y) on a regular grid, h = (z - floor) / (top - floor) in `levels`
+//! equal levels, so a thin layer and a deep lake get the same number of levels.
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/medium/medium.hpp"
+
+namespace kiri::geometry {
+
+//! At most this many spherical-harmonic bands (l < 8).
+inline constexpr int light_volume_max_bands = 8;
+
+//! Real orthonormal spherical harmonics Y_lm(d) of the unit direction d for l < bands (clamped
+//! to [1, light_volume_max_bands]), at out[l (l + 1) + m], m in [-l, l]; out holds bands^2 values.
+void real_spherical_harmonics(const glm::dvec3& d, int bands, double* out);
+
+//! h of the light volume at height z of a column: (z - floor) / (top - floor), or -1 where the
+//! column holds no shell (top <= floor) or z is outside [floor, top].
+double shell_height(const MediumColumn& column, double z);
+
+struct LightVolume {
+    //! Cell (i, j, k) spans [x0 + i dx, x0 + (i + 1) dx] x [y0 + j dy, ...] x h in [k, k + 1] / nz.
+    int nx = 0, ny = 0, nz = 0;
+    int bands = 0;  //!< spherical-harmonic bands stored (bands^2 moments per cell)
+    double x0 = 0.0, y0 = 0.0, dx = 1.0, dy = 1.0;
+    //! L_lm of each cell, index ((k ny + j) nx + i) bands^2 + l (l + 1) + m, for a sun of unit radiance.
+    std::vector<double> moments;
+    // What the bake cost.
+    long long photons = 0;
+    long long deposits = 0;
+    double seconds = 0.0;
+
+    bool empty() const
+    {
+        return nx < 1 || ny < 1 || nz < 1 || bands < 1 || bands > light_volume_max_bands || moments.empty();
+    }
+    //! The moments at (x, y, h), trilinear between cell centres (clamped to the outer cells' centres),
+    //! into out (bands^2 values); zeros when empty.
+    void moments_at(double x, double y, double h, double* out) const;
+    //! sum_l g^l sum_m L_lm Y_lm(towards) at (x, y, h): the diffuse light that the phase function
+    //! of anisotropy g scatters towards the unit direction `towards`, per unit sun radiance
+    //! (1/sr x sr = dimensionless radiance ratio); >= 0 and finite for any input, 0 when empty.
+    double in_scattered(double x, double y, double h, const glm::dvec3& towards, double g) const;
+    //! The same with the direction's part g^l Y_lm(towards) (phase_weights) computed once, as a
+    //! ray marcher does along a ray.
+    double in_scattered(double x, double y, double h, const double* weights) const;
+    //! g^l Y_lm(towards) into out (bands^2 values).
+    void phase_weights(const glm::dvec3& towards, double g, double* out) const;
+};
+
+}  // namespace kiri::geometry

@@ -1,0 +1,50 @@
+#pragma once
+//! \file light_volume_bake.hpp
+//! The bake of the light-transport volume (kiri/geometry/medium/light_volume.hpp): the sun's light
+//! traced forward through the fog with the path tracer's own pieces (path_tracer.hpp: delta
+//! tracking against its majorants, Henyey-Greenstein sampling, the heightfield), every segment
+//! after the first scattering accumulated by a track-length estimator ([Spanier69]) into the spherical-harmonic
+//! moments of the diffuse radiance.
+//!
+//! Photons enter over the faces of the Medium's box that face the sun, with the sun's irradiance
+//! pi (a sun of unit radiance) over each face's projected area; an entry point the terrain hides
+//! from the sun sends none. Inside the box they scatter in the Medium and in the height fog (each
+//! with its albedo and g) until they are absorbed by the ground (black: the lighting model's ground
+//! reflects nothing into the fog either), leave the box, or lose Russian roulette. The single
+//! scattering (the unscattered sunlight) is not in the volume: the lighting model draws it exactly.
+//! Each photon draws from its own random stream seeded by (seed, photon), and the moments are
+//! summed in fixed point, so the volume is bit-identical on any number of threads.
+#include <cstdint>
+
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/medium/light_volume.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/geometry/terrain/heightfield.hpp"
+
+namespace kiri::geometry {
+
+struct LightVolumeOptions {
+    //! Photons traced; 0: photons_per_column per (x, y) cell.
+    long long photons = 0;
+    int photons_per_column = 400;
+    int levels = 8;  //!< cells in h between the floor and the top, [1, 64]
+    int bands = 6;   //!< spherical-harmonic bands, [1, light_volume_max_bands]
+    //! Cells in (x, y), metres; 0: the Medium's grid spacing or the mean free path 1 / extinction,
+    //! the larger, with at most max_side cells a side (fewer where the sums would pass 2^23 a thread).
+    double cell_size = 0.0;
+    int max_side = 32;
+    int max_bounces = 1000;  //!< scatterings a photon may have
+    int roulette_after = 3;  //!< Russian roulette on the weight from this many scatterings on
+    std::uint64_t seed = 1;
+    bool surround = true;  //!< the ground beyond the DEM's edge (path_tracer.hpp)
+    int threads = 0;       //!< 0: every core
+};
+
+//! The light volume of `fog`'s Medium under a sun in `sun_direction` (towards the sun), the
+//! terrain (may be null) hiding and absorbing. Empty without a Medium of positive extinction or
+//! with the sun at or below the horizon.
+LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, const glm::dvec3& sun_direction,
+                              const LightVolumeOptions& options = {});
+
+}  // namespace kiri::geometry

@@ -1,0 +1,351 @@
+// The light-transport volume (light_volume.hpp) and its bake (light_volume_bake.hpp) against
+// closed forms and the path tracer as the oracle: the spherical harmonics' orthonormality and the
+// Funk-Hecke identity of Henyey-Greenstein (g^l), the convolution of two Henyey-Greenstein lobes
+// (a lobe of g1 g2), the baked multiple scattering of a uniform slab against the path tracer at
+// points and directions, no diffuse light without scattering, diffuse light in the terrain's
+// shadow beside sunlit fog, determinism across threads, bad input.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <utility>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "fog_test_terrains.hpp"
+#include "kiri/geometry/medium/light_volume.hpp"
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/reference/light_volume_bake.hpp"
+#include "kiri/geometry/reference/path_tracer.hpp"
+#include "kiri/geometry/reference/reference_fog.hpp"
+
+using namespace kiri::geometry;
+
+namespace {
+
+constexpr int max_q = light_volume_max_bands * light_volume_max_bands;
+
+// A uniform slab of fog between z = bottom and z = top over [-half, half]^2 (or x in [x0, x0 + 2 half]).
+Medium slab(double bottom, double top, double sigma, double albedo, double g, double half, double x0 = std::nan(""))
+{
+    MediumGrid grid;
+    grid.nx = grid.ny = 3;
+    grid.x0 = std::isnan(x0) ? -half : x0;
+    grid.y0 = -half;
+    grid.dx = grid.dy = half;
+    grid.floor.assign(9, bottom);
+    grid.bottom.assign(9, bottom);
+    grid.top.assign(9, top);
+    grid.coverage.assign(9, 1.0);
+    MediumOptions o;
+    o.extinction = sigma;
+    o.albedo = albedo;
+    o.anisotropy = g;
+    o.top_density = 1.0;
+    MediumDetail d;
+    d.detail = 0.0;
+    return Medium(std::move(grid), o, d);
+}
+
+glm::dvec3 sun_towards(double elevation, double azimuth)
+{
+    return {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
+}
+
+// Gauss-Legendre nodes and weights on [-1, 1].
+std::vector<std::pair<double, double>> gauss_legendre(int n)
+{
+    std::vector<std::pair<double, double>> nodes;
+    for (int i = 0; i < n; ++i) {
+        double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
+        for (int it = 0; it < 100; ++it) {
+            double p0 = 1.0, p1 = x;
+            for (int k = 2; k <= n; ++k) {
+                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            dp = n * (x * p1 - p0) / (x * x - 1.0);
+            const double dx = p1 / dp;
+            x -= dx;
+            if (std::abs(dx) < 1e-15)
+                break;
+        }
+        nodes.push_back({x, 2.0 / ((1.0 - x * x) * dp * dp)});
+    }
+    return nodes;
+}
+
+// A volume of one cell holding the moments `m`.
+LightVolume one_cell(const std::array<double, max_q>& m, int bands)
+{
+    LightVolume v;
+    v.nx = v.ny = v.nz = 1;
+    v.bands = bands;
+    v.x0 = v.y0 = -1.0;
+    v.dx = v.dy = 2.0;
+    v.moments.assign(m.begin(), m.begin() + bands * bands);
+    return v;
+}
+
+LightVolumeOptions small_bake(long long photons)
+{
+    LightVolumeOptions o;
+    o.photons = photons;
+    o.max_side = 4;
+    o.threads = 2;
+    return o;
+}
+
+}  // namespace
+
+TEST(LightVolume, SphericalHarmonicsAreOrthonormal)
+{
+    const int bands = light_volume_max_bands, n = bands * bands;
+    // Exact for polynomials of degree 2 (bands - 1) in cos(theta) and in the azimuth's harmonics.
+    std::vector<double> gram(std::size_t(n) * n, 0.0);
+    const int n_phi = 32;
+    for (const auto& [c, w] : gauss_legendre(16))
+        for (int j = 0; j < n_phi; ++j) {
+            const double phi = 2.0 * std::numbers::pi * (j + 0.5) / n_phi, r = std::sqrt(1.0 - c * c);
+            std::array<double, max_q> y{};
+            real_spherical_harmonics({r * std::cos(phi), r * std::sin(phi), c}, bands, y.data());
+            for (int a = 0; a < n; ++a)
+                for (int b = 0; b < n; ++b)
+                    gram[std::size_t(a) * n + b] += w * 2.0 * std::numbers::pi / n_phi * y[a] * y[b];
+        }
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+            EXPECT_NEAR(gram[std::size_t(a) * n + b], a == b ? 1.0 : 0.0, 1e-12) << a << ", " << b;
+    // Y_00 and Y_1m in closed form.
+    std::array<double, max_q> y{};
+    const glm::dvec3 d = glm::normalize(glm::dvec3(0.3, -0.5, 0.8));
+    real_spherical_harmonics(d, 2, y.data());
+    EXPECT_NEAR(y[0], 0.5 / std::sqrt(std::numbers::pi), 1e-15);
+    const double k1 = std::sqrt(3.0 / (4.0 * std::numbers::pi));
+    EXPECT_NEAR(y[1], k1 * d.y, 1e-14);
+    EXPECT_NEAR(y[2], k1 * d.z, 1e-14);
+    EXPECT_NEAR(y[3], k1 * d.x, 1e-14);
+}
+
+TEST(LightVolume, HenyeyGreensteinConvolvesEachBandByGToTheL)
+{
+    // Funk-Hecke: integral p_HG(d . o, g) Y_lm(d) dd = g^l Y_lm(o), the identity in_scattered
+    // rests on; phase_weights gives g^l Y_lm(o).
+    const double g = 0.7;
+    const glm::dvec3 o = glm::normalize(glm::dvec3(-0.2, 0.6, 0.4));
+    const int bands = light_volume_max_bands;
+    LightVolume v = one_cell({}, bands);
+    std::array<double, max_q> weights{}, y_o{};
+    v.phase_weights(o, g, weights.data());
+    real_spherical_harmonics(o, bands, y_o.data());
+    std::array<double, max_q> integral{};
+    const int n_phi = 128;
+    for (const auto& [c, w] : gauss_legendre(64))
+        for (int j = 0; j < n_phi; ++j) {
+            const double phi = 2.0 * std::numbers::pi * (j + 0.5) / n_phi, r = std::sqrt(1.0 - c * c);
+            const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), c);
+            std::array<double, max_q> y{};
+            real_spherical_harmonics(d, bands, y.data());
+            const double p = w * 2.0 * std::numbers::pi / n_phi * henyey_greenstein(glm::dot(d, o), g);
+            for (int q = 0; q < bands * bands; ++q)
+                integral[q] += p * y[q];
+        }
+    for (int l = 0; l < bands; ++l)
+        for (int q = l * l; q < (l + 1) * (l + 1); ++q) {
+            EXPECT_NEAR(integral[q], std::pow(g, l) * y_o[q], 1e-6) << "l " << l << ", q " << q;
+            EXPECT_NEAR(weights[q], std::pow(g, l) * y_o[q], 1e-14);
+        }
+}
+
+TEST(LightVolume, TwoHenyeyGreensteinLobesConvolveToOneOfTheProduct)
+{
+    // Diffuse radiance of a Henyey-Greenstein lobe of g2 about a: its moments are g2^l Y_lm(a), and
+    // the light a phase function of g scatters towards o is p_HG(o . a, g g2) (the product of the
+    // Legendre coefficients), here truncated to the bands stored: sum_{l < 8} (2l + 1) / (4 pi)
+    // (g g2)^l P_l(o . a), within the tail's bound of the whole lobe.
+    const double g = 0.8, g2 = 0.5, gg = g * g2;
+    const int bands = light_volume_max_bands;
+    const glm::dvec3 a = glm::normalize(glm::dvec3(0.5, 0.2, -0.8));
+    std::array<double, max_q> m{};
+    real_spherical_harmonics(a, bands, m.data());
+    for (int l = 0; l < bands; ++l)
+        for (int q = l * l; q < (l + 1) * (l + 1); ++q)
+            m[q] *= std::pow(g2, l);
+    const LightVolume v = one_cell(m, bands);
+    double tail = 0.0;
+    for (int l = bands; l < 200; ++l)
+        tail += (2.0 * l + 1.0) / (4.0 * std::numbers::pi) * std::pow(gg, l);
+    for (const glm::dvec3& o : {a, -a, glm::normalize(glm::dvec3(0.0, 1.0, 0.3)), glm::dvec3(0.0, 0.0, 1.0)}) {
+        const double x = glm::dot(o, a);
+        double p0 = 1.0, p1 = x, series = (1.0 + 3.0 * gg * x) / (4.0 * std::numbers::pi);
+        for (int l = 2; l < bands; ++l) {
+            const double p2 = ((2.0 * l - 1.0) * x * p1 - (l - 1.0) * p0) / l;
+            p0 = p1;
+            p1 = p2;
+            series += (2.0 * l + 1.0) / (4.0 * std::numbers::pi) * std::pow(gg, l) * p2;
+        }
+        EXPECT_NEAR(v.in_scattered(0.0, 0.0, 0.5, o, g), series, 1e-12);
+        EXPECT_NEAR(series, henyey_greenstein(x, gg), tail);
+    }
+}
+
+TEST(LightVolume, BakedSlabAgreesWithThePathTracer)
+{
+    // A uniform slab 100 m thick (sigma 0.02, albedo 0.99, g 0.8) on a black ground under the sun
+    // 35 degrees up: single scattering plus the baked volume (the CPU reference's `baked`) against
+    // every order of scattering path traced, at a point above looking down, inside looking along
+    // and towards the sun. The bound is 10 % (the goal of the lighting model) plus the noise.
+    const Heightfield ground =
+        kiri::test::make_heightfield(11, 11, 400.0, -2000.0, -2000.0, [](double, double) { return 0.0; });
+    const Medium m = slab(0.0, 100.0, 0.02, 0.99, 0.8, 2000.0);
+    FogLighting light;
+    light.sun_direction = sun_towards(35.0 * std::numbers::pi / 180.0, 0.4);
+    light.sun_radiance = glm::dvec3(1.0);
+    light.sky = false;
+    light.terrain_shadows = true;
+    light.multiple_scattering = MultipleScattering::baked;
+    light.light_volume = std::make_shared<const LightVolume>(
+        bake_light_volume({&m, {}}, &ground, light.sun_direction, small_bake(60000)));
+    ASSERT_FALSE(light.light_volume->empty());
+    ReferenceOptions ro;
+    ro.shade_terrain = false;
+    PathTracerOptions po;
+    po.samples = 6000;
+    po.sky = PathSky::none;
+    po.ground = PathGround::black;
+    const glm::dvec3 s = light.sun_direction;
+    const std::pair<glm::dvec3, glm::dvec3> rays[] = {{{0.0, 0.0, 300.0}, glm::normalize(glm::dvec3(0.3, -0.2, -1.0))},
+                                                      {{0.0, 0.0, 50.0}, glm::normalize(glm::dvec3(-s.y, s.x, 0.0))},
+                                                      {{0.0, 0.0, 50.0}, s}};
+    for (const auto& [origin, dir] : rays) {
+        const RayFog model = reference_ray({&m, {}}, &ground, origin, dir, 1e6, light, ro);
+        FogLighting single = light;
+        single.multiple_scattering = MultipleScattering::none;
+        const RayFog once = reference_ray({&m, {}}, &ground, origin, dir, 1e6, single, ro);
+        const PathEstimate truth = path_traced_ray({&m, {}}, &ground, origin, dir, 1e6, light, po, 7);
+        EXPECT_NEAR(model.inscatter.x, truth.radiance.x, 0.10 * truth.radiance.x + 3.0 * truth.std_error.x)
+            << "from " << origin.z << " along " << dir.x << ", " << dir.y << ", " << dir.z;
+        // Most of this light is scattered more than once.
+        EXPECT_GT(model.inscatter.x, 1.3 * once.inscatter.x);
+    }
+}
+
+TEST(LightVolume, NoScatteringNoDiffuseLight)
+{
+    const Medium black = slab(0.0, 100.0, 0.02, 0.0, 0.8, 1000.0);
+    const LightVolume v = bake_light_volume({&black, {}}, nullptr, sun_towards(0.6, 0.3), small_bake(5000));
+    ASSERT_FALSE(v.empty());
+    for (double m : v.moments)
+        EXPECT_EQ(m, 0.0);
+    EXPECT_EQ(v.in_scattered(0.0, 0.0, 0.5, glm::dvec3(0.0, 0.0, 1.0), 0.8), 0.0);
+    // With scattering the same slab holds diffuse light everywhere inside.
+    const Medium white = slab(0.0, 100.0, 0.02, 0.99, 0.8, 1000.0);
+    const LightVolume w = bake_light_volume({&white, {}}, nullptr, sun_towards(0.6, 0.3), small_bake(5000));
+    for (double h : {0.05, 0.5, 0.95})
+        EXPECT_GT(w.in_scattered(0.0, 0.0, h, glm::dvec3(0.0, 0.0, 1.0), 0.0), 0.01);
+}
+
+TEST(LightVolume, TheTerrainsShadowHoldsDiffuseLightFromTheSunlitFog)
+{
+    // A ridge 400 m high at x = -500, west of a slab of fog over x in [0, 1000], under a western sun
+    // 20 degrees up: its shadow covers the fog up to x = 324 and, below the line
+    // z = 400 - (x + 500) tan 20, the fog's lower part up to x = 599. At (480, 10) the fog lies in
+    // the shadow with sunlit fog above it, whose light scattered downward still reaches it: less
+    // than in the sun at the same height, far more than nothing; and the CPU reference sees it
+    // there, where single scattering alone is black.
+    const Heightfield ground = kiri::test::make_heightfield(
+        61, 21, 50.0, -1000.0, -500.0, [](double x, double) { return std::abs(x + 500.0) < 30.0 ? 400.0 : 0.0; });
+    const Medium m = slab(0.0, 100.0, 0.02, 0.99, 0.8, 500.0, 0.0);
+    const glm::dvec3 sun = sun_towards(20.0 * std::numbers::pi / 180.0, std::numbers::pi);  // from the west
+    LightVolumeOptions o = small_bake(60000);
+    o.cell_size = 50.0;
+    o.max_side = 40;
+    const LightVolume v = bake_light_volume({&m, {}}, &ground, sun, o);
+    const glm::dvec3 up(0.0, 0.0, 1.0);
+    const double shadow = v.in_scattered(480.0, 0.0, 0.1, up, 0.0), sunlit = v.in_scattered(900.0, 0.0, 0.1, up, 0.0);
+    const double deep = v.in_scattered(75.0, 0.0, 0.1, up, 0.0);  // under 200 m of shadow
+    EXPECT_GT(shadow, 0.2 * sunlit);
+    EXPECT_LT(shadow, 0.8 * sunlit);
+    EXPECT_LT(deep, 0.5 * shadow);
+
+    FogLighting light;
+    light.sun_direction = sun;
+    light.sun_radiance = glm::dvec3(1.0);
+    light.sky = false;
+    light.terrain_shadows = true;
+    light.multiple_scattering = MultipleScattering::none;
+    ReferenceOptions ro;
+    ro.shade_terrain = false;
+    const glm::dvec3 origin(480.0, -100.0, 10.0), along(0.0, 1.0, 0.0);
+    const RayFog single = reference_ray({&m, {}}, &ground, origin, along, 200.0, light, ro);
+    light.multiple_scattering = MultipleScattering::baked;
+    light.light_volume = std::make_shared<const LightVolume>(v);
+    const RayFog baked = reference_ray({&m, {}}, &ground, origin, along, 200.0, light, ro);
+    EXPECT_EQ(single.inscatter.x, 0.0);
+    // The fog along the ray is uniform: the integral of sigma albedo J(t) exp(-sigma t) over its
+    // 200 m, J the diffuse light the volume scatters towards the eye (the midpoint rule, 1 m).
+    double expected = 0.0;
+    for (double t = 0.5; t < 200.0; t += 1.0)
+        expected += 0.02 * 0.99 * v.in_scattered(480.0, -100.0 + t, 0.1, -along, 0.8) * std::exp(-0.02 * t);
+    EXPECT_GT(expected, 0.2 * 0.99 * shadow);
+    EXPECT_NEAR(baked.inscatter.x, expected, 0.01 * expected);
+}
+
+TEST(LightVolume, BakeIsDeterministicOnAnyNumberOfThreads)
+{
+    const Medium m = slab(0.0, 60.0, 0.03, 0.95, 0.7, 1000.0);
+    LightVolumeOptions o = small_bake(3000);
+    o.threads = 1;
+    const LightVolume one = bake_light_volume({&m, {}}, nullptr, sun_towards(0.5, 1.0), o);
+    o.threads = 3;
+    const LightVolume three = bake_light_volume({&m, {}}, nullptr, sun_towards(0.5, 1.0), o);
+    ASSERT_FALSE(one.empty());
+    EXPECT_EQ(one.moments, three.moments);
+    EXPECT_EQ(one.deposits, three.deposits);
+    o.seed = 2;
+    EXPECT_NE(bake_light_volume({&m, {}}, nullptr, sun_towards(0.5, 1.0), o).moments, one.moments);
+}
+
+TEST(LightVolume, BadInputStaysFinite)
+{
+    const glm::dvec3 sun = sun_towards(0.5, 0.0);
+    const Medium clear = slab(0.0, 100.0, 0.0, 0.99, 0.8, 1000.0);
+    EXPECT_TRUE(bake_light_volume({&clear, {}}, nullptr, sun, small_bake(100)).empty());
+    const Medium m = slab(0.0, 100.0, 0.02, 0.99, 0.8, 1000.0);
+    EXPECT_TRUE(bake_light_volume({&m, {}}, nullptr, sun_towards(-0.2, 0.0), small_bake(100)).empty());
+    EXPECT_TRUE(bake_light_volume({&m, {}}, nullptr, glm::dvec3(0.0), small_bake(100)).empty());
+    EXPECT_TRUE(bake_light_volume({&m, {}}, nullptr, glm::dvec3(std::nan("")), small_bake(100)).empty());
+    EXPECT_TRUE(bake_light_volume({nullptr, {}}, nullptr, sun, small_bake(100)).empty());
+    // Impossible sizes are bounded: at most 2^23 sums.
+    LightVolumeOptions huge = small_bake(100);
+    huge.max_side = 1 << 30;
+    huge.levels = 1 << 20;
+    huge.bands = 99;
+    huge.cell_size = 1e-9;
+    const LightVolume bounded = bake_light_volume({&m, {}}, nullptr, sun, huge);
+    EXPECT_EQ(bounded.nz, 64);
+    EXPECT_EQ(bounded.bands, light_volume_max_bands);
+    EXPECT_LE(double(bounded.nx) * bounded.ny * bounded.nz * bounded.bands * bounded.bands, double(1 << 23));
+    EXPECT_GE(bounded.nx, 8);
+    const LightVolume v = bake_light_volume({&m, {}}, nullptr, sun, small_bake(2000));
+    const double nan = std::nan("");
+    for (const double x : {nan, 0.0, 1e30})
+        for (const double g : {nan, -1.0, 1.0, 0.8}) {
+            const double d = v.in_scattered(x, x, x, glm::dvec3(x, 0.0, 1.0), g);
+            EXPECT_TRUE(std::isfinite(d) && d >= 0.0) << x << ", " << g;
+        }
+    const LightVolume empty;
+    EXPECT_EQ(empty.in_scattered(0.0, 0.0, 0.5, glm::dvec3(0.0, 0.0, 1.0), 0.8), 0.0);
+    // `baked` without a volume is single scattering.
+    FogLighting light;
+    light.sky = false;
+    light.multiple_scattering = MultipleScattering::baked;
+    const RayFog without = reference_ray({&m, {}}, nullptr, {0.0, 0.0, 50.0}, {1.0, 0.0, 0.0}, 500.0, light);
+    light.multiple_scattering = MultipleScattering::none;
+    const RayFog single = reference_ray({&m, {}}, nullptr, {0.0, 0.0, 50.0}, {1.0, 0.0, 0.0}, 500.0, light);
+    EXPECT_EQ(without.inscatter, single.inscatter);
+}
