@@ -88,6 +88,7 @@ FroxelPass::FroxelPass()
                  "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "terrain_shadow.glsl",
                  "froxel_lighting.comp"}),
       temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
+      accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
       integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
@@ -295,8 +296,8 @@ void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, boo
             const int into = (still_samples - 1 - k) % 2 == 0 ? current_ : 1 - current_;
             run_lighting(frame, halton_jitter(k + 1));
             // The history holds the first k samples: weighted k / (k + 1), the result is their
-            // mean (within the clamp to this sample's neighbourhood).
-            run_temporal(1 - into, view_, k > 0, into, float(k) / float(k + 1), current_);
+            // mean.
+            run_accumulate(1 - into, k > 0, into, float(k) / float(k + 1));
         }
     }
     if (options_.temporal)
@@ -408,6 +409,20 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
     lighting_.use();
     glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    dispatch_volume(v_->size, v_->size.z);
+}
+
+void FroxelPass::run_accumulate(int history, bool history_valid, int into, float weight)
+{
+    bind_layout(accumulate_);
+    accumulate_.set("u_current", unit_light);
+    accumulate_.set("u_history", unit_history);
+    accumulate_.set("u_history_valid", int(history_valid));
+    accumulate_.set("u_weight", weight);
+    accumulate_.use();
+    glBindTextureUnit(unit_light, v_->light.get());
+    glBindTextureUnit(unit_history, v_->resolved[history].get());
+    glBindImageTexture(0, v_->resolved[into].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch_volume(v_->size, v_->size.z);
 }
 

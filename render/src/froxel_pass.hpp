@@ -71,7 +71,7 @@ public:
 private:
     struct Volumes;
     std::unique_ptr<Volumes> v_;
-    ShaderProgram density_, lighting_, temporal_, integrate_, opaque_, classify_, apply_program_;
+    ShaderProgram density_, lighting_, temporal_, accumulate_, integrate_, opaque_, classify_, apply_program_;
     Buffer marched_;  // the apply's count of pixels that marched their own rays
     std::unique_ptr<ShaderProgram> readback_, depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
@@ -119,6 +119,8 @@ private:
     //! The lighting just run blended with resolved[history] (seen from `from`, its tiles those of
     //! tiles[history_tiles], default tiles[history]; the history's weight `weight`) into
     //! resolved[into].
+    //! A still's k-th lighting sample into the mean of the first k (froxel_accumulate.comp).
+    void run_accumulate(int history, bool history_valid, int into, float weight);
     void run_temporal(int history, const View& from, bool history_valid, int into, float weight,
                       int history_tiles = -1);
     void run_integrate();
