@@ -348,7 +348,8 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
     float scale = v.render_scale;
     const FrameBudget budget{1000.0 / std::clamp(double(v.moving_fps), 0.1, 1000.0), 0.125f, v.render_scale};
     // Dragging a slider redraws every frame too: reduced as well, so the panel keeps up.
-    const float moving_scale = next_moving_scale(moving_scale_, 0.0, budget);  // within the budget's range
+    const float moving_scale =
+        std::clamp(moving_scale_, budget.min_scale, std::max(budget.min_scale, budget.max_scale));
     const bool reduced =
         (camera_moved || ImGui::IsAnyItemActive()) && !force && v.reduce_while_moving && moving_scale < scale;
     if (reduced)

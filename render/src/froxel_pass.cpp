@@ -426,8 +426,7 @@ void FroxelPass::run_accumulate(int history, bool history_valid, int into, float
     dispatch_volume(v_->size, v_->size.z);
 }
 
-void FroxelPass::run_temporal(int history, const View& from, bool history_valid, int into, float weight,
-                              int history_tiles)
+void FroxelPass::run_temporal(int history, const View& from, bool history_valid, int into, float weight)
 {
     bind_layout(temporal_);
     temporal_.set("u_current", unit_light);
@@ -441,7 +440,7 @@ void FroxelPass::run_temporal(int history, const View& from, bool history_valid,
     temporal_.use();
     glBindTextureUnit(unit_light, v_->light.get());
     glBindTextureUnit(unit_history, v_->resolved[history].get());
-    glBindTextureUnit(unit_history_tiles, v_->tiles[history_tiles < 0 ? history : history_tiles].get());
+    glBindTextureUnit(unit_history_tiles, v_->tiles[history].get());
     glBindImageTexture(0, v_->resolved[into].get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch_volume(v_->size, v_->size.z);
 }

@@ -116,13 +116,11 @@ private:
     void run_tiles(const FrameContext& frame, GLuint depth_texture);
     void run_density();
     void run_lighting(const FrameContext& frame, const Jitter& jitter);
-    //! The lighting just run blended with resolved[history] (seen from `from`, its tiles those of
-    //! tiles[history_tiles], default tiles[history]; the history's weight `weight`) into
-    //! resolved[into].
     //! A still's k-th lighting sample into the mean of the first k (froxel_accumulate.comp).
     void run_accumulate(int history, bool history_valid, int into, float weight);
-    void run_temporal(int history, const View& from, bool history_valid, int into, float weight,
-                      int history_tiles = -1);
+    //! The lighting just run blended with resolved[history] (seen from `from`, its tiles
+    //! tiles[history]; the history's weight `weight`) into resolved[into].
+    void run_temporal(int history, const View& from, bool history_valid, int into, float weight);
     void run_integrate();
     //! Per tile: may the apply read the volume, or must the pixels around it march?
     void run_classify(const FrameContext& frame, GLuint depth_texture);

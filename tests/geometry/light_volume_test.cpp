@@ -21,6 +21,7 @@
 #include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
+#include "slab_medium.hpp"
 
 using namespace kiri::geometry;
 
@@ -31,23 +32,7 @@ constexpr int max_q = light_volume_max_bands * light_volume_max_bands;
 // A uniform slab of fog between z = bottom and z = top over [-half, half]^2 (or x in [x0, x0 + 2 half]).
 Medium slab(double bottom, double top, double sigma, double albedo, double g, double half, double x0 = std::nan(""))
 {
-    MediumGrid grid;
-    grid.nx = grid.ny = 3;
-    grid.x0 = std::isnan(x0) ? -half : x0;
-    grid.y0 = -half;
-    grid.dx = grid.dy = half;
-    grid.floor.assign(9, bottom);
-    grid.bottom.assign(9, bottom);
-    grid.top.assign(9, top);
-    grid.coverage.assign(9, 1.0);
-    MediumOptions o;
-    o.extinction = sigma;
-    o.albedo = albedo;
-    o.anisotropy = g;
-    o.top_density = 1.0;
-    MediumDetail d;
-    d.detail = 0.0;
-    return Medium(std::move(grid), o, d);
+    return kiri::test::slab_medium(bottom, top, sigma, albedo, g, half, std::isnan(x0) ? -half : x0);
 }
 
 glm::dvec3 sun_towards(double elevation, double azimuth)
@@ -55,29 +40,7 @@ glm::dvec3 sun_towards(double elevation, double azimuth)
     return {std::cos(elevation) * std::cos(azimuth), std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1].
-std::vector<std::pair<double, double>> gauss_legendre(int n)
-{
-    std::vector<std::pair<double, double>> nodes;
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double dx = p1 / dp;
-            x -= dx;
-            if (std::abs(dx) < 1e-15)
-                break;
-        }
-        nodes.push_back({x, 2.0 / ((1.0 - x * x) * dp * dp)});
-    }
-    return nodes;
-}
+using kiri::test::gauss_legendre;
 
 // A volume of one cell holding the moments `m`.
 LightVolume one_cell(const std::array<double, max_q>& m, int bands)

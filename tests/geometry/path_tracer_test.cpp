@@ -17,6 +17,7 @@
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
+#include "slab_medium.hpp"
 
 using namespace kiri::geometry;
 
@@ -27,23 +28,7 @@ namespace {
 Medium slab(double bottom, double top, double sigma, double albedo, double g, double half = 5000.0,
             double top_density = 1.0, double detail = 0.0)
 {
-    MediumGrid grid;
-    grid.nx = grid.ny = 3;
-    grid.x0 = grid.y0 = -half;
-    grid.dx = grid.dy = half;
-    grid.floor.assign(9, bottom);
-    grid.bottom.assign(9, bottom);
-    grid.top.assign(9, top);
-    grid.coverage.assign(9, 1.0);
-    MediumOptions o;
-    o.extinction = sigma;
-    o.albedo = albedo;
-    o.anisotropy = g;
-    o.top_density = top_density;
-    MediumDetail d;
-    d.detail = detail;
-    d.detail_scale = 150.0;
-    return Medium(std::move(grid), o, d);
+    return kiri::test::slab_medium(bottom, top, sigma, albedo, g, half, -half, top_density, detail);
 }
 
 FogLighting sun_at(double elevation, double azimuth, const glm::dvec3& radiance)
@@ -66,29 +51,7 @@ void expect_within(const PathEstimate& e, const glm::dvec3& expected, double k, 
             << "channel " << c << ", standard error " << e.std_error[c];
 }
 
-// Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre polynomial).
-std::vector<std::pair<double, double>> gauss_legendre(int n)
-{
-    std::vector<std::pair<double, double>> nodes;
-    for (int i = 0; i < n; ++i) {
-        double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5)), dp = 0.0;
-        for (int it = 0; it < 100; ++it) {
-            double p0 = 1.0, p1 = x;
-            for (int k = 2; k <= n; ++k) {
-                const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n * (x * p1 - p0) / (x * x - 1.0);
-            const double dx = p1 / dp;
-            x -= dx;
-            if (std::abs(dx) < 1e-15)
-                break;
-        }
-        nodes.emplace_back(x, 2.0 / ((1.0 - x * x) * dp * dp));
-    }
-    return nodes;
-}
+using kiri::test::gauss_legendre;
 
 // The H-function of isotropic scattering with albedo w ([Chandrasekhar60]), from its integral equation
 // 1 / H(mu) = 1 - (w / 2) mu integral_0^1 H(mu') / (mu + mu') dmu', solved by iteration on
