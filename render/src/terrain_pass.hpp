@@ -34,6 +34,8 @@ public:
     void set_ground_uniforms(const ShaderProgram& program) const;
     //! What is uploaded (changes when the terrain or the exaggeration do).
     const void* identity() const { return uploaded_heights_; }
+    //! Whether the ground runs on beyond the grid to the horizon (the surround is drawn).
+    bool surround() const { return uploaded_surround_; }
     //! The grid's bounds (the surround lies outside them).
     glm::dvec3 bounds_min() const { return min_; }
     glm::dvec3 bounds_max() const { return max_; }
