@@ -16,7 +16,7 @@ float next_moving_scale(float scale, double measured_ms, const FrameBudget& budg
     return std::clamp(float(last * step), lo, hi);
 }
 
-double froxel_resolution_for(float ratio)
+double resolution_step(float ratio)
 {
     if (!(std::isfinite(ratio) && ratio > 0.0f))
         return 0.125;

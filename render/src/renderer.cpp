@@ -121,6 +121,8 @@ void Renderer::set_layers(const geometry::LayerBase& base, const geometry::Layer
 
 void Renderer::clear_layers() { impl_->layers.clear(); }
 
+void Renderer::set_terrain_resolution(double scale) { impl_->terrain.set_resolution(scale); }
+
 void Renderer::set_froxel_resolution(double scale)
 {
     impl_->froxel_resolution = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
@@ -303,6 +305,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.stats.uploads = std::exchange(r.pending_uploads, 0);
     r.stats.layers = r.layers.last_layer_count();
     r.stats.layer_triangles = r.layers.last_triangle_count();
+    r.stats.terrain_triangles = int(r.terrain.drawn_triangles());
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     r.last_frame = frame;
 }

@@ -92,6 +92,7 @@ struct FrameStats {
     //! fog's optical depth towards the sun that the froxels and the layers read.
     int sun_volume_updates = 0;
     int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
+    int terrain_triangles = 0;     //!< the grid's triangles drawn (set_terrain_resolution's level)
     int layer_triangles = 0;       //!< the base's triangles drawn for each layer (the level of detail's)
     int particles = 0;             //!< particle billboards drawn
     int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
@@ -149,6 +150,11 @@ public:
     //! \throw kiri::InputError for options out of range.
     void set_froxel_fog(const geometry::Medium* medium, const geometry::FroxelOptions& options);
     void clear_froxel_fog();
+    //! The terrain's grid drawn at every (1 / scale)-th sample, scale a power of two in [1/8, 1]
+    //! (rounded down to one; the grid's border keeps every sample, so the surround meets it
+    //! without a crack): for frames drawn small, where a cell of the whole grid is a fraction of
+    //! a pixel (the preview while the view moves). The sun's shadow map keeps the whole grid. Default 1.
+    void set_terrain_resolution(double scale);
     //! The froxel volume's tiles across and down relative to the options' size, clamped to
     //! [1/8, 1] (at least one tile): a frame drawn at a fraction of its size (the preview while
     //! the view moves) keeps its pixels per tile, and the volume's passes cost that fraction
