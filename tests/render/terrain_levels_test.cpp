@@ -75,8 +75,9 @@ TEST(TerrainLevels, StrideOneIsTheFullGrid)
     std::vector<std::uint32_t> expected;
     for (int j = 0; j + 1 < g.ny; ++j)
         for (int i = 0; i + 1 < g.nx; ++i)
-            expected.insert(expected.end(), {g.vertex(i, j), g.vertex(i + 1, j), g.vertex(i + 1, j + 1),
-                                             g.vertex(i, j), g.vertex(i + 1, j + 1), g.vertex(i, j + 1)});
+            expected.insert(expected.end(),
+                            {g.vertex(i, j), g.vertex(i + 1, j), g.vertex(i + 1, j + 1), g.vertex(i, j),
+                             g.vertex(i + 1, j + 1), g.vertex(i, j + 1)});
     EXPECT_EQ(grid_level_indices(g, 1), expected);
 }
 
