@@ -16,4 +16,14 @@ float next_moving_scale(float scale, double measured_ms, const FrameBudget& budg
     return std::clamp(float(last * step), lo, hi);
 }
 
+double resolution_step(float ratio)
+{
+    if (!(std::isfinite(ratio) && ratio > 0.0f))
+        return 0.125;
+    double r = 1.0;
+    while (r > 0.125 && r > double(ratio) * (1.0 + 1e-6))
+        r *= 0.5;
+    return r;
+}
+
 }  // namespace kiri::preview

@@ -43,7 +43,18 @@ void main()
     // the tile see farther) take the light of the ray's last point before the ground, not that
     // of a point inside the hill.
     vec3 p = fx_world(uv, min(mix(d0, d1, density.z), 0.998 * fx_tile_ground(id.xy)));
+    // The phase by the direction of the rays through the froxel.
     float cos_theta = dot(normalize(p - u_fx_eye), u_sun_direction);
+    // J is the light of fog. A point above the Medium's top or below its bottom (the tile's
+    // jittered point above the fog its central ray is in, or a froxel without fog, whose J the
+    // apply reads for fog its pixels find nearby) would take the sun's light in empty air,
+    // unshadowed by the fog: under a grazing sun, all of the difference. It takes the sun's light
+    // of its column's fog nearest to it.
+    if (u_md_on != 0 && weights.x > 0.0 && shell_covers(p.xy)) {
+        vec4 column = shell_column(p.xy);
+        if (column.z > column.y)
+            p.z = clamp(p.z, column.y, column.z - 1e-3 * (column.z - column.y));
+    }
     float visible = terrain_visibility(p, u_ts_bias);
     float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(p, u_sun_direction, u_sun_jitter) : 0.0;
     vec3 sun = 3.14159265358979 * u_sun_radiance * visible;  // pi sun: fog_lighting.hpp

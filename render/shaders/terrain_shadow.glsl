@@ -3,6 +3,7 @@
 // d behind occluders at depth o is lit exp(k (o - d)), clamped to 1. The low-pass keeps the
 // volume's shafts free of the flicker a sharp map gives.
 uniform int u_ts_on;
+uniform int u_ts_sun_set;        // the sun is below the horizon of a ground that runs on to it
 uniform sampler2D u_ts_esm;      // k * occluder depth (m), low-passed in log space
 uniform mat4 u_ts_matrix;        // world -> shadow map [0, 1]^2 and light depth (m)
 uniform float u_ts_k;            // 1/m
@@ -13,6 +14,8 @@ float terrain_visibility(vec3 p, float bias)
 {
     if (u_ts_on == 0)
         return 1.0;
+    if (u_ts_sun_set != 0)
+        return 0.0;
     vec3 l = (u_ts_matrix * vec4(p, 1.0)).xyz;
     if (any(lessThan(l.xy, vec2(0.0))) || any(greaterThan(l.xy, vec2(1.0))))
         return 1.0;

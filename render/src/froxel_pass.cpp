@@ -174,6 +174,11 @@ void FroxelPass::bind_layout(const ShaderProgram& p) const
     glBindTextureUnit(unit_tiles, v_->tiles[current_].get());
 }
 
+void FroxelPass::set_resolution(double scale)
+{
+    resolution_ = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
+}
+
 void FroxelPass::prepare(const FrameContext& frame, const ShadowMapPass* shadow)
 {
     for (PassTimer& timer : timers_)
@@ -196,7 +201,8 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
 {
     if (!visible_)
         return;
-    const glm::ivec3 size(options_.width, options_.height, options_.slices);
+    const auto tiles = [&](int n) { return std::max(1, int(std::lround(n * resolution_))); };
+    const glm::ivec3 size(tiles(options_.width), tiles(options_.height), options_.slices);
     if (v_->size != size) {
         v_->density = make_volume(size, GL_RGBA16F);
         v_->light = make_volume(size, GL_RGBA16F);
@@ -210,6 +216,7 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
         glTextureParameteri(v_->light.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(v_->light.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         v_->size = size;
+        stats_.size = size;
         history_valid_ = false;
         key_.reset();
     }

@@ -55,6 +55,8 @@ public:
     //! The Medium drawn (null: the height fog alone).
     const geometry::Medium* medium() const { return medium_; }
     const geometry::FroxelOptions& options() const { return options_; }
+    //! Renderer::set_froxel_resolution.
+    void set_resolution(double scale);
     //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's).
     void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
     //! The fog on the resolved frame (colour: RGBA8, read and written).
@@ -82,6 +84,7 @@ private:
     ShellMesh shell_;
     const geometry::Medium* medium_ = nullptr;
     geometry::FroxelOptions options_;
+    double resolution_ = 1.0;  // of the options' tiles across and down
     bool enabled_ = false, visible_ = false, apply_ = false;
     FroxelTileBounds::Mode mode_ = FroxelTileBounds::Mode::standard;
     bool shell_ok_ = false;  // the shell's per-pixel depths are valid this frame

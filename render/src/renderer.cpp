@@ -44,6 +44,7 @@ struct Renderer::Impl {
     std::optional<std::pair<const geometry::Medium*, geometry::HeightFog>> sun_medium;
     std::optional<geometry::FogPartition> partition;
     double layer_scale = 0.5;
+    double froxel_resolution = 1.0;  // set_froxel_resolution
     bool layers_multisampled = false;
     detail::RenderTargets targets;
     SunLight sun;
@@ -120,6 +121,15 @@ void Renderer::set_layers(const geometry::LayerBase& base, const geometry::Layer
 
 void Renderer::clear_layers() { impl_->layers.clear(); }
 
+void Renderer::set_terrain_resolution(double scale) { impl_->terrain.set_resolution(scale); }
+
+void Renderer::set_froxel_resolution(double scale)
+{
+    impl_->froxel_resolution = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
+    if (impl_->froxel)
+        impl_->froxel->set_resolution(impl_->froxel_resolution);
+}
+
 void Renderer::set_layer_resolution(double scale, bool multisampled)
 {
     impl_->layer_scale = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
@@ -169,6 +179,7 @@ void Renderer::set_froxel_fog(const geometry::Medium* medium, const geometry::Fr
     if (!impl_->froxel)
         impl_->froxel = std::make_unique<detail::FroxelPass>();
     impl_->froxel->set_fog(medium, options);
+    impl_->froxel->set_resolution(impl_->froxel_resolution);
 }
 
 void Renderer::clear_froxel_fog()
@@ -294,6 +305,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     r.stats.uploads = std::exchange(r.pending_uploads, 0);
     r.stats.layers = r.layers.last_layer_count();
     r.stats.layer_triangles = r.layers.last_triangle_count();
+    r.stats.terrain_triangles = int(r.terrain.drawn_triangles());
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     r.last_frame = frame;
 }

@@ -30,6 +30,10 @@ bool ShadowMapPass::update(const TerrainPass& terrain, const glm::vec3& sun, con
 {
     if (!terrain.has_terrain())
         return false;
+    // A ray towards a sun below the horizon descends for ever: it meets the surround, flat at its
+    // base level out to the horizon, whatever height it starts from (at the grid's edge the
+    // surround is continuous with it). So the sun sets for the whole fog at once.
+    sun_set_ = sun.z < 0.0f && terrain.surround();
     if (ready() && sun == sun_ && lo == lo_ && hi == hi_ && size == size_ && sharpness == sharpness_ &&
         terrain_ == terrain.identity())
         return false;
@@ -111,6 +115,7 @@ void ShadowMapPass::bind(const ShaderProgram& program, bool on) const
     program.set("u_ts_esm", shadow_map_unit);  // even when off: its unit must not be another type's
     if (!on || !ready())
         return;
+    program.set("u_ts_sun_set", int(sun_set_));
     program.set("u_ts_matrix", matrix_);
     program.set("u_ts_k", k_);
     program.set("u_ts_bias", texel_m_);

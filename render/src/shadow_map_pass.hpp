@@ -44,6 +44,9 @@ private:
     glm::dvec3 lo_{0.0}, hi_{-1.0};
     double sharpness_ = 0.0;
     const void* terrain_ = nullptr;
+    // The sun below the horizon of a ground that runs on to it (the surround): every point of
+    // the fog is in the ground's shadow, whatever the map, which holds the grid alone, says.
+    bool sun_set_ = false;
 };
 
 //! terrain_shadow.glsl's uniforms on `program`: map's shadows, or none where map is null.

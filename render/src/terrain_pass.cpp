@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kiri/geometry/terrain/ground.hpp"
+#include "terrain_levels.hpp"
 #include "shadow_map_pass.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
@@ -107,6 +108,14 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
     grid_index_count_ = GLsizei(indices.size());
     surround_index_count_ = GLsizei(outer.size());
     indices.insert(indices.end(), outer.begin(), outer.end());
+    // The coarser levels after them, on the same vertices.
+    levels_[0] = {0, grid_index_count_};
+    const GridLayout layout{hf.nx, hf.ny, nx, k};
+    for (int level = 1; level < int(std::size(levels_)); ++level) {
+        const std::vector<std::uint32_t> coarse = grid_level_indices(layout, 1 << level);
+        levels_[level] = {GLsizei(indices.size()), GLsizei(coarse.size())};
+        indices.insert(indices.end(), coarse.begin(), coarse.end());
+    }
     vao_ = make_vertex_array();
     vertices_ = make_buffer();
     indices_ = make_buffer();
@@ -150,6 +159,15 @@ void TerrainPass::set_ground_uniforms(const ShaderProgram& p) const
     p.set("u_ground_z", base_z_);
 }
 
+void TerrainPass::set_resolution(double scale)
+{
+    level_ = 0;
+    while (level_ + 1 < int(std::size(levels_)) && std::isfinite(scale) && scale * (1 << (level_ + 1)) <= 1.0 + 1e-9)
+        ++level_;
+}
+
+GLsizei TerrainPass::drawn_triangles() const { return has_terrain() ? levels_[level_].count / 3 : 0; }
+
 void TerrainPass::draw_mesh() const
 {
     if (!has_terrain())
@@ -180,7 +198,9 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) c
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao_.get());
-    glDrawElements(GL_TRIANGLES, grid_index_count_, GL_UNSIGNED_INT, nullptr);
+    const Level& grid = levels_[level_];
+    glDrawElements(GL_TRIANGLES, grid.count, GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(std::size_t(grid.offset) * sizeof(std::uint32_t)));
     if (surround_index_count_ > 0) {
         // The frame's far plane is fitted to the grid: the surround beyond it is kept at the far
         // depth (the sky pass's flat ground is what lies further still).

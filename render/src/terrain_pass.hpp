@@ -34,6 +34,14 @@ public:
     void set_ground_uniforms(const ShaderProgram& program) const;
     //! What is uploaded (changes when the terrain or the exaggeration do).
     const void* identity() const { return uploaded_heights_; }
+    //! The grid drawn by draw() at every (1 / scale)-th sample, scale a power of two in [1/8, 1]
+    //! (rounded down to one; terrain_levels.hpp): Renderer::set_terrain_resolution. The depth
+    //! passes (draw_mesh) keep the whole grid.
+    void set_resolution(double scale);
+    //! The grid's triangles draw() draws at the resolution set.
+    GLsizei drawn_triangles() const;
+    //! Whether the ground runs on beyond the grid to the horizon (the surround is drawn).
+    bool surround() const { return uploaded_surround_; }
     //! The grid's bounds (the surround lies outside them).
     glm::dvec3 bounds_min() const { return min_; }
     glm::dvec3 bounds_max() const { return max_; }
@@ -53,6 +61,12 @@ private:
     std::size_t uploaded_size_ = 0;
     double uploaded_exaggeration_ = 0.0;
     bool uploaded_surround_ = false;
+    // The grid's levels in the index buffer: every sample, every 2nd, 4th and 8th.
+    struct Level {
+        GLsizei offset = 0, count = 0;
+    };
+    Level levels_[4];
+    int level_ = 0;
 };
 
 }  // namespace kiri::render::detail

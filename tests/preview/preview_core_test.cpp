@@ -275,6 +275,20 @@ TEST(SaveScene, WritesTheTerrainRelativeAndLoadsBackEqual)
 
 // Dynamic resolution (frame_budget.hpp): the step is sqrt(target / measured), the exact scale
 // for a frame whose whole cost is per pixel, damped to [0.7, 1.25] a frame.
+TEST(FrameBudget, TheReducedResolutionStepsByPowersOfTwo)
+{
+    using kiri::preview::resolution_step;
+    EXPECT_EQ(resolution_step(1.0f), 1.0);
+    EXPECT_EQ(resolution_step(0.99f), 0.5);
+    EXPECT_EQ(resolution_step(0.5f), 0.5);
+    EXPECT_EQ(resolution_step(0.3f), 0.25);
+    EXPECT_EQ(resolution_step(0.125f), 0.125);
+    EXPECT_EQ(resolution_step(0.01f), 0.125);  // never coarser than an eighth
+    EXPECT_EQ(resolution_step(4.0f), 1.0);
+    EXPECT_EQ(resolution_step(std::nanf("")), 0.125);
+    EXPECT_EQ(resolution_step(-1.0f), 0.125);
+}
+
 TEST(FrameBudget, StepsTowardsTheBudgetDampedAndClamped)
 {
     using kiri::preview::FrameBudget;

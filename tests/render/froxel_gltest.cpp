@@ -31,6 +31,41 @@ TEST_F(FroxelGl, HomogeneousFog)
     EXPECT_LT(r.error.p99_relative, 0.06);
 }
 
+TEST_F(FroxelGl, AReducedResolutionKeepsThePixelsPerTile)
+{
+    // The preview while the view moves: the frame at half its size and the volume at half its
+    // tiles across and down (Renderer::set_froxel_resolution), so a tile still spans the still's
+    // 4 x 4 pixels, and the picture as close to the reference as the still at that size.
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = slab(0.0, 1500.0, 0.003);
+    Camera c;
+    c.position = {0.0, -1800.0, 60.0};
+    c.target = {0.0, 0.0, 0.0};
+    const g::FroxelOptions o = small(24, 14);
+    const SunLight light = sun();
+    Renderer r;
+    r.set_terrain(ground);
+    SunLight shadowed = light;
+    shadowed.terrain_shadows = o.terrain_shadows;
+    r.set_sun(shadowed);
+    r.set_froxel_fog(&fog, o);
+    r.set_froxel_resolution(0.5);
+    r.render(c, 48, 27);
+    EXPECT_EQ(r.last_stats().froxel.size, glm::ivec3(12, 7, o.slices));
+    const g::ReferenceImage truth =
+        g::render_reference_fog({&fog, o.height_fog}, &ground.heightfield(),
+                                kiri::render::reference_view(c, 48, 27, o.far), lighting(light, o, &fog));
+    const kiri::render::FogError e = kiri::render::compare_fog(r.read_froxel_fog(), truth);
+    std::printf("    half the tiles at half the size: mean %.4f, p99 %.4f\n", e.mean_relative, e.p99_relative);
+    EXPECT_GT(e.fog_pixels, 48 * 27 / 2);
+    EXPECT_LT(e.mean_relative, 0.02);
+    EXPECT_LT(e.p99_relative, 0.06);
+    // Back to the whole volume: rebuilt at the options' size.
+    r.set_froxel_resolution(1.0);
+    r.render(c, 96, 54);
+    EXPECT_EQ(r.last_stats().froxel.size, glm::ivec3(24, 14, o.slices));
+}
+
 TEST_F(FroxelGl, HeightFog)
 {
     const g::Terrain ground = flat_ground();

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -45,6 +47,49 @@ TEST(Camera, TargetProjectsToImageCentreAndFovEdgeToTopRow)
     EXPECT_NEAR(top.y, 0.0, 1e-9);
     const glm::dvec2 right = kiri::render::project_to_pixel(c, {10.0 + t * 640.0 / 480.0, 0.0, 50.0}, 640, 480);
     EXPECT_NEAR(right.x, 640.0, 1e-9);
+}
+
+TEST_F(RendererGl, ACoarseTerrainLevelDrawsAFractionOfTheGridAndTheSameGround)
+{
+    // A frame drawn small (80x60) at every 4th sample of a 257 x 257 hill: a sixteenth of the
+    // triangles (and the fans of the border), the ground where it was: every terrain point picked
+    // on the coarse level lies on the hill within the coarse cells' chord error, and the picture
+    // differs from the whole grid's by little.
+    const kiri::geometry::Terrain hill = kiri::test::gaussian_hill(257, 5.0);
+    Renderer renderer;
+    renderer.set_terrain(hill);
+    const Camera camera = oblique_camera();
+    const int w = 80, h = 60;
+    const Image full = renderer.render(camera, w, h);
+    const int full_triangles = renderer.last_stats().terrain_triangles;
+    EXPECT_EQ(full_triangles, 256 * 256 * 2);
+    std::vector<std::optional<glm::dvec3>> full_picks;
+    for (int y = 0; y < h; y += 5)
+        for (int x = 0; x < w; x += 5)
+            full_picks.push_back(renderer.pick(x, y));
+    renderer.set_terrain_resolution(0.25);
+    const Image coarse = renderer.render(camera, w, h);
+    const int coarse_triangles = renderer.last_stats().terrain_triangles;
+    EXPECT_GT(coarse_triangles, full_triangles / 16);
+    EXPECT_LT(coarse_triangles, full_triangles / 14);
+    // Each pixel sees the ground where the whole grid put it, within the coarse cells' chord
+    // error (a quarter of a metre on this hill) and the depth buffer's steps.
+    int picked = 0;
+    std::size_t k = 0;
+    for (int y = 0; y < h; y += 5)
+        for (int x = 0; x < w; x += 5, ++k)
+            if (const auto seen = renderer.pick(x, y); seen && full_picks[k]) {
+                ++picked;
+                EXPECT_LT(glm::length(*seen - *full_picks[k]), 2.0) << x << ", " << y;
+            }
+    EXPECT_GT(picked, 100);
+    double difference = 0.0;
+    for (std::size_t k = 0; k < full.rgba.size(); ++k)
+        difference += std::abs(double(full.rgba[k]) - double(coarse.rgba[k]));
+    difference /= 255.0 * double(full.rgba.size());
+    std::printf("    coarse level: %d of %d triangles, mean difference %.4f\n", coarse_triangles, full_triangles,
+                difference);
+    EXPECT_LT(difference, 0.01);
 }
 
 TEST_F(RendererGl, KnownTerrainPointsAppearAtTheirProjectedPixels)

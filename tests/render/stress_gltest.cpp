@@ -153,10 +153,12 @@ TEST_F(Stress, SunOnTheHorizonAndBelowIt)
         light.direction = {0.6, 0.8, z};
         const Compared r = compare(ground, &fog, small(16, 9), looking_at_slab(), 64, 36, light);
         EXPECT_GT(r.error.fog_pixels, 64 * 36 / 4) << z;
-        // The froxels' sun march is short against a grazing sun's path through 2 km of fog, and
-        // below the horizon they still light the fog where the reference's ground blocks the
-        // sun: 21 % and 28 % off, a known gap (docs/froxel.md, "What is left"). A guard.
-        EXPECT_LT(r.error.mean_relative, 0.35) << z;
+        // 1.4 % and 0.9 % measured. On the horizon the fog's light is its top's skin: lit where
+        // a froxel's light was taken in the air above the top, 10.6 %. Below it the ground beyond
+        // the grid, flat to the horizon, shadows every point: with the map of the grid alone
+        // saying lit, 18.8 %.
+        EXPECT_LT(r.error.mean_relative, 0.03) << z;
+        EXPECT_LT(r.error.p99_relative, 0.15) << z;
     }
 }
 

@@ -102,6 +102,12 @@ FrameCost FogJudge::frame_cost(int width, int height, int frames)
     return cost;
 }
 
+void FogJudge::set_reduced_resolution(double scale)
+{
+    renderer_->set_froxel_resolution(scale);
+    renderer_->set_terrain_resolution(scale);
+}
+
 double FogJudge::still_ms(int width, int height)
 {
     renderer_->clear_froxel_fog();  // the fog seen for the first time, as in a new process

@@ -66,7 +66,8 @@ struct FroxelStats {
     //! The volume is final for this view: a still's (its lighting's jittered samples taken at
     //! once), or one without temporal filtering. The same view again reruns nothing.
     bool converged = false;
-    int updates = 0;  //!< frames whose passes ran since set_froxel_fog
+    int updates = 0;     //!< frames whose passes ran since set_froxel_fog
+    glm::ivec3 size{0};  //!< the volume's froxels across, down and in depth (set_froxel_resolution)
     //! The last apply: its pixels, and those that marched their own rays (fog-aware: where the
     //! volume's slices do not resolve the fog around them) instead of reading the volume.
     int applied_pixels = 0, marched_pixels = 0;
@@ -91,6 +92,7 @@ struct FrameStats {
     //! fog's optical depth towards the sun that the froxels and the layers read.
     int sun_volume_updates = 0;
     int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
+    int terrain_triangles = 0;     //!< the grid's triangles drawn (set_terrain_resolution's level)
     int layer_triangles = 0;       //!< the base's triangles drawn for each layer (the level of detail's)
     int particles = 0;             //!< particle billboards drawn
     int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
@@ -148,6 +150,16 @@ public:
     //! \throw kiri::InputError for options out of range.
     void set_froxel_fog(const geometry::Medium* medium, const geometry::FroxelOptions& options);
     void clear_froxel_fog();
+    //! The terrain's grid drawn at every (1 / scale)-th sample, scale a power of two in [1/8, 1]
+    //! (rounded down to one; the grid's border keeps every sample, so the surround meets it
+    //! without a crack): for frames drawn small, where a cell of the whole grid is a fraction of
+    //! a pixel (the preview while the view moves). The sun's shadow map keeps the whole grid. Default 1.
+    void set_terrain_resolution(double scale);
+    //! The froxel volume's tiles across and down relative to the options' size, clamped to
+    //! [1/8, 1] (at least one tile): a frame drawn at a fraction of its size (the preview while
+    //! the view moves) keeps its pixels per tile, and the volume's passes cost that fraction
+    //! squared. A change of it rebuilds the volume without history. Default 1.
+    void set_froxel_resolution(double scale);
     //! The froxel fog each pixel of the last frame received at its depth (empty without it).
     FogBuffer read_froxel_fog();
     //! Adds or replaces the overlay mesh `name` (overlay_mesh.hpp), uploaded once here; its
