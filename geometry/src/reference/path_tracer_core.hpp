@@ -101,6 +101,10 @@ public:
     double medium_collision(const glm::dvec3& o, const glm::dvec3& w, double t1, Random& rng) const;
     //! The same for the height fog alone (exactly, by its closed form).
     double haze_collision(const glm::dvec3& o, const glm::dvec3& w, double t1, Random& rng) const;
+    //! The sun's transmittance from p (the terrain hides, the fog dims; ratio tracking in the
+    //! Medium, an unbiased estimate).
+    double sun_transmittance(const glm::dvec3& p, Random& rng) const;
+    const HeightFog& haze() const { return haze_; }
     const Medium* medium() const { return medium_; }
     bool has_haze() const { return haze_on_; }
     const HeightfieldRay* terrain() const { return terrain_.get(); }
@@ -125,7 +129,6 @@ private:
     int max_bounces_ = 128, roulette_after_ = 3;
 
     double medium_transmittance(const glm::dvec3& o, const glm::dvec3& w, Random& rng) const;
-    double sun_transmittance(const glm::dvec3& p, Random& rng) const;
     glm::dvec3 sky(const glm::dvec3& w) const;
     //! Calls visit(cell, a, b) for each piece [a, b] of o + t w, t in [t0, t1], inside a cell
     //! that may hold fog, nearest first, until visit returns false.
