@@ -251,9 +251,12 @@ TEST(LightVolume, TheTerrainsShadowHoldsDiffuseLightFromTheSunlitFog)
     EXPECT_EQ(single.inscatter.x, 0.0);
     // The fog along the ray is uniform: the integral of sigma albedo J(t) exp(-sigma t) over its
     // 200 m, J the diffuse light the volume scatters towards the eye (the midpoint rule, 1 m).
+    // The slab's columns are alike: one column_scale for them all.
+    const double scale = v.column_scale(m.column(480.0, 0.0));
+    EXPECT_NEAR(scale, -std::expm1(-0.02 * 100.0), 1e-12);
     double expected = 0.0;
     for (double t = 0.5; t < 200.0; t += 1.0)
-        expected += 0.02 * 0.99 * v.in_scattered(480.0, -100.0 + t, 0.1, -along, 0.8) * std::exp(-0.02 * t);
+        expected += 0.02 * 0.99 * v.in_scattered(480.0, -100.0 + t, 0.1, -along, 0.8, scale) * std::exp(-0.02 * t);
     EXPECT_GT(expected, 0.2 * 0.99 * shadow);
     EXPECT_NEAR(baked.inscatter.x, expected, 0.01 * expected);
 }
@@ -311,4 +314,73 @@ TEST(LightVolume, BadInputStaysFinite)
     light.multiple_scattering = MultipleScattering::none;
     const RayFog single = reference_ray({&m, {}}, nullptr, {0.0, 0.0, 50.0}, {1.0, 0.0, 0.0}, 500.0, light);
     EXPECT_EQ(without.inscatter, single.inscatter);
+}
+
+TEST(LightVolume, AThinLayerBesideAThickBodyInOneCellGetsItsOwnLight)
+{
+    // One (x, y) cell holds two bodies of fog 200 m apart: a slab 150 m thick (x < 500) and a layer
+    // 10 m thin (x > 700), under a sun 35 degrees up from the north (both lit alike), on a black
+    // ground. The thin layer's diffuse light is its own (tau 0.2 of it) and a little of the slab's
+    // across the gap; a cell that averages the two gives it the slab's (optical depth 3). Looking
+    // down on the thin layer: the model (single scattering plus the baked volume) against every
+    // order path traced; with the cell's diffuse light unnormalised the model is several times too
+    // bright there, while over the slab both agree.
+    const Heightfield ground =
+        kiri::test::make_heightfield(21, 21, 100.0, -500.0, -1000.0, [](double, double) { return 0.0; });
+    MediumGrid grid;
+    grid.nx = 41;
+    grid.ny = 3;
+    grid.x0 = 0.0;
+    grid.y0 = -500.0;
+    grid.dx = 25.0;
+    grid.dy = 500.0;
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) {
+            const double x = grid.x0 + i * grid.dx;
+            grid.floor.push_back(0.0);
+            grid.bottom.push_back(0.0);
+            grid.top.push_back(x <= 500.0 ? 150.0 : x >= 700.0 ? 10.0 : 0.0);
+            grid.coverage.push_back(x <= 500.0 || x >= 700.0 ? 1.0 : 0.0);
+        }
+    MediumOptions mo;
+    mo.extinction = 0.02;
+    mo.albedo = 0.99;
+    mo.anisotropy = 0.8;
+    mo.top_density = 1.0;
+    MediumDetail md;
+    md.detail = 0.0;
+    const Medium m(std::move(grid), mo, md);
+    FogLighting light;
+    light.sun_direction = sun_towards(35.0 * std::numbers::pi / 180.0, 0.5 * std::numbers::pi);
+    light.sun_radiance = glm::dvec3(1.0);
+    light.sky = false;
+    light.multiple_scattering = MultipleScattering::baked;
+    LightVolumeOptions o = small_bake(40000);
+    o.max_side = 1;  // one cell in (x, y)
+    o.levels = 4;
+    ReferenceOptions ro;
+    ro.shade_terrain = false;
+    PathTracerOptions po;
+    po.samples = 4000;
+    po.sky = PathSky::none;
+    po.ground = PathGround::black;
+    const glm::dvec3 down = glm::normalize(glm::dvec3(0.1, 0.05, -1.0));
+    const glm::dvec3 over_thin(850.0, 0.0, 300.0), over_thick(250.0, 0.0, 300.0);
+    light.light_volume =
+        std::make_shared<const LightVolume>(bake_light_volume({&m, {}}, &ground, light.sun_direction, o));
+    ASSERT_EQ(light.light_volume->nx, 1);
+    ASSERT_EQ(light.light_volume->ny, 1);
+    FogLighting unnormalised = light;
+    o.column_normalised = false;
+    unnormalised.light_volume =
+        std::make_shared<const LightVolume>(bake_light_volume({&m, {}}, &ground, light.sun_direction, o));
+    for (const glm::dvec3& origin : {over_thin, over_thick}) {
+        const PathEstimate truth = path_traced_ray({&m, {}}, &ground, origin, down, 1e6, light, po, 11);
+        const double model = reference_ray({&m, {}}, &ground, origin, down, 1e6, light, ro).inscatter.x;
+        const double old = reference_ray({&m, {}}, &ground, origin, down, 1e6, unnormalised, ro).inscatter.x;
+        const double bound = 0.25 * truth.radiance.x + 3.0 * truth.std_error.x;
+        EXPECT_NEAR(model, truth.radiance.x, bound) << "over x = " << origin.x;
+        if (origin.x > 700.0)
+            EXPECT_GT(old, 1.6 * truth.radiance.x) << "the unnormalised cell, over the thin layer";
+    }
 }

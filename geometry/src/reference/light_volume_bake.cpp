@@ -102,7 +102,8 @@ public:
                         const double x = v_.x0 + (double(cell % v_.nx) + (a + 0.5) / raster) * v_.dx;
                         const double y = v_.y0 + (double(cell / v_.nx) + (b + 0.5) / raster) * v_.dy;
                         const MediumColumn c = medium_.column(x, y);
-                        double tau = medium_.max_extinction() * std::max(c.top - c.floor, 0.0) * c.coverage * mean_profile;
+                        double tau =
+                            medium_.max_extinction() * std::max(c.top - c.floor, 0.0) * c.coverage * mean_profile;
                         if (tracer_.has_haze()) {
                             const double za = ground_under(x, y);
                             tau += haze.optical_depth({x, y, za}, up, 0.0, std::max(box_.max.z - za, 0.0));
@@ -219,10 +220,10 @@ private:
         const bool shell = tracer_.medium() && thick > 0.0 && c.coverage > 0.0;
         const double mean_profile = 0.5 * (1.0 + medium_.options().top_density);
         const double slope = shell ? std::min(medium_.max_extinction() * thick * mean_profile / s, 30.0) : 0.0;
-        const double rise = -std::expm1(-slope);  // 1 - exp(-slope)
+        const double rise = -std::expm1(-slope);    // 1 - exp(-slope)
         const auto shell_density = [&](double h) {  // per unit h
-            return uniform_share + (1.0 - uniform_share) *
-                (slope > 1e-9 ? slope * std::exp(slope * (h - 1.0)) / rise : 1.0);
+            return uniform_share +
+                (1.0 - uniform_share) * (slope > 1e-9 ? slope * std::exp(slope * (h - 1.0)) / rise : 1.0);
         };
         // The height fog's part: its first collisions along the sun between the box's floor and top.
         const HeightFog& haze = tracer_.haze();
@@ -237,13 +238,14 @@ private:
         const double haze_mass = tb - ta, shell_mass = shell ? -std::expm1(-slope / mean_profile) : 0.0;
         if (!(haze_mass > 0.0) && !shell)
             return f;
-        const double p_haze = !(haze_mass > 0.0) ? 0.0 : !shell ? 1.0 :
-            std::clamp(haze_mass / (haze_mass + shell_mass), 0.1, 0.9);
+        const double p_haze = !(haze_mass > 0.0) ? 0.0
+            : !shell                             ? 1.0
+                                                 : std::clamp(haze_mass / (haze_mass + shell_mass), 0.1, 0.9);
         double z = 0.0;
         if (rng.uniform() < p_haze) {
             const double target = -s * std::log(ta + rng.uniform() * haze_mass);
-            const double below_top = haze.free_path({x, y, zb}, -up, 0.0, zb - za,
-                                                    target - haze.optical_depth({x, y, zb}, up, 0.0, inf));
+            const double below_top =
+                haze.free_path({x, y, zb}, -up, 0.0, zb - za, target - haze.optical_depth({x, y, zb}, up, 0.0, inf));
             z = std::isfinite(below_top) ? zb - below_top : za;
         } else {
             const double u = rng.uniform();
@@ -257,12 +259,12 @@ private:
         if (shell && z >= c.floor && z <= c.top)
             density += (1.0 - p_haze) * shell_density((z - c.floor) / thick) / thick;
         if (p_haze > 0.0 && z >= za && z <= zb)
-            density += p_haze * haze.sigma(z) / s * std::exp(-haze.optical_depth({x, y, z}, up, 0.0, inf) / s) /
-                haze_mass;
+            density +=
+                p_haze * haze.sigma(z) / s * std::exp(-haze.optical_depth({x, y, z}, up, 0.0, inf) / s) / haze_mass;
         density /= v_.dx * v_.dy;
         f.p = {x, y, z};
-        const double sigma = (tracer_.medium() ? medium_.extinction(f.p) : 0.0) +
-            (tracer_.has_haze() ? haze.sigma(f.p) : 0.0);
+        const double sigma =
+            (tracer_.medium() ? medium_.extinction(f.p) : 0.0) + (tracer_.has_haze() ? haze.sigma(f.p) : 0.0);
         if (!(sigma > 0.0) || !(density > 0.0))
             return f;
         const double transmittance = tracer_.sun_transmittance(f.p, rng);
@@ -283,9 +285,10 @@ private:
         const double across = std::hypot(w.x, w.y);
         const double max_step = across > 0.0 ? step_ / across : inf;
         long long count = 0;
+        // The step's level height from the last point's column (the shell's thickness changes
+        // little over a step): one column lookup per point.
+        MediumColumn c = medium_.column(o.x, o.y);
         for (double t = 0.0; t < length;) {
-            const glm::dvec3 here = o + w * t;
-            const MediumColumn c = medium_.column(here.x, here.y);
             const double level = (c.top - c.floor) / v_.nz;
             double dt = std::min(max_step, 2.0 * step_);
             if (level > 0.0 && w.z != 0.0)
@@ -294,7 +297,8 @@ private:
             const double seg = std::min(dt, length - t);
             const glm::dvec3 p = o + w * (t + rng.uniform() * seg);
             t += seg;
-            const double h = shell_height(medium_.column(p.x, p.y), p.z);
+            c = medium_.column(p.x, p.y);
+            const double h = shell_height(c, p.z);
             if (h < 0.0)
                 continue;
             const int i = int(std::floor((p.x - v_.x0) / v_.dx)), j = int(std::floor((p.y - v_.y0) / v_.dy));
@@ -382,24 +386,32 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
         deposits += mine;
     });
 
-    // Each cell's volume: its footprint's shell thickness / levels, integrated on a 4 x 4 raster.
-    constexpr int raster = 4;
-    std::vector<double> column_volume(std::size_t(v.nx) * v.ny, 0.0);
+    // Each cell's volume: its footprint's shell thickness / levels, integrated on a raster; with
+    // the column normalisation, the volume-weighted mean of column_scale over it too.
+    if (options.column_normalised)
+        v.column_extinction = medium->options().extinction * 0.5 * (1.0 + medium->options().top_density);
+    constexpr int raster = 8;
+    std::vector<double> column_volume(std::size_t(v.nx) * v.ny, 0.0), column_mean(column_volume.size(), 1.0);
     for (int j = 0; j < v.ny; ++j)
         for (int i = 0; i < v.nx; ++i) {
-            double sum = 0.0;
+            double sum = 0.0, scaled = 0.0;
             for (int b = 0; b < raster; ++b)
                 for (int a = 0; a < raster; ++a) {
                     const MediumColumn c =
                         medium->column(v.x0 + (i + (a + 0.5) / raster) * v.dx, v.y0 + (j + (b + 0.5) / raster) * v.dy);
-                    sum += std::max(c.top - c.floor, 0.0);
+                    const double thick = std::max(c.top - c.floor, 0.0);
+                    sum += thick;
+                    scaled += thick * v.column_scale(c);
                 }
             column_volume[std::size_t(j) * v.nx + i] = sum / (raster * raster) * v.dx * v.dy / v.nz;
+            if (sum > 0.0)
+                column_mean[std::size_t(j) * v.nx + i] = std::max(scaled / sum, 1e-6);
         }
     const double quantum = baker.quantum();
     v.moments.assign(cells * nc, 0.0);
     for (std::size_t k = 0; k < cells; ++k) {
-        const double volume = column_volume[k % (std::size_t(v.nx) * v.ny)];
+        const std::size_t column = k % (std::size_t(v.nx) * v.ny);
+        const double volume = column_volume[column] * column_mean[column];
         if (!(volume > 0.0))
             continue;
         for (int q = 0; q < nc; ++q)

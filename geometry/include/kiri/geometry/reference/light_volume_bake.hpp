@@ -36,6 +36,9 @@ struct LightVolumeOptions {
     int max_side = 32;
     int max_bounces = 1000;  //!< scatterings a photon may have
     int roulette_after = 3;  //!< Russian roulette on the weight from this many scatterings on
+    //! Store the diffuse light over the cells' mean column_scale (light_volume.hpp), so that a
+    //! thin body of fog beside a thick one in the same cell does not get the thick one's light.
+    bool column_normalised = true;
     std::uint64_t seed = 1;
     bool surround = true;  //!< the ground beyond the DEM's edge (path_tracer.hpp)
     int threads = 0;       //!< 0: every core
