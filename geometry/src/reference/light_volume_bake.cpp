@@ -83,7 +83,7 @@ public:
     double quantum() const { return quantum_; }
     // Photons per (x, y) cell: `per_column` each, or, with `by_thickness`, per_column times the
     // share of the sunlight the column is expected to scatter (1 - exp(-tau / sin(elevation)),
-    // tau its vertical optical depth), at least a sixteenth of it: a thin fog's photons cost as
+    // tau its vertical optical depth), at least a quarter of it: a thin fog's photons cost as
     // much as a thick one's, and it scatters less light, so it needs fewer for the same noise. The
     // weights divide by each cell's own count, so the allocation changes the noise, not the mean.
     void allocate(long long per_column, bool by_thickness)
@@ -111,7 +111,7 @@ public:
                         share += -std::expm1(-tau / sun_.z) / (raster * raster);
                     }
                 counts_[std::size_t(cell)] =
-                    std::max((per_column + 15) / 16, (long long)std::llround(double(per_column) * share));
+                    std::max((per_column + 3) / 4, (long long)std::llround(double(per_column) * share));
             }
         }
         first_.assign(std::size_t(columns_) + 1, 0);
