@@ -2,8 +2,10 @@
 // closed forms and the path tracer as the oracle: the spherical harmonics' orthonormality and the
 // Funk-Hecke identity of Henyey-Greenstein (g^l), the convolution of two Henyey-Greenstein lobes
 // (a lobe of g1 g2), the baked multiple scattering of a uniform slab against the path tracer at
-// points and directions, no diffuse light without scattering, diffuse light in the terrain's
-// shadow beside sunlit fog, determinism across threads, bad input.
+// points and directions, a height fog inside a thin Medium (the bake's first scatterings drawn in
+// the height fog) against the path tracer, no diffuse light without scattering, diffuse light in
+// the terrain's shadow beside sunlit fog, a thin layer beside a thick slab in one cell (the column
+// normalisation) against the path tracer, determinism across threads, bad input.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -382,5 +384,48 @@ TEST(LightVolume, AThinLayerBesideAThickBodyInOneCellGetsItsOwnLight)
         EXPECT_NEAR(model, truth.radiance.x, bound) << "over x = " << origin.x;
         if (origin.x > 700.0)
             EXPECT_GT(old, 1.6 * truth.radiance.x) << "the unnormalised cell, over the thin layer";
+    }
+}
+
+TEST(LightVolume, BakedHeightFogUnderAThinMediumAgreesWithThePathTracer)
+{
+    // A height fog (sigma 0.03 up to its base at 30 m, falling off over 25 m above) inside a thin
+    // Medium 200 m deep (sigma 0.002): most of the light scatters first in the height fog, whose
+    // first scatterings the bake draws along the sun in closed form. Single scattering plus the
+    // baked volume against every order path traced, looking down into it and across it.
+    const Heightfield ground =
+        kiri::test::make_heightfield(11, 11, 400.0, -2000.0, -2000.0, [](double, double) { return 0.0; });
+    const Medium m = slab(0.0, 200.0, 0.002, 0.99, 0.8, 2000.0);
+    HeightFog haze;
+    haze.extinction = 0.03;
+    haze.base = 30.0;
+    haze.scale_height = 25.0;
+    haze.albedo = 0.99;
+    haze.anisotropy = 0.6;
+    FogLighting light;
+    light.sun_direction = sun_towards(30.0 * std::numbers::pi / 180.0, 0.7);
+    light.sun_radiance = glm::dvec3(1.0);
+    light.sky = false;
+    light.multiple_scattering = MultipleScattering::baked;
+    light.light_volume = std::make_shared<const LightVolume>(
+        bake_light_volume({&m, haze}, &ground, light.sun_direction, small_bake(40000)));
+    ASSERT_FALSE(light.light_volume->empty());
+    ReferenceOptions ro;
+    ro.shade_terrain = false;
+    PathTracerOptions po;
+    po.samples = 3000;
+    po.sky = PathSky::none;
+    po.ground = PathGround::black;
+    const std::pair<glm::dvec3, glm::dvec3> rays[] = {{{0.0, 0.0, 400.0}, glm::normalize(glm::dvec3(0.2, 0.1, -1.0))},
+                                                      {{0.0, 0.0, 20.0}, glm::normalize(glm::dvec3(1.0, -0.3, 0.0))}};
+    for (const auto& [origin, dir] : rays) {
+        const RayFog model = reference_ray({&m, haze}, &ground, origin, dir, 1e6, light, ro);
+        FogLighting single = light;
+        single.multiple_scattering = MultipleScattering::none;
+        const RayFog once = reference_ray({&m, haze}, &ground, origin, dir, 1e6, single, ro);
+        const PathEstimate truth = path_traced_ray({&m, haze}, &ground, origin, dir, 1e6, light, po, 5);
+        EXPECT_NEAR(model.inscatter.x, truth.radiance.x, 0.10 * truth.radiance.x + 3.0 * truth.std_error.x)
+            << "from " << origin.z;
+        EXPECT_GT(model.inscatter.x, 1.3 * once.inscatter.x);
     }
 }
