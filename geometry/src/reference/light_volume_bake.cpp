@@ -52,6 +52,22 @@ double radical_inverse(std::uint64_t k)
     return double(k >> 11) * 0x1.0p-53;
 }
 
+// The radical inverse of k in an odd prime base (Halton's further coordinates).
+double radical_inverse(std::uint64_t k, int base)
+{
+    double inverse = 0.0, digit = 1.0 / base;
+    for (; k > 0; k /= std::uint64_t(base), digit /= base)
+        inverse += double(k % std::uint64_t(base)) * digit;
+    return inverse;
+}
+
+// x + shift wrapped into [0, 1): one point of a low-discrepancy set, uniform after a random shift.
+double shifted(double x, double shift)
+{
+    const double y = x + shift;
+    return y - std::floor(y);
+}
+
 // Where the sun's light first scatters: the density of first collisions is pi sigma_t(p) T_sun(p)
 // per unit volume (a sun of unit radiance, irradiance pi), so instead of tracing photons in from
 // the box's faces (most of which cross a thin fog without scattering) each photon starts at a
@@ -64,7 +80,8 @@ double radical_inverse(std::uint64_t k)
 // (exact in z for a fog that depends on z alone: T = exp(-tau_up(z) / sin(elevation))).
 struct FirstScattering {
     glm::dvec3 p{0.0};
-    double weight = 0.0;  // pi sigma_t T / (the density p was drawn from), per photon of the cell
+    double u_cos = 0.0, u_phi = 0.0;  // the stratified uniforms of the first scattered direction
+    double weight = 0.0;              // pi sigma_t T / (the density p was drawn from), per photon of the cell
 };
 
 class Baker {
@@ -139,7 +156,8 @@ public:
         double weight = first.weight * (haze_first ? tracer_.albedo_haze() : tracer_.albedo_medium());
         if (!(weight > 0.0))
             return 0;
-        glm::dvec3 w = detail::sample_phase(-sun_, haze_first ? tracer_.g_haze() : tracer_.g_medium(), rng);
+        glm::dvec3 w =
+            detail::sample_phase(-sun_, haze_first ? tracer_.g_haze() : tracer_.g_medium(), first.u_cos, first.u_phi);
         const double weight1 = weight;
         const detail::HeightfieldRay* ground = tracer_.terrain();
         long long deposits = 0;
@@ -209,7 +227,12 @@ private:
         const long long cell = std::upper_bound(first_.begin(), first_.end(), index) - first_.begin() - 1;
         const long long k = index - first_[std::size_t(cell)], n = counts_[std::size_t(cell)];
         detail::Random shift(o_.seed ^ 0xA5A5A5A5A5A5A5A5ull, std::uint64_t(cell));
-        const double sx = shift.uniform(), sy = shift.uniform();
+        const double sx = shift.uniform(), sy = shift.uniform(), sz = shift.uniform(), sc = shift.uniform(),
+                     sp = shift.uniform();
+        // The height and the first scattered direction stratified too (Halton bases 3, 5, 7).
+        const double uz = shifted(radical_inverse(std::uint64_t(k), 3), sz);
+        f.u_cos = shifted(radical_inverse(std::uint64_t(k), 5), sc);
+        f.u_phi = shifted(radical_inverse(std::uint64_t(k), 7), sp);
         const double a = (double(k) + 0.5) / double(n) + sx, b = radical_inverse(std::uint64_t(k)) + sy;
         const double x = v_.x0 + (double(cell % v_.nx) + (a - std::floor(a))) * v_.dx;
         const double y = v_.y0 + (double(cell / v_.nx) + (b - std::floor(b))) * v_.dy;
@@ -242,16 +265,18 @@ private:
             : !shell                             ? 1.0
                                                  : std::clamp(haze_mass / (haze_mass + shell_mass), 0.1, 0.9);
         double z = 0.0;
-        if (rng.uniform() < p_haze) {
-            const double target = -s * std::log(ta + rng.uniform() * haze_mass);
+        if (uz < p_haze) {
+            const double target = -s * std::log(ta + uz / p_haze * haze_mass);
             const double below_top =
                 haze.free_path({x, y, zb}, -up, 0.0, zb - za, target - haze.optical_depth({x, y, zb}, up, 0.0, inf));
             z = std::isfinite(below_top) ? zb - below_top : za;
         } else {
-            const double u = rng.uniform();
-            double h = u;
-            if (rng.uniform() >= uniform_share && slope > 1e-9)
-                h = 1.0 + std::log1p(-(1.0 - u) * rise) / slope;
+            const double u = (uz - p_haze) / (1.0 - p_haze);  // uniform in [0, 1) again
+            double h = u / uniform_share;
+            if (u >= uniform_share && slope > 1e-9)
+                h = 1.0 + std::log1p(-(1.0 - (u - uniform_share) / (1.0 - uniform_share)) * rise) / slope;
+            else if (u >= uniform_share)
+                h = (u - uniform_share) / (1.0 - uniform_share);
             z = c.floor + std::clamp(h, 0.0, 1.0) * thick;
         }
         // The mixture's density at z, per unit volume (x, y uniform over the cell).

@@ -27,7 +27,7 @@ namespace kiri::geometry {
 struct LightVolumeOptions {
     //! Photons traced; 0: photons_per_column per (x, y) cell.
     long long photons = 0;
-    int photons_per_column = 200;
+    int photons_per_column = 300;
     int levels = 8;  //!< cells in h between the floor and the top, [1, 64]
     int bands = 6;   //!< spherical-harmonic bands, [1, light_volume_max_bands]
     //! Cells in (x, y), metres; 0: the Medium's grid spacing or the mean free path 1 / extinction,
