@@ -40,7 +40,7 @@ double box_exit(const Bounds3& b, const glm::dvec3& o, const glm::dvec3& w)
     return t1;
 }
 
-// The radical inverse of k in base 2 (van der Corput): the second coordinate of a Hammersley set.
+// The radical inverse of k in base 2: the second coordinate of a Hammersley set ([Hammersley64]).
 double radical_inverse(std::uint64_t k)
 {
     k = (k << 32) | (k >> 32);
@@ -52,7 +52,7 @@ double radical_inverse(std::uint64_t k)
     return double(k >> 11) * 0x1.0p-53;
 }
 
-// The radical inverse of k in an odd prime base (Halton's further coordinates).
+// The radical inverse of k in an odd prime base: further coordinates ([Halton60]).
 double radical_inverse(std::uint64_t k, int base)
 {
     double inverse = 0.0, digit = 1.0 / base;
@@ -73,7 +73,7 @@ double shifted(double x, double shift)
 // the box's faces (most of which cross a thin fog without scattering) each photon starts at a
 // first scattering drawn inside the fog, weighted by that density over the density it was drawn
 // from: unbiased, and no photon is wasted. Photon k of an (x, y) cell's n sits at the k-th point
-// of a Hammersley set shifted at random per cell (each point uniform over the cell, the n together
+// of a Hammersley set ([Hammersley64]) shifted at random per cell (each point uniform over the cell, the n together
 // stratified), its height from a mixture: in the Medium's shell, h with a density rising towards
 // the sun's side as the column's optical depth (the sun enters from the top), and a uniform part
 // that keeps every height possible; in the height fog, its own first collisions along the sun
@@ -229,7 +229,7 @@ private:
         detail::Random shift(o_.seed ^ 0xA5A5A5A5A5A5A5A5ull, std::uint64_t(cell));
         const double sx = shift.uniform(), sy = shift.uniform(), sz = shift.uniform(), sc = shift.uniform(),
                      sp = shift.uniform();
-        // The height and the first scattered direction stratified too (Halton bases 3, 5, 7).
+        // The height and the first scattered direction stratified too (bases 3, 5, 7: [Halton60]).
         const double uz = shifted(radical_inverse(std::uint64_t(k), 3), sz);
         f.u_cos = shifted(radical_inverse(std::uint64_t(k), 5), sc);
         f.u_phi = shifted(radical_inverse(std::uint64_t(k), 7), sp);
