@@ -5,7 +5,8 @@
 // points and directions, a height fog inside a thin Medium (the bake's first scatterings drawn in
 // the height fog) against the path tracer, no diffuse light without scattering, diffuse light in
 // the terrain's shadow beside sunlit fog, a thin layer beside a thick slab in one cell (the column
-// normalisation) against the path tracer, determinism across threads, bad input.
+// normalisation) against the path tracer, determinism across threads (a slab; terrain, height fog
+// and photons per cell by the light each column scatters), bad input.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -276,6 +277,33 @@ TEST(LightVolume, BakeIsDeterministicOnAnyNumberOfThreads)
     EXPECT_EQ(one.deposits, three.deposits);
     o.seed = 2;
     EXPECT_NE(bake_light_volume({&m, {}}, nullptr, sun_towards(0.5, 1.0), o).moments, one.moments);
+}
+
+TEST(LightVolume, BakeOverTerrainWithHeightFogIsDeterministicOnAnyNumberOfThreads)
+{
+    // Every part of the bake: a ridge that hides and absorbs, a height fog, photons per cell by
+    // the share of the sunlight each column scatters (photons = 0).
+    const Heightfield ground = kiri::test::make_heightfield(
+        21, 21, 100.0, -1000.0, -1000.0, [](double x, double) { return std::abs(x) < 100.0 ? 150.0 : 0.0; });
+    const Medium m = slab(0.0, 80.0, 0.01, 0.95, 0.7, 1000.0);
+    HeightFog haze;
+    haze.extinction = 0.02;
+    haze.base = 20.0;
+    haze.scale_height = 20.0;
+    LightVolumeOptions o;
+    o.photons_per_column = 40;
+    o.cell_size = 250.0;
+    o.max_side = 8;
+    o.threads = 1;
+    const glm::dvec3 sun = sun_towards(0.4, 2.8);
+    const LightVolume one = bake_light_volume({&m, haze}, &ground, sun, o);
+    o.threads = 3;
+    const LightVolume three = bake_light_volume({&m, haze}, &ground, sun, o);
+    ASSERT_FALSE(one.empty());
+    EXPECT_GT(one.photons, 8 * 8 * 10);  // at least a quarter of 40 per column
+    EXPECT_LE(one.photons, 8 * 8 * 40);
+    EXPECT_EQ(one.moments, three.moments);
+    EXPECT_EQ(one.deposits, three.deposits);
 }
 
 TEST(LightVolume, BadInputStaysFinite)
