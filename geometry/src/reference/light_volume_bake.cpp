@@ -70,14 +70,14 @@ double shifted(double x, double shift)
 
 // Where the sun's light first scatters: the density of first collisions is pi sigma_t(p) T_sun(p)
 // per unit volume (a sun of unit radiance, irradiance pi), so instead of tracing photons in from
-// the box's faces (most of which cross a thin fog without scattering) each photon starts at a
-// first scattering drawn inside the fog, weighted by that density over the density it was drawn
-// from: unbiased, and no photon is wasted. Photon k of an (x, y) cell's n sits at the k-th point
-// of a Hammersley set ([Hammersley64]) shifted at random per cell (each point uniform over the cell, the n together
-// stratified), its height from a mixture: in the Medium's shell, h with a density rising towards
-// the sun's side as the column's optical depth (the sun enters from the top), and a uniform part
-// that keeps every height possible; in the height fog, its own first collisions along the sun
-// (exact in z for a fog that depends on z alone: T = exp(-tau_up(z) / sin(elevation))).
+// the box's faces (those that cross a thin fog without scattering add nothing) each photon starts
+// at a first scattering drawn inside the fog, weighted by that density over the density it was
+// drawn from: unbiased, and every photon scatters. Photon k of an (x, y) cell's n sits at the k-th
+// point of a Hammersley set ([Hammersley64]) shifted at random per cell (each point uniform over
+// the cell, the n together stratified), its height from a mixture: in the Medium's shell, h with a
+// density rising towards the top as the sun's light does over the column's optical depth, and a
+// uniform part that keeps every height possible; in the height fog, its own first collisions along
+// the sun (exact in z for a fog that depends on z alone: T = exp(-tau_up(z) / sin(elevation))).
 struct FirstScattering {
     glm::dvec3 p{0.0};
     double u_cos = 0.0, u_phi = 0.0;  // the stratified uniforms of the first scattered direction
