@@ -13,6 +13,7 @@ kiri_test(reference_fog_test SOURCES reference_fog_test.cpp LIBS kiri_geometry L
 kiri_test(path_tracer_test SOURCES path_tracer_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(multiple_scattering_test SOURCES multiple_scattering_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(light_volume_test SOURCES light_volume_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(height_fog_free_path_test SOURCES height_fog_free_path_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(froxel_options_test SOURCES froxel_options_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_find_openvdb()
 kiri_test(medium_vdb_test SOURCES medium_vdb_test.cpp LIBS kiri_geometry OpenVDB::openvdb LABELS unit)

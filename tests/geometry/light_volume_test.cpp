@@ -2,8 +2,11 @@
 // closed forms and the path tracer as the oracle: the spherical harmonics' orthonormality and the
 // Funk-Hecke identity of Henyey-Greenstein (g^l), the convolution of two Henyey-Greenstein lobes
 // (a lobe of g1 g2), the baked multiple scattering of a uniform slab against the path tracer at
-// points and directions, no diffuse light without scattering, diffuse light in the terrain's
-// shadow beside sunlit fog, determinism across threads, bad input.
+// points and directions, a height fog inside a thin Medium (the bake's first scatterings drawn in
+// the height fog) against the path tracer, no diffuse light without scattering, diffuse light in
+// the terrain's shadow beside sunlit fog, a thin layer beside a thick slab in one cell (the column
+// normalisation) against the path tracer, determinism across threads (a slab; terrain, height fog
+// and photons per cell by the light each column scatters), bad input.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -251,9 +254,12 @@ TEST(LightVolume, TheTerrainsShadowHoldsDiffuseLightFromTheSunlitFog)
     EXPECT_EQ(single.inscatter.x, 0.0);
     // The fog along the ray is uniform: the integral of sigma albedo J(t) exp(-sigma t) over its
     // 200 m, J the diffuse light the volume scatters towards the eye (the midpoint rule, 1 m).
+    // The slab's columns are alike: one column_scale for them all.
+    const double scale = v.column_scale(m.column(480.0, 0.0));
+    EXPECT_NEAR(scale, -std::expm1(-0.02 * 100.0), 1e-12);
     double expected = 0.0;
     for (double t = 0.5; t < 200.0; t += 1.0)
-        expected += 0.02 * 0.99 * v.in_scattered(480.0, -100.0 + t, 0.1, -along, 0.8) * std::exp(-0.02 * t);
+        expected += 0.02 * 0.99 * v.in_scattered(480.0, -100.0 + t, 0.1, -along, 0.8, scale) * std::exp(-0.02 * t);
     EXPECT_GT(expected, 0.2 * 0.99 * shadow);
     EXPECT_NEAR(baked.inscatter.x, expected, 0.01 * expected);
 }
@@ -271,6 +277,33 @@ TEST(LightVolume, BakeIsDeterministicOnAnyNumberOfThreads)
     EXPECT_EQ(one.deposits, three.deposits);
     o.seed = 2;
     EXPECT_NE(bake_light_volume({&m, {}}, nullptr, sun_towards(0.5, 1.0), o).moments, one.moments);
+}
+
+TEST(LightVolume, BakeOverTerrainWithHeightFogIsDeterministicOnAnyNumberOfThreads)
+{
+    // Every part of the bake: a ridge that hides and absorbs, a height fog, photons per cell by
+    // the share of the sunlight each column scatters (photons = 0).
+    const Heightfield ground = kiri::test::make_heightfield(
+        21, 21, 100.0, -1000.0, -1000.0, [](double x, double) { return std::abs(x) < 100.0 ? 150.0 : 0.0; });
+    const Medium m = slab(0.0, 80.0, 0.01, 0.95, 0.7, 1000.0);
+    HeightFog haze;
+    haze.extinction = 0.02;
+    haze.base = 20.0;
+    haze.scale_height = 20.0;
+    LightVolumeOptions o;
+    o.photons_per_column = 40;
+    o.cell_size = 250.0;
+    o.max_side = 8;
+    o.threads = 1;
+    const glm::dvec3 sun = sun_towards(0.4, 2.8);
+    const LightVolume one = bake_light_volume({&m, haze}, &ground, sun, o);
+    o.threads = 3;
+    const LightVolume three = bake_light_volume({&m, haze}, &ground, sun, o);
+    ASSERT_FALSE(one.empty());
+    EXPECT_GT(one.photons, 8 * 8 * 10);  // at least a quarter of 40 per column
+    EXPECT_LE(one.photons, 8 * 8 * 40);
+    EXPECT_EQ(one.moments, three.moments);
+    EXPECT_EQ(one.deposits, three.deposits);
 }
 
 TEST(LightVolume, BadInputStaysFinite)
@@ -311,4 +344,116 @@ TEST(LightVolume, BadInputStaysFinite)
     light.multiple_scattering = MultipleScattering::none;
     const RayFog single = reference_ray({&m, {}}, nullptr, {0.0, 0.0, 50.0}, {1.0, 0.0, 0.0}, 500.0, light);
     EXPECT_EQ(without.inscatter, single.inscatter);
+}
+
+TEST(LightVolume, AThinLayerBesideAThickBodyInOneCellGetsItsOwnLight)
+{
+    // One (x, y) cell holds two bodies of fog 200 m apart: a slab 150 m thick (x < 500) and a layer
+    // 10 m thin (x > 700), under a sun 35 degrees up from the north (both lit alike), on a black
+    // ground. The thin layer's diffuse light is its own (tau 0.2 of it) and a little of the slab's
+    // across the gap; a cell that averages the two gives it the slab's (optical depth 3). Looking
+    // down on the thin layer: the model (single scattering plus the baked volume) against every
+    // order path traced; with the cell's diffuse light unnormalised the model is several times too
+    // bright there, while over the slab both agree.
+    const Heightfield ground =
+        kiri::test::make_heightfield(21, 21, 100.0, -500.0, -1000.0, [](double, double) { return 0.0; });
+    MediumGrid grid;
+    grid.nx = 41;
+    grid.ny = 3;
+    grid.x0 = 0.0;
+    grid.y0 = -500.0;
+    grid.dx = 25.0;
+    grid.dy = 500.0;
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) {
+            const double x = grid.x0 + i * grid.dx;
+            grid.floor.push_back(0.0);
+            grid.bottom.push_back(0.0);
+            grid.top.push_back(x <= 500.0 ? 150.0 : x >= 700.0 ? 10.0 : 0.0);
+            grid.coverage.push_back(x <= 500.0 || x >= 700.0 ? 1.0 : 0.0);
+        }
+    MediumOptions mo;
+    mo.extinction = 0.02;
+    mo.albedo = 0.99;
+    mo.anisotropy = 0.8;
+    mo.top_density = 1.0;
+    MediumDetail md;
+    md.detail = 0.0;
+    const Medium m(std::move(grid), mo, md);
+    FogLighting light;
+    light.sun_direction = sun_towards(35.0 * std::numbers::pi / 180.0, 0.5 * std::numbers::pi);
+    light.sun_radiance = glm::dvec3(1.0);
+    light.sky = false;
+    light.multiple_scattering = MultipleScattering::baked;
+    LightVolumeOptions o = small_bake(40000);
+    o.max_side = 1;  // one cell in (x, y)
+    o.levels = 4;
+    ReferenceOptions ro;
+    ro.shade_terrain = false;
+    PathTracerOptions po;
+    po.samples = 4000;
+    po.sky = PathSky::none;
+    po.ground = PathGround::black;
+    const glm::dvec3 down = glm::normalize(glm::dvec3(0.1, 0.05, -1.0));
+    const glm::dvec3 over_thin(850.0, 0.0, 300.0), over_thick(250.0, 0.0, 300.0);
+    light.light_volume =
+        std::make_shared<const LightVolume>(bake_light_volume({&m, {}}, &ground, light.sun_direction, o));
+    ASSERT_EQ(light.light_volume->nx, 1);
+    ASSERT_EQ(light.light_volume->ny, 1);
+    FogLighting unnormalised = light;
+    o.column_normalised = false;
+    unnormalised.light_volume =
+        std::make_shared<const LightVolume>(bake_light_volume({&m, {}}, &ground, light.sun_direction, o));
+    for (const glm::dvec3& origin : {over_thin, over_thick}) {
+        const PathEstimate truth = path_traced_ray({&m, {}}, &ground, origin, down, 1e6, light, po, 11);
+        const double model = reference_ray({&m, {}}, &ground, origin, down, 1e6, light, ro).inscatter.x;
+        const double old = reference_ray({&m, {}}, &ground, origin, down, 1e6, unnormalised, ro).inscatter.x;
+        const double bound = 0.25 * truth.radiance.x + 3.0 * truth.std_error.x;
+        EXPECT_NEAR(model, truth.radiance.x, bound) << "over x = " << origin.x;
+        if (origin.x > 700.0)
+            EXPECT_GT(old, 1.6 * truth.radiance.x) << "the unnormalised cell, over the thin layer";
+    }
+}
+
+TEST(LightVolume, BakedHeightFogUnderAThinMediumAgreesWithThePathTracer)
+{
+    // A height fog (sigma 0.03 up to its base at 30 m, falling off over 25 m above) inside a thin
+    // Medium 200 m deep (sigma 0.002): most of the light scatters first in the height fog, whose
+    // first scatterings the bake draws along the sun in closed form. Single scattering plus the
+    // baked volume against every order path traced, looking down into it and across it.
+    const Heightfield ground =
+        kiri::test::make_heightfield(11, 11, 400.0, -2000.0, -2000.0, [](double, double) { return 0.0; });
+    const Medium m = slab(0.0, 200.0, 0.002, 0.99, 0.8, 2000.0);
+    HeightFog haze;
+    haze.extinction = 0.03;
+    haze.base = 30.0;
+    haze.scale_height = 25.0;
+    haze.albedo = 0.99;
+    haze.anisotropy = 0.6;
+    FogLighting light;
+    light.sun_direction = sun_towards(30.0 * std::numbers::pi / 180.0, 0.7);
+    light.sun_radiance = glm::dvec3(1.0);
+    light.sky = false;
+    light.multiple_scattering = MultipleScattering::baked;
+    light.light_volume = std::make_shared<const LightVolume>(
+        bake_light_volume({&m, haze}, &ground, light.sun_direction, small_bake(40000)));
+    ASSERT_FALSE(light.light_volume->empty());
+    ReferenceOptions ro;
+    ro.shade_terrain = false;
+    PathTracerOptions po;
+    po.samples = 3000;
+    po.sky = PathSky::none;
+    po.ground = PathGround::black;
+    const std::pair<glm::dvec3, glm::dvec3> rays[] = {{{0.0, 0.0, 400.0}, glm::normalize(glm::dvec3(0.2, 0.1, -1.0))},
+                                                      {{0.0, 0.0, 20.0}, glm::normalize(glm::dvec3(1.0, -0.3, 0.0))}};
+    for (const auto& [origin, dir] : rays) {
+        const RayFog model = reference_ray({&m, haze}, &ground, origin, dir, 1e6, light, ro);
+        FogLighting single = light;
+        single.multiple_scattering = MultipleScattering::none;
+        const RayFog once = reference_ray({&m, haze}, &ground, origin, dir, 1e6, single, ro);
+        const PathEstimate truth = path_traced_ray({&m, haze}, &ground, origin, dir, 1e6, light, po, 5);
+        EXPECT_NEAR(model.inscatter.x, truth.radiance.x, 0.10 * truth.radiance.x + 3.0 * truth.std_error.x)
+            << "from " << origin.z;
+        EXPECT_GT(model.inscatter.x, 1.3 * once.inscatter.x);
+    }
 }

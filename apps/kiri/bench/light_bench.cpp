@@ -9,8 +9,11 @@
 // their pictures side by side (path tracer | baked | fitted | octaves), and the medians and the
 // views meeting the goal (10 % brightness, 15 % block error). Then the cost of the lighting in
 // each GL renderer, fitted against octaves, measured side by side (KIRI_LIGHT_NO_COST=1 skips it).
-// KIRI_LIGHT_VIEWS=TEXT keeps the views whose name holds TEXT; KIRI_LIGHT_BAKE="photons per
-// column,levels,bands,max side" sets the bake's options.
+// KIRI_LIGHT_VIEWS=TEXT[,TEXT...] keeps the views whose name holds one of the texts;
+// KIRI_LIGHT_BAKE="photons per column,levels,bands,max side[,column normalised 0/1]" sets the
+// bake's options;
+// KIRI_LIGHT_BAKED_ONLY=1 draws the baked model alone (reported in the other models' columns too:
+// a quicker loop while tuning the bake).
 //
 // The path tracer's images are cached in OUT/light/ (NAME.SAMPLES.path.exr): a rerun only renders
 // the models. How the constants were found: KIRI_LIGHT_FIT=1 fits MultipleScatteringFit's
@@ -138,12 +141,14 @@ struct Prepared {
     std::shared_ptr<const geometry::LightVolume> volume;
 };
 
-//! The bake's options: the defaults, or KIRI_LIGHT_BAKE="photons_per_column,levels,bands,max_side".
+//! The bake's options: the defaults, or KIRI_LIGHT_BAKE="photons_per_column,levels,bands,max_side[,column_normalised]".
 geometry::LightVolumeOptions bake_options()
 {
     geometry::LightVolumeOptions o;
+    int normalised = 1;
     if (const char* k = std::getenv("KIRI_LIGHT_BAKE"))
-        std::sscanf(k, "%d,%d,%d,%d", &o.photons_per_column, &o.levels, &o.bands, &o.max_side);
+        std::sscanf(k, "%d,%d,%d,%d,%d", &o.photons_per_column, &o.levels, &o.bands, &o.max_side, &normalised);
+    o.column_normalised = normalised != 0;
     return o;
 }
 
@@ -428,6 +433,18 @@ void light_cost(Context& c, std::ofstream& md)
     }
 }
 
+// Whether `name` holds one of the comma-separated texts of `list`.
+bool names_any(const std::string& name, const std::string& list)
+{
+    for (std::size_t a = 0; a <= list.size();) {
+        const std::size_t b = std::min(list.find(',', a), list.size());
+        if (b > a && name.find(list.substr(a, b - a)) != std::string::npos)
+            return true;
+        a = b + 1;
+    }
+    return false;
+}
+
 void light(Context& c)
 {
     const int width = 80, height = 45, samples = c.quick() ? 256 : 1024;
@@ -437,7 +454,7 @@ void light(Context& c)
     for (const LightView& v : light_views(c.quick())) {
         if ((fitting || std::getenv("KIRI_LIGHT_FITTED_ONLY")) && !v.fitted_on)
             continue;
-        if (const char* only = std::getenv("KIRI_LIGHT_VIEWS"); only && v.name.find(only) == std::string::npos)
+        if (const char* only = std::getenv("KIRI_LIGHT_VIEWS"); only && !names_any(v.name, only))
             continue;
         views.push_back(prepare_view(c, v, width, height, samples));
         if (views.back().path_seconds > 0.0)
@@ -467,8 +484,11 @@ void light(Context& c)
                         &constants.diffuse_eccentricity, &constants.amplitude, &constants.sun_power,
                         &constants.low_sun_eccentricity);
         const geometry::ReferenceImage baked = model_image(p, geometry::MultipleScattering::baked);
-        const geometry::ReferenceImage fitted = model_image(p, geometry::MultipleScattering::fitted, constants);
-        const geometry::ReferenceImage octaves = model_image(p, geometry::MultipleScattering::octaves);
+        const bool baked_only = std::getenv("KIRI_LIGHT_BAKED_ONLY") != nullptr;
+        const geometry::ReferenceImage fitted =
+            baked_only ? baked : model_image(p, geometry::MultipleScattering::fitted, constants);
+        const geometry::ReferenceImage octaves =
+            baked_only ? fitted : model_image(p, geometry::MultipleScattering::octaves);
         time_baked += baked.seconds;
         time_fitted += fitted.seconds;
         time_octaves += octaves.seconds;

@@ -7,39 +7,62 @@
 
 namespace kiri::geometry {
 
+namespace {
+
+// K_l^m sqrt(2) (m > 0) or K_l^0 of the real harmonics, K_l^m = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!).
+struct HarmonicNorms {
+    std::array<std::array<double, light_volume_max_bands>, light_volume_max_bands> k{};
+    HarmonicNorms()
+    {
+        for (int l = 0; l < light_volume_max_bands; ++l)
+            for (int m = 0; m <= l; ++m) {
+                double ratio = 1.0;  // (l - m)! / (l + m)!
+                for (int q = l - m + 1; q <= l + m; ++q)
+                    ratio /= q;
+                k[l][m] =
+                    std::sqrt((2.0 * l + 1.0) / (4.0 * std::numbers::pi) * ratio) * (m > 0 ? std::numbers::sqrt2 : 1.0);
+            }
+    }
+};
+
+}  // namespace
+
 void real_spherical_harmonics(const glm::dvec3& d, int bands, double* out)
 {
+    static const HarmonicNorms norms;
     const int n = std::clamp(bands, 1, light_volume_max_bands);
     const double len = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
     const glm::dvec3 u = len > 0.0 && std::isfinite(len) ? d / len : glm::dvec3(0.0, 0.0, 1.0);
-    const double x = std::clamp(u.z, -1.0, 1.0), s = std::sqrt(std::max(0.0, 1.0 - x * x));
-    const double phi = std::atan2(u.y, u.x);
-    // Associated Legendre functions P_l^m(x) (without the Condon-Shortley phase) by the
-    // standard recurrences, then Y_lm = K_l^m P_l^m(x) times sqrt(2) cos(m phi) or sin(|m| phi).
+    const double x = std::clamp(u.z, -1.0, 1.0);
+    // Associated Legendre functions without the Condon-Shortley phase and without their factor
+    // sin^m(theta), by the standard recurrences; that factor joins the azimuth's:
+    // sin^m(theta) (cos(m phi), sin(m phi)) = (Re, Im) (u.x + i u.y)^m, no trigonometry.
     std::array<std::array<double, light_volume_max_bands>, light_volume_max_bands> p{};
     double pmm = 1.0;
     for (int m = 0; m < n; ++m) {
         if (m > 0)
-            pmm *= (2.0 * m - 1.0) * s;
+            pmm *= 2.0 * m - 1.0;
         p[m][m] = pmm;
         if (m + 1 < n)
             p[m + 1][m] = x * (2.0 * m + 1.0) * pmm;
         for (int l = m + 2; l < n; ++l)
             p[l][m] = ((2.0 * l - 1.0) * x * p[l - 1][m] - (l + m - 1.0) * p[l - 2][m]) / (l - m);
     }
-    for (int l = 0; l < n; ++l)
-        for (int m = 0; m <= l; ++m) {
-            double ratio = 1.0;  // (l - m)! / (l + m)!
-            for (int k = l - m + 1; k <= l + m; ++k)
-                ratio /= k;
-            const double k_lm = std::sqrt((2.0 * l + 1.0) / (4.0 * std::numbers::pi) * ratio);
+    double re = 1.0, im = 0.0;  // (u.x + i u.y)^m
+    for (int m = 0; m < n; ++m) {
+        for (int l = m; l < n; ++l) {
+            const double a = norms.k[l][m] * p[l][m];
             if (m == 0) {
-                out[l * (l + 1)] = k_lm * p[l][0];
+                out[l * (l + 1)] = a;
             } else {
-                out[l * (l + 1) + m] = std::numbers::sqrt2 * k_lm * std::cos(m * phi) * p[l][m];
-                out[l * (l + 1) - m] = std::numbers::sqrt2 * k_lm * std::sin(m * phi) * p[l][m];
+                out[l * (l + 1) + m] = a * re;
+                out[l * (l + 1) - m] = a * im;
             }
         }
+        const double r = re * u.x - im * u.y;
+        im = re * u.y + im * u.x;
+        re = r;
+    }
 }
 
 double shell_height(const MediumColumn& column, double z)
@@ -50,12 +73,20 @@ double shell_height(const MediumColumn& column, double z)
     return std::clamp((z - column.floor) / thick, 0.0, 1.0);
 }
 
-void LightVolume::moments_at(double x, double y, double h, double* out) const
+double LightVolume::column_scale(const MediumColumn& column) const
+{
+    if (!(column_extinction > 0.0) || !std::isfinite(column_extinction))
+        return 1.0;
+    const double tau = column_extinction * std::clamp(column.coverage, 0.0, 1.0) * (column.top - column.floor);
+    return std::isfinite(tau) ? std::max(-std::expm1(-std::max(tau, 0.0)), 1e-6) : 1.0;
+}
+
+void LightVolume::moments_at(double x, double y, double h, double* out, double scale) const
 {
     const int nc = std::max(bands, 0) * std::max(bands, 0);
     std::fill(out, out + nc, 0.0);
-    if (empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(h) ||
-        moments.size() != std::size_t(nx) * ny * nz * nc)
+    if (empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(h) || !(scale >= 0.0) ||
+        !std::isfinite(scale) || moments.size() != std::size_t(nx) * ny * nz * nc)
         return;
     // Cell centres at i + 1/2: the texel convention of a GPU's linear filtering, clamped to the edge.
     const auto axis = [](double v, int n, int& i0, int& i1, double& f) {
@@ -71,7 +102,7 @@ void LightVolume::moments_at(double x, double y, double h, double* out) const
     axis(std::clamp(h, 0.0, 1.0) * nz, nz, k0, k1, fz);
     for (int c = 0; c < 8; ++c) {
         const int i = c & 1 ? i1 : i0, j = c & 2 ? j1 : j0, k = c & 4 ? k1 : k0;
-        const double w = (c & 1 ? fx : 1.0 - fx) * (c & 2 ? fy : 1.0 - fy) * (c & 4 ? fz : 1.0 - fz);
+        const double w = scale * (c & 1 ? fx : 1.0 - fx) * (c & 2 ? fy : 1.0 - fy) * (c & 4 ? fz : 1.0 - fz);
         if (w == 0.0)
             continue;
         const double* m = &moments[((std::size_t(k) * ny + j) * nx + i) * nc];
@@ -91,25 +122,25 @@ void LightVolume::phase_weights(const glm::dvec3& towards, double g, double* out
             out[q] *= gl;
 }
 
-double LightVolume::in_scattered(double x, double y, double h, const double* weights) const
+double LightVolume::in_scattered(double x, double y, double h, const double* weights, double scale) const
 {
     if (empty())
         return 0.0;
     std::array<double, light_volume_max_bands * light_volume_max_bands> m{};
-    moments_at(x, y, h, m.data());
+    moments_at(x, y, h, m.data(), scale);
     double sum = 0.0;
     for (int q = 0; q < bands * bands; ++q)
         sum += weights[q] * m[q];
     return std::isfinite(sum) ? std::max(sum, 0.0) : 0.0;
 }
 
-double LightVolume::in_scattered(double x, double y, double h, const glm::dvec3& towards, double g) const
+double LightVolume::in_scattered(double x, double y, double h, const glm::dvec3& towards, double g, double scale) const
 {
     if (empty())
         return 0.0;
     std::array<double, light_volume_max_bands * light_volume_max_bands> w{};
     phase_weights(towards, g, w.data());
-    return in_scattered(x, y, h, w.data());
+    return in_scattered(x, y, h, w.data(), scale);
 }
 
 }  // namespace kiri::geometry

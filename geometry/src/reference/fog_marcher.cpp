@@ -372,11 +372,12 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
             albedo_h * st.sigma_height * (sun * sun_h + light_.ambient);
         if (volume) {  // inside the shell; not hidden by the terrain's shadow
             const glm::dvec3 p = o + w * st.t;
-            const double h = shell_height(fog_.medium->column(p.x, p.y), p.z);
+            const MediumColumn column = fog_.medium->column(p.x, p.y);
+            const double h = shell_height(column, p.z), scale = volume->column_scale(column);
             if (h >= 0.0)
                 source += light_.sun_radiance *
-                    (albedo_m * st.sigma_medium * volume->in_scattered(p.x, p.y, h, weights_m) +
-                     albedo_h * st.sigma_height * volume->in_scattered(p.x, p.y, h, weights_h));
+                    (albedo_m * st.sigma_medium * volume->in_scattered(p.x, p.y, h, weights_m, scale) +
+                     albedo_h * st.sigma_height * volume->in_scattered(p.x, p.y, h, weights_h, scale));
         }
         const double sigma = st.sigma_medium + st.sigma_height;
         r.inscatter += std::exp(-st.tau_before) * source * step_weight(sigma, st.dt);

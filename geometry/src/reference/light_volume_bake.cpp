@@ -26,6 +26,8 @@ constexpr long long photons_per_task = 1024;
 // Fixed point of the sums: a deposit of a full-weight photon over the longest step is 2^30 quanta.
 constexpr double quanta = 1073741824.0;
 constexpr long long max_cells = 1 << 23;
+// The share of a shell's first scatterings drawn uniformly in h (the rest rise towards the top).
+constexpr double uniform_share = 0.3;
 
 // The exit distance of o + t w (w unit) from the box, or -1 when the ray misses it.
 double box_exit(const Bounds3& b, const glm::dvec3& o, const glm::dvec3& w)
@@ -38,10 +40,48 @@ double box_exit(const Bounds3& b, const glm::dvec3& o, const glm::dvec3& w)
     return t1;
 }
 
-// A face of the box the sun shines on: corner + u a + v b, u, v in [0, 1], its projected area.
-struct Face {
-    glm::dvec3 corner, a, b;
-    double projected = 0.0;
+// The radical inverse of k in base 2: the second coordinate of a Hammersley set ([Hammersley64]).
+double radical_inverse(std::uint64_t k)
+{
+    k = (k << 32) | (k >> 32);
+    k = ((k & 0x0000FFFF0000FFFFull) << 16) | ((k & 0xFFFF0000FFFF0000ull) >> 16);
+    k = ((k & 0x00FF00FF00FF00FFull) << 8) | ((k & 0xFF00FF00FF00FF00ull) >> 8);
+    k = ((k & 0x0F0F0F0F0F0F0F0Full) << 4) | ((k & 0xF0F0F0F0F0F0F0F0ull) >> 4);
+    k = ((k & 0x3333333333333333ull) << 2) | ((k & 0xCCCCCCCCCCCCCCCCull) >> 2);
+    k = ((k & 0x5555555555555555ull) << 1) | ((k & 0xAAAAAAAAAAAAAAAAull) >> 1);
+    return double(k >> 11) * 0x1.0p-53;
+}
+
+// The radical inverse of k in an odd prime base: further coordinates ([Halton60]).
+double radical_inverse(std::uint64_t k, int base)
+{
+    double inverse = 0.0, digit = 1.0 / base;
+    for (; k > 0; k /= std::uint64_t(base), digit /= base)
+        inverse += double(k % std::uint64_t(base)) * digit;
+    return inverse;
+}
+
+// x + shift wrapped into [0, 1): one point of a low-discrepancy set, uniform after a random shift.
+double shifted(double x, double shift)
+{
+    const double y = x + shift;
+    return y - std::floor(y);
+}
+
+// Where the sun's light first scatters: the density of first collisions is pi sigma_t(p) T_sun(p)
+// per unit volume (a sun of unit radiance, irradiance pi), so instead of tracing photons in from
+// the box's faces (those that cross a thin fog without scattering add nothing) each photon starts
+// at a first scattering drawn inside the fog, weighted by that density over the density it was
+// drawn from: unbiased, and every photon scatters. Photon k of an (x, y) cell's n sits at the k-th
+// point of a Hammersley set ([Hammersley64]) shifted at random per cell (each point uniform over
+// the cell, the n together stratified), its height from a mixture: in the Medium's shell, h with a
+// density rising towards the top as the sun's light does over the column's optical depth, and a
+// uniform part that keeps every height possible; in the height fog, its own first collisions along
+// the sun (exact in z for a fog that depends on z alone: T = exp(-tau_up(z) / sin(elevation))).
+struct FirstScattering {
+    glm::dvec3 p{0.0};
+    double u_cos = 0.0, u_phi = 0.0;  // the stratified uniforms of the first scattered direction
+    double weight = 0.0;              // pi sigma_t T / (the density p was drawn from), per photon of the cell
 };
 
 class Baker {
@@ -50,57 +90,78 @@ public:
           const LightVolumeOptions& o)
         : tracer_(tracer), medium_(medium), sun_(sun), v_(volume), o_(o), nc_(volume.bands * volume.bands)
     {
-        const Bounds3& b = medium.bounds();
-        box_ = b;
-        const glm::dvec3 e = b.max - b.min;
-        // The faces towards the sun: x, y and the top (the sun is above the horizon).
-        if (sun.x != 0.0)
-            faces_.push_back({{sun.x > 0.0 ? b.max.x : b.min.x, b.min.y, b.min.z},
-                              {0.0, e.y, 0.0},
-                              {0.0, 0.0, e.z},
-                              e.y * e.z * std::abs(sun.x)});
-        if (sun.y != 0.0)
-            faces_.push_back({{b.min.x, sun.y > 0.0 ? b.max.y : b.min.y, b.min.z},
-                              {e.x, 0.0, 0.0},
-                              {0.0, 0.0, e.z},
-                              e.x * e.z * std::abs(sun.y)});
-        faces_.push_back({{b.min.x, b.min.y, b.max.z}, {e.x, 0.0, 0.0}, {0.0, e.y, 0.0}, e.x * e.y * sun.z});
-        for (const Face& f : faces_)
-            projected_ += f.projected;
+        box_ = medium.bounds();
         step_ = 0.5 * std::min(v_.dx, v_.dy);
+        columns_ = (long long)v_.nx * v_.ny;
     }
 
-    double projected_area() const { return projected_; }
+    long long columns() const { return columns_; }
+    long long photons() const { return first_.empty() ? 0 : first_.back(); }
     double quantum() const { return quantum_; }
-    void set_photon_weight(double w)
+    // Photons per (x, y) cell: `per_column` each, or, with `by_thickness`, per_column times the
+    // share of the sunlight the column is expected to scatter (1 - exp(-tau / sin(elevation)),
+    // tau its vertical optical depth), at least a quarter of it: a thin fog's photons cost as
+    // much as a thick one's, and it scatters less light, so it needs fewer for the same noise. The
+    // weights divide by each cell's own count, so the allocation changes the noise, not the mean.
+    void allocate(long long per_column, bool by_thickness)
     {
-        weight0_ = w;
-        quantum_ = w * std::max(step_, 1e-9) / quanta;
+        per_column = std::max<long long>(per_column, 1);
+        counts_.assign(std::size_t(columns_), per_column);
+        if (by_thickness) {
+            const HeightFog& haze = tracer_.haze();
+            const glm::dvec3 up(0.0, 0.0, 1.0);
+            const double mean_profile = 0.5 * (1.0 + medium_.options().top_density);
+            constexpr int raster = 4;
+            for (long long cell = 0; cell < columns_; ++cell) {
+                double share = 0.0;
+                for (int b = 0; b < raster; ++b)
+                    for (int a = 0; a < raster; ++a) {
+                        const double x = v_.x0 + (double(cell % v_.nx) + (a + 0.5) / raster) * v_.dx;
+                        const double y = v_.y0 + (double(cell / v_.nx) + (b + 0.5) / raster) * v_.dy;
+                        const MediumColumn c = medium_.column(x, y);
+                        double tau =
+                            medium_.max_extinction() * std::max(c.top - c.floor, 0.0) * c.coverage * mean_profile;
+                        if (tracer_.has_haze()) {
+                            const double za = ground_under(x, y);
+                            tau += haze.optical_depth({x, y, za}, up, 0.0, std::max(box_.max.z - za, 0.0));
+                        }
+                        share += -std::expm1(-tau / sun_.z) / (raster * raster);
+                    }
+                counts_[std::size_t(cell)] =
+                    std::max((per_column + 3) / 4, (long long)std::llround(double(per_column) * share));
+            }
+        }
+        first_.assign(std::size_t(columns_) + 1, 0);
+        for (long long cell = 0; cell < columns_; ++cell)
+            first_[std::size_t(cell) + 1] = first_[std::size_t(cell)] + counts_[std::size_t(cell)];
+        // A deposit of 2^30 quanta over the longest step: a photon of the fullest cell drawn
+        // uniformly over the box's height.
+        const double sigma = medium_.max_extinction() + (tracer_.has_haze() ? tracer_.haze().extinction : 0.0);
+        const double reference =
+            std::numbers::pi * sigma * v_.dx * v_.dy * std::max(box_.max.z - box_.min.z, 1e-9) / double(per_column);
+        quantum_ = reference * std::max(step_, 1e-9) / quanta;
     }
 
     // Traces photon `index`, adding its deposits to `sums` (fixed point); returns the deposits.
     long long trace(long long index, std::vector<std::int64_t>& sums) const
     {
         detail::Random rng(o_.seed, std::uint64_t(index));
-        // The entry point, on a face picked by its projected area.
-        double pick = rng.uniform() * projected_;
-        const Face* face = &faces_.back();
-        for (const Face& f : faces_) {
-            if (pick < f.projected) {
-                face = &f;
-                break;
-            }
-            pick -= f.projected;
-        }
-        const double u = rng.uniform(), v = rng.uniform();
-        glm::dvec3 o = face->corner + face->a * u + face->b * v;
+        const FirstScattering first = first_scattering(index, rng);
+        if (!(first.weight > 0.0) || !std::isfinite(first.weight))
+            return 0;
+        glm::dvec3 o = first.p;
+        const double sigma_m = tracer_.medium() ? medium_.extinction(o) : 0.0;
+        const double sigma_h = tracer_.has_haze() ? tracer_.haze().sigma(o) : 0.0;
+        const bool haze_first = rng.uniform() * (sigma_m + sigma_h) >= sigma_m;
+        double weight = first.weight * (haze_first ? tracer_.albedo_haze() : tracer_.albedo_medium());
+        if (!(weight > 0.0))
+            return 0;
+        glm::dvec3 w =
+            detail::sample_phase(-sun_, haze_first ? tracer_.g_haze() : tracer_.g_medium(), first.u_cos, first.u_phi);
+        const double weight1 = weight;
         const detail::HeightfieldRay* ground = tracer_.terrain();
-        if (ground && ground->first_hit(o, sun_, 1e-6, inf))
-            return 0;  // the terrain hides this point from the sun
-        glm::dvec3 w = -sun_;
-        double weight = weight0_;
         long long deposits = 0;
-        for (int scatterings = 0;;) {
+        for (int scatterings = 1;;) {
             const double t_exit = box_exit(box_, o, w);
             if (!(t_exit > 0.0))
                 break;
@@ -120,8 +181,7 @@ public:
                     t_stop = *hit;
                     absorbed = true;
                 }
-            if (scatterings > 0)
-                deposits += deposit(o, w, t_stop, weight, rng, sums);
+            deposits += deposit(o, w, t_stop, weight, rng, sums);
             if (absorbed || !(t < t_exit) || scatterings >= o_.max_bounces)
                 break;
             ++scatterings;
@@ -129,7 +189,7 @@ public:
             o += w * t;
             w = detail::sample_phase(w, in_haze ? tracer_.g_haze() : tracer_.g_medium(), rng);
             if (scatterings >= o_.roulette_after) {
-                const double survive = std::min(1.0, weight / weight0_);
+                const double survive = std::min(1.0, weight / weight1);
                 if (!(survive > 0.0) || rng.uniform() >= survive)
                     break;
                 weight /= survive;
@@ -146,8 +206,96 @@ private:
     const LightVolumeOptions& o_;
     int nc_;
     Bounds3 box_;
-    std::vector<Face> faces_;
-    double projected_ = 0.0, step_ = 1.0, weight0_ = 1.0, quantum_ = 1.0;
+    long long columns_ = 1;
+    std::vector<long long> counts_, first_;  // photons per cell, and the first photon of each
+    double step_ = 1.0, quantum_ = 1.0;
+
+    // The height of the ground under (x, y) within the box (its floor where there is none).
+    double ground_under(double x, double y) const
+    {
+        const detail::HeightfieldRay* ground = tracer_.terrain();
+        const double depth = box_.max.z - box_.min.z;
+        if (ground && depth > 0.0)
+            if (const auto hit = ground->first_hit({x, y, box_.max.z}, {0.0, 0.0, -1.0}, 0.0, depth))
+                return box_.max.z - *hit;
+        return box_.min.z;
+    }
+
+    FirstScattering first_scattering(long long index, detail::Random& rng) const
+    {
+        FirstScattering f;
+        const long long cell = std::upper_bound(first_.begin(), first_.end(), index) - first_.begin() - 1;
+        const long long k = index - first_[std::size_t(cell)], n = counts_[std::size_t(cell)];
+        detail::Random shift(o_.seed ^ 0xA5A5A5A5A5A5A5A5ull, std::uint64_t(cell));
+        const double sx = shift.uniform(), sy = shift.uniform(), sz = shift.uniform(), sc = shift.uniform(),
+                     sp = shift.uniform();
+        // The height and the first scattered direction stratified too (bases 3, 5, 7: [Halton60]).
+        const double uz = shifted(radical_inverse(std::uint64_t(k), 3), sz);
+        f.u_cos = shifted(radical_inverse(std::uint64_t(k), 5), sc);
+        f.u_phi = shifted(radical_inverse(std::uint64_t(k), 7), sp);
+        const double a = (double(k) + 0.5) / double(n) + sx, b = radical_inverse(std::uint64_t(k)) + sy;
+        const double x = v_.x0 + (double(cell % v_.nx) + (a - std::floor(a))) * v_.dx;
+        const double y = v_.y0 + (double(cell / v_.nx) + (b - std::floor(b))) * v_.dy;
+        const double s = sun_.z;
+        // The Medium's part: the shell of this column.
+        const MediumColumn c = medium_.column(x, y);
+        const double thick = c.top - c.floor;
+        const bool shell = tracer_.medium() && thick > 0.0 && c.coverage > 0.0;
+        const double mean_profile = 0.5 * (1.0 + medium_.options().top_density);
+        const double slope = shell ? std::min(medium_.max_extinction() * thick * mean_profile / s, 30.0) : 0.0;
+        const double rise = -std::expm1(-slope);    // 1 - exp(-slope)
+        const auto shell_density = [&](double h) {  // per unit h
+            return uniform_share +
+                (1.0 - uniform_share) * (slope > 1e-9 ? slope * std::exp(slope * (h - 1.0)) / rise : 1.0);
+        };
+        // The height fog's part: its first collisions along the sun between the box's floor and top.
+        const HeightFog& haze = tracer_.haze();
+        const double zb = box_.max.z;
+        const double za = tracer_.has_haze() ? ground_under(x, y) : box_.min.z;
+        const glm::dvec3 up(0.0, 0.0, 1.0);
+        double ta = 0.0, tb = 0.0;  // T_haze at za and zb
+        if (tracer_.has_haze() && zb > za) {
+            ta = std::exp(-haze.optical_depth({x, y, za}, up, 0.0, inf) / s);
+            tb = std::exp(-haze.optical_depth({x, y, zb}, up, 0.0, inf) / s);
+        }
+        const double haze_mass = tb - ta, shell_mass = shell ? -std::expm1(-slope / mean_profile) : 0.0;
+        if (!(haze_mass > 0.0) && !shell)
+            return f;
+        const double p_haze = !(haze_mass > 0.0) ? 0.0
+            : !shell                             ? 1.0
+                                                 : std::clamp(haze_mass / (haze_mass + shell_mass), 0.1, 0.9);
+        double z = 0.0;
+        if (uz < p_haze) {
+            const double target = -s * std::log(ta + uz / p_haze * haze_mass);
+            const double below_top =
+                haze.free_path({x, y, zb}, -up, 0.0, zb - za, target - haze.optical_depth({x, y, zb}, up, 0.0, inf));
+            z = std::isfinite(below_top) ? zb - below_top : za;
+        } else {
+            const double u = (uz - p_haze) / (1.0 - p_haze);  // uniform in [0, 1) again
+            double h = u / uniform_share;
+            if (u >= uniform_share && slope > 1e-9)
+                h = 1.0 + std::log1p(-(1.0 - (u - uniform_share) / (1.0 - uniform_share)) * rise) / slope;
+            else if (u >= uniform_share)
+                h = (u - uniform_share) / (1.0 - uniform_share);
+            z = c.floor + std::clamp(h, 0.0, 1.0) * thick;
+        }
+        // The mixture's density at z, per unit volume (x, y uniform over the cell).
+        double density = 0.0;
+        if (shell && z >= c.floor && z <= c.top)
+            density += (1.0 - p_haze) * shell_density((z - c.floor) / thick) / thick;
+        if (p_haze > 0.0 && z >= za && z <= zb)
+            density +=
+                p_haze * haze.sigma(z) / s * std::exp(-haze.optical_depth({x, y, z}, up, 0.0, inf) / s) / haze_mass;
+        density /= v_.dx * v_.dy;
+        f.p = {x, y, z};
+        const double sigma =
+            (tracer_.medium() ? medium_.extinction(f.p) : 0.0) + (tracer_.has_haze() ? haze.sigma(f.p) : 0.0);
+        if (!(sigma > 0.0) || !(density > 0.0))
+            return f;
+        const double transmittance = tracer_.sun_transmittance(f.p, rng);
+        f.weight = std::numbers::pi * sigma * transmittance / (density * double(n));
+        return f;
+    }
 
     // The track-length estimator of the segment o + t w, t in [0, length]: points a jittered
     // step apart, each adding weight x step x Y_lm(w) to its cell's sum (divided by the cell's
@@ -162,9 +310,10 @@ private:
         const double across = std::hypot(w.x, w.y);
         const double max_step = across > 0.0 ? step_ / across : inf;
         long long count = 0;
+        // The step's level height from the last point's column (the shell's thickness changes
+        // little over a step): one column lookup per point.
+        MediumColumn c = medium_.column(o.x, o.y);
         for (double t = 0.0; t < length;) {
-            const glm::dvec3 here = o + w * t;
-            const MediumColumn c = medium_.column(here.x, here.y);
             const double level = (c.top - c.floor) / v_.nz;
             double dt = std::min(max_step, 2.0 * step_);
             if (level > 0.0 && w.z != 0.0)
@@ -173,7 +322,8 @@ private:
             const double seg = std::min(dt, length - t);
             const glm::dvec3 p = o + w * (t + rng.uniform() * seg);
             t += seg;
-            const double h = shell_height(medium_.column(p.x, p.y), p.z);
+            c = medium_.column(p.x, p.y);
+            const double h = shell_height(c, p.z);
             if (h < 0.0)
                 continue;
             const int i = int(std::floor((p.x - v_.x0) / v_.dx)), j = int(std::floor((p.y - v_.y0) / v_.dy));
@@ -235,12 +385,12 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     po.surround = options.surround;
     const detail::PathTracer tracer(fog, terrain, light, po);
     Baker baker(tracer, *medium, sun, v, options);
-    const long long photons = options.photons > 0
-        ? options.photons
-        : std::max<long long>(1, (long long)std::max(options.photons_per_column, 1) * v.nx * v.ny);
-    // Each photon carries 1 / photons of the power pi x (projected area) that enters the box.
-    const double weight = std::numbers::pi * baker.projected_area() / double(photons);
-    baker.set_photon_weight(weight);
+    // Whole columns of photons: every (x, y) cell draws its first scatterings itself.
+    if (options.photons > 0)
+        baker.allocate((options.photons + baker.columns() - 1) / baker.columns(), false);
+    else
+        baker.allocate(std::max(options.photons_per_column, 1), true);
+    const long long photons = baker.photons();
 
     const long long tasks = (photons + photons_per_task - 1) / photons_per_task;
     std::vector<std::int64_t> total(cells * nc, 0);
@@ -261,24 +411,32 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
         deposits += mine;
     });
 
-    // Each cell's volume: its footprint's shell thickness / levels, integrated on a 4 x 4 raster.
-    constexpr int raster = 4;
-    std::vector<double> column_volume(std::size_t(v.nx) * v.ny, 0.0);
+    // Each cell's volume: its footprint's shell thickness / levels, integrated on a raster; with
+    // the column normalisation, the volume-weighted mean of column_scale over it too.
+    if (options.column_normalised)
+        v.column_extinction = medium->options().extinction * 0.5 * (1.0 + medium->options().top_density);
+    constexpr int raster = 8;
+    std::vector<double> column_volume(std::size_t(v.nx) * v.ny, 0.0), column_mean(column_volume.size(), 1.0);
     for (int j = 0; j < v.ny; ++j)
         for (int i = 0; i < v.nx; ++i) {
-            double sum = 0.0;
+            double sum = 0.0, scaled = 0.0;
             for (int b = 0; b < raster; ++b)
                 for (int a = 0; a < raster; ++a) {
                     const MediumColumn c =
                         medium->column(v.x0 + (i + (a + 0.5) / raster) * v.dx, v.y0 + (j + (b + 0.5) / raster) * v.dy);
-                    sum += std::max(c.top - c.floor, 0.0);
+                    const double thick = std::max(c.top - c.floor, 0.0);
+                    sum += thick;
+                    scaled += thick * v.column_scale(c);
                 }
             column_volume[std::size_t(j) * v.nx + i] = sum / (raster * raster) * v.dx * v.dy / v.nz;
+            if (sum > 0.0)
+                column_mean[std::size_t(j) * v.nx + i] = std::max(scaled / sum, 1e-6);
         }
     const double quantum = baker.quantum();
     v.moments.assign(cells * nc, 0.0);
     for (std::size_t k = 0; k < cells; ++k) {
-        const double volume = column_volume[k % (std::size_t(v.nx) * v.ny)];
+        const std::size_t column = k % (std::size_t(v.nx) * v.ny);
+        const double volume = column_volume[column] * column_mean[column];
         if (!(volume > 0.0))
             continue;
         for (int q = 0; q < nc; ++q)

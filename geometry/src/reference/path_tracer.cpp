@@ -192,16 +192,9 @@ double PathTracer::medium_transmittance(const glm::dvec3& o, const glm::dvec3& w
 double PathTracer::haze_collision(const glm::dvec3& o, const glm::dvec3& w, double t1, Random& rng) const
 {
     // The free path of the height fog alone, exactly: the t where its optical depth from o
-    // reaches an exponential variate (bisection on the closed form, which grows with t).
+    // reaches an exponential variate, by the closed form's inverse.
     const double target = -std::log1p(-rng.uniform());
-    if (!(t1 > 0.0) || !(haze_.optical_depth(o, w, 0.0, t1) > target))
-        return inf;
-    double lo = 0.0, hi = t1;
-    for (int it = 0; it < 200 && hi - lo > 1e-10 * (1.0 + hi); ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (haze_.optical_depth(o, w, 0.0, mid) < target ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
+    return haze_.free_path(o, w, 0.0, t1, target);
 }
 
 double PathTracer::sun_transmittance(const glm::dvec3& p, Random& rng) const

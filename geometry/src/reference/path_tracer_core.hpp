@@ -68,16 +68,24 @@ inline glm::dvec3 around(const glm::dvec3& axis, double cos_theta, double phi)
 }
 
 // The scattered direction of light travelling along w, drawn from the Henyey-Greenstein phase
-// function ([HG41]) by inverting its cumulative distribution in cos_theta.
-inline glm::dvec3 sample_phase(const glm::dvec3& w, double g, Random& rng)
+// function ([HG41]) by inverting its cumulative distribution in cos_theta, from two uniforms in
+// [0, 1): u for cos_theta, v for the azimuth (stratified ones where the caller has them).
+inline glm::dvec3 sample_phase(const glm::dvec3& w, double g, double u, double v)
 {
-    const double u = rng.uniform(), phi = 2.0 * std::numbers::pi * rng.uniform();
+    const double phi = 2.0 * std::numbers::pi * v;
     double c = 1.0 - 2.0 * u;
     if (std::abs(g) >= 1e-4) {
         const double s = (1.0 - g * g) / (1.0 - g + 2.0 * g * u);
         c = (1.0 + g * g - s * s) / (2.0 * g);
     }
     return around(w, c, phi);
+}
+
+// The same from the generator (u first, then v).
+inline glm::dvec3 sample_phase(const glm::dvec3& w, double g, Random& rng)
+{
+    const double u = rng.uniform();
+    return sample_phase(w, g, u, rng.uniform());
 }
 
 // The majorant of the Medium over one cell of its grid: sigma_t <= sigma there, and the
@@ -101,6 +109,10 @@ public:
     double medium_collision(const glm::dvec3& o, const glm::dvec3& w, double t1, Random& rng) const;
     //! The same for the height fog alone (exactly, by its closed form).
     double haze_collision(const glm::dvec3& o, const glm::dvec3& w, double t1, Random& rng) const;
+    //! The sun's transmittance from p (the terrain hides, the fog dims; ratio tracking in the
+    //! Medium, an unbiased estimate).
+    double sun_transmittance(const glm::dvec3& p, Random& rng) const;
+    const HeightFog& haze() const { return haze_; }
     const Medium* medium() const { return medium_; }
     bool has_haze() const { return haze_on_; }
     const HeightfieldRay* terrain() const { return terrain_.get(); }
@@ -125,7 +137,6 @@ private:
     int max_bounces_ = 128, roulette_after_ = 3;
 
     double medium_transmittance(const glm::dvec3& o, const glm::dvec3& w, Random& rng) const;
-    double sun_transmittance(const glm::dvec3& p, Random& rng) const;
     glm::dvec3 sky(const glm::dvec3& w) const;
     //! Calls visit(cell, a, b) for each piece [a, b] of o + t w, t in [t0, t1], inside a cell
     //! that may hold fog, nearest first, until visit returns false.

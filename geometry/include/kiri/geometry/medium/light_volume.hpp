@@ -16,6 +16,16 @@
 //! (the convolution is exact; the truncation at `bands` bands is the approximation). The cells
 //! follow the shell: (x, y) on a regular grid, h = (z - floor) / (top - floor) in `levels`
 //! equal levels, so a thin layer and a deep lake get the same number of levels.
+//!
+//! A cell can hold two bodies of fog that see very different diffuse light: a thick valley lake
+//! and a thin thread of fog across a ridge. The light a column of fog scatters grows with its
+//! optical thickness, tau_c = column_extinction coverage (top - floor), and saturates where it is
+//! thick, so with column_extinction > 0 the cells store their diffuse light divided by their mean of
+//! column_scale = 1 - exp(-tau_c) (volume-weighted over the cell's footprint), and the lookup
+//! multiplies the interpolated moments back by column_scale at its own (x, y): the thread gets the
+//! lake's light scaled by its own thinness, and a fog of even thickness (a slab, a blanket) is as
+//! before. A renderer mirroring the lookup computes column_scale from the shell's floor, top and
+//! coverage at the point (one exp) and passes it to moments_at / in_scattered.
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -42,6 +52,10 @@ struct LightVolume {
     double x0 = 0.0, y0 = 0.0, dx = 1.0, dy = 1.0;
     //! L_lm of each cell, index ((k ny + j) nx + i) bands^2 + l (l + 1) + m, for a sun of unit radiance.
     std::vector<double> moments;
+    //! > 0: the moments are divided by the cell's mean column_scale (the file comment), to be
+    //! multiplied by column_scale at the lookup point; 0: they are the diffuse light itself. The
+    //! Medium's extinction times its mean profile (1 + top_density) / 2, 1/m.
+    double column_extinction = 0.0;
     // What the bake cost.
     long long photons = 0;
     long long deposits = 0;
@@ -51,16 +65,20 @@ struct LightVolume {
     {
         return nx < 1 || ny < 1 || nz < 1 || bands < 1 || bands > light_volume_max_bands || moments.empty();
     }
+    //! 1 - exp(-column_extinction coverage (top - floor)) of the column at the lookup point, at
+    //! least 1e-6; 1 when column_extinction is 0.
+    double column_scale(const MediumColumn& column) const;
     //! The moments at (x, y, h), trilinear between cell centres (clamped to the outer cells' centres),
-    //! into out (bands^2 values); zeros when empty.
-    void moments_at(double x, double y, double h, double* out) const;
+    //! times `scale` (column_scale of the point's column), into out (bands^2 values); zeros when empty.
+    void moments_at(double x, double y, double h, double* out, double scale = 1.0) const;
     //! sum_l g^l sum_m L_lm Y_lm(towards) at (x, y, h): the diffuse light that the phase function
     //! of anisotropy g scatters towards the unit direction `towards`, per unit sun radiance
     //! (1/sr x sr = dimensionless radiance ratio); >= 0 and finite for any input, 0 when empty.
-    double in_scattered(double x, double y, double h, const glm::dvec3& towards, double g) const;
+    //! `scale` as in moments_at.
+    double in_scattered(double x, double y, double h, const glm::dvec3& towards, double g, double scale = 1.0) const;
     //! The same with the direction's part g^l Y_lm(towards) (phase_weights) computed once, as a
     //! ray marcher does along a ray.
-    double in_scattered(double x, double y, double h, const double* weights) const;
+    double in_scattered(double x, double y, double h, const double* weights, double scale = 1.0) const;
     //! g^l Y_lm(towards) into out (bands^2 values).
     void phase_weights(const glm::dvec3& towards, double g, double* out) const;
 };

@@ -6,11 +6,14 @@
 //! after the first scattering accumulated by a track-length estimator ([Spanier69]) into the spherical-harmonic
 //! moments of the diffuse radiance.
 //!
-//! Photons enter over the faces of the Medium's box that face the sun, with the sun's irradiance
-//! pi (a sun of unit radiance) over each face's projected area; an entry point the terrain hides
-//! from the sun sends none. Inside the box they scatter in the Medium and in the height fog (each
-//! with its albedo and g) until they are absorbed by the ground (black: the lighting model's ground
-//! reflects nothing into the fog either), leave the box, or lose Russian roulette. The single
+//! Photons start where the sun's light first scatters, drawn inside the fog (the Medium's shell
+//! and the height fog within the Medium's box) and weighted by the density of first collisions,
+//! pi sigma_t T_sun (a sun of unit radiance, irradiance pi; the terrain hides, the fog dims), over
+//! the density they were drawn from; each (x, y) cell draws its own, stratified, as many as the
+//! share of the sunlight its column scatters asks for. From there they scatter in the Medium and
+//! in the height fog (each with its albedo and g) until they are absorbed by the ground (black:
+//! the lighting model's ground reflects nothing into the fog either), leave the box, or lose
+//! Russian roulette. The single
 //! scattering (the unscattered sunlight) is not in the volume: the lighting model draws it exactly.
 //! Each photon draws from its own random stream seeded by (seed, photon), and the moments are
 //! summed in fixed point, so the volume is bit-identical on any number of threads.
@@ -25,9 +28,11 @@
 namespace kiri::geometry {
 
 struct LightVolumeOptions {
-    //! Photons traced; 0: photons_per_column per (x, y) cell.
+    //! Photons traced, as many in every (x, y) cell (rounded up to whole columns); 0:
+    //! photons_per_column per cell times the share of the sunlight its column scatters
+    //! (1 - exp(-tau / sin(elevation))), at least a quarter of it.
     long long photons = 0;
-    int photons_per_column = 400;
+    int photons_per_column = 300;
     int levels = 8;  //!< cells in h between the floor and the top, [1, 64]
     int bands = 6;   //!< spherical-harmonic bands, [1, light_volume_max_bands]
     //! Cells in (x, y), metres; 0: the Medium's grid spacing or the mean free path 1 / extinction,
@@ -36,6 +41,9 @@ struct LightVolumeOptions {
     int max_side = 32;
     int max_bounces = 1000;  //!< scatterings a photon may have
     int roulette_after = 3;  //!< Russian roulette on the weight from this many scatterings on
+    //! Store the diffuse light over the cells' mean column_scale (light_volume.hpp), so that a
+    //! thin body of fog beside a thick one in the same cell does not get the thick one's light.
+    bool column_normalised = true;
     std::uint64_t seed = 1;
     bool surround = true;  //!< the ground beyond the DEM's edge (path_tracer.hpp)
     int threads = 0;       //!< 0: every core

@@ -33,6 +33,12 @@ struct HeightFog {
     //! The integral of sigma_t along origin + t dir for t in [t0, t1] (dir need not be unit;
     //! t1 may be +inf when dir.z > 0). Exact, no cancellation for nearly level segments.
     double optical_depth(const glm::dvec3& origin, const glm::dvec3& dir, double t0, double t1) const;
+    //! The inverse of optical_depth: the t in [t0, t1] where optical_depth(origin, dir, t0, t)
+    //! reaches `depth` (> 0), or +inf where the segment holds less (a free path of the height fog,
+    //! [Woodcock65]'s variate inverted exactly). In closed form piece by piece (the constant part
+    //! under the base, the exponential above it), relative to each piece's start, so a level ray
+    //! and a fog that underflows above its base stay exact (height_fog_free_path.cpp).
+    double free_path(const glm::dvec3& origin, const glm::dvec3& dir, double t0, double t1, double depth) const;
     bool operator==(const HeightFog&) const = default;
 };
 
