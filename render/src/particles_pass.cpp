@@ -12,8 +12,8 @@
 namespace kiri::render::detail {
 
 ParticlesPass::ParticlesPass()
-    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
-                "particles.vert", "particles.frag"}),
+    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "particle_light.glsl", "terrain_shadow.glsl",
+                "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
@@ -96,6 +96,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (!has_particles())
         return false;
     const bool rebuilt = buffer_.update(glm::dvec3(frame.sun_direction), style_.buffer);
+    light_.update(*cloud_, buffer_, shadow_);
     sort(frame);
     ensure_target(frame.width, frame.height);
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -108,7 +109,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-            "terrain_shadow.glsl", "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert",
+            "particle_light.glsl", "terrain_shadow.glsl", "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert",
             "particles.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
@@ -120,6 +121,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     p.set("u_camera_right", glm::vec3(inverse_view[0]));
     p.set("u_camera_up", glm::vec3(inverse_view[1]));
     p.set("u_lit", 1);
+    p.set("u_self_table", int(light_.has_table()));
     p.set("u_log_gamma", 0);
     p.set("u_depth", 1);
     p.set("u_near", float(p32 / (p22 - 1.0)));
@@ -138,6 +140,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     glBindTextureUnit(1, resolved_depth);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_.particle_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, order_.get());
+    light_.bind();
     glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
     glViewport(0, 0, frame.width, frame.height);
     glDisable(GL_DEPTH_TEST);

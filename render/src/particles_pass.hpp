@@ -10,6 +10,7 @@
 #include "kiri/geometry/particles/particles.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
+#include "particle_light.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {
@@ -29,6 +30,7 @@ public:
     //! Draws over `resolved_fbo`. Returns whether the attenuation buffer was rebuilt.
     bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth);
     const AttenuationBuffer& buffer() const { return buffer_; }
+    const ParticleLight& light() const { return light_; }
     //! Froxel fog to read at each billboard's depth (null: none; drawn after its apply) and the
     //! sun's shadow map of the terrain (null: no terrain shadows), for the frame.
     void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow)
@@ -45,6 +47,7 @@ private:
     const ShadowMapPass* shadow_ = nullptr;
     VertexArray vao_;
     AttenuationBuffer buffer_;
+    ParticleLight light_;  // what each billboard's light needs of its particle alone
     const geometry::ParticleCloud* cloud_ = nullptr;
     std::uint64_t uploaded_hash_ = 0;
     std::size_t count_ = 0;
