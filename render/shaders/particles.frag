@@ -16,6 +16,7 @@ flat in vec3 v_optics;  // radius, tau, albedo
 in vec4 v_fog;
 uniform sampler3D u_log_gamma;
 uniform sampler2D u_depth;       // the terrain's depth, full resolution
+uniform vec2 u_depth_scale;      // its pixels per pixel of this target (the near target's are coarser)
 uniform int u_lit;               // 0: no buffer (every particle fully lit)
 uniform float u_near;
 uniform float u_far;
@@ -37,7 +38,7 @@ void main()
     if (x >= 1.0)
         discard;
     float alpha = 1.0 - exp(-v_optics.y * footprint_profile(x));
-    float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy), 0).r);
+    float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy * u_depth_scale), 0).r);
     float here = linear_depth(gl_FragCoord.z);
     alpha *= u_soft_edge > 0.0 ? clamp((scene - here) / u_soft_edge, 0.0, 1.0) : step(here, scene);
     if (alpha < 1e-5)

@@ -10,6 +10,7 @@
 // agreement with the reference fell by 0.5 to 2 points.
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 layout(std430, binding = 2) readonly buffer Order { uint order[]; };
+uniform uint u_first;  // of the sorted billboards, the first this draw takes
 uniform mat4 u_view_projection;
 uniform vec3 u_centre;  // the cloud's centre (positions are relative to it)
 uniform vec3 u_camera_right;
@@ -25,7 +26,7 @@ out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, t
 
 void main()
 {
-    uint id = order[gl_InstanceID];
+    uint id = order[u_first + uint(gl_InstanceID)];
     vec4 p = particles[id].position_radius;
     vec2 corner = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
     v_relative = p.xyz + (corner.x * u_camera_right + corner.y * u_camera_up) * p.w;

@@ -19,15 +19,18 @@ namespace {
 //! particle_light.glsl's ParticleLightRecord (std430): grid_visible is written by the compute
 //! pass, the window and the offset by the CPU.
 struct Record {
-    float grid_visible[4];  // the particle's shadow_grid (gx, gy, gw0), terrain visibility at its centre
-    std::int32_t window[4];  // first column i, j; columns along i, j
+    float grid_visible[4];    // the particle's shadow_grid (gx, gy, gw0), terrain visibility at its centre
+    std::int32_t window[4];   // first column i, j; columns along i, j
     std::uint32_t offset[4];  // its first entry in the gain table; 0, 0, 0
 };
 static_assert(sizeof(Record) == 48);
 
 }  // namespace
 
-ParticleLight::ParticleLight() : program_({"particle_footprint.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "particle_light.glsl", "particle_light.comp"}) {}
+ParticleLight::ParticleLight()
+    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "particle_light.glsl",
+                "particle_light.comp"})
+{}
 
 bool ParticleLight::update(const geometry::ParticleCloud& cloud, const AttenuationBuffer& buffer,
                            const ShadowMapPass* shadow)
