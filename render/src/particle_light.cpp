@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -86,6 +87,43 @@ bool ParticleLight::update(const geometry::ParticleCloud& cloud, const Attenuati
     shadow_updates_ = shadow_updates;
     ++rebuilds_;
     return true;
+}
+
+std::vector<glm::vec2> ParticleLight::sample_log_gamma(const geometry::ParticleCloud& cloud,
+                                                       const AttenuationBuffer& buffer,
+                                                       const std::vector<glm::vec3>& points,
+                                                       const std::vector<std::uint32_t>& slots) const
+{
+    const std::size_t n = std::min(points.size(), slots.size());
+    if (!records_ || n == 0)
+        return {};
+    if (!sample_)
+        sample_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+            "particle_footprint.glsl", "fog_lighting.glsl", "particle_light.glsl", "particle_light_sample.comp"});
+    std::vector<glm::vec4> queries(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        float slot = 0.0f;
+        std::memcpy(&slot, &slots[k], sizeof slot);
+        queries[k] = glm::vec4(points[k], slot);
+    }
+    Buffer in = make_buffer(), out = make_buffer();
+    glNamedBufferStorage(in.get(), GLsizeiptr(n * sizeof(glm::vec4)), queries.data(), 0);
+    glNamedBufferStorage(out.get(), GLsizeiptr(n * sizeof(glm::vec2)), nullptr, 0);
+    set_grid_uniforms(*sample_, buffer.grid(), cloud.forward_scattering, buffer.particle_centre());
+    sample_->set("u_self_table", int(has_table()));
+    sample_->set("u_log_gamma", 0);
+    glProgramUniform1ui(sample_->id(), sample_->location("u_count"), GLuint(n));
+    sample_->use();
+    glBindTextureUnit(0, buffer.texture());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.particle_buffer());
+    bind();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, in.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, out.get());
+    glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<glm::vec2> result(n);
+    glGetNamedBufferSubData(out.get(), 0, GLsizeiptr(n * sizeof(glm::vec2)), result.data());
+    return result;
 }
 
 void ParticleLight::bind() const

@@ -9,6 +9,11 @@
 // or a moving eye.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "gl_objects.hpp"
 #include "shader_program.hpp"
@@ -35,12 +40,19 @@ public:
     //! compute the four gains themselves, as before).
     bool has_table() const { return table_floats_ > 0; }
     int rebuild_count() const { return rebuilds_; }
+    //! log Gamma at points (relative to the buffer's particle centre) on the billboards of the
+    //! particles in the buffer's slots: (as a fragment reads it through the record and the
+    //! table, with the own cylinder computed in full), read back. After update().
+    std::vector<glm::vec2> sample_log_gamma(const geometry::ParticleCloud& cloud, const AttenuationBuffer& buffer,
+                                            const std::vector<glm::vec3>& points,
+                                            const std::vector<std::uint32_t>& slots) const;
     std::size_t table_floats() const { return table_floats_; }
     //! Most floats the gain table may hold (256 MiB).
     static constexpr std::size_t table_limit = std::size_t(1) << 26;
 
 private:
     ShaderProgram program_;
+    mutable std::unique_ptr<ShaderProgram> sample_;  // built on first use
     Buffer records_, table_;
     std::size_t table_floats_ = 0;
     int rebuilds_ = 0;
