@@ -66,6 +66,7 @@ bool ParticleLight::update(const geometry::ParticleCloud& cloud, const Attenuati
         floats += std::size_t(r.window[2]) * std::size_t(r.window[3]);
     }
     table_floats_ = floats <= table_limit ? floats : 0;
+    records_bytes_ = records.size() * sizeof(Record);
     records_ = make_buffer();
     glNamedBufferStorage(records_.get(), GLsizeiptr(records.size() * sizeof(Record)), records.data(), 0);
     table_ = make_buffer();

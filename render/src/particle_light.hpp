@@ -47,6 +47,7 @@ public:
                                             const std::vector<glm::vec3>& points,
                                             const std::vector<std::uint32_t>& slots) const;
     std::size_t table_floats() const { return table_floats_; }
+    std::size_t bytes() const { return records_bytes_ + table_floats_ * sizeof(float); }
     //! Most floats the gain table may hold (256 MiB).
     static constexpr std::size_t table_limit = std::size_t(1) << 26;
 
@@ -54,7 +55,7 @@ private:
     ShaderProgram program_;
     mutable std::unique_ptr<ShaderProgram> sample_;  // built on first use
     Buffer records_, table_;
-    std::size_t table_floats_ = 0;
+    std::size_t table_floats_ = 0, records_bytes_ = 0;
     int rebuilds_ = 0;
     // What the buffers were made from.
     int buffer_builds_ = -1, shadow_updates_ = -1;

@@ -54,7 +54,7 @@ struct ParticleOptions {
     LightFrame frame = LightFrame::automatic;
     double soft_edge = 40.0;
     int near_scale = 2;         //!< the near billboards' target is this many times coarser a side
-    double near_pixels = 32.0;  //!< from this radius on screen (pixels) a billboard is near
+    double near_pixels = 16.0;  //!< from this radius on screen (pixels) a billboard is near
     bool operator==(const ParticleOptions&) const = default;
 };
 
