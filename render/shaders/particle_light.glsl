@@ -8,8 +8,8 @@ struct ParticleLightRecord {
     ivec4 window;       // first light column (i, j) of the gain table, columns along i and j
     uvec4 offset;       // x: the table's first entry
 };
-layout(std430, binding = 3) buffer ParticleLights { ParticleLightRecord particle_lights[]; };
-layout(std430, binding = 4) buffer SelfGains { float self_gains[]; };
+layout(std430, binding = 4) buffer ParticleLights { ParticleLightRecord particle_lights[]; };
+layout(std430, binding = 5) buffer SelfGains { float self_gains[]; };
 
 uniform int u_self_table;  // 0: the table is missing (too large), the gains are computed
 

@@ -6,8 +6,8 @@
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
-layout(std430, binding = 5) readonly buffer Queries { vec4 queries[]; };  // relative point; w: the slot's bits
-layout(std430, binding = 6) writeonly buffer Results { vec2 results[]; };
+layout(std430, binding = 6) readonly buffer Queries { vec4 queries[]; };  // relative point; w: the slot's bits
+layout(std430, binding = 7) writeonly buffer Results { vec2 results[]; };
 uniform sampler3D u_log_gamma;
 uniform uint u_count;
 

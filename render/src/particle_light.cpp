@@ -118,8 +118,8 @@ std::vector<glm::vec2> ParticleLight::sample_log_gamma(const geometry::ParticleC
     glBindTextureUnit(0, buffer.texture());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer.particle_buffer());
     bind();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, in.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, out.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, in.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, out.get());
     glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
     glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<glm::vec2> result(n);
@@ -129,8 +129,8 @@ std::vector<glm::vec2> ParticleLight::sample_log_gamma(const geometry::ParticleC
 
 void ParticleLight::bind() const
 {
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, records_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, table_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, records_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, table_.get());
 }
 
 }  // namespace kiri::render::detail

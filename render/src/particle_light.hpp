@@ -34,7 +34,7 @@ public:
     //! Brings the per-particle buffers up to date with `buffer` (built) and the shadow map
     //! (null: none); returns whether it rebuilt them.
     bool update(const geometry::ParticleCloud& cloud, const AttenuationBuffer& buffer, const ShadowMapPass* shadow);
-    //! Binds the records (SSBO 3) and the gain table (SSBO 4) that particle_light.glsl reads.
+    //! Binds the records (SSBO 4) and the gain table (SSBO 5) that particle_light.glsl reads.
     void bind() const;
     //! Whether fragments read the table (false: it would pass table_limit floats, and they
     //! compute the four gains themselves, as before).
