@@ -180,6 +180,13 @@ void run(const RenderArgs& a)
                      particles->particles.size(), particles->candidate_count, particles->trial_count, size[0], size[1],
                      size[2], scene.particles.half_float ? "R16F" : "R32F", double(b.texture_bytes()) / 1048576.0,
                      b.last_build_ms());
+        if (a.timings && renderer.last_stats().particles > 0)
+            std::fprintf(stderr,
+                         "kiri render: particles blended %llu fragments, %d billboards near (coarser), per-particle "
+                         "light %.2f MiB\n",
+                         (unsigned long long)renderer.last_stats().particle_fragments,
+                         renderer.last_stats().near_particles,
+                         double(renderer.last_stats().particle_light_bytes) / 1048576.0);
     }
 }
 

@@ -63,24 +63,35 @@ vec3 linear_taps(float g, int n)
     return vec3(float(clamp(i, 0, n - 1)), float(clamp(i + 1, 0, n - 1)), x - f);
 }
 
-// What the trilinear read at grid point g holds of a particle's own cylinder: the particle at
+// The log gain of a particle's footprint in light column c (its deposit there): the particle at
 // grid coordinates (gx, gy) with shadow-start depth gw0 (before the shear), radius, tau, albedo.
+float column_self_log_gain(ivec2 c, vec3 self_grid, vec3 self_optics)
+{
+    float rho = length((vec2(c) + 0.5 - self_grid.xy) * u_grid_voxel.xy);
+    return rho < self_optics.x ? footprint_log_gain(rho, self_optics.x, self_optics.y, self_optics.z, u_forward) : 0.0;
+}
+
+// The share of column c's deposit that a trilinear read with depth taps tz takes: the read's
+// depth weights of the voxels at or beyond the particle's shadow start in that column.
+float self_depth_weight(ivec2 c, vec3 self_grid, vec3 tz)
+{
+    float s = self_grid.z - u_grid_shear_cells.x * (float(c.x) + 0.5) - u_grid_shear_cells.y * (float(c.y) + 0.5);
+    float start = max(ceil(s - 0.5), 0.0);
+    return (tz.x >= start ? 1.0 - tz.z : 0.0) + (tz.y >= start ? tz.z : 0.0);
+}
+
+// What the trilinear read at grid point g holds of a particle's own cylinder (its deposit in the
+// read's four columns, weighted as the filter weighs them).
 float self_log_gamma(vec3 g, vec3 self_grid, vec3 self_optics)
 {
     vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y), tz = linear_taps(g.z, u_grid_size.z);
     float sum = 0.0;
     for (int dj = 0; dj < 2; ++dj)
         for (int di = 0; di < 2; ++di) {
-            float ci = di == 0 ? tx.x : tx.y, cj = dj == 0 ? ty.x : ty.y;
-            vec2 d = (vec2(ci, cj) + 0.5 - self_grid.xy) * u_grid_voxel.xy;
-            float rho = length(d);
-            if (!(rho < self_optics.x))
-                continue;
-            float s = self_grid.z - u_grid_shear_cells.x * (ci + 0.5) - u_grid_shear_cells.y * (cj + 0.5);
-            float start = max(ceil(s - 0.5), 0.0);
-            float depth = (tz.x >= start ? 1.0 - tz.z : 0.0) + (tz.y >= start ? tz.z : 0.0);
-            sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * depth *
-                   footprint_log_gain(rho, self_optics.x, self_optics.y, self_optics.z, u_forward);
+            ivec2 c = ivec2(di == 0 ? tx.x : tx.y, dj == 0 ? ty.x : ty.y);
+            float gain = column_self_log_gain(c, self_grid, self_optics);
+            if (gain != 0.0)
+                sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * self_depth_weight(c, self_grid, tz) * gain;
         }
     return sum;
 }

@@ -3,12 +3,14 @@
 // particle's radius, drawn back to front in the order the CPU sorted (u_order). The froxel fog in
 // front of it (froxel_apply.glsl; none without it) is read at the corners and interpolated: at
 // the billboard's one depth it changes over the froxels' tiles, and the fragments of the
-// billboards' overdraw then pay no lookup. The sun's light through the attenuation buffer stays
-// per fragment (particles.frag): the default scene's billboards (250 to 500 m) span one or two
-// of the buffer's voxels, and read at the corners or the centre the particles' agreement with
-// the reference fell by 0.5 to 2 points.
+// billboards' overdraw then pay no lookup. What the particle's light needs of the particle
+// alone comes from its record (particle_light.comp); the sun's light through the attenuation
+// buffer stays per fragment (particles.frag): the default scene's billboards (250 to 500 m)
+// span one or two of the buffer's voxels, and read at the corners or the centre the particles'
+// agreement with the reference fell by 0.5 to 2 points.
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 layout(std430, binding = 2) readonly buffer Order { uint order[]; };
+uniform uint u_first;  // of the sorted billboards, the first this draw takes
 uniform mat4 u_view_projection;
 uniform vec3 u_centre;  // the cloud's centre (positions are relative to it)
 uniform vec3 u_camera_right;
@@ -16,22 +18,24 @@ uniform vec3 u_camera_up;
 out vec3 v_relative;  // relative to the cloud's centre
 out vec3 v_world;
 out vec2 v_offset;    // in radii, (0, 0) at the centre
-flat out float v_sun_visible;  // the terrain's shadow (terrain_shadow.glsl) at the particle
+flat out vec4 v_grid_visible;  // the particle's record (particle_light.glsl)
+flat out ivec4 v_window;
+flat out uint v_table;
+flat out vec3 v_optics;  // radius, tau, albedo
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
-flat out uint v_id;
 
 void main()
 {
-    uint id = order[gl_InstanceID];
+    uint id = order[u_first + uint(gl_InstanceID)];
     vec4 p = particles[id].position_radius;
     vec2 corner = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
     v_relative = p.xyz + (corner.x * u_camera_right + corner.y * u_camera_up) * p.w;
     v_world = v_relative + u_centre;
     v_offset = corner;
-    // At the particle's centre, as the CPU reference lights the point the particle stands for
-    // (a corner may dip into the ground and read as shadowed).
-    v_sun_visible = terrain_visibility(p.xyz + u_centre, u_ts_bias);
+    v_grid_visible = particle_lights[id].grid_visible;
+    v_window = particle_lights[id].window;
+    v_table = particle_lights[id].offset.x;
+    v_optics = vec3(p.w, particles[id].optics.xy);
     v_fog = froxel_fog(v_world);
-    v_id = id;
     gl_Position = u_view_projection * vec4(v_world, 1.0);
 }

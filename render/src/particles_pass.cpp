@@ -12,8 +12,8 @@
 namespace kiri::render::detail {
 
 ParticlesPass::ParticlesPass()
-    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
-                "particles.vert", "particles.frag"}),
+    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "particle_light.glsl", "terrain_shadow.glsl",
+                "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
@@ -32,7 +32,9 @@ bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const Pa
         glNamedBufferStorage(order_.get(), GLsizeiptr(count_ * sizeof(std::uint32_t)), nullptr, GL_DYNAMIC_STORAGE_BIT);
     lo_ = glm::dvec3(1e300);
     hi_ = glm::dvec3(-1e300);
+    smallest_radius_ = 1e300;
     for (const geometry::Particle& p : cloud.particles) {
+        smallest_radius_ = std::min(smallest_radius_, p.radius);
         lo_ = glm::min(lo_, p.position - glm::dvec3(p.radius));
         hi_ = glm::max(hi_, p.position + glm::dvec3(p.radius));
     }
@@ -56,16 +58,46 @@ void ParticlesPass::extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const
     hi = glm::max(hi, hi_);
 }
 
-void ParticlesPass::ensure_target(int width, int height)
+namespace {
+
+int near_size(int full, int scale) { return std::max(1, (full + scale - 1) / scale); }
+
+}  // namespace
+
+void ParticlesPass::ensure_target(int width, int height, int near_scale)
 {
-    if (width == width_ && height == height_ && fbo_)
+    if (width == width_ && height == height_ && near_scale == near_scale_ && fbo_)
         return;
-    color_ = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(color_.get(), 1, GL_RGBA16F, width, height);
-    fbo_ = make_framebuffer();
-    glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, color_.get(), 0);
+    const auto target = [](Texture& color, Framebuffer& fbo, int w, int h) {
+        color = make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(color.get(), 1, GL_RGBA16F, w, h);
+        glTextureParameteri(color.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTextureParameteri(color.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTextureParameteri(color.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTextureParameteri(color.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        fbo = make_framebuffer();
+        glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, color.get(), 0);
+    };
+    target(color_, fbo_, width, height);
+    if (near_scale > 1)
+        target(near_color_, near_fbo_, near_size(width, near_scale), near_size(height, near_scale));
     width_ = width;
     height_ = height;
+    near_scale_ = near_scale;
+}
+
+std::size_t ParticlesPass::near_first(const FrameContext& frame) const
+{
+    if (style_.near_scale <= 1 || !(style_.near_pixels > 0.0))
+        return order_cpu_.size();
+    // A billboard of radius r at depth d along the view spans r P / d pixels (P: pixels per unit
+    // of tan, the projection's y scale times half the height): every one nearer than
+    // r_min P / near_pixels spans near_pixels or more. The order is far to near.
+    const double pixels_per_tan = frame.projection[1][1] * 0.5 * frame.height;
+    const float nearer = float(smallest_radius_ * pixels_per_tan / style_.near_pixels);
+    const auto first =
+        std::partition_point(order_cpu_.begin(), order_cpu_.end(), [&](std::uint32_t k) { return keys_[k] >= nearer; });
+    return std::size_t(first - order_cpu_.begin());
 }
 
 void ParticlesPass::sort(const FrameContext& frame)
@@ -96,10 +128,15 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (!has_particles())
         return false;
     const bool rebuilt = buffer_.update(glm::dvec3(frame.sun_direction), style_.buffer);
+    last_light_rebuilt_ = light_.update(*cloud_, buffer_, shadow_);
     sort(frame);
-    ensure_target(frame.width, frame.height);
+    const int scale = std::max(style_.near_scale, 1);
+    ensure_target(frame.width, frame.height, scale);
+    const std::size_t split = near_first(frame);
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, clear);
+    if (split < count_)
+        glClearNamedFramebufferfv(near_fbo_.get(), GL_COLOR, 0, clear);
 
     const geometry::LightGrid& g = buffer_.grid();
     const glm::dmat4 inverse_view = glm::inverse(frame.view);
@@ -108,8 +145,8 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-            "terrain_shadow.glsl", "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "particles.vert",
-            "particles.frag"});
+            "particle_light.glsl", "terrain_shadow.glsl", "medium_shell.glsl", "froxel_medium.glsl",
+            "froxel_apply.glsl", "particles.vert", "particles.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
@@ -120,6 +157,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     p.set("u_camera_right", glm::vec3(inverse_view[0]));
     p.set("u_camera_up", glm::vec3(inverse_view[1]));
     p.set("u_lit", 1);
+    p.set("u_self_table", int(light_.has_table()));
     p.set("u_log_gamma", 0);
     p.set("u_depth", 1);
     p.set("u_near", float(p32 / (p22 - 1.0)));
@@ -138,21 +176,48 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     glBindTextureUnit(1, resolved_depth);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffer_.particle_buffer());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, order_.get());
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
-    glViewport(0, 0, frame.width, frame.height);
+    light_.bind();
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);
     glDisable(GL_CULL_FACE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glBindVertexArray(vao_.get());
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(count_));
+    if (!fragments_query_)
+        fragments_query_ = make_query(GL_SAMPLES_PASSED);
+    glBeginQuery(GL_SAMPLES_PASSED, fragments_query_.get());
+    // Far to near: those beyond the split at full resolution, the near ones in the coarse target.
+    const auto draw_range = [&](std::size_t first, std::size_t n, unsigned fbo, int w, int h) {
+        if (n == 0)
+            return;
+        glProgramUniform1ui(p.id(), p.location("u_first"), GLuint(first));
+        p.set("u_depth_scale", glm::vec2(float(frame.width) / float(w), float(frame.height) / float(h)));
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+        glViewport(0, 0, w, h);
+        glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, GLsizei(n));
+    };
+    draw_range(0, split, fbo_.get(), frame.width, frame.height);
+    draw_range(split, count_ - split, near_fbo_.get(), near_size(frame.width, scale), near_size(frame.height, scale));
+    glEndQuery(GL_SAMPLES_PASSED);
+    GLuint64 fragments = 0;
+    glGetQueryObjectui64v(fragments_query_.get(), GL_QUERY_RESULT, &fragments);
+    last_fragments_ = fragments;
+    last_near_ = int(count_ - split);
 
+    // Premultiplied "over" is associative: the near billboards' layer over the far ones' equals
+    // every billboard blended over the frame in one order.
     composite_.set("u_particles", 0);
     composite_.use();
-    glBindTextureUnit(0, color_.get());
     glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
+    glViewport(0, 0, frame.width, frame.height);
+    composite_.set("u_inv_size", glm::vec2(0.0f));
+    glBindTextureUnit(0, color_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (split < count_) {
+        composite_.set("u_inv_size", glm::vec2(1.0f / float(frame.width), 1.0f / float(frame.height)));
+        glBindTextureUnit(0, near_color_.get());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     return rebuilt;

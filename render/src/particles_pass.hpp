@@ -10,6 +10,7 @@
 #include "kiri/geometry/particles/particles.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
+#include "particle_light.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {
@@ -29,6 +30,7 @@ public:
     //! Draws over `resolved_fbo`. Returns whether the attenuation buffer was rebuilt.
     bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth);
     const AttenuationBuffer& buffer() const { return buffer_; }
+    const ParticleLight& light() const { return light_; }
     //! Froxel fog to read at each billboard's depth (null: none; drawn after its apply) and the
     //! sun's shadow map of the terrain (null: no terrain shadows), for the frame.
     void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow)
@@ -37,6 +39,10 @@ public:
         shadow_ = shadow;
     }
     std::size_t count() const { return has_particles() ? count_ : 0; }
+    //! Of the last draw: billboards drawn at the near resolution, fragments blended (all targets).
+    int last_near_count() const { return last_near_; }
+    std::uint64_t last_fragments() const { return last_fragments_; }
+    bool last_light_rebuilt() const { return last_light_rebuilt_; }
 
 private:
     ShaderProgram program_, composite_;
@@ -45,6 +51,7 @@ private:
     const ShadowMapPass* shadow_ = nullptr;
     VertexArray vao_;
     AttenuationBuffer buffer_;
+    ParticleLight light_;  // what each billboard's light needs of its particle alone
     const geometry::ParticleCloud* cloud_ = nullptr;
     std::uint64_t uploaded_hash_ = 0;
     std::size_t count_ = 0;
@@ -54,11 +61,18 @@ private:
     std::vector<float> keys_;
     glm::vec3 sorted_eye_{1e30f}, sorted_forward_{0.0f};
     glm::dvec3 lo_{0.0}, hi_{0.0};
-    Framebuffer fbo_;
-    Texture color_;
-    int width_ = 0, height_ = 0;
-    void ensure_target(int width, int height);
+    double smallest_radius_ = 0.0;
+    Framebuffer fbo_, near_fbo_;
+    Texture color_, near_color_;  // the near target: near_scale_ times coarser a side, bilinear
+    int width_ = 0, height_ = 0, near_scale_ = 0;
+    Query fragments_query_;
+    int last_near_ = 0;
+    bool last_light_rebuilt_ = false;
+    std::uint64_t last_fragments_ = 0;
+    void ensure_target(int width, int height, int near_scale);
     void sort(const FrameContext& frame);
+    //! Of the billboards sorted far to near, the first one drawn at the near resolution.
+    std::size_t near_first(const FrameContext& frame) const;
 };
 
 }  // namespace kiri::render::detail

@@ -295,6 +295,10 @@ void Renderer::draw(const Camera& camera, int width, int height)
         r.stats.passes.push_back(r.particles_timer.result());
         r.stats.particles = int(r.particles.count());
         r.stats.attenuation_rebuilds = rebuilt ? 1 : 0;
+        r.stats.particle_light_rebuilds = r.particles.last_light_rebuilt() ? 1 : 0;
+        r.stats.near_particles = r.particles.last_near_count();
+        r.stats.particle_light_bytes = r.particles.light().bytes();
+        r.stats.particle_fragments = r.particles.last_fragments();
     }
     if (overlays)
         r.stats.passes.push_back(r.overlays_timer.result());

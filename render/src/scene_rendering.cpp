@@ -90,6 +90,8 @@ ParticleStyle particle_style(const geometry::ParticleOptions& o)
     s.buffer.half_float = o.half_float;
     s.buffer.frame = o.frame;
     s.soft_edge = o.soft_edge;
+    s.near_scale = o.near_scale;
+    s.near_pixels = o.near_pixels;
     return s;
 }
 

@@ -89,6 +89,8 @@ FrameCost FogJudge::frame_cost(int width, int height, int frames)
     const render::FroxelStats& froxel = renderer_->last_stats().froxel;
     if (froxel.applied_pixels > 0)
         cost.marched = double(froxel.marched_pixels) / froxel.applied_pixels;
+    cost.near_particles = renderer_->last_stats().near_particles;
+    cost.particle_fragments = renderer_->last_stats().particle_fragments;
     for (const render::PassTime& pass : passes.back()) {
         std::vector<double> gpu, cpu;
         for (const auto& frame : passes)

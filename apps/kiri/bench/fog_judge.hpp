@@ -1,4 +1,5 @@
 #pragma once
+#include <cstdint>
 // Any fog renderer's frame of a scene judged against the CPU reference (render::compare_frames):
 // the scene's JSON varied per measurement (quality ladders, presets), the reference computed
 // once per view, each configuration's cost per frame while the view moves and its error on a
@@ -37,6 +38,9 @@ struct FrameCost {
     std::vector<render::PassTime> passes;
     //! The froxel apply's pixels that marched their own rays, of all it applied (last frame; -1: none).
     double marched = -1.0;
+    //! The particles' billboards (last frame): drawn at the near resolution, fragments blended.
+    int near_particles = 0;
+    std::uint64_t particle_fragments = 0;
 };
 
 class FogJudge {

@@ -9,6 +9,7 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/froxel_scene.cpp
   bench/layers_bench.cpp
   bench/light_bench.cpp
+  bench/near_bench.cpp
   bench/layers_scene.cpp
   bench/outputs_bench.cpp
   bench/particles_bench.cpp
@@ -19,5 +20,6 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/surface_bench.cpp
   bench/terrain_bench.cpp
   bench/tessellation_bench.cpp
+  bench/valley_view.cpp
   bench/views_bench.cpp
 )

@@ -53,6 +53,8 @@ bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* clou
     changed |= edit("voxels per side", o, o.resolution);
     changed |= field_combo("format", o.half_float, geometry::field_of(o, o.half_float));
     changed |= edit("soft edge (m)", o, o.soft_edge, "%.0f");
+    changed |= edit("near: coarser by", o, o.near_scale);
+    changed |= edit("near: from radius (px)", o, o.near_pixels, "%.0f");
     if (cloud)
         ImGui::TextDisabled("%zu particles, spacing %.0f m", cloud->particles.size(), cloud->spacing);
     if (buffer.rebuild_count() > 0) {

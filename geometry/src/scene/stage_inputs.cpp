@@ -26,6 +26,8 @@ ParticlesInput particles_input(std::uint64_t medium, ParticleSet set, const Part
     in.options.half_float = defaults.half_float;
     in.options.frame = defaults.frame;
     in.options.soft_edge = defaults.soft_edge;
+    in.options.near_scale = defaults.near_scale;
+    in.options.near_pixels = defaults.near_pixels;
     return in;
 }
 

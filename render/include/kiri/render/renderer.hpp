@@ -2,6 +2,7 @@
 //! \file renderer.hpp
 //! The frame renderer: owns the GPU resources of a scene and draws it into an offscreen
 //! framebuffer. Resources are uploaded once and rebuilt only when their inputs change.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,6 +48,12 @@ struct SunLight {
 struct ParticleStyle {
     AttenuationOptions buffer;  //!< the attenuation buffer's resolution, format and frame
     double soft_edge = 40.0;    //!< metres over which a billboard fades out in front of the terrain
+    //! Billboards near the eye, whose every radius spans at least `near_pixels` pixels, are
+    //! drawn into a target `near_scale` times coarser a side (1: every billboard at full
+    //! resolution) and laid over the others: they are smooth at that scale, and they are most of
+    //! the fragments when the eye is in the fog.
+    int near_scale = 2;
+    double near_pixels = 16.0;
 };
 
 struct PassTime {
@@ -91,11 +98,17 @@ struct FrameStats {
     //! The sun volume's builds so far (kept while the sun, the Medium and its time stay): the
     //! fog's optical depth towards the sun that the froxels and the layers read.
     int sun_volume_updates = 0;
-    int layers = 0;                //!< fog layers above the base drawn (0: none, or culled off-screen)
-    int terrain_triangles = 0;     //!< the grid's triangles drawn (set_terrain_resolution's level)
-    int layer_triangles = 0;       //!< the base's triangles drawn for each layer (the level of detail's)
-    int particles = 0;             //!< particle billboards drawn
-    int attenuation_rebuilds = 0;  //!< attenuation buffer builds during this frame (0 when nothing changed)
+    int layers = 0;                        //!< fog layers above the base drawn (0: none, or culled off-screen)
+    int terrain_triangles = 0;             //!< the grid's triangles drawn (set_terrain_resolution's level)
+    int layer_triangles = 0;               //!< the base's triangles drawn for each layer (the level of detail's)
+    int particles = 0;                     //!< particle billboards drawn
+    int attenuation_rebuilds = 0;          //!< attenuation buffer builds during this frame (0 when nothing changed)
+    int particle_light_rebuilds = 0;       //!< builds of the billboards' per-particle light during this frame
+    int near_particles = 0;                //!< billboards drawn at the coarser near resolution
+    std::size_t particle_light_bytes = 0;  //!< the per-particle light: records and the gain table
+    //! Fragments the billboards blended (GL_SAMPLES_PASSED: not discarded), near ones at the
+    //! near target's resolution.
+    std::uint64_t particle_fragments = 0;
     FroxelStats froxel;
 };
 

@@ -53,6 +53,8 @@ struct ParticleOptions {
     bool half_float = true;  //!< storage of log Gamma
     LightFrame frame = LightFrame::automatic;
     double soft_edge = 40.0;
+    int near_scale = 2;         //!< the near billboards' target is this many times coarser a side
+    double near_pixels = 16.0;  //!< from this radius on screen (pixels) a billboard is near
     bool operator==(const ParticleOptions&) const = default;
 };
 
@@ -139,6 +141,17 @@ void visit_fields(O& o, V&& v)
        .range = at_least(0),
        .doc = "over which billboards fade in front of the terrain",
        .widget = closed(0, 500)});
+    v(o.near_scale,
+      {.key = "near_scale",
+       .range = closed(1, 8),
+       .doc = "billboards near the eye are drawn this many times coarser a side (1: full resolution)",
+       .widget = closed(1, 4)});
+    v(o.near_pixels,
+      {.key = "near_pixels",
+       .unit = "px",
+       .range = greater_than(0),
+       .doc = "near: every billboard from here on spans at least this radius on screen",
+       .widget = closed(4, 256)});
 }
 
 //! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.

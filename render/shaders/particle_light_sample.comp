@@ -1,0 +1,28 @@
+#version 450 core
+// log Gamma at given points on given particles' billboards, both as a billboard's fragment
+// reads it (billboard_log_gamma: the particle's record and gain table) and with the own
+// cylinder computed in full from the particle (self_log_gamma): the check that the
+// per-particle light changes nothing (render/src/particle_light.hpp).
+layout(local_size_x = 64) in;
+
+layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
+layout(std430, binding = 6) readonly buffer Queries { vec4 queries[]; };  // relative point; w: the slot's bits
+layout(std430, binding = 7) writeonly buffer Results { vec2 results[]; };
+uniform sampler3D u_log_gamma;
+uniform uint u_count;
+
+void main()
+{
+    uint id = gl_GlobalInvocationID.x;
+    if (id >= u_count)
+        return;
+    vec4 q = queries[id];
+    uint k = floatBitsToUint(q.w);
+    GpuParticle p = particles[k];
+    ParticleLightRecord record = particle_lights[k];
+    vec3 g = grid_of(q.xyz), optics = vec3(p.position_radius.w, p.optics.xy);
+    float by_table = billboard_log_gamma(u_log_gamma, g, record.grid_visible.xyz, record.window, record.offset.x, optics);
+    float raw = texture(u_log_gamma, g / vec3(u_grid_size)).r;
+    float direct = clamp(raw - self_log_gamma(g, shadow_grid(grid_of(p.position_radius.xyz)), optics), kMinLogGamma, 0.0);
+    results[id] = vec2(by_table, direct);
+}

@@ -1,0 +1,175 @@
+// The billboards' per-particle light and their near resolution (render/src/particle_light.hpp,
+// ParticleStyle::near_scale): the light a fragment reads through its particle's record and gain
+// table against the same light computed in full and against the CPU twin (attenuation_cpu.hpp),
+// the per-particle light rebuilt only when the sun or the particles change, and the near
+// billboards' fragments bounded by their coarser target while the picture stays the same.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "geometry/particle_test_clouds.hpp"
+#include "kiri/geometry/particles/attenuation_cpu.hpp"
+#include "kiri/render/attenuation.hpp"
+#include "kiri/render/renderer.hpp"
+#include "particle_light.hpp"
+#include "render/render_fixture.hpp"
+
+namespace {
+
+namespace g = kiri::geometry;
+using kiri::render::AttenuationBuffer;
+using kiri::render::detail::ParticleLight;
+
+class ParticleLightGl : public kiri::test::GlTest {};
+
+TEST_F(ParticleLightGl, TableReadsWhatTheFullSelfShadowReads)
+{
+    // Radius 30 m in a 32^3 grid over a 150 m ball: every footprint spans several columns, the
+    // light is oblique (a sheared or tilted grid), R32F.
+    const g::ParticleCloud c = kiri::test::ball_cloud(400, 150.0, 30.0, 0.5);
+    AttenuationBuffer b;
+    b.set_particles(c);
+    kiri::render::AttenuationOptions o;
+    o.resolution = 32;
+    o.half_float = false;
+    ASSERT_TRUE(b.update({0.3, -0.5, 0.8}, o));
+    ParticleLight light;
+    ASSERT_TRUE(light.update(c, b, nullptr));
+    ASSERT_TRUE(light.has_table());
+    EXPECT_FALSE(light.update(c, b, nullptr));  // nothing changed
+
+    // On each billboard: its centre and eight points at 0.3 and 0.7 of its radius, across the
+    // light's columns.
+    const std::vector<std::uint32_t>& index = b.particle_order();
+    std::vector<glm::vec3> points;
+    std::vector<std::uint32_t> slots;
+    const glm::dvec3 across[4] = {{1, 0, 0}, {0, 1, 0}, {0.6, 0.0, 0.8}, {-0.48, 0.6, 0.64}};
+    for (std::uint32_t k = 0; k < index.size(); ++k) {
+        const g::Particle& p = c.particles[index[k]];
+        points.push_back(glm::vec3(p.position - b.particle_centre()));
+        slots.push_back(k);
+        for (const glm::dvec3& a : across)
+            for (double s : {0.3, -0.7}) {
+                points.push_back(glm::vec3(p.position + s * p.radius * a - b.particle_centre()));
+                slots.push_back(k);
+            }
+    }
+    const std::vector<glm::vec2> read = light.sample_log_gamma(c, b, points, slots);
+    ASSERT_EQ(read.size(), points.size());
+    const g::AttenuationVolume cpu = g::build_attenuation_cpu(c, b.grid());
+    double worst_table = 0.0, worst_cpu = 0.0, self_sum = 0.0;
+    for (std::size_t q = 0; q < points.size(); ++q) {
+        // The same float operations on the same numbers, the gains read instead of computed.
+        worst_table = std::max(worst_table, double(std::abs(read[q].x - read[q].y)));
+        const g::Particle& p = c.particles[index[slots[q]]];
+        const glm::dvec3 world = glm::dvec3(points[q]) + b.particle_centre();
+        const double self = g::self_log_gamma(b.grid(), p, c.forward_scattering, world);
+        const double twin = std::clamp(g::sample_log_gamma(cpu, world) - self, g::min_log_gamma, 0.0);
+        worst_cpu = std::max(worst_cpu, std::abs(read[q].x - twin));
+        self_sum += self;
+    }
+    EXPECT_LT(worst_table, 1e-5);
+    // The buffer's fixed-point rounding (BufferEqualsItsCpuTwin) and float against double.
+    EXPECT_LT(worst_cpu, 60.0 / b.fixed_point_scale() + 1e-4);
+    EXPECT_LT(self_sum / double(points.size()), -0.05);  // the own cylinder is there to take out
+}
+
+// A ball of particles 400 m over flat ground, and an eye inside it.
+g::ParticleCloud raised_ball(int n, double tau)
+{
+    g::ParticleCloud c = kiri::test::ball_cloud(n, 150.0, 30.0, tau);
+    for (g::Particle& p : c.particles)
+        p.position.z -= 600.0;  // the ball_cloud is centred 1000 m up
+    return c;
+}
+kiri::render::Camera eye_in()
+{
+    kiri::render::Camera cam;
+    cam.position = {0.0, -60.0, 400.0};
+    cam.target = {0.0, 100.0, 390.0};
+    cam.fov_y_deg = 60.0;
+    return cam;
+}
+
+TEST_F(ParticleLightGl, RebuiltOnlyWhenTheSunOrTheParticlesChange)
+{
+    g::ParticleCloud c = raised_ball(300, 0.5);
+    kiri::render::Renderer r;
+    r.set_terrain(kiri::test::gaussian_hill(33, 100.0, 0.0), 1.0, false);
+    r.set_particles(c);
+    kiri::render::Camera cam = eye_in();
+    r.draw(cam, 64, 48);
+    EXPECT_EQ(r.last_stats().particle_light_rebuilds, 1);
+    r.draw(cam, 64, 48);  // a still view
+    EXPECT_EQ(r.last_stats().particle_light_rebuilds, 0);
+    for (int frame = 0; frame < 3; ++frame) {  // a moving eye
+        cam.position.x += 5.0;
+        r.draw(cam, 64, 48);
+        EXPECT_EQ(r.last_stats().particle_light_rebuilds, 0);
+    }
+    kiri::render::SunLight sun;
+    sun.direction = {0.2, 0.1, 1.0};
+    r.set_sun(sun);
+    r.draw(cam, 64, 48);
+    EXPECT_EQ(r.last_stats().particle_light_rebuilds, 1);
+    c.particles[3].position.z += 2.0;
+    r.set_particles(c);
+    r.draw(cam, 64, 48);
+    EXPECT_EQ(r.last_stats().particle_light_rebuilds, 1);
+    r.draw(cam, 64, 48);
+    EXPECT_EQ(r.last_stats().particle_light_rebuilds, 0);
+}
+
+double mean_difference(const kiri::render::Image& a, const kiri::render::Image& b)
+{
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+        sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+    return sum / double(a.rgba.size());
+}
+
+TEST_F(ParticleLightGl, NearBillboardsDrawCoarserAndLookTheSame)
+{
+    // The eye inside a cloud: billboards fill the view, each with little opacity.
+    const g::ParticleCloud c = raised_ball(300, 0.2);
+    const g::Terrain ground = kiri::test::gaussian_hill(33, 100.0, 0.0);
+    const kiri::render::Camera cam = eye_in();
+    const int w = 96, h = 64;
+    const auto draw = [&](int near_scale, kiri::render::Image* image) {
+        kiri::render::Renderer r;
+        r.set_terrain(ground, 1.0, false);
+        kiri::render::ParticleStyle style;
+        style.near_scale = near_scale;
+        style.near_pixels = 8.0;
+        r.set_particles(c, style);
+        *image = r.render(cam, w, h);
+        return r.last_stats();
+    };
+    kiri::render::Image full, half, quarter;
+    const kiri::render::FrameStats at_full = draw(1, &full), at_half = draw(2, &half), at_quarter = draw(4, &quarter);
+    EXPECT_EQ(at_full.near_particles, 0);
+    // The billboards nearer than r P / near_pixels (P = h / 2 / tan 30 deg = 55 px): 206 m.
+    ASSERT_GT(at_half.near_particles, 250);
+    EXPECT_EQ(at_quarter.near_particles, at_half.near_particles);
+    const std::uint64_t far = std::uint64_t(c.particles.size() - at_half.near_particles);
+    // Each near billboard blends at most the whole coarse target, each far one the frame.
+    EXPECT_LE(at_half.particle_fragments, std::uint64_t(at_half.near_particles) * (w / 2) * (h / 2) + far * w * h);
+    EXPECT_LE(at_quarter.particle_fragments,
+              std::uint64_t(at_quarter.near_particles) * (w / 4) * (h / 4) + far * w * h);
+    EXPECT_GT(at_full.particle_fragments, 3 * at_half.particle_fragments);
+    EXPECT_GT(at_half.particle_fragments, 3 * at_quarter.particle_fragments);
+    // The same fog: its opacity and light are smooth at the coarse pixels' scale.
+    // The same fog (a mean of 7 grey levels over the bare ground): its opacity and light are
+    // smooth at the coarse pixels' scale, and the layers compose exactly.
+    EXPECT_LT(mean_difference(full, half), 0.5);
+    EXPECT_LT(mean_difference(full, quarter), 1.0);
+    kiri::render::Renderer bare;
+    bare.set_terrain(ground, 1.0, false);
+    EXPECT_GT(mean_difference(full, bare.render(cam, w, h)), 5.0);  // there is fog to see
+}
+
+}  // namespace
