@@ -151,7 +151,8 @@ void run(const RenderArgs& a)
                 std::fprintf(stderr, "kiri render: stage %-18s %9.2f ms\n", geometry::to_string(geometry::Stage(k)),
                              1e3 * pipeline.stages()[std::size_t(k)].seconds);
         std::fprintf(stderr, "kiri render: load and author      %9.2f ms\n", ms(start, authored));
-        std::fprintf(stderr, "kiri render: GL context           %9.2f ms\n", ms(authored, context_made));
+        std::fprintf(stderr, "kiri render: GL context           %9.2f ms  %s\n", ms(authored, context_made),
+                     context->description().c_str());
         std::fprintf(stderr, "kiri render: uploads and programs %9.2f ms\n", ms(context_made, drawing));
         std::fprintf(stderr, "kiri render: render               %9.2f ms\n", ms(drawing, drawn));
         std::fprintf(stderr, "kiri render: read back and write  %9.2f ms\n",

@@ -100,6 +100,17 @@ std::size_t ParticlesPass::near_first(const FrameContext& frame) const
     return std::size_t(first - order_cpu_.begin());
 }
 
+std::uint64_t ParticlesPass::last_fragments() const
+{
+    if (fragments_pending_) {
+        GLuint64 fragments = 0;
+        glGetQueryObjectui64v(fragments_query_.get(), GL_QUERY_RESULT, &fragments);
+        last_fragments_ = fragments;
+        fragments_pending_ = false;
+    }
+    return last_fragments_;
+}
+
 void ParticlesPass::sort(const FrameContext& frame)
 {
     const glm::dmat4 inverse_view = glm::inverse(frame.view);
@@ -199,9 +210,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     draw_range(0, split, fbo_.get(), frame.width, frame.height);
     draw_range(split, count_ - split, near_fbo_.get(), near_size(frame.width, scale), near_size(frame.height, scale));
     glEndQuery(GL_SAMPLES_PASSED);
-    GLuint64 fragments = 0;
-    glGetQueryObjectui64v(fragments_query_.get(), GL_QUERY_RESULT, &fragments);
-    last_fragments_ = fragments;
+    fragments_pending_ = true;
     last_near_ = int(count_ - split);
 
     // Premultiplied "over" is associative: the near billboards' layer over the far ones' equals

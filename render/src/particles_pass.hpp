@@ -41,7 +41,9 @@ public:
     std::size_t count() const { return has_particles() ? count_ : 0; }
     //! Of the last draw: billboards drawn at the near resolution, fragments blended (all targets).
     int last_near_count() const { return last_near_; }
-    std::uint64_t last_fragments() const { return last_fragments_; }
+    //! Read after the frame has finished (the query's result waits for the GPU): reading it in
+    //! the pass would stall the CPU there on a GPU, in the middle of the frame.
+    std::uint64_t last_fragments() const;
     bool last_light_rebuilt() const { return last_light_rebuilt_; }
 
 private:
@@ -68,7 +70,8 @@ private:
     Query fragments_query_;
     int last_near_ = 0;
     bool last_light_rebuilt_ = false;
-    std::uint64_t last_fragments_ = 0;
+    mutable std::uint64_t last_fragments_ = 0;
+    mutable bool fragments_pending_ = false;
     void ensure_target(int width, int height, int near_scale);
     void sort(const FrameContext& frame);
     //! Of the billboards sorted far to near, the first one drawn at the near resolution.

@@ -35,6 +35,7 @@ struct SceneJson {
 //! (FrameStats::passes, in the order of the last frame).
 struct FrameCost {
     double frame_ms = 0.0;
+    int frames = 0;  //!< how many frames the medians are of
     std::vector<render::PassTime> passes;
     //! The froxel apply's pixels that marched their own rays, of all it applied (last frame; -1: none).
     double marched = -1.0;
@@ -50,14 +51,17 @@ public:
     FogJudge(const geometry::Scene& base, const std::string& camera, int width, int height);
     ~FogJudge();
     double reference_seconds() const { return reference_.seconds; }
+    //! The GL context's "OpenGL <version> (<renderer>, <platform>)": which device the times are of.
+    std::string gl_description() const { return context_->description(); }
     const geometry::Terrain& terrain() const;
     const geometry::ReferenceImage& reference() const { return reference_; }
 
     //! Sets the renderer up for `scene` in `mode`; its fog authored by the judge's pipeline (only
     //! the stages whose inputs the scene changed run again).
     void prepare(const geometry::Scene& scene, render::FogMode mode);
-    //! Median Renderer draw time (ms) of `frames` frames at width x height while the view moves
-    //! by a millimetre a frame (the froxels rerun their passes, as in a moving view).
+    //! Median Renderer draw time (ms) of at least `frames` frames at width x height (and of at
+    //! least half a second's, after 0.3 s of untimed frames) while the view moves by a
+    //! millimetre a frame (the froxels rerun their passes, as in a moving view).
     double frame_ms(int width, int height, int frames);
     //! The same frames' median time and their passes' median times.
     FrameCost frame_cost(int width, int height, int frames);

@@ -60,8 +60,8 @@ void moving_frames(const geometry::Scene& scene, const geometry::Scene& judged, 
         judge.set_reduced_resolution(scale);
         const FrameCost cost = judge.frame_cost(160, 90, 2 * frames + 1);
         const char* name = scale < 1.0 ? "moving (terrain grid and froxel volume at 1/8)" : "whole grid and volume";
-        std::printf("  preview floor 160x90, %-48s frame %7.1f ms = %5.1f a second\n    %s\n", name, cost.frame_ms,
-                    1e3 / cost.frame_ms, passes_line(cost).c_str());
+        std::printf("  preview floor 160x90, %-48s frame %7.1f ms = %5.1f a second (%d frames)\n    %s\n", name,
+                    cost.frame_ms, 1e3 / cost.frame_ms, cost.frames, passes_line(cost).c_str());
         md << "| " << name << " | " << cost.frame_ms << " | " << 1e3 / cost.frame_ms << " | " << passes_line(cost)
            << " |\n";
     }
@@ -94,10 +94,15 @@ void frame(Context& c)
        << "| size | view | mode | frame (ms) | fog cost (ms) | fog cost / terrain | still (ms) | mean error | "
           "p99 error |\n|---|---|---|---|---|---|---|---|---|\n";
     passes_md << "\n| size | view | mode | pass | device (ms) | issue (ms) |\n|---|---|---|---|---|---|\n";
+    std::ostringstream device_md;
     for (const char* view : {"default", "valley"}) {
         const std::string camera = view == std::string("default") ? "" : view;
         FogJudge judge(judged, camera, ew, eh);
         std::printf("  %s view: reference %dx%d %.1f s\n", view, ew, eh, judge.reference_seconds());
+        if (view == std::string("default")) {
+            std::printf("  drawn by %s\n", judge.gl_description().c_str());
+            device_md << "\nDrawn by " << judge.gl_description() << ".\n";
+        }
         for (const auto& [w, h] : sizes) {
             const std::string size = std::to_string(w) + "x" + std::to_string(h);
             std::vector<Measured> rows;
@@ -128,7 +133,7 @@ void frame(Context& c)
                 if (fog)
                     std::printf("  mean %5.2f %%  p99 %6.2f %%", m.error.mean_relative * 100,
                                 m.error.p99_relative * 100);
-                std::printf("\n    %s\n", passes_line(m.cost).c_str());
+                std::printf("  (%d frames)\n    %s\n", m.cost.frames, passes_line(m.cost).c_str());
                 std::fflush(stdout);
                 md << "| " << size << " | " << view << " | " << mode << " | " << m.cost.frame_ms << " | ";
                 if (fog)
@@ -150,7 +155,7 @@ void frame(Context& c)
             }
         }
     }
-    md << passes_md.str();
+    md << device_md.str() << passes_md.str();
     moving_frames(scene, judged, frames, md);
 }
 
