@@ -26,7 +26,8 @@ out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, t
 
 void main()
 {
-    uint id = order[u_first + uint(gl_InstanceID)];
+    // One indexed draw: vertex 4 q + c is corner c of billboard q (ParticlesPass::set_particles).
+    uint id = order[u_first + uint(gl_VertexID >> 2)];
     vec4 p = particles[id].position_radius;
     vec2 corner = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
     v_relative = p.xyz + (corner.x * u_camera_right + corner.y * u_camera_up) * p.w;

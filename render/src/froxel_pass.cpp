@@ -114,7 +114,9 @@ void FroxelPass::set_fog(const geometry::Medium* medium, const geometry::FroxelO
     if (medium != medium_ || (medium && medium_gpu_.set(medium))) {
         medium_gpu_.set(medium);
         shell_ = medium ? build_shell_mesh(*medium) : ShellMesh{};
+        coarse_shells_ = {};
         tile_bounds_.set_shell(shell_);
+        drawn_shell_ = 0;
     }
     medium_ = medium;
     options_ = options;
@@ -177,6 +179,23 @@ void FroxelPass::bind_layout(const ShaderProgram& p) const
 void FroxelPass::set_resolution(double scale)
 {
     resolution_ = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
+}
+
+void FroxelPass::use_shell_for_resolution()
+{
+    // The step: 2^-k of the tiles across, k = 0..3. Its shell has a 4^-k share of the whole
+    // shell's blocks, so its blocks stay about as many pixels wide on a frame as many times
+    // smaller. Each coarse shell holds the whole one (build_shell_mesh's blocks are
+    // conservative), so no fog is lost: the rays' stretches only take in more air. On llvmpipe
+    // the whole shell's rasterisation was 14 ms of a 110 ms moving frame at 160x90, 2.6 ms at
+    // the 1/8 step's.
+    const int k = std::clamp(int(std::lround(-std::log2(resolution_))), 0, 3);
+    if (k == drawn_shell_ || !medium_)
+        return;
+    if (k > 0 && !coarse_shells_[std::size_t(k - 1)])
+        coarse_shells_[std::size_t(k - 1)] = build_shell_mesh(*medium_, shell_max_blocks >> (2 * k));
+    tile_bounds_.set_shell(k == 0 ? shell_ : *coarse_shells_[std::size_t(k - 1)]);
+    drawn_shell_ = k;
 }
 
 void FroxelPass::prepare(const FrameContext& frame, const ShadowMapPass* shadow)
@@ -352,6 +371,7 @@ void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
         mode_ = shell_ok_ && !o.height_fog.enabled() ? FroxelTileBounds::Mode::shell : FroxelTileBounds::Mode::ground;
     }
     const ScopedPassTimer timed(timers_[tiles]);
+    use_shell_for_resolution();
     // The depths each tile's slices span.
     tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
                         v_->tiles[current_].get());

@@ -12,6 +12,7 @@
 //             integrate (front to back through the slices), classify (per tile: may the
 //             apply read the volume, or must the pixels around it march their own rays);
 //   apply     every frame, the fog on the resolved frame (froxel_apply.comp).
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -81,7 +82,12 @@ private:
     const ShadowMapPass* shadow_ = nullptr;  // this frame's, the renderer's
     const SunVolume* sun_ = nullptr;         // this frame's, the renderer's
     int shadow_version_ = -2;                // its updates() when the volume was lit (-1: none)
-    ShellMesh shell_;
+    ShellMesh shell_;  // the whole shell: its inside test, and what a full-resolution frame rasterises
+    // Coarser shells for the froxel resolution's steps (1/2, 1/4, 1/8: set_resolution), built on
+    // first use: a frame drawn small rasterises as many blocks as it has pixels for.
+    std::array<std::optional<ShellMesh>, 3> coarse_shells_;
+    int drawn_shell_ = 0;  // which the tile bounds hold: 0 the whole shell, k the 2^-k step's
+    void use_shell_for_resolution();
     const geometry::Medium* medium_ = nullptr;
     geometry::FroxelOptions options_;
     double resolution_ = 1.0;  // of the options' tiles across and down

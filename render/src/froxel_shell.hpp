@@ -28,7 +28,10 @@ struct ShellMesh {
     bool contains(const glm::dvec3& p, double pad) const;
 };
 
+//! The whole shell's blocks, at most: a full-resolution frame's.
+inline constexpr int shell_max_blocks = 65536;
+
 //! At most about max_blocks blocks.
-ShellMesh build_shell_mesh(const geometry::Medium& medium, int max_blocks = 65536);
+ShellMesh build_shell_mesh(const geometry::Medium& medium, int max_blocks = shell_max_blocks);
 
 }  // namespace kiri::render::detail

@@ -58,7 +58,8 @@ private:
     std::uint64_t uploaded_hash_ = 0;
     std::size_t count_ = 0;
     ParticleStyle style_;
-    Buffer order_;  // indices into the buffer's particle SSBO, back to front
+    Buffer order_;         // indices into the buffer's particle SSBO, back to front
+    Buffer quad_indices_;  // 4q, 4q + 1, 4q + 2, 4q + 2, 4q + 1, 4q + 3 for each billboard q
     std::vector<std::uint32_t> order_cpu_;
     std::vector<float> keys_;
     glm::vec3 sorted_eye_{1e30f}, sorted_forward_{0.0f};
