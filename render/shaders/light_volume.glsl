@@ -1,0 +1,108 @@
+// Library (after medium_shell.glsl): the baked light-transport volume
+// (geometry::LightVolume, kiri/geometry/medium/light_volume.hpp), the lighting model's `baked`
+// multiple scattering. Per cell the spherical-harmonic moments L_lm of the light scattered at
+// least once, for a sun of unit radiance; the light it scatters towards o is
+// sum_l g^l sum_m L_lm Y_lm(o) (Funk-Hecke, exact per band). The cells follow the shell: (x, y)
+// on a regular grid, h = (z - floor) / (top - floor) of the Medium's column in nz levels.
+// Stored in a 2D array texture, layer q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F,
+// linear in x and y, clamped to the edge: the CPU's trilinear between cell centres, the levels
+// blended here). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
+uniform int u_lv_on;
+uniform sampler2DArray u_lv_moments;
+uniform vec4 u_lv_rect;            // x0, y0, 1 / (nx dx), 1 / (ny dy)
+uniform int u_lv_levels;           // nz
+uniform int u_lv_bands;            // [1, 8]
+uniform float u_lv_column_extinction;  // > 0: the moments are over the cells' column_scale
+
+const int lv_max_bands = 8;
+
+// g^l Y_lm(d) at [l (l + 1) + m] for l < bands (geometry::LightVolume::phase_weights): the real
+// orthonormal harmonics by the recurrences of geometry::real_spherical_harmonics (no
+// Condon-Shortley phase; sin^m(theta) (cos, sin)(m phi) as (u.x + i u.y)^m).
+void lv_phase_weights(vec3 d, float g, int bands, out float w[lv_max_bands * lv_max_bands])
+{
+    for (int q = 0; q < lv_max_bands * lv_max_bands; ++q)
+        w[q] = 0.0;
+    float len = length(d);
+    vec3 u = len > 0.0 ? d / len : vec3(0.0, 0.0, 1.0);
+    float x = clamp(u.z, -1.0, 1.0);
+    float lobe = clamp(g, -0.999, 0.999);
+    float pmm = 1.0, re = 1.0, im = 0.0;
+    for (int m = 0; m < bands; ++m) {
+        if (m > 0)
+            pmm *= 2.0 * float(m) - 1.0;
+        // P_l^m for l = m, m + 1, ...: p0 = P_(l-2), p1 = P_(l-1)
+        float p1 = pmm, p0 = 0.0;
+        float gl = 1.0;  // g^l from l = m (pow is undefined for g < 0)
+        for (int i = 0; i < m; ++i)
+            gl *= lobe;
+        for (int l = m; l < bands; ++l) {
+            float p = p1;
+            if (l == m + 1)
+                p = x * (2.0 * float(m) + 1.0) * pmm;
+            else if (l > m + 1)
+                p = ((2.0 * float(l) - 1.0) * x * p1 - float(l + m - 1) * p0) / float(l - m);
+            if (l > m) {
+                p0 = p1;
+                p1 = p;
+            }
+            // K_l^m = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!), times sqrt(2) for m > 0.
+            float ratio = 1.0;
+            for (int q = l - m + 1; q <= l + m; ++q)
+                ratio /= float(q);
+            float a = sqrt((2.0 * float(l) + 1.0) / 12.566370614359172 * ratio) * (m > 0 ? 1.4142135623730951 : 1.0) *
+                p * gl;
+            if (m == 0) {
+                w[l * (l + 1)] = a;
+            } else {
+                w[l * (l + 1) + m] = a * re;
+                w[l * (l + 1) - m] = a * im;
+            }
+            gl *= lobe;
+        }
+        float r = re * u.x - im * u.y;
+        im = re * u.y + im * u.x;
+        re = r;
+    }
+}
+
+// The light scattered at least once towards `towards` by fog of anisotropy g at (x, y) and
+// shell height h, per unit sun radiance, times `scale` (geometry::LightVolume::in_scattered):
+// >= 0, 0 without a volume or outside the shell (h < 0).
+float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
+{
+    if (u_lv_on == 0 || !(h >= 0.0) || !(scale > 0.0))
+        return 0.0;
+    int bands = clamp(u_lv_bands, 1, lv_max_bands);
+    float w[lv_max_bands * lv_max_bands];
+    lv_phase_weights(towards, g, bands, w);
+    vec2 st = (xy - u_lv_rect.xy) * u_lv_rect.zw;
+    float kz = clamp(clamp(h, 0.0, 1.0) * float(u_lv_levels) - 0.5, 0.0, float(u_lv_levels - 1));
+    int k0 = int(floor(kz));
+    int k1 = min(k0 + 1, u_lv_levels - 1);
+    float fz = kz - float(k0);
+    float sum = 0.0;
+    for (int q = 0; 4 * q < bands * bands; ++q) {
+        vec4 a = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k0)), 0.0);
+        vec4 b = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k1)), 0.0);
+        sum += dot(mix(a, b, fz), vec4(w[4 * q], w[4 * q + 1], w[4 * q + 2], w[4 * q + 3]));
+    }
+    return max(sum * scale, 0.0);
+}
+
+// The same at a point of the fog: h and column_scale from the Medium's column there
+// (geometry::shell_height, LightVolume::column_scale); 0 outside the Medium's grid.
+float lv_in_scattered_at(vec3 p, vec3 towards, float g)
+{
+    if (u_lv_on == 0 || !shell_covers(p.xy))
+        return 0.0;
+    vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
+    float thick = column.z - column.x;
+    if (!(thick > 0.0) || p.z < column.x || p.z > column.z)
+        return 0.0;
+    float h = clamp((p.z - column.x) / thick, 0.0, 1.0);
+    float scale = 1.0;
+    if (u_lv_column_extinction > 0.0)
+        scale = max(1.0 - exp(-u_lv_column_extinction * clamp(column.w, 0.0, 1.0) * thick), 1e-6);
+    return lv_in_scattered(p.xy, h, scale, towards, g);
+}

@@ -1,0 +1,79 @@
+#include "light_volume_texture.hpp"
+
+#include <algorithm>
+
+namespace kiri::render::detail {
+
+void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume)
+{
+    if (volume && volume->empty())
+        volume.reset();
+    if (volume == volume_)
+        return;
+    volume_ = std::move(volume);
+    texture_ = {};
+    if (!volume_)
+        return;
+    const geometry::LightVolume& v = *volume_;
+    const int moments = v.bands * v.bands, groups = (moments + 3) / 4;
+    // Layer q nz + k: moments 4q .. 4q + 3 of level k, rows of cells (i, j); the last group's
+    // unused channels 0.
+    std::vector<float> texels(std::size_t(groups) * v.nz * v.ny * v.nx * 4, 0.0f);
+    for (int k = 0; k < v.nz; ++k)
+        for (int j = 0; j < v.ny; ++j)
+            for (int i = 0; i < v.nx; ++i) {
+                const double* m = &v.moments[((std::size_t(k) * v.ny + j) * v.nx + i) * moments];
+                for (int q = 0; q < moments; ++q) {
+                    const std::size_t layer = std::size_t(q / 4) * v.nz + k;
+                    texels[((layer * v.ny + j) * v.nx + i) * 4 + q % 4] = float(m[q]);
+                }
+            }
+    texture_ = make_texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(texture_.get(), 1, GL_RGBA32F, v.nx, v.ny, groups * v.nz);
+    glTextureSubImage3D(texture_.get(), 0, 0, 0, 0, v.nx, v.ny, groups * v.nz, GL_RGBA, GL_FLOAT, texels.data());
+    // Linear between cell centres in x and y, clamped to the outer ones (LightVolume::moments_at).
+    glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
+void LightVolumeTexture::bind(const ShaderProgram& p, int unit) const
+{
+    p.set("u_lv_on", int(ready()));
+    p.set("u_lv_moments", unit);
+    if (!ready())
+        return;
+    const geometry::LightVolume& v = *volume_;
+    p.set("u_lv_rect", glm::vec4(float(v.x0), float(v.y0), float(1.0 / (v.nx * v.dx)), float(1.0 / (v.ny * v.dy))));
+    p.set("u_lv_levels", v.nz);
+    p.set("u_lv_bands", v.bands);
+    p.set("u_lv_column_extinction", float(v.column_extinction));
+    glBindTextureUnit(GLuint(unit), texture_.get());
+}
+
+std::vector<float> LightVolumeTexture::probe(const std::vector<Probe>& points) const
+{
+    if (points.empty())
+        return {};
+    if (!probe_)
+        probe_ = std::make_unique<ShaderProgram>(
+            std::initializer_list<std::string_view>{"medium_shell.glsl", "light_volume.glsl", "light_volume_probe.comp"});
+    Buffer in_buffer = make_buffer(), out_buffer = make_buffer();
+    glNamedBufferStorage(in_buffer.get(), GLsizeiptr(points.size() * sizeof(Probe)), points.data(), 0);
+    glNamedBufferStorage(out_buffer.get(), GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_MAP_READ_BIT);
+    bind(*probe_, 0);
+    probe_->set("u_count", int(points.size()));
+    probe_->use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_buffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out_buffer.get());
+    glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<float> out(points.size());
+    glGetNamedBufferSubData(out_buffer.get(), 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    return out;
+}
+
+}  // namespace kiri::render::detail

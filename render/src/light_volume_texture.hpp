@@ -1,0 +1,43 @@
+#pragma once
+// The baked light-transport volume (kiri/geometry/medium/light_volume.hpp) on the GPU, for the
+// lighting model's `baked` multiple scattering in the renderers (light_volume.glsl): its moments
+// in a 2D array texture of RGBA32F, layer q nz + k holding moments 4q .. 4q + 3 of level k,
+// uploaded when the volume changes. Without a volume the lookups give 0 (single scattering).
+#include <memory>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "gl_objects.hpp"
+#include "kiri/geometry/medium/light_volume.hpp"
+#include "shader_program.hpp"
+
+namespace kiri::render::detail {
+
+class LightVolumeTexture {
+public:
+    //! The volume to read (kept; null or empty: none). Uploads only when it is another one.
+    void set(std::shared_ptr<const geometry::LightVolume> volume);
+    bool ready() const { return volume_ != nullptr && texture_; }
+    const geometry::LightVolume* volume() const { return volume_.get(); }
+    //! Sets light_volume.glsl's uniforms on a program and binds the moments to `unit`
+    //! (u_lv_on 0 without a volume).
+    void bind(const ShaderProgram& program, int unit) const;
+    //! lv_in_scattered at the given (x, y, h), column scale, direction towards the eye and g, as
+    //! the renderers take it, read back (tests against LightVolume::in_scattered).
+    struct Probe {
+        glm::vec3 xyh{0.0f};
+        float scale = 1.0f;
+        glm::vec3 towards{0.0f, 0.0f, 1.0f};
+        float g = 0.0f;
+    };
+    static_assert(sizeof(Probe) == 32, "light_volume_probe.comp reads two vec4 a point");
+    std::vector<float> probe(const std::vector<Probe>& points) const;
+
+private:
+    std::shared_ptr<const geometry::LightVolume> volume_;
+    Texture texture_;
+    mutable std::unique_ptr<ShaderProgram> probe_;
+};
+
+}  // namespace kiri::render::detail

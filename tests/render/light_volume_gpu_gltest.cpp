@@ -1,0 +1,106 @@
+// The baked light-transport volume as the renderers read it (render/src/light_volume_texture.hpp,
+// light_volume.glsl) against geometry::LightVolume::in_scattered, the CPU reference's lookup:
+// the moments trilinear between cell centres (clamped to the outer ones), the real harmonics and
+// g^l of every band, the column scale. Read back through a compute probe.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "kiri/geometry/medium/light_volume.hpp"
+#include "light_volume_texture.hpp"
+#include "render/render_fixture.hpp"
+
+namespace {
+
+namespace g = kiri::geometry;
+using kiri::render::detail::LightVolumeTexture;
+
+class LightVolumeGpu : public kiri::test::GlTest {};
+
+// Moments of a plausible diffuse light: a positive mean (l = 0) and smaller higher bands, all
+// different from cell to cell.
+std::shared_ptr<g::LightVolume> random_volume(int bands, std::uint32_t seed)
+{
+    auto v = std::make_shared<g::LightVolume>();
+    v->nx = 5;
+    v->ny = 4;
+    v->nz = 3;
+    v->bands = bands;
+    v->x0 = -250.0;
+    v->y0 = 100.0;
+    v->dx = 100.0;
+    v->dy = 150.0;
+    v->column_extinction = 0.01;
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> u(-1.0, 1.0);
+    const int nc = bands * bands;
+    v->moments.resize(std::size_t(v->nx) * v->ny * v->nz * nc);
+    for (std::size_t c = 0; c < v->moments.size(); c += std::size_t(nc))
+        for (int q = 0; q < nc; ++q)
+            v->moments[c + std::size_t(q)] = q == 0 ? 2.0 + u(random) : 0.4 * u(random) / (1.0 + std::sqrt(q));
+    return v;
+}
+
+void expect_gpu_equals_cpu(int bands)
+{
+    const auto volume = random_volume(bands, 17u + std::uint32_t(bands));
+    LightVolumeTexture texture;
+    texture.set(volume);
+    ASSERT_TRUE(texture.ready());
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> x(-400.0, 400.0), y(0.0, 800.0), unit(0.0, 1.0), sym(-1.0, 1.0);
+    std::vector<LightVolumeTexture::Probe> probes;
+    std::vector<double> expected;
+    for (int k = 0; k < 2000; ++k) {
+        LightVolumeTexture::Probe p;
+        // Inside the grid and beyond it (clamped to the outer cells), h from the floor to the top.
+        p.xyh = glm::vec3(float(x(random)), float(y(random)), float(unit(random)));
+        p.scale = float(0.05 + unit(random));
+        glm::dvec3 d(sym(random), sym(random), sym(random));
+        if (glm::length(d) < 1e-3)
+            d = {0.0, 0.0, 1.0};
+        p.towards = glm::vec3(glm::normalize(d));
+        p.g = float(k % 7 == 0 ? 0.0 : 0.95 * sym(random));
+        probes.push_back(p);
+        expected.push_back(volume->in_scattered(p.xyh.x, p.xyh.y, p.xyh.z, glm::dvec3(p.towards), p.g, p.scale));
+    }
+    const std::vector<float> got = texture.probe(probes);
+    ASSERT_EQ(got.size(), expected.size());
+    double worst = 0.0, scale = 0.0;
+    for (double e : expected)
+        scale = std::max(scale, e);
+    ASSERT_GT(scale, 0.5);
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        ASSERT_TRUE(std::isfinite(got[k])) << k;
+        worst = std::max(worst, std::abs(got[k] - expected[k]));
+    }
+    std::printf("    %d bands: largest difference %.3g of values up to %.3g\n", bands, worst, scale);
+    // Float moments and weights against double: a few parts in a million of the largest value.
+    EXPECT_LT(worst, 1e-4 * scale) << bands << " bands";
+}
+
+TEST_F(LightVolumeGpu, EveryBandAsTheCpuLookupTakesIt)
+{
+    for (int bands : {1, 2, 6, 8})
+        expect_gpu_equals_cpu(bands);
+}
+
+TEST_F(LightVolumeGpu, NoVolumeAddsNothing)
+{
+    LightVolumeTexture texture;
+    texture.set(nullptr);
+    EXPECT_FALSE(texture.ready());
+    const std::vector<float> got = texture.probe({LightVolumeTexture::Probe{{0.0f, 0.0f, 0.5f}, 1.0f, {0, 0, 1}, 0.5f}});
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_EQ(got[0], 0.0f);
+    // An empty volume is no volume.
+    texture.set(std::make_shared<g::LightVolume>());
+    EXPECT_FALSE(texture.ready());
+}
+
+}  // namespace
