@@ -63,5 +63,13 @@ void main()
             (sun * sun_scattering(cos_theta, u_anisotropy.x, u_albedo.x, tau, sun_sine, u_octaves) + u_ambient) +
         u_albedo.y * weights.y *
             (sun * sun_scattering(cos_theta, u_anisotropy.y, u_albedo.y, tau, sun_sine, u_octaves) + u_ambient);
+    // The baked multiple scattering (light_volume.glsl; u_lv_on only with the Medium's model
+    // `baked`): the light scattered at least once towards the eye, inside the Medium's shell,
+    // not hidden by the terrain's shadow (it reaches the shadow from the sunlit fog beside it).
+    if (u_lv_on != 0) {
+        vec3 towards = normalize(u_fx_eye - p);
+        s += u_sun_radiance * (u_albedo.x * weights.x * lv_in_scattered_at(p, towards, u_anisotropy.x) +
+                               u_albedo.y * weights.y * lv_in_scattered_at(p, towards, u_anisotropy.y));
+    }
     imageStore(o_light, id, vec4(s / (weights.x + weights.y), 1.0));
 }

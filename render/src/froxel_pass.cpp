@@ -21,6 +21,7 @@ constexpr int unit_tiles = 8, unit_volume = 9, unit_medium = 11;  // 11, 12
 constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
 constexpr int unit_first = 5, unit_last = 6;
 constexpr int unit_sun = 16;  // 16, 17, 18
+constexpr int unit_light_volume = 19;
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
 // whole cycle at once: the same samples the 16 frames of history held, so the same error
 // against the CPU reference (kiri bench --stage presets, agreement), where 4 or 8 samples are
@@ -85,7 +86,7 @@ FroxelPass::FroxelPass()
     : v_(std::make_unique<Volumes>()), density_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
                                                  "medium_shell.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
       lighting_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
-                 "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "terrain_shadow.glsl",
+                 "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "terrain_shadow.glsl", "light_volume.glsl",
                  "froxel_lighting.comp"}),
       temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
@@ -241,6 +242,7 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     }
     const geometry::FroxelOptions& o = options_;
     FroxelVolumeKey key = make_froxel_volume_key(frame, terrain.identity(), medium_, o);
+    key.light_volume = baked_light() && light_volume_ && light_volume_->ready() ? light_volume_->volume() : nullptr;
     // A rebuilt shadow map (or none) lights the volume differently.
     const int shadow_version = shadow_ ? shadow_->updates() : -1;
     const bool same_view = key_ == key && apply_ && shadow_version == shadow_version_;
@@ -429,6 +431,11 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
         "u_octaves",
         geometry::shader_octaves(geometry::multiple_scattering_of(medium_), geometry::scattering_octaves_of(medium_)));
     lighting_.set("u_whole_tiles", int(o.fog_aware));
+    // The baked multiple scattering, with the Medium's model `baked` only (others draw theirs).
+    if (baked_light() && light_volume_)
+        light_volume_->bind(lighting_, unit_light_volume);
+    else
+        lighting_.set("u_lv_on", 0);
     const glm::dvec3 box_lo = medium_ ? medium_->bounds().min : glm::dvec3(0.0);
     const glm::dvec3 box_hi = medium_ ? medium_->bounds().max : glm::dvec3(0.0);
     lighting_.set("u_box_min", glm::vec3(box_lo));

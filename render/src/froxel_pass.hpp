@@ -22,6 +22,7 @@
 #include "froxel_shell.hpp"
 #include "froxel_tile_bounds.hpp"
 #include "froxel_volume_key.hpp"
+#include "light_volume_texture.hpp"
 #include "kiri/geometry/volume/froxel_options.hpp"
 #include "kiri/render/renderer.hpp"
 #include "pass_timer.hpp"
@@ -53,6 +54,9 @@ public:
     //! The sun volume the lighting reads tau_sun from (null, or FroxelOptions::sun_volume off:
     //! the lighting marches it), kept by pointer for the frame.
     void set_sun_volume(const SunVolume* sun) { sun_ = sun; }
+    //! The baked multiple scattering the lighting adds (the Medium's model `baked`; null or not
+    //! ready: single scattering). This frame's, the renderer's.
+    void set_light_volume(const LightVolumeTexture* volume) { light_volume_ = volume; }
     //! The Medium drawn (null: the height fog alone).
     const geometry::Medium* medium() const { return medium_; }
     const geometry::FroxelOptions& options() const { return options_; }
@@ -79,15 +83,21 @@ private:
     std::unique_ptr<ShaderProgram> readback_, depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;
-    const ShadowMapPass* shadow_ = nullptr;  // this frame's, the renderer's
-    const SunVolume* sun_ = nullptr;         // this frame's, the renderer's
-    int shadow_version_ = -2;                // its updates() when the volume was lit (-1: none)
+    const ShadowMapPass* shadow_ = nullptr;             // this frame's, the renderer's
+    const SunVolume* sun_ = nullptr;                    // this frame's, the renderer's
+    const LightVolumeTexture* light_volume_ = nullptr;  // this frame's, the renderer's
+    int shadow_version_ = -2;                           // its updates() when the volume was lit (-1: none)
     ShellMesh shell_;  // the whole shell: its inside test, and what a full-resolution frame rasterises
     // Coarser shells for the froxel resolution's steps (1/2, 1/4, 1/8: set_resolution), built on
     // first use: a frame drawn small rasterises as many blocks as it has pixels for.
     std::array<std::optional<ShellMesh>, 3> coarse_shells_;
     int drawn_shell_ = 0;  // which the tile bounds hold: 0 the whole shell, k the 2^-k step's
     void use_shell_for_resolution();
+    //! The Medium's model is `baked`: its multiple scattering read from the light volume.
+    bool baked_light() const
+    {
+        return medium_ && medium_->options().multiple_scattering == geometry::MultipleScattering::baked;
+    }
     const geometry::Medium* medium_ = nullptr;
     geometry::FroxelOptions options_;
     double resolution_ = 1.0;  // of the options' tiles across and down

@@ -29,6 +29,7 @@ struct FroxelVolumeKey {
     geometry::MediumOptions medium_options;
     geometry::MediumDetail medium_detail;
     geometry::FroxelOptions options;
+    const void* light_volume = nullptr;  // the baked multiple scattering read (LightVolume), if any
 
     bool operator==(const FroxelVolumeKey&) const = default;
 };

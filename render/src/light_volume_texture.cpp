@@ -57,8 +57,8 @@ std::vector<float> LightVolumeTexture::probe(const std::vector<Probe>& points) c
     if (points.empty())
         return {};
     if (!probe_)
-        probe_ = std::make_unique<ShaderProgram>(
-            std::initializer_list<std::string_view>{"medium_shell.glsl", "light_volume.glsl", "light_volume_probe.comp"});
+        probe_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
+            "medium_shell.glsl", "light_volume.glsl", "light_volume_probe.comp"});
     Buffer in_buffer = make_buffer(), out_buffer = make_buffer();
     glNamedBufferStorage(in_buffer.get(), GLsizeiptr(points.size() * sizeof(Probe)), points.data(), 0);
     glNamedBufferStorage(out_buffer.get(), GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_MAP_READ_BIT);

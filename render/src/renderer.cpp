@@ -21,6 +21,7 @@
 #include "shadow_map_pass.hpp"
 #include "sky_pass.hpp"
 #include "sun_volume.hpp"
+#include "light_volume_texture.hpp"
 #include "terrain_pass.hpp"
 #include "tonemap_pass.hpp"
 
@@ -41,6 +42,7 @@ struct Renderer::Impl {
     std::unique_ptr<detail::FroxelPass> froxel;         // built on first use
     std::unique_ptr<detail::ShadowMapPass> shadow_map;  // built on first use
     std::unique_ptr<detail::SunVolume> sun_volume;      // built on first use
+    detail::LightVolumeTexture light_volume;            // set_light_volume
     std::optional<std::pair<const geometry::Medium*, geometry::HeightFog>> sun_medium;
     std::optional<geometry::FogPartition> partition;
     double layer_scale = 0.5;
@@ -158,6 +160,11 @@ void Renderer::set_sun_medium(const geometry::Medium* medium, const geometry::He
 
 void Renderer::clear_sun_medium() { impl_->sun_medium.reset(); }
 
+void Renderer::set_light_volume(std::shared_ptr<const geometry::LightVolume> volume)
+{
+    impl_->light_volume.set(std::move(volume));
+}
+
 void Renderer::set_fog_partition(const std::optional<geometry::FogPartition>& partition)
 {
     if (partition)
@@ -219,6 +226,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
     if (fog) {  // before the scene: is the fog in view
         r.froxel->prepare(frame, shadow);
         r.froxel->set_sun_volume(sun_volume);
+        r.froxel->set_light_volume(&r.light_volume);
     }
     // With froxel fog the layers and the particles come after its apply and read it at their
     // own depth (FroxelPass::bind_apply + froxel_fog(world) in their fragment shaders).

@@ -6,10 +6,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/volume/froxel_options.hpp"
+#include "kiri/geometry/medium/light_volume.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/render/fog_error.hpp"
@@ -108,9 +110,11 @@ protected:
     // Renders the froxel fog and the reference of the same view and compares them.
     static Compared compare(const g::Terrain& terrain, const g::Medium* medium, const g::FroxelOptions& options,
                             const Camera& camera, int width, int height, const SunLight& light = sun(),
-                            double min_depth = 0.0, double max_depth = HUGE_VAL)
+                            double min_depth = 0.0, double max_depth = HUGE_VAL,
+                            std::shared_ptr<const g::LightVolume> light_volume = nullptr)
     {
         Renderer r;
+        r.set_light_volume(light_volume);
         r.set_terrain(terrain);
         // The sun's shadow map as the options set it (SceneRendering::sun does the same).
         SunLight shadowed = light;
@@ -123,8 +127,9 @@ protected:
         Compared c;
         c.gpu = r.read_froxel_fog();
         const g::ReferenceView view = kiri::render::reference_view(camera, width, height, options.far);
-        c.reference = g::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view,
-                                              lighting(light, options, medium));
+        g::FogLighting lit = lighting(light, options, medium);
+        lit.light_volume = light_volume;
+        c.reference = g::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, lit);
         c.error = kiri::render::compare_fog(c.gpu, c.reference, min_depth, max_depth);
         expect_finite(c.gpu);
         std::printf(

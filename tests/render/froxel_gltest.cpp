@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "render/froxel_fixture.hpp"
 
 namespace {
@@ -64,6 +65,54 @@ TEST_F(FroxelGl, AReducedResolutionKeepsThePixelsPerTile)
     r.set_froxel_resolution(1.0);
     r.render(c, 96, 54);
     EXPECT_EQ(r.last_stats().froxel.size, glm::ivec3(24, 14, o.slices));
+}
+
+// The slab of slab() lit by the model `baked`: its multiple scattering from a light volume.
+g::Medium baked_slab(double bottom, double top, double sigma, double half)
+{
+    const g::Medium plain = slab(bottom, top, sigma, half);
+    g::MediumOptions o = plain.options();
+    o.multiple_scattering = g::MultipleScattering::baked;
+    o.albedo = 0.99;
+    o.anisotropy = 0.8;
+    return g::Medium(plain.grid(), o, plain.detail());
+}
+
+TEST_F(FroxelGl, BakedMultipleScatteringIsTheReferencesLight)
+{
+    // A slab 300 m thick (optical thickness 1.5, albedo 0.99, g 0.8) seen from inside, lit by
+    // the baked volume in both the froxels and the CPU reference: the froxels read the same
+    // moments (light_volume.glsl) and agree as they do in single scattering. Without the volume
+    // the froxels draw single scattering, far from the baked reference: the volume is read.
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = baked_slab(0.0, 300.0, 0.005, 2000.0);
+    const SunLight light = sun();
+    g::LightVolumeOptions bake;
+    bake.photons_per_column = 200;
+    bake.levels = 6;
+    bake.max_side = 12;
+    const auto volume = std::make_shared<const g::LightVolume>(
+        g::bake_light_volume({&fog, {}}, &ground.heightfield(), glm::normalize(light.direction), bake));
+    ASSERT_FALSE(volume->empty());
+    Camera c;
+    c.position = {0.0, -1500.0, 150.0};
+    c.target = {300.0, 0.0, 120.0};
+    const g::FroxelOptions o = small(24, 14);
+    const Compared with = compare(ground, &fog, o, c, 96, 54, light, 0.0, HUGE_VAL, volume);
+    EXPECT_GT(with.error.fog_pixels, 96 * 54 / 2);
+    EXPECT_LT(with.error.mean_relative, 0.03);
+    // The same froxels without the volume against the same reference.
+    Renderer single;
+    single.set_terrain(ground);
+    SunLight shadowed = light;
+    shadowed.terrain_shadows = o.terrain_shadows;
+    single.set_sun(shadowed);
+    single.set_froxel_fog(&fog, o);
+    single.render(c, 96, 54);
+    const kiri::render::FogError without = kiri::render::compare_fog(single.read_froxel_fog(), with.reference);
+    std::printf("    without the volume: mean %.4f\n", without.mean_relative);
+    EXPECT_GT(without.mean_relative, 4.0 * with.error.mean_relative);
+    EXPECT_GT(without.mean_relative, 0.05);
 }
 
 TEST_F(FroxelGl, HeightFog)

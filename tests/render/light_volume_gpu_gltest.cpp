@@ -95,7 +95,8 @@ TEST_F(LightVolumeGpu, NoVolumeAddsNothing)
     LightVolumeTexture texture;
     texture.set(nullptr);
     EXPECT_FALSE(texture.ready());
-    const std::vector<float> got = texture.probe({LightVolumeTexture::Probe{{0.0f, 0.0f, 0.5f}, 1.0f, {0, 0, 1}, 0.5f}});
+    const std::vector<float> got =
+        texture.probe({LightVolumeTexture::Probe{{0.0f, 0.0f, 0.5f}, 1.0f, {0, 0, 1}, 0.5f}});
     ASSERT_EQ(got.size(), 1u);
     EXPECT_EQ(got[0], 0.0f);
     // An empty volume is no volume.

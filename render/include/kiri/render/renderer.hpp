@@ -23,6 +23,7 @@ struct LayerBase;
 struct LayerOptions;
 struct FroxelOptions;
 struct FogPartition;
+struct LightVolume;
 struct HeightFog;
 }  // namespace kiri::geometry
 
@@ -132,6 +133,11 @@ public:
     //! layer and the froxels march the sun's path.
     void set_sun_medium(const geometry::Medium* medium, const geometry::HeightFog& haze);
     void clear_sun_medium();
+    //! The baked multiple scattering (geometry::bake_light_volume for this sun and fog) that the
+    //! renderers add where the Medium's model is `baked` (medium.multiple_scattering,
+    //! docs/medium.md); null: none, and `baked` draws single scattering. Uploaded when it is
+    //! another volume; kept (shared) until replaced.
+    void set_light_volume(std::shared_ptr<const geometry::LightVolume> volume);
     //! The fog's layer stack over the terrain (base kept by reference: it must outlive the
     //! renderer's use of it). Uploads only when the base changed; options apply every frame.
     void set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options);
