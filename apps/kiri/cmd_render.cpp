@@ -11,7 +11,6 @@
 
 #include "commands.hpp"
 #include "kiri/geometry/core/error.hpp"
-#include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/reference/path_tracer.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/scene/dem_scene.hpp"
@@ -42,22 +41,13 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
     const geometry::FroxelOptions options = render::scene_froxel_options(scene, terrain);
     const geometry::Medium* medium = products.medium.get();
     const geometry::ReferenceView view = render::reference_view(camera, width, height, options.far);
-    geometry::FogLighting light = render::scene_fog_lighting(scene, medium, options);
+    geometry::FogLighting light = render::scene_fog_lighting(scene, medium, options, products.light_volume);
     light.sky = !a.no_sky;
     const bool exr = render::is_exr_path(a.out);
     if (a.mode == "reference") {
         geometry::ReferenceOptions ro;
         ro.shade_terrain = !a.black_ground;
         ro.surround = scene.terrain.surround;
-        if (light.multiple_scattering == geometry::MultipleScattering::baked) {
-            geometry::LightVolumeOptions bake;
-            bake.surround = scene.terrain.surround;
-            light.light_volume = std::make_shared<const geometry::LightVolume>(geometry::bake_light_volume(
-                {medium, options.height_fog}, &terrain.heightfield(), light.sun_direction, bake));
-            std::fprintf(stderr, "kiri render: light volume %dx%dx%d, %d bands, %lld photons, baked in %.2f s\n",
-                         light.light_volume->nx, light.light_volume->ny, light.light_volume->nz,
-                         light.light_volume->bands, light.light_volume->photons, light.light_volume->seconds);
-        }
         const geometry::ReferenceImage r =
             geometry::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, light, ro);
         if (exr)

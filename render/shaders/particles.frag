@@ -14,6 +14,7 @@ flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
 in vec4 v_fog;
+flat in float v_baked;
 uniform sampler3D u_log_gamma;
 uniform sampler2D u_depth;       // the terrain's depth, full resolution
 uniform vec2 u_depth_scale;      // its pixels per pixel of this target (the near target's are coarser)
@@ -48,6 +49,8 @@ void main()
         log_gamma = billboard_log_gamma(u_log_gamma, grid_of(v_relative), v_grid_visible.xyz, v_window, v_table, v_optics);
     vec3 view = normalize(v_world - u_eye);
     vec3 radiance = particle_radiance(log_gamma, dot(view, u_sun_direction), v_optics.z, v_grid_visible.w);
+    // The baked multiple scattering, not hidden by the terrain's shadow (particles.vert).
+    radiance += clamp(v_optics.z, 0.0, 1.0) * v_baked * u_sun_radiance;
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
     // The froxel fog in front of this billboard (read at its corners, particles.vert), as the

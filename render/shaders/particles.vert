@@ -23,6 +23,8 @@ flat out ivec4 v_window;
 flat out uint v_table;
 flat out vec3 v_optics;  // radius, tau, albedo
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
+flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
+uniform vec3 u_eye;
 
 void main()
 {
@@ -38,5 +40,9 @@ void main()
     v_table = particle_lights[id].offset.x;
     v_optics = vec3(p.w, particles[id].optics.xy);
     v_fog = froxel_fog(v_world);
+    // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
+    // may stand out of the Medium's shell, where the volume holds nothing.
+    vec3 centre = p.xyz + u_centre;
+    v_baked = u_lv_on != 0 ? lv_in_scattered_at(centre, normalize(u_eye - centre), u_anisotropy) : 0.0;
     gl_Position = u_view_projection * vec4(v_world, 1.0);
 }

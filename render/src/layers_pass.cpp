@@ -1,6 +1,7 @@
 #include "layers_pass.hpp"
 
 #include "kiri/geometry/layers/layer_lod.hpp"
+#include "light_volume_texture.hpp"
 
 #include <algorithm>
 #include <array>
@@ -25,6 +26,9 @@ struct Vertex {
 };
 
 constexpr int unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.comp
+// The baked light's Medium grid and moments in layers.frag, apart from the atlas (0), the
+// heights (1), the noise (2), the shadow map and the froxel apply's units (5 .. 19).
+constexpr int unit_baked_grid = 20, unit_baked_moments = 21;
 // Steps of the sun's march where a base vertex lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
 // Levels of tau_sun along the column above each base vertex (linear between them).
@@ -42,7 +46,7 @@ void set_sampling(GLuint texture, GLint filter)
 
 LayersPass::LayersPass()
     : program_({"layers.vert", "fog_partition.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
-                "layers.frag"}),
+                "medium_shell.glsl", "light_volume.glsl", "layers.frag"}),
       composite_({"fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
@@ -277,7 +281,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
-            "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
+            "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "light_volume.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
@@ -314,6 +318,17 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     p.set("u_haze_density", frame.haze_density);
     const bool medium = o.shading == geometry::LayerShading::medium;
     p.set("u_medium", int(medium));
+    // The baked multiple scattering: the moments, and the Medium's columns they follow.
+    const bool baked = medium && o.optics.multiple_scattering == geometry::MultipleScattering::baked && light_volume_ &&
+        light_volume_->ready() && sun_ && sun_->bind_grid(p, unit_baked_grid);
+    if (light_volume_)
+        light_volume_->bind(p, unit_baked_moments, baked);
+    else
+        LightVolumeTexture{}.bind(p, unit_baked_moments);
+    // Unused, the grid's sampler still needs a unit of its own (a 3D sampler may be on 0); the
+    // froxel variant's is the froxel pass's grid, set by bind_apply.
+    if (!baked && !fog_)
+        p.set("u_md_grid", unit_baked_grid);
     p.set("u_extinction", float(o.optics.extinction));
     p.set("u_albedo", float(o.optics.albedo));
     p.set("u_octaves", geometry::shader_octaves(o.optics));

@@ -20,6 +20,7 @@ namespace kiri::render::detail {
 class FroxelPass;
 class ShadowMapPass;
 class SunVolume;
+class LightVolumeTexture;
 
 //! The fog's layer stack: the base tessellation uploaded once, drawn as instances (one per
 //! layer) with the stack's formulas in the vertex shader, blended over the terrain with the
@@ -65,6 +66,9 @@ public:
         shadow_ = shadow;
         sun_ = sun;
     }
+    //! The baked multiple scattering the medium shading adds where the layers' optics say
+    //! `baked` (it reads the Medium's columns through the sun volume's grid), for the frame.
+    void set_light_volume(const LightVolumeTexture* volume) { light_volume_ = volume; }
 
 private:
     ShaderProgram program_, composite_, depth_max_;
@@ -72,6 +76,7 @@ private:
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
     const SunVolume* sun_ = nullptr;
+    const LightVolumeTexture* light_volume_ = nullptr;
     // tau_sun along the column above each base vertex (layers_sun.comp), rebuilt with the sun
     // volume or the base.
     struct SunColumnsKey {

@@ -38,11 +38,11 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
     glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
-void LightVolumeTexture::bind(const ShaderProgram& p, int unit) const
+void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on) const
 {
-    p.set("u_lv_on", int(ready()));
+    p.set("u_lv_on", int(on && ready()));
     p.set("u_lv_moments", unit);
-    if (!ready())
+    if (!on || !ready())
         return;
     const geometry::LightVolume& v = *volume_;
     p.set("u_lv_rect", glm::vec4(float(v.x0), float(v.y0), float(1.0 / (v.nx * v.dx)), float(1.0 / (v.ny * v.dy))));

@@ -20,9 +20,10 @@ public:
     void set(std::shared_ptr<const geometry::LightVolume> volume);
     bool ready() const { return volume_ != nullptr && texture_; }
     const geometry::LightVolume* volume() const { return volume_.get(); }
-    //! Sets light_volume.glsl's uniforms on a program and binds the moments to `unit`
-    //! (u_lv_on 0 without a volume).
-    void bind(const ShaderProgram& program, int unit) const;
+    //! Sets light_volume.glsl's uniforms on a program and binds the moments to `unit`; u_lv_on
+    //! 0 without a volume or when not `on` (the sampler still gets its own unit: samplers of
+    //! different types may not share one, used or not).
+    void bind(const ShaderProgram& program, int unit, bool on = true) const;
     //! lv_in_scattered at the given (x, y, h), column scale, direction towards the eye and g, as
     //! the renderers take it, read back (tests against LightVolume::in_scattered).
     struct Probe {

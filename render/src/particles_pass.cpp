@@ -8,13 +8,20 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "light_volume_texture.hpp"
 #include "particle_gpu.hpp"
+#include "sun_volume.hpp"
 
 namespace kiri::render::detail {
+namespace {
+// The baked light's Medium grid and moments, apart from every other sampler of the billboards'
+// programs (the froxel apply's among them).
+constexpr int unit_baked_grid = 20, unit_baked_moments = 21;
+}  // namespace
 
 ParticlesPass::ParticlesPass()
     : program_({"particle_footprint.glsl", "fog_lighting.glsl", "particle_light.glsl", "terrain_shadow.glsl",
-                "froxel_fog_none.glsl", "particles.vert", "particles.frag"}),
+                "froxel_fog_none.glsl", "medium_shell.glsl", "light_volume.glsl", "particles.vert", "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
@@ -171,11 +178,23 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
             "particle_light.glsl", "terrain_shadow.glsl", "medium_shell.glsl", "froxel_medium.glsl",
-            "froxel_apply.glsl", "particles.vert", "particles.frag"});
+            "froxel_apply.glsl", "light_volume.glsl", "particles.vert", "particles.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
     bind_terrain_shadow(p, shadow_);
+    // The baked multiple scattering at each billboard's centre (particles.vert): the moments and
+    // the Medium's columns they follow (the sun volume's grid). The renderer gives a volume for
+    // the Medium's model `baked` alone.
+    const bool baked = light_volume_ && light_volume_->ready() && sun_ && sun_->bind_grid(p, unit_baked_grid);
+    if (light_volume_)
+        light_volume_->bind(p, unit_baked_moments, baked);
+    else
+        LightVolumeTexture{}.bind(p, unit_baked_moments);
+    // Unused, the grid's sampler still needs a unit of its own (a 3D sampler may be on 0); the
+    // froxel variant's is the froxel pass's grid, set by bind_apply.
+    if (!baked && !fog_)
+        p.set("u_md_grid", unit_baked_grid);
     set_grid_uniforms(p, g, cloud_->forward_scattering, buffer_.particle_centre());
     p.set("u_centre", glm::vec3(buffer_.particle_centre()));
     p.set("u_view_projection", frame.view_projection);

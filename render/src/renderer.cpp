@@ -232,12 +232,14 @@ void Renderer::draw(const Camera& camera, int width, int height)
     // own depth (FroxelPass::bind_apply + froxel_fog(world) in their fragment shaders).
     const bool layers_multisampled = r.layers_multisampled && !fog;
     r.layers.set_fog(fog, shadow, sun_volume);
+    r.layers.set_light_volume(&r.light_volume);
     r.sun_columns_timer.forget();
     if (r.layers.visible(frame) && r.layers.sun_columns_stale()) {  // tau_sun above the layers' base
         const ScopedPassTimer timed(r.sun_columns_timer);
         r.layers.update_sun_columns(frame);
     }
     r.particles.set_fog(fog, shadow);
+    r.particles.set_light_volume(&r.light_volume, sun_volume);
     r.targets.bind_for_drawing();
     {
         const ScopedPassTimer timed(r.sky_timer);

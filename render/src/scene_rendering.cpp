@@ -64,6 +64,9 @@ geometry::PipelineTarget pipeline_target(FogMode mode, const geometry::Scene& sc
             scene.combined.particle_share > 0.0 ? geometry::ParticleSet::top_band : geometry::ParticleSet::none;
         break;
     }
+    // The Medium's model `baked` reads its light volume (the light stage runs for it alone).
+    if (mode != FogMode::terrain && scene.medium.multiple_scattering == geometry::MultipleScattering::baked)
+        target.up_to = geometry::Stage::light;
     return target;
 }
 
@@ -117,7 +120,8 @@ geometry::ReferenceView reference_view(const Camera& camera, int width, int heig
 }
 
 geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
-                                         const geometry::FroxelOptions& froxel)
+                                         const geometry::FroxelOptions& froxel,
+                                         std::shared_ptr<const geometry::LightVolume> light_volume)
 {
     geometry::FogLighting light;
     light.sun_direction = scene.sun.direction;
@@ -127,6 +131,7 @@ geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geo
     light.fog_shadows = froxel.fog_shadows;
     light.multiple_scattering = geometry::multiple_scattering_of(medium);
     light.scattering_octaves = geometry::scattering_octaves_of(medium);
+    light.light_volume = std::move(light_volume);
     return light;
 }
 
@@ -216,6 +221,9 @@ void SceneRendering::apply(Renderer& renderer) const
     else
         renderer.clear_froxel_fog();
     renderer.set_sun_medium(sun_medium(), froxel_.height_fog);
+    // The baked multiple scattering, where the Medium's model is `baked` (the pipeline's light
+    // stage made it for the scene's sun); the renderers draw single scattering without it.
+    renderer.set_light_volume(mode_ == FogMode::terrain ? nullptr : products_.light_volume);
     std::optional<geometry::FogPartition> partition;
     if (mode_ == FogMode::combined) {
         partition = scene_.combined;

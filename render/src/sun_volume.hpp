@@ -50,6 +50,9 @@ public:
     //! grid, the noise) and unit + 2 (the volume). `use_volume` false, or no volume: the Medium's
     //! part is marched in `march_steps` steps instead.
     void bind(const ShaderProgram& program, int unit, int march_steps, bool use_volume = true) const;
+    //! medium_shell.glsl's uniforms alone (the Medium's grid on `unit`), for a program that reads
+    //! the shell's columns but not the sun volume (the layers' baked light); false without a Medium.
+    bool bind_grid(const ShaderProgram& program, int unit) const { return medium_gpu_.bind_grid(program, unit); }
     //! tau_sun at `points` as the renderers' lighting takes it (sun_volume.glsl, the volume
     //! built by update for `sun_direction`, or marched as bind says), read back.
     std::vector<float> probe(const std::vector<glm::vec3>& points, const glm::vec3& sun_direction, int march_steps,

@@ -7,8 +7,11 @@
 #include <concepts>
 #include <filesystem>
 
+#include <glm/geometric.hpp>
+
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/medium/fog_partition.hpp"
+#include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/scene/pipeline.hpp"
 
 namespace fs = std::filesystem;
@@ -58,6 +61,24 @@ void expect_same_fog(const PipelineProducts& a, const PipelineProducts& b)
     }
 }
 
+// The light stage's volume is bake_light_volume's of the products' Medium and terrain, under the
+// scene's sun with the froxels' height fog over the terrain, bit for bit (the bake is).
+void expect_the_bake_of(const PipelineProducts& p)
+{
+    ASSERT_TRUE(p.light_volume && p.medium && p.terrain && p.scene);
+    HeightFog haze = world_froxel_options(*p.scene).height_fog;
+    const Bounds3 b = p.terrain->bounds();
+    haze.min = {b.min.x, b.min.y};
+    haze.max = {b.max.x, b.max.y};
+    LightVolumeOptions bake;
+    bake.surround = p.scene->terrain.surround;
+    const LightVolume fresh =
+        bake_light_volume({p.medium.get(), haze}, &p.terrain->heightfield(), p.scene->sun.direction, bake);
+    EXPECT_EQ(fresh.moments, p.light_volume->moments);
+    EXPECT_EQ(fresh.nx, p.light_volume->nx);
+    EXPECT_EQ(fresh.nz, p.light_volume->nz);
+}
+
 }  // namespace
 
 TEST(Pipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
@@ -66,7 +87,7 @@ TEST(Pipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
     Scene s = small_scene();
     const PipelineProducts first = p.run(s);
     ASSERT_TRUE(first.has_fog());
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 0, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 0, 0, 0, 0}));
     EXPECT_TRUE(p.ran(Stage::fit));
 
     // The sun, the cameras and the layers' look apply per frame: nothing runs, the same products.
@@ -74,7 +95,7 @@ TEST(Pipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
     s.layers.opacity = 0.3;
     s.cameras.pop_back();
     const PipelineProducts same = p.run(s);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 0, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 0, 0, 0, 0}));
     EXPECT_FALSE(p.ran(Stage::fit));
     EXPECT_EQ(same.terrain, first.terrain);
     EXPECT_EQ(same.layer_base, first.layer_base);
@@ -83,14 +104,14 @@ TEST(Pipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
     // Tessellation: the fitted surface is kept; (6/4)^2 as many triangles.
     s.fog->tessellation.level = 6;
     const PipelineProducts finer = p.run(s);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 2, 2, 0, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 2, 2, 0, 0, 0, 0}));
     EXPECT_EQ(finer.tessellation->mesh.n_faces() * 16, first.tessellation->mesh.n_faces() * 36);
     EXPECT_EQ(finer.surface, first.surface);
 
     // A fit option refits the same control mesh, which gives what a fresh fit gives.
     s.fog->fit.offset = 120.0;
     const PipelineProducts refit = p.run(s);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 2, 3, 3, 0, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 2, 3, 3, 0, 0, 0, 0}));
     EXPECT_EQ(refit.surface->patches, first.surface->patches);
     const PipelineProducts fresh = author_scene(s);
     EXPECT_NEAR(refit.surface->fit.rms_deviation, fresh.surface->fit.rms_deviation,
@@ -100,20 +121,20 @@ TEST(Pipeline, RecomputesOnlyTheStagesWhoseInputsChanged)
     // The layer texture only rebuilds the layer base.
     s.layers.texture.fade_width = 0.25;
     const PipelineProducts texture = p.run(s);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 2, 3, 4, 0, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 2, 3, 4, 0, 0, 0, 0}));
     EXPECT_EQ(texture.tessellation, refit.tessellation);
     EXPECT_NE(texture.layer_base, refit.layer_base);
 
     // The footprint rebuilds the control mesh and what follows.
     s.fog->margin = 4000.0;
     const PipelineProducts smaller = p.run(s);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 2, 3, 4, 5, 0, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 2, 3, 4, 5, 0, 0, 0, 0}));
     EXPECT_LT(smaller.surface->patches, refit.surface->patches);
 
     // The exaggeration reloads the terrain and everything on it.
     s.terrain.exaggeration = 2.0;
     const PipelineProducts steeper = p.run(s);
-    EXPECT_EQ(runs(p), (Runs{2, 0, 3, 4, 5, 6, 0, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{2, 0, 3, 4, 5, 6, 0, 0, 0, 0}));
     EXPECT_NEAR(steeper.terrain->bounds().max.z / smaller.terrain->bounds().max.z, 2.0 / 1.5, 1e-12);
 }
 
@@ -128,7 +149,7 @@ TEST(Pipeline, AnIncrementalRunMakesWhatAFreshRunMakes)
     s.medium.albedo = 0.9;
     s.layers.texture.gray = 0.8;
     const PipelineProducts incremental = p.run(s, with_medium);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 2, 3, 3, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 2, 3, 3, 0, 0, 0}));
     expect_same_fog(incremental, author_scene(s, with_medium));
 }
 
@@ -139,7 +160,7 @@ TEST(Pipeline, FogPlacedByTheTerrainPlacesOnceAndFillsTheMediumFromItsColumns)
     ASSERT_TRUE(s.fog && s.fog->placement);
     const PipelineProducts first = p.run(s, with_medium);
     ASSERT_TRUE(first.placed && first.medium);
-    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 1, 1, 1, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 1, 1, 1, 0, 0, 0}));
     EXPECT_EQ(first.particles, nullptr);  // not asked for
     // The layer stack is as deep as the deepest fog and hangs from the lake's top.
     EXPECT_EQ(first.fog.fit.mode, FitMode::lake);
@@ -151,16 +172,16 @@ TEST(Pipeline, FogPlacedByTheTerrainPlacesOnceAndFillsTheMediumFromItsColumns)
     // not from the layer base); the medium's optics only remake it.
     s.fog->tessellation.level = 6;
     p.run(s, with_medium);
-    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 2, 2, 1, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 2, 2, 1, 0, 0, 0}));
     s.medium.albedo = 0.9;
     const PipelineProducts albedo = p.run(s, with_medium);
-    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 2, 2, 2, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 1, 1, 1, 2, 2, 2, 0, 0, 0}));
     EXPECT_DOUBLE_EQ(albedo.medium->options().albedo, 0.9);
 
     // A higher fog top places the fog again: more of it, deeper, and everything after reruns.
     s.fog->placement->regions.at(0).top += 40.0;
     const PipelineProducts higher = p.run(s, with_medium);
-    EXPECT_EQ(runs(p), (Runs{1, 2, 2, 2, 3, 3, 3, 0, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 2, 2, 2, 3, 3, 3, 0, 0, 0}));
     EXPECT_GT(higher.placed->figures.volume_m3, first.placed->figures.volume_m3);
     EXPECT_NEAR(higher.layers.thickness, first.layers.thickness + 40.0 * s.terrain.exaggeration, 1e-6);
     expect_same_fog(higher, author_scene(s, with_medium));
@@ -174,7 +195,7 @@ TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)
     const PipelineProducts first = p.run(s, with_particles);
     ASSERT_TRUE(first.particles && first.medium);
     EXPECT_EQ(first.particles->particles.size(), 3000u);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 1, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 1, 0, 0}));
     // What the particles are: the Medium's, sampled by its own options, bit for bit.
     const ParticleCloud cloud = sample_particles(*first.medium, s.particles);
     ASSERT_EQ(cloud.particles.size(), first.particles->particles.size());
@@ -183,7 +204,7 @@ TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)
 
     s.particles.count = 4000;
     const PipelineProducts more = p.run(s, with_particles);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0, 0}));
     EXPECT_EQ(more.medium, first.medium);
     EXPECT_EQ(more.particles->particles.size(), 4000u);
 
@@ -192,7 +213,7 @@ TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)
     s.particles.half_float = false;
     s.particles.soft_edge = 10.0;
     const PipelineProducts finer = p.run(s, with_particles);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0, 0}));
     EXPECT_EQ(finer.particles, more.particles);
 
     // A target without particles gets none and runs nothing; back to particles, the same ones.
@@ -200,12 +221,12 @@ TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)
     EXPECT_EQ(layers.particles, nullptr);
     EXPECT_EQ(layers.medium, nullptr);
     const PipelineProducts again = p.run(s, with_particles);
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 2, 0, 0}));
     EXPECT_EQ(again.particles, more.particles);
 
     // Combined: the particles stand for the top band's share of the medium; a zero share gives none.
     const PipelineProducts shared = p.run(s, {Stage::particles, ParticleSet::top_band});
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 3, 0}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 3, 0, 0}));
     ASSERT_TRUE(shared.particles);
     const Medium& m = *shared.medium;
     const ParticleCloud top = sample_particles(m, s.particles, {}, particle_height_share(s.combined));
@@ -230,7 +251,35 @@ TEST(Pipeline, ExportsAreTheLayersTheEyeSees)
     EXPECT_EQ(a.exports->back().vertices.back().position, direct.back().vertices.back().position);
     // Another eye remakes the exports alone.
     p.run(s, {Stage::exports, ParticleSet::none, eye + glm::dvec3(0.0, 0.0, 500.0)});
-    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 0, 2}));
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 0, 0, 2}));
+}
+
+TEST(Pipeline, TheLightStageBakesForTheBakedModelAloneAndAgainForANewSun)
+{
+    Pipeline p;
+    Scene s = small_scene();
+    const PipelineTarget with_light{Stage::light, ParticleSet::none};
+    // Another model: the stage is skipped and nothing is baked.
+    const PipelineProducts fitted = p.run(s, with_light);
+    EXPECT_EQ(fitted.light_volume, nullptr);
+    EXPECT_EQ(runs(p)[std::size_t(Stage::light)], 0);
+    s.medium.multiple_scattering = MultipleScattering::baked;
+    const PipelineProducts baked = p.run(s, with_light);
+    ASSERT_NE(baked.light_volume, nullptr);
+    EXPECT_FALSE(baked.light_volume->empty());
+    EXPECT_GT(baked.light_volume->photons, 0);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 2, 0, 1, 0}));  // the model is the Medium's too
+    // The same scene: the same volume, nothing runs. A stage short of it: no volume published.
+    EXPECT_EQ(p.run(s, with_light).light_volume, baked.light_volume);
+    EXPECT_EQ(p.run(s, with_medium).light_volume, nullptr);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 2, 0, 1, 0}));
+    // Another sun: the light stage alone runs again, as bake_light_volume would make it.
+    s.sun.direction = glm::normalize(glm::dvec3(0.3, -0.5, 0.4));
+    const PipelineProducts lower = p.run(s, with_light);
+    EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 2, 0, 2, 0}));
+    ASSERT_NE(lower.light_volume, nullptr);
+    EXPECT_NE(lower.light_volume, baked.light_volume);
+    expect_the_bake_of(lower);
 }
 
 TEST(Pipeline, AFailedStageKeepsTheLastGoodProductsAndRunsAgainNextTime)

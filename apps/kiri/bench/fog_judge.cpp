@@ -27,7 +27,8 @@ geometry::Scene SceneJson::parse(const nlohmann::json& varied) const
 FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int width, int height)
     : width_(width), height_(height)
 {
-    const geometry::PipelineProducts& fog = pipeline_.run(base, {geometry::Stage::medium});
+    // Up to the light stage: the Medium, and its light volume where its model is `baked`.
+    const geometry::PipelineProducts& fog = pipeline_.run(base, {geometry::Stage::light, geometry::ParticleSet::none});
     const geometry::Terrain& terrain = *fog.terrain;
     const geometry::Bounds3 b = terrain.bounds();
     camera_ = render::to_camera(base.camera(camera, b.min, b.max));
@@ -37,8 +38,9 @@ FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int w
     const auto start = std::chrono::steady_clock::now();
     geometry::ReferenceOptions options;
     options.surround = base.terrain.surround;
-    reference_ = geometry::render_reference_fog({fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
-                                                render::scene_fog_lighting(base, fog.medium.get(), froxel), options);
+    reference_ = geometry::render_reference_fog(
+        {fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
+        render::scene_fog_lighting(base, fog.medium.get(), froxel, fog.light_volume), options);
     reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     context_ = render::create_headless_context();
     renderer_ = std::make_unique<render::Renderer>();

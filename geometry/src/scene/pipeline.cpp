@@ -8,6 +8,7 @@
 
 #include "kiri/geometry/layers/layer_medium.hpp"
 #include "kiri/geometry/placement/fill_medium.hpp"
+#include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/scene/author_estimate.hpp"
 #include "scene/stage_inputs.hpp"
 
@@ -28,6 +29,25 @@ std::shared_ptr<const Medium> build_medium(const Terrain& terrain, const PlacedF
                : make_medium(base, layers, terrain, medium, label));
 }
 
+// The light stage runs for the Medium's model `baked` alone.
+bool baked(const Scene& scene) { return scene.medium.multiple_scattering == MultipleScattering::baked; }
+
+// What the bake reads: the Medium, the terrain (hiding and absorbing), the sun, and the froxels'
+// height fog over the terrain's extent (render::scene_froxel_options takes the same).
+LightInput light_input(const Scene& scene, std::uint64_t medium, std::uint64_t terrain_version, const Terrain& terrain)
+{
+    LightInput in;
+    in.medium = medium;
+    in.terrain = terrain_version;
+    in.sun = scene.sun.direction;
+    in.haze = world_froxel_options(scene).height_fog;
+    const Bounds3 b = terrain.bounds();
+    in.haze.min = {b.min.x, b.min.y};
+    in.haze.max = {b.max.x, b.max.y};
+    in.surround = scene.terrain.surround;
+    return in;
+}
+
 std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const ParticlesInput& in,
                                                      const std::string& label)
 {
@@ -46,8 +66,8 @@ std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const
 
 const char* to_string(Stage stage)
 {
-    static const char* names[stage_count] = {"terrain",    "placement", "control mesh", "fit",    "tessellation",
-                                             "layer base", "medium",    "particles",    "exports"};
+    static const char* names[stage_count] = {"terrain",    "placement", "control mesh", "fit",   "tessellation",
+                                             "layer base", "medium",    "particles",    "light", "exports"};
     return names[int(stage)];
 }
 
@@ -75,6 +95,7 @@ struct Pipeline::Cache {
     StageCache<LayerBaseInput, std::shared_ptr<const LayerBase>> layer_base;
     StageCache<MediumInput, std::shared_ptr<const Medium>> medium;
     StageCache<ParticlesInput, std::shared_ptr<const ParticleCloud>> particles;
+    StageCache<LightInput, std::shared_ptr<const LightVolume>> light;
     StageCache<ExportsInput, std::shared_ptr<const std::vector<LayerMesh>>> exports;
     bool fitted = false;  // the control surface holds the fit of `fit.input`
     // The fog section as the last good layer base was made for (world units, placed).
@@ -92,6 +113,7 @@ struct Pipeline::Cache {
         layer_base = {};
         medium = {};
         particles = {};
+        light = {};
         exports = {};
         fitted = false;
         fog = {};
@@ -236,6 +258,16 @@ const PipelineProducts& Pipeline::run(const Scene& given_scene, const PipelineTa
                      c.particles.product = build_particles(*c.medium.product, in, label);
                  });
         }
+        if (reaches(Stage::light) && baked(scene)) {
+            step(Stage::light, c.light, light_input(scene, c.medium.version, c.terrain.version, terrain),
+                 [&](const LightInput& in) {
+                     c.light.product.reset();
+                     LightVolumeOptions bake;
+                     bake.surround = in.surround;
+                     c.light.product = std::make_shared<const LightVolume>(
+                         bake_light_volume({c.medium.product.get(), in.haze}, &terrain.heightfield(), in.sun, bake));
+                 });
+        }
         if (reaches(Stage::exports)) {
             step(Stage::exports, c.exports, ExportsInput{c.layer_base.version, layers, target.export_eye},
                  [&](const ExportsInput& in) {
@@ -279,6 +311,8 @@ void Pipeline::publish(const PipelineTarget& target)
     products_.medium = reaches(Stage::medium) ? c.medium.product : nullptr;
     products_.particles =
         reaches(Stage::particles) && target.particles != ParticleSet::none ? c.particles.product : nullptr;
+    products_.light_volume =
+        reaches(Stage::light) && c.medium.product && c.resolved && baked(*c.resolved) ? c.light.product : nullptr;
     products_.exports = reaches(Stage::exports) ? c.exports.product : nullptr;
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "kiri/geometry/scene/pipeline.hpp"
+#include "kiri/geometry/volume/height_fog.hpp"
 
 namespace kiri::geometry {
 
@@ -72,6 +73,14 @@ struct ParticlesInput {
 };
 ParticlesInput particles_input(std::uint64_t medium, ParticleSet set, const ParticleOptions& options,
                                const FogPartition& partition);
+
+struct LightInput {
+    std::uint64_t medium = 0, terrain = 0;
+    glm::dvec3 sun{0.0};  // towards the sun, as the scene gives it
+    HeightFog haze;       // the froxels' height fog over the terrain, which the bake traces too
+    bool surround = true;
+    bool operator==(const LightInput&) const = default;
+};
 
 struct ExportsInput {
     std::uint64_t layer_base = 0;

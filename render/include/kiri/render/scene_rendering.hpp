@@ -37,9 +37,11 @@ geometry::FroxelOptions scene_froxel_options(const geometry::Scene& scene, const
 //! The CPU reference's view of `camera` at width x height, ending at view depth max_depth (the
 //! froxel volume's far plane; 0: no limit).
 geometry::ReferenceView reference_view(const Camera& camera, int width, int height, double max_depth);
-//! The lighting the CPU reference judges a scene's fog with (the renderers' model).
+//! The lighting the CPU reference judges a scene's fog with (the renderers' model), with the
+//! pipeline's light volume for the model `baked` (PipelineProducts::light_volume; null: none).
 geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
-                                         const geometry::FroxelOptions& froxel);
+                                         const geometry::FroxelOptions& froxel,
+                                         std::shared_ptr<const geometry::LightVolume> light_volume = nullptr);
 
 //! A scene drawn in one mode from the pipeline's products (pipeline_target(mode, scene)). It
 //! keeps the products it was given, so what the renderer refers to lives as long as it does.

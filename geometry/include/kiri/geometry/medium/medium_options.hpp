@@ -84,8 +84,8 @@ void visit_fields(O& o, V&& v)
     v(o.multiple_scattering,
       {.key = "multiple_scattering",
        .doc = "the light scattered more than once: fitted to the path tracer, octaves, none (single "
-              "scattering), or baked (a light-transport volume traced from the sun; the CPU reference only, "
-              "the GL renderers draw single scattering) ([medium.md](medium.md#lighting))",
+              "scattering), or baked (a light-transport volume traced from the sun for the scene, every "
+              "renderer reads it; seconds of CPU per sun) ([medium.md](medium.md#lighting))",
        .choices = multiple_scattering_names});
     v(o.scattering_octaves,
       {.key = "scattering_octaves",

@@ -4,6 +4,7 @@
 //! inputs, recomputed only when those inputs change.
 //!
 //!   terrain -> placement -> control mesh -> fit -> tessellation -> layer base -> medium -> particles
+//!                                                                         |          \-> light (baked)
 //!                                                                         \-> exports (the layers an eye sees)
 //!
 //! A stage's inputs are a value (the options it reads, in world units, and the versions of the
@@ -23,6 +24,7 @@
 #include "kiri/geometry/fog/base_surface.hpp"
 #include "kiri/geometry/fog/tessellate.hpp"
 #include "kiri/geometry/layers/layer_stack.hpp"
+#include "kiri/geometry/medium/light_volume.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/particles/particles.hpp"
 #include "kiri/geometry/placement/fog_placement.hpp"
@@ -33,10 +35,11 @@
 
 namespace kiri::geometry {
 
-enum class Stage { terrain, placement, control_mesh, fit, tessellation, layer_base, medium, particles, exports };
-inline constexpr int stage_count = 9;
+enum class Stage { terrain, placement, control_mesh, fit, tessellation, layer_base, medium, particles, light, exports };
+inline constexpr int stage_count = 10;
 //! "terrain", "placement", "control mesh", "fit", "tessellation", "layer base", "medium",
-//! "particles", "exports".
+//! "particles", "light", "exports". The light stage bakes the light-transport volume
+//! (light_volume_bake.hpp) for the Medium's model `baked` only; for the others it is skipped.
 const char* to_string(Stage stage);
 
 //! Which particles the particles stage samples.
@@ -80,7 +83,10 @@ struct PipelineProducts {
     std::shared_ptr<const Tessellation> tessellation;
     std::shared_ptr<const LayerBase> layer_base;
     std::shared_ptr<const Medium> medium;
-    std::shared_ptr<const ParticleCloud> particles;         //!< null for ParticleSet::none or no share
+    std::shared_ptr<const ParticleCloud> particles;  //!< null for ParticleSet::none or no share
+    //! The baked multiple scattering of the Medium under the scene's sun (null unless the
+    //! Medium's model is `baked` and the run reached the light stage), for every renderer.
+    std::shared_ptr<const LightVolume> light_volume;
     std::shared_ptr<const std::vector<LayerMesh>> exports;  //!< every layer for the export eye
     bool has_fog() const { return layer_base != nullptr; }
 };
