@@ -143,6 +143,7 @@ int author(const AuthorArgs& args)
     const bool particles_wanted = formats.count(AuthorFormat::particles) > 0;
     PipelineTarget target;
     target.up_to = layers_wanted ? Stage::exports : particles_wanted ? Stage::particles : Stage::medium;
+    target.light = false;  // no export holds the baked light
     target.particles = particles_wanted ? ParticleSet::whole : ParticleSet::none;
     target.export_eye = scene.camera(args.camera, bounds.min, bounds.max).position;
     const PipelineProducts& fog = pipeline.run(given, target);

@@ -432,10 +432,11 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
         geometry::shader_octaves(geometry::multiple_scattering_of(medium_), geometry::scattering_octaves_of(medium_)));
     lighting_.set("u_whole_tiles", int(o.fog_aware));
     // The baked multiple scattering, with the Medium's model `baked` only (others draw theirs).
+    // The Medium's grid is bound already (medium_gpu_ above): the same Medium's.
     if (light_volume_)
-        light_volume_->bind(lighting_, unit_light_volume, baked_light());
+        light_volume_->bind(lighting_, unit_light_volume, baked_light(), false);
     else
-        LightVolumeTexture{}.bind(lighting_, unit_light_volume);
+        LightVolumeTexture{}.bind(lighting_, unit_light_volume, false, false);
     const glm::dvec3 box_lo = medium_ ? medium_->bounds().min : glm::dvec3(0.0);
     const glm::dvec3 box_hi = medium_ ? medium_->bounds().max : glm::dvec3(0.0);
     lighting_.set("u_box_min", glm::vec3(box_lo));

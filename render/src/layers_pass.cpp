@@ -28,7 +28,7 @@ struct Vertex {
 constexpr int unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.comp
 // The baked light's Medium grid and moments in layers.frag, apart from the atlas (0), the
 // heights (1), the noise (2), the shadow map and the froxel apply's units (5 .. 19).
-constexpr int unit_baked_grid = 20, unit_baked_moments = 21;
+constexpr int unit_baked_moments = 20;  // and 21: the Medium's grid (LightVolumeTexture::bind)
 // Steps of the sun's march where a base vertex lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
 // Levels of tau_sun along the column above each base vertex (linear between them).
@@ -320,15 +320,13 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     p.set("u_medium", int(medium));
     // The baked multiple scattering: the moments, and the Medium's columns they follow.
     const bool baked = medium && o.optics.multiple_scattering == geometry::MultipleScattering::baked && light_volume_ &&
-        light_volume_->ready() && sun_ && sun_->bind_grid(p, unit_baked_grid);
+        light_volume_->ready();
+    // The volume's own copy of the Medium's grid, after bind_apply: the froxels bind theirs only
+    // where they apply fog, and their apply's lookups in these programs do not read it.
     if (light_volume_)
         light_volume_->bind(p, unit_baked_moments, baked);
     else
-        LightVolumeTexture{}.bind(p, unit_baked_moments);
-    // Unused, the grid's sampler still needs a unit of its own (a 3D sampler may be on 0); the
-    // froxel variant's is the froxel pass's grid, set by bind_apply.
-    if (!baked && !fog_)
-        p.set("u_md_grid", unit_baked_grid);
+        LightVolumeTexture{}.bind(p, unit_baked_moments, false);
     p.set("u_extinction", float(o.optics.extinction));
     p.set("u_albedo", float(o.optics.albedo));
     p.set("u_octaves", geometry::shader_octaves(o.optics));

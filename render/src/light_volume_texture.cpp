@@ -4,10 +4,11 @@
 
 namespace kiri::render::detail {
 
-void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume)
+void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume, const geometry::Medium* medium)
 {
     if (volume && volume->empty())
         volume.reset();
+    grid_.set(volume ? medium : nullptr);
     if (volume == volume_)
         return;
     volume_ = std::move(volume);
@@ -38,12 +39,17 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
     glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
-void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on) const
+void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on, bool with_grid) const
 {
-    p.set("u_lv_on", int(on && ready()));
+    on = on && ready() && (!with_grid || grid_.medium() != nullptr);
+    p.set("u_lv_on", int(on));
     p.set("u_lv_moments", unit);
-    if (!on || !ready())
+    if (with_grid)
+        p.set("u_md_grid", unit + 1);
+    if (!on)
         return;
+    if (with_grid)
+        grid_.bind_grid(p, unit + 1);
     const geometry::LightVolume& v = *volume_;
     p.set("u_lv_rect", glm::vec4(float(v.x0), float(v.y0), float(1.0 / (v.nx * v.dx)), float(1.0 / (v.ny * v.dy))));
     p.set("u_lv_levels", v.nz);
@@ -62,7 +68,7 @@ std::vector<float> LightVolumeTexture::probe(const std::vector<Probe>& points) c
     Buffer in_buffer = make_buffer(), out_buffer = make_buffer();
     glNamedBufferStorage(in_buffer.get(), GLsizeiptr(points.size() * sizeof(Probe)), points.data(), 0);
     glNamedBufferStorage(out_buffer.get(), GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_MAP_READ_BIT);
-    bind(*probe_, 0);
+    bind(*probe_, 0, true, false);  // the probes give h and the column scale themselves
     probe_->set("u_count", int(points.size()));
     probe_->use();
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_buffer.get());

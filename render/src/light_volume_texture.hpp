@@ -8,6 +8,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "froxel_medium.hpp"
 #include "gl_objects.hpp"
 #include "kiri/geometry/medium/light_volume.hpp"
 #include "shader_program.hpp"
@@ -16,14 +17,18 @@ namespace kiri::render::detail {
 
 class LightVolumeTexture {
 public:
-    //! The volume to read (kept; null or empty: none). Uploads only when it is another one.
-    void set(std::shared_ptr<const geometry::LightVolume> volume);
+    //! The volume to read (kept; null or empty: none) and the Medium it was baked for, whose
+    //! columns its cells follow (kept by pointer; null: none). Uploads only what changed.
+    void set(std::shared_ptr<const geometry::LightVolume> volume, const geometry::Medium* medium);
+    //! The moments are there (the lookups at a point also need the Medium's grid: bind).
     bool ready() const { return volume_ != nullptr && texture_; }
     const geometry::LightVolume* volume() const { return volume_.get(); }
-    //! Sets light_volume.glsl's uniforms on a program and binds the moments to `unit`; u_lv_on
-    //! 0 without a volume or when not `on` (the sampler still gets its own unit: samplers of
-    //! different types may not share one, used or not).
-    void bind(const ShaderProgram& program, int unit, bool on = true) const;
+    //! Sets light_volume.glsl's uniforms on a program and binds the moments to `unit`, and
+    //! medium_shell.glsl's (the Medium's grid) to `unit + 1` when `with_grid` (a program that
+    //! has the Medium's grid bound already, the froxels', says false); u_lv_on 0 without a
+    //! volume, without the grid asked for, or when not `on`. The samplers get their units either way: samplers of different
+    //! types may not share one, used or not.
+    void bind(const ShaderProgram& program, int unit, bool on = true, bool with_grid = true) const;
     //! lv_in_scattered at the given (x, y, h), column scale, direction towards the eye and g, as
     //! the renderers take it, read back (tests against LightVolume::in_scattered).
     struct Probe {
@@ -38,6 +43,7 @@ public:
 private:
     std::shared_ptr<const geometry::LightVolume> volume_;
     Texture texture_;
+    FroxelMedium grid_;
     mutable std::unique_ptr<ShaderProgram> probe_;
 };
 

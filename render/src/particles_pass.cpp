@@ -10,13 +10,12 @@
 
 #include "light_volume_texture.hpp"
 #include "particle_gpu.hpp"
-#include "sun_volume.hpp"
 
 namespace kiri::render::detail {
 namespace {
 // The baked light's Medium grid and moments, apart from every other sampler of the billboards'
 // programs (the froxel apply's among them).
-constexpr int unit_baked_grid = 20, unit_baked_moments = 21;
+constexpr int unit_baked_moments = 20;  // and 21: the Medium's grid (LightVolumeTexture::bind)
 }  // namespace
 
 ParticlesPass::ParticlesPass()
@@ -184,17 +183,14 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         fog_->bind_apply(p);
     bind_terrain_shadow(p, shadow_);
     // The baked multiple scattering at each billboard's centre (particles.vert): the moments and
-    // the Medium's columns they follow (the sun volume's grid). The renderer gives a volume for
-    // the Medium's model `baked` alone.
-    const bool baked = light_volume_ && light_volume_->ready() && sun_ && sun_->bind_grid(p, unit_baked_grid);
+    // the Medium's columns they follow. The renderer gives a volume for the model `baked` alone.
+    const bool baked = light_volume_ && light_volume_->ready();
+    // The volume's own copy of the Medium's grid, after bind_apply: the froxels bind theirs only
+    // where they apply fog, and their apply's lookups in these programs do not read it.
     if (light_volume_)
         light_volume_->bind(p, unit_baked_moments, baked);
     else
-        LightVolumeTexture{}.bind(p, unit_baked_moments);
-    // Unused, the grid's sampler still needs a unit of its own (a 3D sampler may be on 0); the
-    // froxel variant's is the froxel pass's grid, set by bind_apply.
-    if (!baked && !fog_)
-        p.set("u_md_grid", unit_baked_grid);
+        LightVolumeTexture{}.bind(p, unit_baked_moments, false);
     set_grid_uniforms(p, g, cloud_->forward_scattering, buffer_.particle_centre());
     p.set("u_centre", glm::vec3(buffer_.particle_centre()));
     p.set("u_view_projection", frame.view_projection);

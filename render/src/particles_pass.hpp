@@ -16,7 +16,6 @@
 namespace kiri::render::detail {
 
 class LightVolumeTexture;
-class SunVolume;
 
 //! Particle clouds: the attenuation buffer (rebuilt only when the sun, the particles or the
 //! buffer's options change) and the billboards, sorted back to front on the CPU when the eye
@@ -41,13 +40,8 @@ public:
         fog_ = fog;
         shadow_ = shadow;
     }
-    //! The baked multiple scattering (null or not ready: none) and the sun volume whose grid
-    //! holds the Medium's columns it follows, for the frame.
-    void set_light_volume(const LightVolumeTexture* volume, const SunVolume* sun)
-    {
-        light_volume_ = volume;
-        sun_ = sun;
-    }
+    //! The baked multiple scattering (null or not ready: none), for the frame.
+    void set_light_volume(const LightVolumeTexture* volume) { light_volume_ = volume; }
     std::size_t count() const { return has_particles() ? count_ : 0; }
     //! Of the last draw: billboards drawn at the near resolution, fragments blended (all targets).
     int last_near_count() const { return last_near_; }
@@ -60,7 +54,6 @@ private:
     ShaderProgram program_, composite_;
     std::unique_ptr<ShaderProgram> fog_program_;  // the variant reading the froxel fog, built on first use
     const LightVolumeTexture* light_volume_ = nullptr;
-    const SunVolume* sun_ = nullptr;
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
     VertexArray vao_;

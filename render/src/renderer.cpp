@@ -160,9 +160,9 @@ void Renderer::set_sun_medium(const geometry::Medium* medium, const geometry::He
 
 void Renderer::clear_sun_medium() { impl_->sun_medium.reset(); }
 
-void Renderer::set_light_volume(std::shared_ptr<const geometry::LightVolume> volume)
+void Renderer::set_light_volume(std::shared_ptr<const geometry::LightVolume> volume, const geometry::Medium* medium)
 {
-    impl_->light_volume.set(std::move(volume));
+    impl_->light_volume.set(std::move(volume), medium);
 }
 
 void Renderer::set_fog_partition(const std::optional<geometry::FogPartition>& partition)
@@ -239,7 +239,7 @@ void Renderer::draw(const Camera& camera, int width, int height)
         r.layers.update_sun_columns(frame);
     }
     r.particles.set_fog(fog, shadow);
-    r.particles.set_light_volume(&r.light_volume, sun_volume);
+    r.particles.set_light_volume(&r.light_volume);
     r.targets.bind_for_drawing();
     {
         const ScopedPassTimer timed(r.sky_timer);

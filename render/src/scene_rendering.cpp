@@ -223,7 +223,10 @@ void SceneRendering::apply(Renderer& renderer) const
     renderer.set_sun_medium(sun_medium(), froxel_.height_fog);
     // The baked multiple scattering, where the Medium's model is `baked` (the pipeline's light
     // stage made it for the scene's sun); the renderers draw single scattering without it.
-    renderer.set_light_volume(mode_ == FogMode::terrain ? nullptr : products_.light_volume);
+    if (mode_ != FogMode::terrain && products_.light_volume)
+        renderer.set_light_volume(products_.light_volume, products_.medium.get());
+    else
+        renderer.set_light_volume(nullptr, nullptr);
     std::optional<geometry::FogPartition> partition;
     if (mode_ == FogMode::combined) {
         partition = scene_.combined;

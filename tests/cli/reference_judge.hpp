@@ -46,7 +46,8 @@ inline geometry::ReferenceImage scene_reference(const std::string& scene_file, c
     const render::Camera view_camera = render::to_camera(scene.camera(camera, bounds.min, bounds.max));
     const geometry::FroxelOptions options = render::scene_froxel_options(scene, terrain);
     const geometry::ReferenceView view = render::reference_view(view_camera, width, height, options.far);
-    const geometry::FogLighting light = render::scene_fog_lighting(scene, products.medium.get(), options);
+    const geometry::FogLighting light =
+        render::scene_fog_lighting(scene, products.medium.get(), options, products.light_volume);
     return geometry::render_reference_fog(
         {products.medium.get(), height_fog ? options.height_fog : geometry::HeightFog{}}, &terrain.heightfield(), view,
         light);

@@ -269,6 +269,14 @@ TEST(Pipeline, TheLightStageBakesForTheBakedModelAloneAndAgainForANewSun)
     EXPECT_FALSE(baked.light_volume->empty());
     EXPECT_GT(baked.light_volume->photons, 0);
     EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 2, 0, 1, 0}));  // the model is the Medium's too
+    // Asked not to (kiri author: no export holds it), even past the stage: no bake.
+    {
+        Pipeline author;
+        PipelineTarget exports{Stage::exports, ParticleSet::none};
+        exports.light = false;
+        EXPECT_EQ(author.run(s, exports).light_volume, nullptr);
+        EXPECT_EQ(runs(author)[std::size_t(Stage::light)], 0);
+    }
     // The same scene: the same volume, nothing runs. A stage short of it: no volume published.
     EXPECT_EQ(p.run(s, with_light).light_volume, baked.light_volume);
     EXPECT_EQ(p.run(s, with_medium).light_volume, nullptr);

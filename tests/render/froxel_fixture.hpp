@@ -114,7 +114,7 @@ protected:
                             std::shared_ptr<const g::LightVolume> light_volume = nullptr)
     {
         Renderer r;
-        r.set_light_volume(light_volume);
+        r.set_light_volume(light_volume, medium);
         r.set_terrain(terrain);
         // The sun's shadow map as the options set it (SceneRendering::sun does the same).
         SunLight shadowed = light;

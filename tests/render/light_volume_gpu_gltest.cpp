@@ -50,7 +50,7 @@ void expect_gpu_equals_cpu(int bands)
 {
     const auto volume = random_volume(bands, 17u + std::uint32_t(bands));
     LightVolumeTexture texture;
-    texture.set(volume);
+    texture.set(volume, nullptr);
     ASSERT_TRUE(texture.ready());
     std::mt19937 random(3);
     std::uniform_real_distribution<double> x(-400.0, 400.0), y(0.0, 800.0), unit(0.0, 1.0), sym(-1.0, 1.0);
@@ -93,14 +93,14 @@ TEST_F(LightVolumeGpu, EveryBandAsTheCpuLookupTakesIt)
 TEST_F(LightVolumeGpu, NoVolumeAddsNothing)
 {
     LightVolumeTexture texture;
-    texture.set(nullptr);
+    texture.set(nullptr, nullptr);
     EXPECT_FALSE(texture.ready());
     const std::vector<float> got =
         texture.probe({LightVolumeTexture::Probe{{0.0f, 0.0f, 0.5f}, 1.0f, {0, 0, 1}, 0.5f}});
     ASSERT_EQ(got.size(), 1u);
     EXPECT_EQ(got[0], 0.0f);
     // An empty volume is no volume.
-    texture.set(std::make_shared<g::LightVolume>());
+    texture.set(std::make_shared<g::LightVolume>(), nullptr);
     EXPECT_FALSE(texture.ready());
 }
 

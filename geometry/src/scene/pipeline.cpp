@@ -258,7 +258,7 @@ const PipelineProducts& Pipeline::run(const Scene& given_scene, const PipelineTa
                      c.particles.product = build_particles(*c.medium.product, in, label);
                  });
         }
-        if (reaches(Stage::light) && baked(scene)) {
+        if (reaches(Stage::light) && target.light && baked(scene)) {
             step(Stage::light, c.light, light_input(scene, c.medium.version, c.terrain.version, terrain),
                  [&](const LightInput& in) {
                      c.light.product.reset();
@@ -312,7 +312,8 @@ void Pipeline::publish(const PipelineTarget& target)
     products_.particles =
         reaches(Stage::particles) && target.particles != ParticleSet::none ? c.particles.product : nullptr;
     products_.light_volume =
-        reaches(Stage::light) && c.medium.product && c.resolved && baked(*c.resolved) ? c.light.product : nullptr;
+        reaches(Stage::light) && target.light && c.medium.product && c.resolved && baked(*c.resolved) ? c.light.product
+                                                                                                      : nullptr;
     products_.exports = reaches(Stage::exports) ? c.exports.product : nullptr;
 }
 

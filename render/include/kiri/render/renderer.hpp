@@ -135,9 +135,10 @@ public:
     void clear_sun_medium();
     //! The baked multiple scattering (geometry::bake_light_volume for this sun and fog) that the
     //! renderers add where the Medium's model is `baked` (medium.multiple_scattering,
-    //! docs/medium.md); null: none, and `baked` draws single scattering. Uploaded when it is
-    //! another volume; kept (shared) until replaced.
-    void set_light_volume(std::shared_ptr<const geometry::LightVolume> volume);
+    //! docs/medium.md), and the Medium it was baked for, whose columns its cells follow (kept by
+    //! pointer: it must outlive the renderer's use of it); null: none, and `baked` draws single
+    //! scattering. Uploaded when it is another volume or Medium; the volume is kept (shared).
+    void set_light_volume(std::shared_ptr<const geometry::LightVolume> volume, const geometry::Medium* medium);
     //! The fog's layer stack over the terrain (base kept by reference: it must outlive the
     //! renderer's use of it). Uploads only when the base changed; options apply every frame.
     void set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options);

@@ -54,6 +54,9 @@ struct PipelineTarget {
     Stage up_to = Stage::layer_base;
     ParticleSet particles = ParticleSet::whole;  //!< when up_to reaches the particles
     glm::dvec3 export_eye{0.0};                  //!< exports: the eye the layers are built for
+    //! The light stage, when up_to reaches it (and the Medium's model is `baked`): renderers
+    //! need the light volume, `kiri author` does not.
+    bool light = true;
     bool operator==(const PipelineTarget&) const = default;
 };
 
