@@ -68,8 +68,12 @@ void main()
     // not hidden by the terrain's shadow (it reaches the shadow from the sunlit fog beside it).
     if (u_lv_on != 0) {
         vec3 towards = normalize(u_fx_eye - p);
-        s += u_sun_radiance * (u_albedo.x * weights.x * lv_in_scattered_at(p, towards, u_anisotropy.x) +
-                               u_albedo.y * weights.y * lv_in_scattered_at(p, towards, u_anisotropy.y));
+        float baked = 0.0;
+        if (weights.x > 0.0)
+            baked += u_albedo.x * weights.x * lv_in_scattered_at(p, towards, u_anisotropy.x, false);
+        if (weights.y > 0.0)
+            baked += u_albedo.y * weights.y * lv_in_scattered_at(p, towards, u_anisotropy.y, false);
+        s += u_sun_radiance * baked;
     }
     imageStore(o_light, id, vec4(s / (weights.x + weights.y), 1.0));
 }

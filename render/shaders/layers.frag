@@ -18,6 +18,7 @@ in float v_spacing;
 in float v_height;
 in vec3 v_normal;
 in float v_tau_sun;
+in float v_baked;
 flat in int v_layer;
 
 uniform sampler2D u_atlas;
@@ -118,10 +119,8 @@ void main()
             tau_sun = above / max(u_sun_direction.z, 0.02);
         }
         radiance = fog_source(cos_sun, tau_sun, sun_up);
-        // The baked multiple scattering (light_volume.glsl; u_lv_on with the model `baked`):
-        // towards the eye, not hidden by the terrain's shadow.
-        if (u_lv_on != 0)
-            radiance += u_albedo * u_sun_radiance * lv_in_scattered_at(v_world, -view, u_anisotropy);
+        // The baked multiple scattering (layers.vert), not hidden by the terrain's shadow.
+        radiance += u_albedo * u_sun_radiance * v_baked;
     } else {
         a = v_alpha * u_opacity * tex.a * detail;
         a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);

@@ -37,6 +37,11 @@ out vec3 v_normal;
 // column of it above the base vertex (layers_sun.comp), linear between its levels; -1 without one
 // (the fragment then takes the slab above its layer).
 out float v_tau_sun;
+// The baked multiple scattering towards the eye at the vertex (light_volume.glsl; 0 unless the
+// model is `baked`): its cells span hundreds of metres, so a triangle interpolates it well, at a
+// fraction of a lookup per fragment.
+out float v_baked;
+uniform float u_anisotropy;
 layout(std430, binding = 2) readonly buffer SunColumns { float sun_columns[]; };
 uniform int u_sun_columns;  // levels a column; 0: none
 uniform float u_sun_column_height;
@@ -66,6 +71,7 @@ void main()
         v_height = 0.0;
         v_normal = a_normal;
         v_tau_sun = layer_tau_sun(0.0);
+        v_baked = u_lv_on != 0 ? lv_in_scattered_at(p, normalize(u_eye - p), u_anisotropy, true) : 0.0;
         gl_Position = u_view_projection * vec4(p, 1.0);
         return;
     }
@@ -93,5 +99,6 @@ void main()
     vec2 xy = u_centre + scale * (p.xy - u_centre);
     v_world = vec3(xy, p.z + fi * r);
     v_tau_sun = layer_tau_sun(fi * r);
+    v_baked = u_lv_on != 0 ? lv_in_scattered_at(v_world, normalize(u_eye - v_world), u_anisotropy, true) : 0.0;
     gl_Position = u_view_projection * vec4(v_world, 1.0);
 }

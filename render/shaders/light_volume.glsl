@@ -13,6 +13,9 @@ uniform vec4 u_lv_rect;            // x0, y0, 1 / (nx dx), 1 / (ny dy)
 uniform int u_lv_levels;           // nz
 uniform int u_lv_bands;            // [1, 8]
 uniform float u_lv_column_extinction;  // > 0: the moments are over the cells' column_scale
+// K_l^m = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!), times sqrt(2) for m > 0, at [l 8 + m]
+// (LightVolumeTexture::bind computes them once, as geometry::real_spherical_harmonics does).
+uniform float u_lv_norms[64];
 
 const int lv_max_bands = 8;
 
@@ -46,12 +49,7 @@ void lv_phase_weights(vec3 d, float g, int bands, out float w[lv_max_bands * lv_
                 p0 = p1;
                 p1 = p;
             }
-            // K_l^m = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!), times sqrt(2) for m > 0.
-            float ratio = 1.0;
-            for (int q = l - m + 1; q <= l + m; ++q)
-                ratio /= float(q);
-            float a = sqrt((2.0 * float(l) + 1.0) / 12.566370614359172 * ratio) * (m > 0 ? 1.4142135623730951 : 1.0) *
-                p * gl;
+            float a = u_lv_norms[l * lv_max_bands + m] * p * gl;
             if (m == 0) {
                 w[l * (l + 1)] = a;
             } else {
@@ -91,13 +89,17 @@ float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
 }
 
 // The same at a point of the fog: h and column_scale from the Medium's column there
-// (geometry::shell_height, LightVolume::column_scale); 0 outside the Medium's grid.
-float lv_in_scattered_at(vec3 p, vec3 towards, float g)
+// (geometry::shell_height, LightVolume::column_scale); 0 outside the Medium's grid, and outside
+// its column unless `into_column` (a layer's surface stands for the slab of fog under it and
+// may lie on or a little above the top: it takes the column's nearest light).
+float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
 {
     if (u_lv_on == 0 || !shell_covers(p.xy))
         return 0.0;
     vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
     float thick = column.z - column.x;
+    if (into_column)
+        p.z = clamp(p.z, column.x, column.z);
     if (!(thick > 0.0) || p.z < column.x || p.z > column.z)
         return 0.0;
     float h = clamp((p.z - column.x) / thick, 0.0, 1.0);

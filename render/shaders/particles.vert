@@ -43,6 +43,6 @@ void main()
     // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
     // may stand out of the Medium's shell, where the volume holds nothing.
     vec3 centre = p.xyz + u_centre;
-    v_baked = u_lv_on != 0 ? lv_in_scattered_at(centre, normalize(u_eye - centre), u_anisotropy) : 0.0;
+    v_baked = u_lv_on != 0 ? lv_in_scattered_at(centre, normalize(u_eye - centre), u_anisotropy, false) : 0.0;
     gl_Position = u_view_projection * vec4(v_world, 1.0);
 }

@@ -45,8 +45,8 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"layers.vert", "fog_partition.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_fog_none.glsl",
-                "medium_shell.glsl", "light_volume.glsl", "layers.frag"}),
+    : program_({"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "fog_lighting.glsl",
+                "terrain_shadow.glsl", "froxel_fog_none.glsl", "layers.frag"}),
       composite_({"fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
@@ -280,8 +280,8 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "layers.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
-            "medium_shell.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "light_volume.glsl", "layers.frag"});
+            "medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "froxel_common.glsl",
+            "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);

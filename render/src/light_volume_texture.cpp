@@ -1,6 +1,9 @@
 #include "light_volume_texture.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
 
 namespace kiri::render::detail {
 
@@ -51,6 +54,21 @@ void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on, bool wi
     if (with_grid)
         grid_.bind_grid(p, unit + 1);
     const geometry::LightVolume& v = *volume_;
+    // The harmonics' norms K_l^m (sqrt(2) K_l^m for m > 0), once: geometry's
+    // real_spherical_harmonics of the poles and the equator would give them too, this is plainer.
+    static const std::array<float, 64> norms = [] {
+        std::array<float, 64> k{};
+        for (int l = 0; l < 8; ++l)
+            for (int m = 0; m <= l; ++m) {
+                double ratio = 1.0;  // (l - m)! / (l + m)!
+                for (int q = l - m + 1; q <= l + m; ++q)
+                    ratio /= q;
+                k[std::size_t(l * 8 + m)] = float(std::sqrt((2.0 * l + 1.0) / (4.0 * std::numbers::pi) * ratio) *
+                                                  (m > 0 ? std::numbers::sqrt2 : 1.0));
+            }
+        return k;
+    }();
+    glProgramUniform1fv(p.id(), p.location("u_lv_norms[0]"), 64, norms.data());
     p.set("u_lv_rect", glm::vec4(float(v.x0), float(v.y0), float(1.0 / (v.nx * v.dx)), float(1.0 / (v.ny * v.dy))));
     p.set("u_lv_levels", v.nz);
     p.set("u_lv_bands", v.bands);

@@ -50,7 +50,7 @@ struct Captured {
 std::vector<Captured> gpu_stack(const g::LayerOptions& o, const std::vector<BaseVertex>& base, const glm::dvec2& centre,
                                 const glm::dvec3& eye)
 {
-    ShaderProgram program({"layers.vert"});
+    ShaderProgram program({"medium_shell.glsl", "light_volume.glsl", "layers.vert"});
     const char* varyings[] = {"v_world", "v_alpha", "v_exponent", "v_spacing", "v_height"};
     glTransformFeedbackVaryings(program.id(), 5, varyings, GL_INTERLEAVED_ATTRIBS);
     glLinkProgram(program.id());  // the varyings take effect at link time

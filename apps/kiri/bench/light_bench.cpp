@@ -8,7 +8,8 @@
 // light_volume_bake.hpp; the bake's time reported), the fitted model and the octaves it replaced,
 // their pictures side by side (path tracer | baked | fitted | octaves), and the medians and the
 // views meeting the goal (10 % brightness, 15 % block error). Then the cost of the lighting in
-// each GL renderer, fitted against octaves, measured side by side (KIRI_LIGHT_NO_COST=1 skips it).
+// each GL renderer, fitted against octaves and baked, measured side by side (KIRI_LIGHT_NO_COST=1
+// skips it, KIRI_LIGHT_COST_ONLY=1 measures it alone).
 // KIRI_LIGHT_VIEWS=TEXT[,TEXT...] keeps the views whose name holds one of the texts;
 // KIRI_LIGHT_BAKE="photons per column,levels,bands,max side[,column normalised 0/1]" sets the
 // bake's options;
@@ -402,7 +403,8 @@ render::Image tone_mapped_path(const render::RadianceImage& r)
 }
 
 // The cost of the lighting in each GL renderer: frames of the default scene's Medium with the
-// fitted model and with octaves, alternated, the median of each.
+// fitted model, with octaves and baked (its volume read per froxel, per layer fragment, per
+// billboard corner), alternated, the median of each.
 void light_cost(Context& c, std::ofstream& md)
 {
     SceneJson source(c.data_dir() / "scenes/jacksboro.json");
@@ -410,26 +412,30 @@ void light_cost(Context& c, std::ofstream& md)
     base["froxel"].erase("height_fog");
     const int w = 320, h = 180, frames = c.quick() ? 3 : 7;
     FogJudge judge(source.parse(base), "ridge", 80, 45);
-    md << "\n| renderer | frame, fitted (ms) | frame, octaves (ms) | fitted / octaves |\n|---|---|---|---|\n";
-    for (const render::FogMode mode : {render::FogMode::layers, render::FogMode::particles, render::FogMode::froxel}) {
-        double ms[2] = {0.0, 0.0};
-        std::vector<double> runs[2];
+    const char* models[] = {"fitted", "octaves", "baked"};
+    md << "\n| renderer | frame, fitted (ms) | frame, octaves (ms) | frame, baked (ms) | fitted / octaves | baked / "
+          "fitted |\n|---|---|---|---|---|---|\n";
+    for (const render::FogMode mode :
+         {render::FogMode::layers, render::FogMode::particles, render::FogMode::froxel, render::FogMode::combined}) {
+        double ms[3] = {0.0, 0.0, 0.0};
+        std::vector<double> runs[3];
         for (int round = 0; round < 3; ++round)
-            for (int m = 0; m < 2; ++m) {
+            for (int m = 0; m < 3; ++m) {
                 json varied = base;
-                varied["medium"]["multiple_scattering"] = m == 0 ? "fitted" : "octaves";
+                varied["medium"]["multiple_scattering"] = models[m];
                 judge.prepare(source.parse(varied), mode);
                 runs[m].push_back(judge.frame_ms(w, h, frames));
             }
-        for (int m = 0; m < 2; ++m) {
+        for (int m = 0; m < 3; ++m) {
             std::sort(runs[m].begin(), runs[m].end());
             ms[m] = runs[m][1];
         }
         const std::string series = render::to_string(mode);
-        std::printf("  %-9s frame %dx%d: fitted %.1f ms, octaves %.1f ms (%.2fx)\n", series.c_str(), w, h, ms[0], ms[1],
-                    ms[0] / ms[1]);
+        std::printf("  %-9s frame %dx%d: fitted %.1f ms, octaves %.1f ms (%.2fx), baked %.1f ms (%.2fx fitted)\n",
+                    series.c_str(), w, h, ms[0], ms[1], ms[0] / ms[1], ms[2], ms[2] / ms[0]);
         std::fflush(stdout);
-        md << "| " << series << " | " << ms[0] << " | " << ms[1] << " | " << ms[0] / ms[1] << " |\n";
+        md << "| " << series << " | " << ms[0] << " | " << ms[1] << " | " << ms[2] << " | " << ms[0] / ms[1] << " | "
+           << ms[2] / ms[0] << " |\n";
     }
 }
 
@@ -447,6 +453,11 @@ bool names_any(const std::string& name, const std::string& list)
 
 void light(Context& c)
 {
+    if (std::getenv("KIRI_LIGHT_COST_ONLY")) {  // the GL renderers' cost per model alone
+        std::ofstream md(c.out_dir() / "light_cost.md");
+        light_cost(c, md);
+        return;
+    }
     const int width = 80, height = 45, samples = c.quick() ? 256 : 1024;
     const char* fit = std::getenv("KIRI_LIGHT_FIT");
     const bool fitting = fit && std::string(fit) == "1";
