@@ -44,6 +44,7 @@ uniform float u_anisotropy;      // g, clamped inside (-1, 1) on the CPU
 uniform float u_top_loss;        // 1 - top_density
 uniform float u_thickness;       // T0 (m)
 uniform int u_octaves;           // multiple-scattering octaves (geometry::fog_source)
+uniform float u_lv_per_fragment; // metres from the eye within which the baked light is per fragment
 out vec4 o_color;
 
 const float pi = 3.14159265358979;
@@ -119,8 +120,14 @@ void main()
             tau_sun = above / max(u_sun_direction.z, 0.02);
         }
         radiance = fog_source(cos_sun, tau_sun, sun_up);
-        // The baked multiple scattering (layers.vert), not hidden by the terrain's shadow.
-        radiance += u_albedo * u_sun_radiance * v_baked;
+        // The baked multiple scattering (light_volume.glsl; u_lv_on with the model `baked`),
+        // towards the eye, not hidden by the terrain's shadow: from the vertices (layers.vert),
+        // but near the eye, where a triangle spans a wide angle of directions towards it, per
+        // fragment.
+        if (u_lv_on != 0)
+            radiance += u_albedo * u_sun_radiance *
+                (length(v_world - u_eye) < u_lv_per_fragment ? lv_in_scattered_at(v_world, -view, u_anisotropy, true)
+                                                              : v_baked);
     } else {
         a = v_alpha * u_opacity * tex.a * detail;
         a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);

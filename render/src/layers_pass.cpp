@@ -323,6 +323,9 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
         light_volume_->ready();
     // The volume's own copy of the Medium's grid, after bind_apply: the froxels bind theirs only
     // where they apply fog, and their apply's lookups in these programs do not read it.
+    // Per fragment within the distance where the spacing narrows, L0 = divisor r0 ([Thesis] 2.8):
+    // there the full-level triangles near the eye span wide angles; per vertex beyond.
+    p.set("u_lv_per_fragment", float(o.spacing_divisor * o.thickness / std::max(o.count, 1)));
     if (light_volume_)
         light_volume_->bind(p, unit_baked_moments, baked);
     else
