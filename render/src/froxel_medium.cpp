@@ -1,5 +1,7 @@
 #include "froxel_medium.hpp"
 
+#include "render_origin.hpp"
+
 #include <algorithm>
 #include <vector>
 
@@ -90,7 +92,7 @@ void FroxelMedium::bind(const ShaderProgram& p, const geometry::HeightFog& haze,
     p.set("u_md_detail", float(d.detail));
     p.set("u_md_tile", float(8.0 * d.detail_scale));
     p.set("u_md_layers", float(d.layers));
-    p.set("u_md_drift", glm::vec2(d.wind * d.time));
+    p.set("u_md_drift", glm::vec2(noise_drift(d.wind, d.time, d.noise_shift, 8.0 * d.detail_scale)));
     p.set("u_md_time", float(d.time));
     p.set("u_md_half_life", float(d.dissipation_half_life));
     glBindTextureUnit(GLuint(unit + 1), noise_.get());

@@ -1,5 +1,7 @@
 #include "layers_pass.hpp"
 
+#include "render_origin.hpp"
+
 #include "kiri/geometry/layers/layer_lod.hpp"
 #include "light_volume_texture.hpp"
 
@@ -310,7 +312,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     p.set("u_ground_fade", float(o.ground_fade));
     p.set("u_detail", float(o.optics.detail));
     p.set("u_detail_scale", float(o.optics.detail_scale));
-    p.set("u_drift", glm::vec2(o.optics.wind * o.optics.time));
+    p.set("u_drift", glm::vec2(noise_drift(o.optics.wind, o.optics.time, noise_shift_, 8.0 * o.optics.detail_scale)));
     p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
     p.set("u_sun_radiance", frame.sun_radiance);
     p.set("u_ambient", frame.ambient);

@@ -31,6 +31,9 @@ public:
     //! Uploads the base and its atlas; returns true when it did (a new base).
     bool set_base(const geometry::LayerBase& base);
     void set_options(const geometry::LayerOptions& options) { options_ = options; }
+    //! Metres added to (x, y) before the detail noise (MediumDetail::noise_shift): the
+    //! renderer's origin, so that the layers' noise stays where it is in the world.
+    void set_noise_shift(const glm::dvec2& shift) { noise_shift_ = shift; }
     //! The ground the layers fade into (kept by reference; uploaded on the first draw with
     //! layers, so a scene without fog never pays for it).
     void set_ground(const geometry::Heightfield& heightfield, double exaggeration);
@@ -127,6 +130,7 @@ private:
     Texture atlas_, heights_;
     GLsizei index_count_ = 0;
     geometry::LayerOptions options_;
+    glm::dvec2 noise_shift_{0.0};
     const geometry::LayerBase* base_ = nullptr;
     const void* uploaded_base_ = nullptr;
     std::size_t uploaded_base_size_ = 0;

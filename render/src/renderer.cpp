@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <optional>
+#include <string>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -17,6 +19,7 @@
 #include "overlay_pass.hpp"
 #include "particles_pass.hpp"
 #include "pass_timer.hpp"
+#include "render_origin.hpp"
 #include "render_targets.hpp"
 #include "shadow_map_pass.hpp"
 #include "sky_pass.hpp"
@@ -53,6 +56,55 @@ struct Renderer::Impl {
     FrameStats stats;
     int pending_uploads = 0;
     std::optional<FrameContext> last_frame;
+    // The origin the passes' coordinates are measured from (render_origin.hpp), chosen by the
+    // terrain. With a non-zero one the passes get moved copies of what the renderer is given,
+    // made again only when that changes; what it was given is kept (by reference, as the
+    // setters say) so that a terrain moving the origin moves everything else with it.
+    glm::dvec3 origin{0.0};
+    struct TerrainSource {
+        const geometry::Terrain* terrain = nullptr;
+        double exaggeration = 1.0;
+        bool surround = true;
+    };
+    std::optional<TerrainSource> terrain_source;
+    std::optional<std::pair<const geometry::LayerBase*, geometry::LayerOptions>> layers_source;
+    std::optional<std::pair<const geometry::ParticleCloud*, ParticleStyle>> particles_source;
+    std::optional<std::pair<const geometry::Medium*, geometry::HeightFog>> sun_medium_source;
+    std::optional<std::pair<const geometry::Medium*, geometry::FroxelOptions>> froxel_source;
+    std::shared_ptr<const geometry::LightVolume> light_source;
+    const geometry::Medium* light_medium_source = nullptr;
+    std::map<std::string, OverlayMesh> overlay_sources;  // only while the origin is not zero
+    struct MovedTerrain {
+        const double* heights = nullptr;
+        std::size_t size = 0;
+        double x0 = 0.0, y0 = 0.0;
+        glm::dvec3 origin{0.0};
+        std::unique_ptr<geometry::Terrain> copy;
+    } moved_terrain;
+    struct MovedLayers {
+        const geometry::LayerBase* source = nullptr;
+        const glm::dvec3* positions = nullptr;
+        glm::dvec3 origin{0.0};
+        std::unique_ptr<geometry::LayerBase> copy;
+    } moved_layers;
+    struct MovedParticles {
+        const geometry::ParticleCloud* source = nullptr;
+        const geometry::Particle* particles = nullptr;
+        std::size_t count = 0;
+        glm::dvec3 origin{0.0};
+        std::unique_ptr<geometry::ParticleCloud> copy;
+    } moved_particles;
+    std::shared_ptr<const geometry::LightVolume> light_copy, light_copy_of;
+    glm::dvec3 light_copy_origin{0.0};
+    detail::MovedMedium froxel_medium, sun_medium_copy, light_medium;
+
+    bool moved() const { return origin != glm::dvec3(0.0); }
+    void apply_terrain();
+    void apply_layers();
+    void apply_particles();
+    void apply_sun_medium();
+    void apply_light_volume();
+    void apply_froxel_fog();
     PassTimer shadow_timer{"shadow map"}, sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"},
         resolve_timer{"resolve"}, overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"},
         sun_volume_timer{"sun volume"}, sun_columns_timer{"layers sun"};
@@ -107,21 +159,155 @@ struct Renderer::Impl {
 Renderer::Renderer() : impl_(std::make_unique<Impl>()) {}
 Renderer::~Renderer() = default;
 
+void Renderer::Impl::apply_terrain()
+{
+    if (!terrain_source)
+        return;
+    const TerrainSource& src = *terrain_source;
+    const geometry::Terrain* local = src.terrain;
+    if (moved()) {
+        const geometry::Heightfield& hf = src.terrain->heightfield();
+        MovedTerrain& m = moved_terrain;
+        if (!m.copy || m.heights != hf.z.data() || m.size != hf.z.size() || m.x0 != hf.x0 || m.y0 != hf.y0 ||
+            m.origin != origin) {
+            m.copy = std::make_unique<geometry::Terrain>(detail::moved(hf, origin));
+            m.heights = hf.z.data();
+            m.size = hf.z.size();
+            m.x0 = hf.x0;
+            m.y0 = hf.y0;
+            m.origin = origin;
+        }
+        local = m.copy.get();
+    } else {
+        moved_terrain = {};
+    }
+    if (terrain.set_terrain(*local, src.exaggeration, src.surround))
+        ++pending_uploads;
+    layers.set_ground(local->heightfield(), src.exaggeration);
+}
+
+void Renderer::Impl::apply_layers()
+{
+    if (!layers_source)
+        return;
+    const geometry::LayerBase* local = layers_source->first;
+    if (moved()) {
+        MovedLayers& m = moved_layers;
+        if (!m.copy || m.source != local || m.positions != local->position.data() || m.origin != origin) {
+            m.copy = std::make_unique<geometry::LayerBase>(detail::moved(*local, origin));
+            m.source = local;
+            m.positions = local->position.data();
+            m.origin = origin;
+        }
+        local = m.copy.get();
+    } else {
+        moved_layers = {};
+    }
+    if (layers.set_base(*local))
+        ++pending_uploads;
+    layers.set_options(layers_source->second);
+    layers.set_noise_shift(glm::dvec2(origin));
+}
+
+void Renderer::Impl::apply_particles()
+{
+    if (!particles_source)
+        return;
+    const geometry::ParticleCloud* local = particles_source->first;
+    if (moved()) {
+        MovedParticles& m = moved_particles;
+        if (!m.copy || m.source != local || m.particles != local->particles.data() ||
+            m.count != local->particles.size() || m.origin != origin) {
+            m.copy = std::make_unique<geometry::ParticleCloud>(detail::moved(*local, origin));
+            m.source = local;
+            m.particles = local->particles.data();
+            m.count = local->particles.size();
+            m.origin = origin;
+        }
+        local = m.copy.get();
+    } else {
+        moved_particles = {};
+    }
+    if (particles.set_particles(*local, particles_source->second))
+        ++pending_uploads;
+}
+
+void Renderer::Impl::apply_sun_medium()
+{
+    if (!sun_medium_source) {
+        sun_medium.reset();
+        sun_medium_copy.clear();
+        return;
+    }
+    const auto& [medium, haze] = *sun_medium_source;
+    sun_medium.emplace(sun_medium_copy.get(medium, origin), moved() ? detail::moved(haze, origin) : haze);
+}
+
+void Renderer::Impl::apply_light_volume()
+{
+    std::shared_ptr<const geometry::LightVolume> volume = light_source;
+    if (moved() && volume) {
+        if (!light_copy || light_copy_of != volume || light_copy_origin != origin) {
+            light_copy = std::make_shared<const geometry::LightVolume>(detail::moved(*volume, origin));
+            light_copy_of = volume;
+            light_copy_origin = origin;
+        }
+        volume = light_copy;
+    } else {
+        light_copy.reset();
+        light_copy_of.reset();
+    }
+    light_volume.set(std::move(volume), light_medium.get(light_medium_source, origin));
+}
+
+void Renderer::Impl::apply_froxel_fog()
+{
+    if (!froxel_source)
+        return;
+    if (!froxel)
+        froxel = std::make_unique<detail::FroxelPass>();
+    geometry::FroxelOptions options = froxel_source->second;
+    if (moved())
+        options.height_fog = detail::moved(options.height_fog, origin);
+    froxel->set_fog(froxel_medium.get(froxel_source->first, origin), options);
+    froxel->set_resolution(froxel_resolution);
+}
+
 void Renderer::set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround)
 {
-    if (impl_->terrain.set_terrain(terrain, exaggeration, surround))
-        ++impl_->pending_uploads;
-    impl_->layers.set_ground(terrain.heightfield(), exaggeration);
+    Impl& r = *impl_;
+    r.terrain_source = Impl::TerrainSource{&terrain, exaggeration, surround};
+    const glm::dvec3 origin = detail::render_origin_for(terrain.bounds());
+    if (origin == r.origin) {
+        r.apply_terrain();
+        return;
+    }
+    // Everything moves with the origin: uploaded again from what the renderer was given.
+    r.origin = origin;
+    r.apply_terrain();
+    r.apply_layers();
+    r.apply_particles();
+    r.apply_sun_medium();
+    r.apply_light_volume();
+    r.apply_froxel_fog();
+    for (const auto& [name, mesh] : r.overlay_sources)
+        r.overlays.set(name, r.moved() ? detail::moved(mesh, r.origin) : mesh);
+    if (!r.moved())
+        r.overlay_sources.clear();
 }
 
 void Renderer::set_layers(const geometry::LayerBase& base, const geometry::LayerOptions& options)
 {
-    if (impl_->layers.set_base(base))
-        ++impl_->pending_uploads;
-    impl_->layers.set_options(options);
+    impl_->layers_source.emplace(&base, options);
+    impl_->apply_layers();
 }
 
-void Renderer::clear_layers() { impl_->layers.clear(); }
+void Renderer::clear_layers()
+{
+    impl_->layers.clear();
+    impl_->layers_source.reset();
+    impl_->moved_layers = {};
+}
 
 void Renderer::set_terrain_resolution(double scale) { impl_->terrain.set_resolution(scale); }
 
@@ -140,8 +326,14 @@ void Renderer::set_layer_resolution(double scale, bool multisampled)
 
 void Renderer::set_overlay(const std::string& name, const OverlayMesh& mesh)
 {
-    impl_->overlays.set(name, mesh);
-    ++impl_->pending_uploads;
+    Impl& r = *impl_;
+    if (r.moved()) {
+        r.overlay_sources[name] = mesh;
+        r.overlays.set(name, detail::moved(mesh, r.origin));
+    } else {
+        r.overlays.set(name, mesh);
+    }
+    ++r.pending_uploads;
 }
 
 void Renderer::set_overlay_style(const std::string& name, const OverlayStyle& style)
@@ -149,20 +341,31 @@ void Renderer::set_overlay_style(const std::string& name, const OverlayStyle& st
     impl_->overlays.set_style(name, style);
 }
 
-void Renderer::remove_overlay(const std::string& name) { impl_->overlays.remove(name); }
+void Renderer::remove_overlay(const std::string& name)
+{
+    impl_->overlays.remove(name);
+    impl_->overlay_sources.erase(name);
+}
 
 void Renderer::set_sun(const SunLight& sun) { impl_->sun = sun; }
 
 void Renderer::set_sun_medium(const geometry::Medium* medium, const geometry::HeightFog& haze)
 {
-    impl_->sun_medium.emplace(medium, haze);
+    impl_->sun_medium_source.emplace(medium, haze);
+    impl_->apply_sun_medium();
 }
 
-void Renderer::clear_sun_medium() { impl_->sun_medium.reset(); }
+void Renderer::clear_sun_medium()
+{
+    impl_->sun_medium_source.reset();
+    impl_->apply_sun_medium();
+}
 
 void Renderer::set_light_volume(std::shared_ptr<const geometry::LightVolume> volume, const geometry::Medium* medium)
 {
-    impl_->light_volume.set(std::move(volume), medium);
+    impl_->light_source = std::move(volume);
+    impl_->light_medium_source = medium;
+    impl_->apply_light_volume();
 }
 
 void Renderer::set_fog_partition(const std::optional<geometry::FogPartition>& partition)
@@ -174,25 +377,30 @@ void Renderer::set_fog_partition(const std::optional<geometry::FogPartition>& pa
 
 void Renderer::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
 {
-    if (impl_->particles.set_particles(cloud, style))
-        ++impl_->pending_uploads;
+    impl_->particles_source.emplace(&cloud, style);
+    impl_->apply_particles();
 }
 
-void Renderer::clear_particles() { impl_->particles.clear(); }
+void Renderer::clear_particles()
+{
+    impl_->particles.clear();
+    impl_->particles_source.reset();
+    impl_->moved_particles = {};
+}
 
 const AttenuationBuffer& Renderer::attenuation() const { return impl_->particles.buffer(); }
 void Renderer::set_froxel_fog(const geometry::Medium* medium, const geometry::FroxelOptions& options)
 {
-    if (!impl_->froxel)
-        impl_->froxel = std::make_unique<detail::FroxelPass>();
-    impl_->froxel->set_fog(medium, options);
-    impl_->froxel->set_resolution(impl_->froxel_resolution);
+    impl_->froxel_source.emplace(medium, options);
+    impl_->apply_froxel_fog();
 }
 
 void Renderer::clear_froxel_fog()
 {
     if (impl_->froxel)
         impl_->froxel->clear();
+    impl_->froxel_source.reset();
+    impl_->froxel_medium.clear();
 }
 
 FogBuffer Renderer::read_froxel_fog()
@@ -203,9 +411,10 @@ FogBuffer Renderer::read_froxel_fog()
     return r.froxel->read_fog(*r.last_frame, r.terrain);
 }
 
-void Renderer::draw(const Camera& camera, int width, int height)
+void Renderer::draw(const Camera& world_camera, int width, int height)
 {
     Impl& r = *impl_;
+    const Camera camera = detail::moved(world_camera, r.origin);
     const auto start = std::chrono::steady_clock::now();
     r.targets.ensure(width, height);
     glm::dvec3 scene_min = r.terrain.bounds_min(), scene_max = r.terrain.bounds_max();
@@ -351,6 +560,8 @@ void Renderer::present(int framebuffer_width, int framebuffer_height) const
 
 const FrameStats& Renderer::last_stats() const { return impl_->stats; }
 
+glm::dvec3 Renderer::origin() const { return impl_->origin; }
+
 RadianceImage Renderer::read_radiance() const
 {
     const detail::RenderTargets& t = impl_->targets;
@@ -381,8 +592,8 @@ std::optional<glm::dvec3> Renderer::pick(int x, int y) const
         return std::nullopt;
     const FrameContext& f = *r.last_frame;
     const glm::dvec4 ndc((x + 0.5) / f.width * 2.0 - 1.0, 1.0 - (y + 0.5) / f.height * 2.0, depth * 2.0 - 1.0, 1.0);
-    const glm::dvec4 world = glm::inverse(f.projection * f.view) * ndc;
-    return glm::dvec3(world) / world.w;
+    const glm::dvec4 local = glm::inverse(f.projection * f.view) * ndc;
+    return glm::dvec3(local) / local.w + r.origin;
 }
 
 }  // namespace kiri::render

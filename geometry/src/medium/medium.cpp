@@ -79,8 +79,8 @@ double Medium::detail_factor(double x, double y, double h) const
         return 1.0;
     const double tile = 8.0 * detail_.detail_scale;
     const double layer = h * detail_.layers;
-    const double s = (x - detail_.wind.x * detail_.time) / tile + layer * layer_shift_x;
-    const double t = (y - detail_.wind.y * detail_.time) / tile + layer * layer_shift_y;
+    const double s = (x + detail_.noise_shift.x - detail_.wind.x * detail_.time) / tile + layer * layer_shift_x;
+    const double t = (y + detail_.noise_shift.y - detail_.wind.y * detail_.time) / tile + layer * layer_shift_y;
     return 1.0 - detail_.detail + detail_.detail * smoothstep(0.25, 0.75, sample_fog_noise(s, t));
 }
 

@@ -124,6 +124,7 @@ public:
     //! The terrain to draw (kept by reference: it must outlive the renderer's use of it).
     //! Re-uploads only when the terrain, the exaggeration or the surround changed. `surround`:
     //! the ground beyond the DEM's edge (kiri/geometry/terrain/ground.hpp); false: the bare tile.
+    //! The first terrain, set before anything else, fixes origin().
     void set_terrain(const geometry::Terrain& terrain, double exaggeration = 1.0, bool surround = true);
     void set_sun(const SunLight& sun);
     //! The fog the sun shines through, for every renderer's tau_sun (the sun volume,
@@ -200,6 +201,12 @@ public:
     RadianceImage read_radiance() const;
     const FrameStats& last_stats() const;
 
+    //! Where the coordinates the GPU works in are measured from (render/src/render_origin.hpp):
+    //! (0, 0, 0) unless the first terrain's centre lies over 65 km from the world's origin, then
+    //! that centre to the kilometre, so that float keeps the scene's detail (a scene near 1e7 m
+    //! draws as it would near the origin). Everything the renderer is given and returns (pick)
+    //! is in world coordinates; attenuation()'s grid is in the renderer's.
+    glm::dvec3 origin() const;
     //! World position of the surface seen at pixel (x, y) of the last rendered frame (origin at
     //! the top-left, as in Image), read from its depth buffer; empty where only sky was drawn.
     std::optional<glm::dvec3> pick(int x, int y) const;

@@ -68,6 +68,9 @@ struct MediumDetail {
     glm::dvec2 wind{0.0};                //!< m/s: drift of the noise
     double time = 0.0;                   //!< seconds
     double dissipation_half_life = 0.0;  //!< seconds; 0: none
+    //! Metres added to (x, y) before the noise is looked up: a Medium moved by -o keeps its
+    //! noise in place with noise_shift o (the renderer's origin, render/src/render_origin.hpp).
+    glm::dvec2 noise_shift{0.0};
     bool operator==(const MediumDetail&) const = default;
 };
 //! The medium's detail, its noise shifted per layer of a stack of `noise_layers` layers (the
