@@ -171,8 +171,8 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
             const RadianceImage without = bare.read_radiance();
             gl_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const g::ReferenceView view = reference_view(camera, width, height, froxel.far);
-            const g::ReferenceImage ref = g::render_reference_fog({&medium, froxel.height_fog},
-                                                                  &terrain.heightfield(), view, light, reference);
+            const g::ReferenceImage ref =
+                g::render_reference_fog({&medium, froxel.height_fog}, &terrain.heightfield(), view, light, reference);
             reference_seconds += ref.seconds;
             f.finite = finite(with_fog);
             const FogError e = compare_frames(with_fog, without, ref);
