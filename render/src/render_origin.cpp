@@ -32,6 +32,11 @@ geometry::Heightfield moved(const geometry::Heightfield& heightfield, const glm:
     return h;
 }
 
+geometry::Terrain moved(const geometry::Terrain& terrain, const glm::dvec3& origin)
+{
+    return geometry::Terrain(moved(terrain.heightfield(), origin));
+}
+
 geometry::Medium moved(const geometry::Medium& medium, const glm::dvec3& origin)
 {
     geometry::MediumGrid grid = medium.grid();
@@ -93,25 +98,6 @@ Camera moved(Camera camera, const glm::dvec3& origin)
     camera.position -= origin;
     camera.target -= origin;
     return camera;
-}
-
-const geometry::Medium* MovedMedium::get(const geometry::Medium* source, const glm::dvec3& origin)
-{
-    if (!source || origin == glm::dvec3(0.0)) {
-        clear();
-        return source;
-    }
-    const void* grids = source->grid().top.data();
-    if (!copy_ || source != source_ || grids != grids_ || !(source->options() == options_) ||
-        !(source->detail() == detail_) || origin != origin_) {
-        copy_ = std::make_shared<const geometry::Medium>(moved(*source, origin));
-        source_ = source;
-        grids_ = grids;
-        options_ = source->options();
-        detail_ = source->detail();
-        origin_ = origin;
-    }
-    return copy_.get();
 }
 
 }  // namespace kiri::render::detail

@@ -8,6 +8,7 @@
 // the scene's own extent whatever its world coordinates. A DEM is loaded centred on its data
 // (heightfield.hpp), so for every scene kiri builds the origin is (0, 0, 0) and nothing is copied.
 #include <memory>
+#include <tuple>
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -48,22 +49,46 @@ geometry::LightVolume moved(const geometry::LightVolume& volume, const glm::dvec
 OverlayMesh moved(const OverlayMesh& mesh, const glm::dvec3& origin);
 Camera moved(Camera camera, const glm::dvec3& origin);
 
-//! One Medium as a pass sees it: the caller's own (origin 0) or a moved copy, made again only
-//! when the caller's Medium changes (a new object, its grids rebuilt, new options or detail),
-//! so that the passes' caches keyed on the Medium's identity keep working.
-class MovedMedium {
+geometry::Terrain moved(const geometry::Terrain& terrain, const glm::dvec3& origin);
+
+//! One object as the passes see it: the caller's own (origin 0) or a copy moved by -origin,
+//! made again only when the caller's object changes (`key`: what tells its content apart, e.g.
+//! its address and its storage's) or the origin does, so that the passes' caches keyed on the
+//! object's identity keep working.
+template <class T, class Key>
+class MovedCopy {
 public:
-    //! The Medium to hand the passes for `source` (null for null).
-    const geometry::Medium* get(const geometry::Medium* source, const glm::dvec3& origin);
+    //! The object to hand the passes for `source` (null for null).
+    const T* get(const T* source, const Key& key, const glm::dvec3& origin)
+    {
+        if (!source || origin == glm::dvec3(0.0)) {
+            clear();
+            return source;
+        }
+        if (!copy_ || !(key == key_) || origin != origin_) {
+            copy_ = std::make_shared<const T>(moved(*source, origin));
+            key_ = key;
+            origin_ = origin;
+        }
+        return copy_.get();
+    }
+    //! The copy get() returned last, shared (null when it returned the caller's own).
+    const std::shared_ptr<const T>& copy() const { return copy_; }
     void clear() { *this = {}; }
 
 private:
-    const geometry::Medium* source_ = nullptr;
-    const void* grids_ = nullptr;
-    geometry::MediumOptions options_;
-    geometry::MediumDetail detail_;
+    Key key_{};
     glm::dvec3 origin_{0.0};
-    std::shared_ptr<const geometry::Medium> copy_;
+    std::shared_ptr<const T> copy_;
 };
+
+//! What tells a Medium's content apart: the object, its grids' storage (a Medium rebuilt in
+//! place is a new one), its options and its detail (its time among them).
+using MediumKey = std::tuple<const geometry::Medium*, const void*, geometry::MediumOptions, geometry::MediumDetail>;
+inline MediumKey medium_key(const geometry::Medium* m)
+{
+    return m ? MediumKey{m, m->grid().top.data(), m->options(), m->detail()} : MediumKey{};
+}
+using MovedMedium = MovedCopy<geometry::Medium, MediumKey>;
 
 }  // namespace kiri::render::detail

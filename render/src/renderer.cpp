@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <tuple>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -74,28 +75,13 @@ struct Renderer::Impl {
     std::shared_ptr<const geometry::LightVolume> light_source;
     const geometry::Medium* light_medium_source = nullptr;
     std::map<std::string, OverlayMesh> overlay_sources;  // only while the origin is not zero
-    struct MovedTerrain {
-        const double* heights = nullptr;
-        std::size_t size = 0;
-        double x0 = 0.0, y0 = 0.0;
-        glm::dvec3 origin{0.0};
-        std::unique_ptr<geometry::Terrain> copy;
-    } moved_terrain;
-    struct MovedLayers {
-        const geometry::LayerBase* source = nullptr;
-        const glm::dvec3* positions = nullptr;
-        glm::dvec3 origin{0.0};
-        std::unique_ptr<geometry::LayerBase> copy;
-    } moved_layers;
-    struct MovedParticles {
-        const geometry::ParticleCloud* source = nullptr;
-        const geometry::Particle* particles = nullptr;
-        std::size_t count = 0;
-        glm::dvec3 origin{0.0};
-        std::unique_ptr<geometry::ParticleCloud> copy;
-    } moved_particles;
-    std::shared_ptr<const geometry::LightVolume> light_copy, light_copy_of;
-    glm::dvec3 light_copy_origin{0.0};
+    // The moved copies, each keyed on what tells its source's content apart.
+    detail::MovedCopy<geometry::Terrain, std::tuple<const double*, std::size_t, double, double>> moved_terrain;
+    detail::MovedCopy<geometry::LayerBase, std::pair<const geometry::LayerBase*, const glm::dvec3*>> moved_layers;
+    detail::MovedCopy<geometry::ParticleCloud,
+                      std::tuple<const geometry::ParticleCloud*, const geometry::Particle*, std::size_t>>
+        moved_particles;
+    detail::MovedCopy<geometry::LightVolume, std::shared_ptr<const geometry::LightVolume>> moved_light;
     detail::MovedMedium froxel_medium, sun_medium_copy, light_medium;
 
     bool moved() const { return origin != glm::dvec3(0.0); }
@@ -164,23 +150,8 @@ void Renderer::Impl::apply_terrain()
     if (!terrain_source)
         return;
     const TerrainSource& src = *terrain_source;
-    const geometry::Terrain* local = src.terrain;
-    if (moved()) {
-        const geometry::Heightfield& hf = src.terrain->heightfield();
-        MovedTerrain& m = moved_terrain;
-        if (!m.copy || m.heights != hf.z.data() || m.size != hf.z.size() || m.x0 != hf.x0 || m.y0 != hf.y0 ||
-            m.origin != origin) {
-            m.copy = std::make_unique<geometry::Terrain>(detail::moved(hf, origin));
-            m.heights = hf.z.data();
-            m.size = hf.z.size();
-            m.x0 = hf.x0;
-            m.y0 = hf.y0;
-            m.origin = origin;
-        }
-        local = m.copy.get();
-    } else {
-        moved_terrain = {};
-    }
+    const geometry::Heightfield& hf = src.terrain->heightfield();
+    const geometry::Terrain* local = moved_terrain.get(src.terrain, {hf.z.data(), hf.z.size(), hf.x0, hf.y0}, origin);
     if (terrain.set_terrain(*local, src.exaggeration, src.surround))
         ++pending_uploads;
     layers.set_ground(local->heightfield(), src.exaggeration);
@@ -190,20 +161,8 @@ void Renderer::Impl::apply_layers()
 {
     if (!layers_source)
         return;
-    const geometry::LayerBase* local = layers_source->first;
-    if (moved()) {
-        MovedLayers& m = moved_layers;
-        if (!m.copy || m.source != local || m.positions != local->position.data() || m.origin != origin) {
-            m.copy = std::make_unique<geometry::LayerBase>(detail::moved(*local, origin));
-            m.source = local;
-            m.positions = local->position.data();
-            m.origin = origin;
-        }
-        local = m.copy.get();
-    } else {
-        moved_layers = {};
-    }
-    if (layers.set_base(*local))
+    const geometry::LayerBase* base = layers_source->first;
+    if (layers.set_base(*moved_layers.get(base, {base, base->position.data()}, origin)))
         ++pending_uploads;
     layers.set_options(layers_source->second);
     layers.set_noise_shift(glm::dvec2(origin));
@@ -213,21 +172,9 @@ void Renderer::Impl::apply_particles()
 {
     if (!particles_source)
         return;
-    const geometry::ParticleCloud* local = particles_source->first;
-    if (moved()) {
-        MovedParticles& m = moved_particles;
-        if (!m.copy || m.source != local || m.particles != local->particles.data() ||
-            m.count != local->particles.size() || m.origin != origin) {
-            m.copy = std::make_unique<geometry::ParticleCloud>(detail::moved(*local, origin));
-            m.source = local;
-            m.particles = local->particles.data();
-            m.count = local->particles.size();
-            m.origin = origin;
-        }
-        local = m.copy.get();
-    } else {
-        moved_particles = {};
-    }
+    const geometry::ParticleCloud* cloud = particles_source->first;
+    const geometry::ParticleCloud* local =
+        moved_particles.get(cloud, {cloud, cloud->particles.data(), cloud->particles.size()}, origin);
     if (particles.set_particles(*local, particles_source->second))
         ++pending_uploads;
 }
@@ -240,24 +187,15 @@ void Renderer::Impl::apply_sun_medium()
         return;
     }
     const auto& [medium, haze] = *sun_medium_source;
-    sun_medium.emplace(sun_medium_copy.get(medium, origin), moved() ? detail::moved(haze, origin) : haze);
+    sun_medium.emplace(sun_medium_copy.get(medium, detail::medium_key(medium), origin),
+                       moved() ? detail::moved(haze, origin) : haze);
 }
 
 void Renderer::Impl::apply_light_volume()
 {
-    std::shared_ptr<const geometry::LightVolume> volume = light_source;
-    if (moved() && volume) {
-        if (!light_copy || light_copy_of != volume || light_copy_origin != origin) {
-            light_copy = std::make_shared<const geometry::LightVolume>(detail::moved(*volume, origin));
-            light_copy_of = volume;
-            light_copy_origin = origin;
-        }
-        volume = light_copy;
-    } else {
-        light_copy.reset();
-        light_copy_of.reset();
-    }
-    light_volume.set(std::move(volume), light_medium.get(light_medium_source, origin));
+    const bool own = moved_light.get(light_source.get(), light_source, origin) == light_source.get();
+    light_volume.set(own ? light_source : moved_light.copy(),
+                     light_medium.get(light_medium_source, detail::medium_key(light_medium_source), origin));
 }
 
 void Renderer::Impl::apply_froxel_fog()
@@ -269,7 +207,8 @@ void Renderer::Impl::apply_froxel_fog()
     geometry::FroxelOptions options = froxel_source->second;
     if (moved())
         options.height_fog = detail::moved(options.height_fog, origin);
-    froxel->set_fog(froxel_medium.get(froxel_source->first, origin), options);
+    const geometry::Medium* medium = froxel_source->first;
+    froxel->set_fog(froxel_medium.get(medium, detail::medium_key(medium), origin), options);
     froxel->set_resolution(froxel_resolution);
 }
 
@@ -306,7 +245,7 @@ void Renderer::clear_layers()
 {
     impl_->layers.clear();
     impl_->layers_source.reset();
-    impl_->moved_layers = {};
+    impl_->moved_layers.clear();
 }
 
 void Renderer::set_terrain_resolution(double scale) { impl_->terrain.set_resolution(scale); }
@@ -385,7 +324,7 @@ void Renderer::clear_particles()
 {
     impl_->particles.clear();
     impl_->particles_source.reset();
-    impl_->moved_particles = {};
+    impl_->moved_particles.clear();
 }
 
 const AttenuationBuffer& Renderer::attenuation() const { return impl_->particles.buffer(); }
