@@ -5,9 +5,10 @@
 set -eu
 cd "$(dirname "$0")/.."
 seconds=${1:-45}
-# -O1 without debug info keeps the instrumented build short on CI's 2 cores; to debug a finding,
-# rebuild with -DCMAKE_BUILD_TYPE=RelWithDebInfo for line numbers.
-CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1" -DKIRI_BUILD_FUZZERS=ON \
+# -O0 without debug info keeps the instrumented build short on CI's 2 cores (KIRI_FUZZ_OPT=-O1
+# for more executions a second in a long run); to debug a finding, rebuild with
+# -DCMAKE_BUILD_TYPE=RelWithDebInfo for line numbers.
+CC=clang CXX=clang++ cmake -S . -B build/fuzz -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="${KIRI_FUZZ_OPT:--O0}" -DKIRI_BUILD_FUZZERS=ON \
   -DKIRI_BUILD_RENDER=OFF -DKIRI_BUILD_APPS=OFF -DKIRI_BUILD_TESTS=OFF -DBUILD_SHARED_LIBS=OFF >/dev/null
 cmake --build build/fuzz -j"$(nproc)"
 mkdir -p build/fuzz/findings
