@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -53,7 +55,7 @@ FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& ref, 
 }
 
 FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
-                        const geometry::ReferenceImage& ref)
+                        const geometry::ReferenceImage& ref, std::vector<float>* signed_error)
 {
     const std::size_t n = std::size_t(ref.width) * std::size_t(ref.height);
     for (const RadianceImage* image : {&with_fog, &without_fog})
@@ -63,6 +65,8 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
                         std::to_string(ref.height));
     FogError e;
     std::vector<double> errors;
+    if (signed_error)
+        signed_error->assign(n, std::numeric_limits<float>::quiet_NaN());
     for (std::size_t k = 0; k < n; ++k) {
         const float* w = &with_fog.rgba[4 * k];
         const float* b = &without_fog.rgba[4 * k];
@@ -72,6 +76,8 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
             continue;  // the fog hardly shows here
         const double y_gpu = geometry::luminance({w[0], w[1], w[2]});
         errors.push_back(std::abs(y_gpu - y_ref) / y_ref);
+        if (signed_error)
+            (*signed_error)[k] = float((y_gpu - y_ref) / y_ref);
     }
     e.fog_pixels = int(errors.size());
     if (errors.empty())
@@ -84,6 +90,32 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
     e.p99_relative = errors[std::min(errors.size() - 1, std::size_t(std::floor(0.99 * double(errors.size()))))];
     e.worst_relative = errors.back();
     return e;
+}
+
+Image error_map(const std::vector<float>& signed_error, int width, int height, double full_scale)
+{
+    if (signed_error.size() != std::size_t(width) * std::size_t(height))
+        throw Error("error_map: " + std::to_string(signed_error.size()) + " values for " + std::to_string(width) + "x" +
+                    std::to_string(height));
+    Image map;
+    map.width = width;
+    map.height = height;
+    map.rgba.resize(4 * signed_error.size());
+    for (std::size_t k = 0; k < signed_error.size(); ++k) {
+        std::uint8_t* px = &map.rgba[4 * k];
+        const float d = signed_error[k];
+        if (std::isnan(d)) {
+            px[0] = px[1] = px[2] = 128;
+        } else {
+            const double t = std::clamp(double(d) / full_scale, -1.0, 1.0);
+            const auto fade = std::uint8_t(std::lround(255.0 * (1.0 - std::abs(t))));
+            px[0] = t > 0 ? 255 : fade;
+            px[1] = fade;
+            px[2] = t < 0 ? 255 : fade;
+        }
+        px[3] = 255;
+    }
+    return map;
 }
 
 }  // namespace kiri::render

@@ -138,7 +138,7 @@ double FogJudge::still_ms(int width, int height)
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-render::FogError FogJudge::error()
+render::FogError FogJudge::error(std::vector<float>* signed_error)
 {
     // A still picture as kiri render draws it.
     last_image_ = renderer_->render(camera_, width_, height_);
@@ -146,7 +146,7 @@ render::FogError FogJudge::error()
     // The frame without fog sees the same terrain, in the same shadows (the sun's, as set).
     const render::RadianceImage& plain = without_fog(rendering_->sun().terrain_shadows);
     rendering_->apply(*renderer_);  // back to the fog for what follows
-    return render::compare_frames(with, plain, reference_);
+    return render::compare_frames(with, plain, reference_, signed_error);
 }
 
 const render::RadianceImage& FogJudge::without_fog(bool shadows)

@@ -73,8 +73,9 @@ public:
     double still_ms(int width, int height);
     //! The picture still_ms drew.
     const render::Image& still_image() const { return still_image_; }
-    //! A still picture at the judge's size against the reference.
-    render::FogError error();
+    //! A still picture at the judge's size against the reference (its per-pixel signed error
+    //! into `signed_error` when given: render::compare_frames).
+    render::FogError error(std::vector<float>* signed_error = nullptr);
     //! The last still picture error() drew, tone-mapped (for a look).
     const render::Image& last_image() const { return last_image_; }
 

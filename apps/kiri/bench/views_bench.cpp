@@ -145,10 +145,14 @@ void views_stage(Context& c)
         std::string cells;
         for (std::size_t m = 0; m < std::size(modes); ++m) {
             judge.prepare(view.scene, modes[m]);
-            const render::FogError e = judge.error();
+            std::vector<float> signed_error;
+            const render::FogError e = judge.error(&signed_error);
             fog_pixels = e.fog_pixels;
             const std::string series = render::to_string(modes[m]);
             render::write_png_atomic(c.out_dir() / "views" / (safe + "_" + series + ".png"), judge.last_image());
+            // Where it errs: red brighter than the reference, blue darker, full at +-20 %.
+            render::write_png_atomic(c.out_dir() / "views" / (safe + "_" + series + "_error.png"),
+                                     render::error_map(signed_error, w, h));
             c.add({series, view.label, double(index), 0.0, "mean relative luminance error", e.mean_relative, 0.0, 0.0});
             char cell[64];
             std::snprintf(cell, sizeof cell, " %.2f / %.1f %% |", e.mean_relative * 100, e.p99_relative * 100);

@@ -4,8 +4,10 @@
 //! the reference's background (what the fog does to the picture), per pixel the relative error
 //! of luminance, over the pixels the fog changes by more than 1 %.
 #include <cmath>
+#include <vector>
 
 #include "kiri/geometry/reference/reference_fog.hpp"
+#include "kiri/render/image.hpp"
 #include "kiri/render/renderer.hpp"
 
 namespace kiri::render {
@@ -30,9 +32,14 @@ FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& refer
 //! without the fog; the reference's fog is composed over the GPU's own background,
 //! Y_ref = Y(without) T_ref + Y(S_ref), so both differ only by their fog. Over the pixels the
 //! reference's fog changes by more than 1 % (no silhouette test; the transmittance and in-scatter
-//! errors are not separable from a frame and stay 0).
+//! errors are not separable from a frame and stay 0). `signed_error`, when given, receives per
+//! pixel (Y - Y_ref) / Y_ref, NaN where the pixel is not judged: the error's map.
 //! \throw kiri::Error when the sizes differ.
 FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
-                        const geometry::ReferenceImage& reference);
+                        const geometry::ReferenceImage& reference, std::vector<float>* signed_error = nullptr);
+
+//! A signed error map as a picture: white where it is 0, red where kiri is brighter than the
+//! reference, blue where darker, full colour at +-`full_scale`; grey where not judged (NaN).
+Image error_map(const std::vector<float>& signed_error, int width, int height, double full_scale = 0.2);
 
 }  // namespace kiri::render
