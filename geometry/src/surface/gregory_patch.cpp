@@ -8,7 +8,8 @@
 #include "kiri/geometry/core/error.hpp"
 #include "surface/gregory_basis.hpp"
 
-// Lanes are passed only between always-inlined functions; the ABI note does not apply.
+// Lanes are passed only between always-inlined functions; the ABI note does not apply. Not
+// popped: GCC gives the note at the end of the translation unit (a unity batch's, too).
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif

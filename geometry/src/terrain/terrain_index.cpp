@@ -97,6 +97,12 @@ bool finite_point(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfin
 
 }  // namespace
 
+// Impl holds types of the anonymous namespace above, and is defined in this file alone. GCC
+// warns of that only outside a translation unit's main file: in a unity batch.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wsubobject-linkage"
+#endif
 struct Terrain::Index::Impl {
     IndexGrid hf;
     std::size_t face_count = 0;
@@ -165,6 +171,9 @@ struct Terrain::Index::Impl {
         return tree;
     }
 };
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 Terrain::Index::Index(const Heightfield& hf) : impl(std::make_unique<Impl>(hf)) {}
 Terrain::Index::~Index() = default;
