@@ -21,16 +21,16 @@
 namespace kiri::render::detail {
 namespace {
 
-struct Vertex {
+struct LayersPassVertex {
     float position[3];
     float normal[3];
     float uv[2];
 };
 
-constexpr int unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.comp
+constexpr int layers_unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.comp
 // The baked light's Medium grid and moments in layers.frag, apart from the atlas (0), the
 // heights (1), the noise (2), the shadow map and the froxel apply's units (5 .. 19).
-constexpr int unit_baked_moments = 20;  // and 21: the Medium's grid (LightVolumeTexture::bind)
+constexpr int layers_unit_baked_moments = 20;  // and 21: the Medium's grid (LightVolumeTexture::bind)
 // Steps of the sun's march where a base vertex lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
 // Levels of tau_sun along the column above each base vertex (linear between them).
@@ -59,7 +59,7 @@ bool LayersPass::set_base(const geometry::LayerBase& base)
     base_ = &base;
     if (uploaded_base_ == base.position.data() && uploaded_base_size_ == base.position.size() && index_count_ > 0)
         return false;
-    std::vector<Vertex> vertices(base.position.size());
+    std::vector<LayersPassVertex> vertices(base.position.size());
     for (std::size_t i = 0; i < vertices.size(); ++i) {
         const glm::dvec3& p = base.position[i];
         const glm::dvec3& n = base.normal[i];
@@ -70,10 +70,10 @@ bool LayersPass::set_base(const geometry::LayerBase& base)
     vao_ = make_vertex_array();
     vertices_ = make_buffer();
     indices_ = make_buffer();
-    glNamedBufferStorage(vertices_.get(), GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+    glNamedBufferStorage(vertices_.get(), GLsizeiptr(vertices.size() * sizeof(LayersPassVertex)), vertices.data(), 0);
     glNamedBufferStorage(indices_.get(), GLsizeiptr(base.triangles.size() * sizeof(std::uint32_t)),
                          base.triangles.data(), 0);
-    glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, sizeof(Vertex));
+    glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, sizeof(LayersPassVertex));
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
     const GLuint sizes[3] = {3, 3, 2};
     const GLuint offsets[3] = {0, 3 * sizeof(float), 6 * sizeof(float)};
@@ -329,9 +329,9 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     // there the full-level triangles near the eye span wide angles; per vertex beyond.
     p.set("u_lv_per_fragment", float(o.spacing_divisor * o.thickness / std::max(o.count, 1)));
     if (light_volume_)
-        light_volume_->bind(p, unit_baked_moments, baked);
+        light_volume_->bind(p, layers_unit_baked_moments, baked);
     else
-        LightVolumeTexture{}.bind(p, unit_baked_moments, false);
+        LightVolumeTexture{}.bind(p, layers_unit_baked_moments, false);
     p.set("u_extinction", float(o.optics.extinction));
     p.set("u_albedo", float(o.optics.albedo));
     p.set("u_octaves", geometry::shader_octaves(o.optics));
@@ -418,7 +418,7 @@ bool LayersPass::update_sun_columns(const FrameContext& frame)
     sun_columns_ = make_buffer();
     glNamedBufferStorage(sun_columns_.get(), GLsizeiptr(std::size_t(vertices) * sun_column_levels * sizeof(float)),
                          nullptr, 0);
-    sun_->bind(c, unit_sun, sun_march_steps);
+    sun_->bind(c, layers_unit_sun, sun_march_steps);
     c.set("u_sun_direction", sun_march_direction(frame.sun_direction));
     c.set("u_vertices", int(vertices));
     c.set("u_levels", sun_column_levels);

@@ -8,7 +8,7 @@
 namespace kiri::render::detail {
 namespace {
 
-struct Vertex {
+struct OverlayPassVertex {
     float position[3];
     float normal[3];
     float color[4];
@@ -43,7 +43,7 @@ void OverlayPass::set(const std::string& name, const OverlayMesh& mesh)
     e.lit = !mesh.normals.empty();
     e.index_count = GLsizei(mesh.indices.size());
     if (e.index_count > 0) {
-        std::vector<Vertex> v(mesh.positions.size());
+        std::vector<OverlayPassVertex> v(mesh.positions.size());
         for (std::size_t i = 0; i < v.size(); ++i) {
             const glm::vec3 p = mesh.positions[i];
             const glm::vec3 n = e.lit ? mesh.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
@@ -55,13 +55,14 @@ void OverlayPass::set(const std::string& name, const OverlayMesh& mesh)
         e.vao = make_vertex_array();
         e.vertices = make_buffer();
         e.indices = make_buffer();
-        glNamedBufferStorage(e.vertices.get(), GLsizeiptr(v.size() * sizeof(Vertex)), v.data(), 0);
+        glNamedBufferStorage(e.vertices.get(), GLsizeiptr(v.size() * sizeof(OverlayPassVertex)), v.data(), 0);
         glNamedBufferStorage(e.indices.get(), GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
                              mesh.indices.data(), 0);
-        glVertexArrayVertexBuffer(e.vao.get(), 0, e.vertices.get(), 0, sizeof(Vertex));
+        glVertexArrayVertexBuffer(e.vao.get(), 0, e.vertices.get(), 0, sizeof(OverlayPassVertex));
         glVertexArrayElementBuffer(e.vao.get(), e.indices.get());
         const GLint sizes[3] = {3, 3, 4};
-        const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, color)};
+        const GLuint offsets[3] = {offsetof(OverlayPassVertex, position), offsetof(OverlayPassVertex, normal),
+                                   offsetof(OverlayPassVertex, color)};
         for (GLuint a = 0; a < 3; ++a) {
             glEnableVertexArrayAttrib(e.vao.get(), a);
             glVertexArrayAttribFormat(e.vao.get(), a, sizes[a], GL_FLOAT, GL_FALSE, offsets[a]);

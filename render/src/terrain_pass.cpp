@@ -13,7 +13,7 @@
 namespace kiri::render::detail {
 namespace {
 
-struct Vertex {
+struct TerrainPassVertex {
     float position[3];
     float normal[3];
 };
@@ -70,7 +70,7 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
     const std::vector<double> xs = axis(hf.x0, hf.dx, hf.nx, rings), ys = axis(hf.y0, hf.dy, hf.ny, rings);
     const int nx = int(xs.size()), ny = int(ys.size());
     const auto in_grid = [&](int i, int j) { return i >= k && i < k + hf.nx && j >= k && j < k + hf.ny; };
-    std::vector<Vertex> vertices(std::size_t(nx) * ny);
+    std::vector<TerrainPassVertex> vertices(std::size_t(nx) * ny);
     for (int j = 0; j < ny; ++j)
         for (int i = 0; i < nx; ++i) {
             double z, gx, gy;  // height and slope, exaggeration applied
@@ -119,9 +119,9 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
     vao_ = make_vertex_array();
     vertices_ = make_buffer();
     indices_ = make_buffer();
-    glNamedBufferStorage(vertices_.get(), GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+    glNamedBufferStorage(vertices_.get(), GLsizeiptr(vertices.size() * sizeof(TerrainPassVertex)), vertices.data(), 0);
     glNamedBufferStorage(indices_.get(), GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data(), 0);
-    glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, sizeof(Vertex));
+    glVertexArrayVertexBuffer(vao_.get(), 0, vertices_.get(), 0, sizeof(TerrainPassVertex));
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
     for (GLuint attribute : {0u, 1u}) {
         glEnableVertexArrayAttrib(vao_.get(), attribute);

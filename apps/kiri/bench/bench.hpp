@@ -70,5 +70,6 @@ std::vector<Stage>& stages();
 #define KIRI_BENCH_CONCAT2(a, b) a##b
 #define KIRI_BENCH_CONCAT(a, b) KIRI_BENCH_CONCAT2(a, b)
 //! KIRI_BENCH_STAGE({"terrain", "Terrain load + mesh + AABB", {...}, [](Context& c) {...}});
+//! Named by __COUNTER__, not __LINE__: stages of two files of one unity batch may share a line.
 #define KIRI_BENCH_STAGE(...) \
-    static const bool KIRI_BENCH_CONCAT(kiri_bench_stage_, __LINE__) = ::kiri::bench::register_stage(__VA_ARGS__)
+    static const bool KIRI_BENCH_CONCAT(kiri_bench_stage_, __COUNTER__) = ::kiri::bench::register_stage(__VA_ARGS__)

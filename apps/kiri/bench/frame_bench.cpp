@@ -26,7 +26,7 @@ namespace {
 constexpr render::FogMode modes[] = {render::FogMode::terrain, render::FogMode::layers, render::FogMode::particles,
                                      render::FogMode::froxel, render::FogMode::combined};
 
-struct Measured {
+struct MeasuredMode {
     render::FogMode mode;
     FrameCost cost;
     double still_ms = 0.0;
@@ -121,9 +121,9 @@ void frame(Context& c)
         }
         for (const auto& [w, h] : sizes) {
             const std::string size = std::to_string(w) + "x" + std::to_string(h);
-            std::vector<Measured> rows;
+            std::vector<MeasuredMode> rows;
             for (render::FogMode mode : modes) {
-                Measured m{mode};
+                MeasuredMode m{mode};
                 judge.prepare(scene, mode);
                 m.cost = judge.frame_cost(w, h, frames);
                 m.still_ms = judge.still_ms(w, h);
@@ -140,7 +140,7 @@ void frame(Context& c)
                 rows.push_back(m);
             }
             const double terrain_ms = rows.front().cost.frame_ms;
-            for (const Measured& m : rows) {
+            for (const MeasuredMode& m : rows) {
                 const std::string mode = render::to_string(m.mode);
                 const double fog_ms = m.cost.frame_ms - terrain_ms, ratio = fog_ms / terrain_ms;
                 const bool fog = m.mode != render::FogMode::terrain;

@@ -23,7 +23,7 @@ const std::map<int, std::vector<double>> source_fps = {
     {10, {39, 29, 23, 19, 16, 14, 12, 11, 10}},
 };
 
-void figures(Context& c, LayerBenchScene& s)
+void layers_figures(Context& c, LayerBenchScene& s)
 {
     const int w = 960, h = 540;
     auto shot = [&](const LayerFog& fog, const render::Camera& camera, const std::string& name) {
@@ -50,11 +50,11 @@ void figures(Context& c, LayerBenchScene& s)
     std::printf("  figures: %s/layers_*.png\n", c.out_dir().string().c_str());
 }
 
-void table(Context& c)
+void layers_table(Context& c)
 {
     LayerBenchScene s(c.data_dir());
     const int w = 1280, h = 720, frames = c.quick() ? 5 : 15;
-    figures(c, s);
+    layers_figures(c, s);
 
     s.renderer->clear_layers();
     const double terrain_only = s.frame_seconds(s.oblique(), w, h, frames);
@@ -165,7 +165,7 @@ void error_curve(Context& c)
 KIRI_BENCH_STAGE({"layers",
                   "Layer stack at 1280x720: frames per second against layers (source: Table 3.2)",
                   {"layers", "items_per_s", "frames per second", false, true},
-                  table});
+                  layers_table});
 KIRI_BENCH_STAGE({"layers_error",
                   "Layer stack: image error against a 400-layer stack vs layer count",
                   {"layers", "error_value", "mean |difference| (8-bit levels)", true, true},

@@ -44,7 +44,7 @@ std::string fixed(double v, int digits)
     return s;
 }
 
-void figures(Context& c, ParticleBenchScene& s)
+void particles_figures(Context& c, ParticleBenchScene& s)
 {
     const geometry::Terrain terrain = geometry::load_scene_terrain(s.scene);
     render::Renderer r;
@@ -133,10 +133,10 @@ void goal(Context& c, ParticleBenchScene& s, const geometry::Medium& m, std::siz
         median, sorted.front(), sorted.back(), error.mean * 100);
 }
 
-void table(Context& c)
+void particles_table(Context& c)
 {
     ParticleBenchScene s(c.data_dir());
-    figures(c, s);
+    particles_figures(c, s);
     const geometry::Medium m = ParticleBenchScene::cumulus();
     const int repeats = c.quick() ? 3 : 7;
     std::vector<std::size_t> counts(std::begin(shimada_counts), std::end(shimada_counts));
@@ -238,6 +238,6 @@ void table(Context& c)
 KIRI_BENCH_STAGE({"particles",
                   "Particle light pass: precompute time vs particles (Shimada Table 1)",
                   {"particles", "time_s", "precompute time (s)", true, true},
-                  table});
+                  particles_table});
 
 }  // namespace kiri::bench

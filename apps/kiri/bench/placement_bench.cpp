@@ -19,7 +19,7 @@ using kiri::bench::Context;
 
 const int kSizes[] = {256, 512, 1024, 2048, 4096};
 
-Heightfield jacksboro(const Context& c) { return load_dem(c.data_dir() / "terrains" / "jacksboro_fault_dem.tif"); }
+Heightfield load_jacksboro(const Context& c) { return load_dem(c.data_dir() / "terrains" / "jacksboro_fault_dem.tif"); }
 
 FillOptions valley_fill()
 {
@@ -35,7 +35,7 @@ KIRI_BENCH_STAGE({"fill",
                   "Priority-flood fill vs DEM size (Jacksboro resampled)",
                   {"DEM cells", "time_s", "time (s)", true, true},
                   [](Context& c) {
-                      const Heightfield source = jacksboro(c);
+                      const Heightfield source = load_jacksboro(c);
                       // The native grid's fog area is the reference of the resampled ones.
                       const double reference = fill_fog(source, valley_fill()).area_m2;
                       for (int n : kSizes) {
@@ -67,7 +67,7 @@ KIRI_BENCH_STAGE({"flow",
                   "Flow step (pools + semi-Lagrangian stream) vs grid size",
                   {"DEM cells", "time_s", "time per step (s)", true, true},
                   [](Context& c) {
-                      const Heightfield source = jacksboro(c);
+                      const Heightfield source = load_jacksboro(c);
                       for (int n : kSizes) {
                           if (c.quick() && n > 1024)
                               break;

@@ -11,7 +11,7 @@
 namespace kiri::geometry {
 namespace {
 
-std::string num(double v)
+std::string six_digits(double v)
 {
     std::ostringstream s;
     s << v;
@@ -132,8 +132,8 @@ void validate_fit_options(const FitOptions& o)
             throw InputError("", "thickness", "must be > 0");
         if (o.clearance > o.thickness)
             throw InputError("", "clearance",
-                             "clearance " + num(o.clearance) + " m is larger than the fog thickness " +
-                                 num(o.thickness) + " m: the fog would never touch the ground");
+                             "clearance " + six_digits(o.clearance) + " m is larger than the fog thickness " +
+                                 six_digits(o.thickness) + " m: the fog would never touch the ground");
     }
 }
 
@@ -213,7 +213,7 @@ void require_fog(const SampleHeights& samples, const FitOptions& o)
     if (below == 0)
         throw InputError(
             "", "altitude",
-            (o.altitude_grid ? std::string("the fog top") : "the lake altitude " + num(o.altitude) + " m") +
+            (o.altitude_grid ? std::string("the fog top") : "the lake altitude " + six_digits(o.altitude) + " m") +
                 " is below the terrain everywhere in the footprint: no fog");
 }
 

@@ -55,7 +55,7 @@ bool segments_meet(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c, glm::dvec2 d, doubl
         (o4 == 0 && on_segment(c, d, b));
 }
 
-bool inside(const std::vector<glm::dvec2>& p, glm::dvec2 q)
+bool inside_polygon(const std::vector<glm::dvec2>& p, glm::dvec2 q)
 {
     bool in = false;
     for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
@@ -171,7 +171,7 @@ void check_apart(const std::vector<glm::dvec2>& p, const std::vector<glm::dvec2>
                                  which + " meet (edges " + std::to_string(i) + " and " + std::to_string(j) +
                                      "): the polygons must be apart");
     }
-    if (inside(p, q[0]) || inside(q, p[0]))
+    if (inside_polygon(p, q[0]) || inside_polygon(q, p[0]))
         throw InputError(label, "footprint", which + ": one lies inside the other");
 }
 
@@ -234,7 +234,7 @@ ControlMesh build_control_mesh(const Footprint& footprint, const Terrain& terrai
         }
     auto inside_any = [&](glm::dvec2 q) {
         for (const auto& poly : polys)
-            if (inside(poly, q))
+            if (inside_polygon(poly, q))
                 return true;
         return false;
     };

@@ -27,7 +27,7 @@ double bilinear(const std::vector<T>& a, int nx, int ny, double fx, double fy)
         t * ((1 - s) * double(a[k + nx]) + s * double(a[k + nx + 1]));
 }
 
-void check(bool ok, const std::string& label, const char* key, const std::string& why)
+void check_flow_field(bool ok, const std::string& label, const char* key, const std::string& why)
 {
     if (!ok)
         throw InputError(label, std::string("flow/") + key, why);
@@ -91,19 +91,21 @@ double solve_level(const Heightfield& hf, const FlowPool& p, const FlowOptions& 
 
 FlowState make_flow_state(const Heightfield& hf, const FogColumns& fog, const FlowOptions& o, const std::string& label)
 {
-    check(std::isfinite(o.wind.x) && std::isfinite(o.wind.y) && glm::length(o.wind) <= 100.0, label, "wind",
-          "must be a finite wind of at most 100 m/s");
-    check(o.duration >= 0.0 && o.duration <= 30 * 86400.0, label, "duration", "must be in [0, 2592000] seconds");
-    check(o.time_step > 0.0 && o.time_step <= 86400.0, label, "time_step", "must be in (0, 86400] seconds");
-    check(o.duration / o.time_step <= 1e6, label, "time_step", "more than a million steps");
-    check(o.coupling >= 0.0 && o.coupling <= 1.0, label, "coupling", "must be in [0, 1]");
-    check(o.inversion_strength > 0.0 && o.inversion_strength <= 50.0, label, "inversion_strength",
-          "must be in (0, 50] K");
-    check(o.spread >= 0.0 && std::isfinite(o.spread), label, "spread", "must be a finite number >= 0 (m/s)");
-    check(o.max_speed > 0.0 && o.max_speed <= 100.0, label, "max_speed", "must be in (0, 100] m/s");
-    check(o.evaporation_depth >= 0.0 && std::isfinite(o.evaporation_depth), label, "evaporation_depth",
-          "must be a finite number >= 0 (metres; 0 = no evaporation)");
-    check(o.min_thickness >= 0.0 && std::isfinite(o.min_thickness), label, "min_thickness", "must be >= 0 (m)");
+    check_flow_field(std::isfinite(o.wind.x) && std::isfinite(o.wind.y) && glm::length(o.wind) <= 100.0, label, "wind",
+                     "must be a finite wind of at most 100 m/s");
+    check_flow_field(o.duration >= 0.0 && o.duration <= 30 * 86400.0, label, "duration",
+                     "must be in [0, 2592000] seconds");
+    check_flow_field(o.time_step > 0.0 && o.time_step <= 86400.0, label, "time_step", "must be in (0, 86400] seconds");
+    check_flow_field(o.duration / o.time_step <= 1e6, label, "time_step", "more than a million steps");
+    check_flow_field(o.coupling >= 0.0 && o.coupling <= 1.0, label, "coupling", "must be in [0, 1]");
+    check_flow_field(o.inversion_strength > 0.0 && o.inversion_strength <= 50.0, label, "inversion_strength",
+                     "must be in (0, 50] K");
+    check_flow_field(o.spread >= 0.0 && std::isfinite(o.spread), label, "spread", "must be a finite number >= 0 (m/s)");
+    check_flow_field(o.max_speed > 0.0 && o.max_speed <= 100.0, label, "max_speed", "must be in (0, 100] m/s");
+    check_flow_field(o.evaporation_depth >= 0.0 && std::isfinite(o.evaporation_depth), label, "evaporation_depth",
+                     "must be a finite number >= 0 (metres; 0 = no evaporation)");
+    check_flow_field(o.min_thickness >= 0.0 && std::isfinite(o.min_thickness), label, "min_thickness",
+                     "must be >= 0 (m)");
     if (fog.nx != hf.nx || fog.ny != hf.ny || fog.mask.size() != hf.size())
         throw InputError(label, "flow", "the fog columns are not on the terrain's grid");
 

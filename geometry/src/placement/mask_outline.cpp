@@ -214,7 +214,7 @@ Ring tidy(const Ring& r)
     return out;
 }
 
-bool inside(const Ring& p, glm::dvec2 q)
+bool inside_ring(const Ring& p, glm::dvec2 q)
 {
     bool in = false;
     for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
@@ -312,7 +312,7 @@ MaskOutline mask_outline(const Heightfield& g, std::vector<std::uint8_t> mask,
     for (std::size_t a = 0; a < raw.size(); ++a) {
         bool nested = false;
         for (std::size_t b = 0; b < raw.size() && !nested; ++b)
-            nested = b != a && inside(raw[b], raw[a][0]);
+            nested = b != a && inside_ring(raw[b], raw[a][0]);
         if (!nested)
             outer.push_back(raw[a]);
     }

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <numbers>
 
 #include <glm/geometric.hpp>
@@ -14,7 +13,6 @@
 namespace kiri::geometry::detail {
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
 // Two-point Gauss-Legendre nodes on [0, 1]: exact for cubics.
 constexpr double gauss_lo = 0.5 - 0.28867513459481288225, gauss_hi = 0.5 + 0.28867513459481288225;
 // The layers' per-layer shift of the noise (medium.cpp, layers.frag): how fast the noise

@@ -10,6 +10,9 @@
 
 namespace kiri::geometry::detail {
 
+//! +infinity: the far end of a ray segment that nothing bounds.
+inline constexpr double inf = std::numeric_limits<double>::infinity();
+
 struct GridFrame {
     double x0 = 0.0, y0 = 0.0, dx = 1.0, dy = 1.0;
     int nx = 0, ny = 0;  // samples
@@ -39,7 +42,6 @@ void walk_grid(const GridFrame& g, const glm::dvec3& o, const glm::dvec3& d, dou
         return;
     if (!clip_slab(o.x, d.x, g.x0, g.x1(), t0, t1) || !clip_slab(o.y, d.y, g.y0, g.y1(), t0, t1))
         return;
-    const double inf = std::numeric_limits<double>::infinity();
     const double tm = 0.5 * (t0 + t1);
     // The cell of the segment's start, nudged inside along the ray for starts on a boundary.
     const double px = o.x + d.x * (std::isinf(tm) ? t0 : std::min(t0 + 1e-9 * (tm - t0), tm));

@@ -3,14 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 #include <glm/geometric.hpp>
 
 namespace kiri::geometry::detail {
-namespace {
-constexpr double inf = std::numeric_limits<double>::infinity();
-}
 
 HeightfieldRay::HeightfieldRay(const Heightfield& hf, bool surround)
     : hf_(hf), ground_(hf, surround), frame_{hf.x0, hf.y0, hf.dx, hf.dy, hf.nx, hf.ny}

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <mutex>
 #include <numbers>
 #include <vector>
@@ -19,7 +18,7 @@
 namespace kiri::geometry {
 namespace {
 
-constexpr double inf = std::numeric_limits<double>::infinity();
+using detail::inf;
 constexpr int max_coefficients = light_volume_max_bands * light_volume_max_bands;
 // Photons per task: a fixed partition, so that the sums do not depend on the thread count.
 constexpr long long photons_per_task = 1024;

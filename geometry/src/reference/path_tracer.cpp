@@ -4,7 +4,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <numbers>
 
@@ -21,7 +20,6 @@ using detail::around;
 using detail::Random;
 using detail::sample_phase;
 
-constexpr double inf = std::numeric_limits<double>::infinity();
 // Where a ray that meets nothing ends (as the reference's sky rays).
 constexpr double far_distance = 1e6;
 // Ratio tracking rolls the dice once the transmittance estimate falls below this.

@@ -8,7 +8,8 @@
 #include "kiri/geometry/core/error.hpp"
 #include "surface/gregory_basis.hpp"
 
-// Lanes are passed only between always-inlined functions; the ABI note does not apply.
+// Lanes are passed only between always-inlined functions; the ABI note does not apply. Not
+// popped: GCC gives the note at the end of the translation unit (a unity batch's, too).
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
@@ -17,7 +18,7 @@ namespace kiri::geometry {
 namespace {
 
 // NaN -> centre, else clamp to [0,1]; written with selects so the batch stays vectorisable.
-inline double clamp01(double t)
+inline double clamp_patch_parameter(double t)
 {
     const double c = t < 0.0 ? 0.0 : (t > 1.0 ? 1.0 : t);
     return c == c ? c : 0.5;
@@ -185,8 +186,8 @@ glm::dvec3 unit_normal(const GregoryPatch& patch, double u, double v, const glm:
 
 PatchPoint evaluate(const GregoryPatch& patch, double u, double v)
 {
-    u = clamp01(u);
-    v = clamp01(v);
+    u = clamp_patch_parameter(u);
+    v = clamp_patch_parameter(v);
     PatchPoint r;
     r.position = raw_derivatives(patch, u, v, r.du, r.dv) + patch.origin();
     r.normal = unit_normal(patch, u, v, r.du, r.dv);
@@ -195,7 +196,7 @@ PatchPoint evaluate(const GregoryPatch& patch, double u, double v)
 
 void gregory_weights(double u, double v, std::span<double, 20> w, std::span<double, 20> wu, std::span<double, 20> wv)
 {
-    detail::gregory_basis<1>(clamp01(u), clamp01(v), 1, w.data(), wu.data(), wv.data());
+    detail::gregory_basis<1>(clamp_patch_parameter(u), clamp_patch_parameter(v), 1, w.data(), wu.data(), wv.data());
 }
 
 void PatchSamples::resize(std::size_t n, bool normals)
@@ -247,8 +248,9 @@ void evaluate_into(const GregoryPatch& patch, std::span<const double> u, std::sp
     for (std::size_t i = 0; i < n; ++i) {
         const glm::dvec3 du(out.dux[i], out.duy[i], out.duz[i]), dv(out.dvx[i], out.dvy[i], out.dvz[i]);
         const glm::dvec3 c = glm::cross(du, dv);
-        const glm::dvec3 nn =
-            normalisable(c, du, dv) ? glm::normalize(c) : unit_normal(patch, clamp01(u[i]), clamp01(v[i]), du, dv);
+        const glm::dvec3 nn = normalisable(c, du, dv)
+            ? glm::normalize(c)
+            : unit_normal(patch, clamp_patch_parameter(u[i]), clamp_patch_parameter(v[i]), du, dv);
         out.nx[i] = nn.x;
         out.ny[i] = nn.y;
         out.nz[i] = nn.z;

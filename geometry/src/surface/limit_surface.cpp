@@ -14,7 +14,8 @@ namespace kiri::geometry {
 namespace {
 using namespace OpenSubdiv;
 
-double clamp01(double t)
+// A face parameter: NaN -> centre, else clamped to [0,1].
+double clamp_face_parameter(double t)
 {
     const double c = std::clamp(t, 0.0, 1.0);
     return c == c ? c : 0.5;
@@ -49,7 +50,7 @@ public:
     {
         check_face(face);
         PatchPoint r;
-        eval(face, clamp01(u), clamp01(v), r.position, r.du, r.dv);
+        eval(face, clamp_face_parameter(u), clamp_face_parameter(v), r.position, r.du, r.dv);
         r.normal = normal(face, u, v, r.du, r.dv);
         return r;
     }
@@ -69,7 +70,7 @@ public:
             throw InputError("", "out.normal", "a normal span is shorter than the batch");
         for (std::size_t i = 0; i < n; ++i) {
             glm::dvec3 p, du, dv;
-            eval(face, clamp01(u[i]), clamp01(v[i]), p, du, dv);
+            eval(face, clamp_face_parameter(u[i]), clamp_face_parameter(v[i]), p, du, dv);
             out.px[i] = p.x, out.py[i] = p.y, out.pz[i] = p.z;
             out.dux[i] = du.x, out.duy[i] = du.y, out.duz[i] = du.z;
             out.dvx[i] = dv.x, out.dvy[i] = dv.y, out.dvz[i] = dv.z;
@@ -87,7 +88,7 @@ public:
         const std::size_t n = support_[face].size();
         if (w.size() < n || wu.size() < n || wv.size() < n)
             throw InputError("", "weights", "spans shorter than the support");
-        const double uv[2] = {clamp01(u), clamp01(v)};
+        const double uv[2] = {clamp_face_parameter(u), clamp_face_parameter(v)};
         surfaces_[face].EvaluateStencil(uv, w.data(), wu.data(), wv.data());
     }
 
@@ -112,8 +113,8 @@ private:
         glm::dvec3 n = glm::cross(du, dv);
         if (ok(n, du, dv))
             return glm::normalize(n);
-        u = clamp01(u);
-        v = clamp01(v);
+        u = clamp_face_parameter(u);
+        v = clamp_face_parameter(v);
         glm::dvec3 p, a, b;
         eval(face, u + (u < 0.5 ? 1e-7 : -1e-7), v + (v < 0.5 ? 1e-7 : -1e-7), p, a, b);
         n = glm::cross(a, b);

@@ -10,7 +10,7 @@
 namespace kiri::geometry {
 namespace {
 
-double smoothstep01(double t)
+double ease_in_out(double t)
 {
     t = std::clamp(t, 0.0, 1.0);
     return t * t * (3.0 - 2.0 * t);
@@ -179,7 +179,7 @@ double Ground::height(double x, double y) const
     }
     const double fade = std::max(0.0, 1.0 - d / slope_reach_);
     edge += slope * d * fade * fade;
-    const double z = edge + (drop_to_ - edge) * smoothstep01(d / ease_);
+    const double z = edge + (drop_to_ - edge) * ease_in_out(d / ease_);
     return sea_ ? std::max(z, *sea_) : z;
 }
 

@@ -12,7 +12,7 @@ namespace {
 constexpr double tolerance = 1e-10;
 constexpr int max_sweeps = 400;
 
-struct Grid {
+struct FillGrid {
     int nx = 0, ny = 0;
     std::vector<double> z;
     std::vector<std::uint8_t> valid;
@@ -20,7 +20,7 @@ struct Grid {
 
 // Sweeps the voids of g towards the discrete harmonic interpolant: each void the mean of its
 // 4-neighbours inside the grid (a missing neighbour is no flux through the border).
-void relax(Grid& g, const std::vector<std::size_t>& voids, double scale)
+void relax(FillGrid& g, const std::vector<std::size_t>& voids, double scale)
 {
     const int nx = g.nx, ny = g.ny;
     const double stop = tolerance * scale;
@@ -52,7 +52,7 @@ void relax(Grid& g, const std::vector<std::size_t>& voids, double scale)
 }
 
 // Fills the voids of g (which holds at least one valid cell) coarse to fine.
-void fill(Grid& g, double scale)
+void fill(FillGrid& g, double scale)
 {
     std::vector<std::size_t> voids;
     for (std::size_t k = 0; k < g.z.size(); ++k)
@@ -61,7 +61,7 @@ void fill(Grid& g, double scale)
     if (voids.empty())
         return;
     // The coarser level: each cell the mean of the valid cells of its 2 x 2 block.
-    Grid c;
+    FillGrid c;
     c.nx = (g.nx + 1) / 2;
     c.ny = (g.ny + 1) / 2;
     c.z.assign(std::size_t(c.nx) * c.ny, 0.0);
@@ -111,7 +111,7 @@ void fill_voids_smoothly(int nx, int ny, std::vector<double>& z, const std::vect
         }
     if (!(lo <= hi))
         return;  // no valid cell: the caller refuses such a grid
-    Grid g{nx, ny, std::move(z), valid};
+    FillGrid g{nx, ny, std::move(z), valid};
     fill(g, std::max(hi - lo, 1.0));
     z = std::move(g.z);
 }

@@ -25,11 +25,11 @@ namespace kiri::geometry {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Traits = CGAL::Projection_traits_xy_3<K>;
-using Delaunay = CGAL::Delaunay_triangulation_2<Traits>;
+using ProjectionTraits = CGAL::Projection_traits_xy_3<K>;
+using Delaunay = CGAL::Delaunay_triangulation_2<ProjectionTraits>;
 
 // Parses one number token fully; false on junk, overflow or a non-finite value.
-bool parse_number(const std::string& token, double& value)
+bool parse_xyz_number(const std::string& token, double& value)
 {
     errno = 0;
     char* end = nullptr;
@@ -72,7 +72,7 @@ std::vector<glm::dvec3> read_xyz_points(const std::filesystem::path& path)
                              "expected 3 numbers (x y z), found " + std::to_string(tokens.size()) + " values");
         double v[3];
         for (int k = 0; k < 3; ++k)
-            if (!parse_number(tokens[k], v[k]))
+            if (!parse_xyz_number(tokens[k], v[k]))
                 throw InputError(file, field, "'" + tokens[k] + "' is not a finite number");
         points.emplace_back(v[0], v[1], v[2]);
     }

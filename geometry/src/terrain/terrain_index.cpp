@@ -31,7 +31,7 @@ using FaceId = std::uint32_t;
 
 // What the index needs of the heightfield. The heights are read through the vector's buffer,
 // which survives moving the Terrain (and its Heightfield) while this index lives on.
-struct Grid {
+struct IndexGrid {
     int nx = 0, ny = 0;
     double dx = 1.0, dy = 1.0, x0 = 0.0, y0 = 0.0;
     const double* z = nullptr;
@@ -48,7 +48,7 @@ struct FaceCorners {
     int i[3], j[3];
 };
 
-FaceCorners corners(const Grid& hf, FaceId f)
+FaceCorners corners(const IndexGrid& hf, FaceId f)
 {
     const int cell = int(f / 2), ci = cell % (hf.nx - 1), cj = cell / (hf.nx - 1);
     if (f % 2 == 0)
@@ -56,7 +56,7 @@ FaceCorners corners(const Grid& hf, FaceId f)
     return {{ci, ci + 1, ci}, {cj, cj + 1, cj + 1}};
 }
 
-Point3 sample_point(const Grid& hf, int i, int j) { return {hf.x_of(i), hf.y_of(j), hf.at(i, j)}; }
+Point3 sample_point(const IndexGrid& hf, int i, int j) { return {hf.x_of(i), hf.y_of(j), hf.at(i, j)}; }
 
 // Readable property maps (boost concept) from a face number to its triangle / a vertex.
 struct TriangleMap {
@@ -64,7 +64,7 @@ struct TriangleMap {
     using value_type = Triangle3;
     using reference = Triangle3;
     using category = boost::readable_property_map_tag;
-    const Grid* hf = nullptr;
+    const IndexGrid* hf = nullptr;
     friend Triangle3 get(const TriangleMap& m, FaceId f)
     {
         const FaceCorners c = corners(*m.hf, f);
@@ -78,7 +78,7 @@ struct PointMap {
     using value_type = Point3;
     using reference = Point3;
     using category = boost::readable_property_map_tag;
-    const Grid* hf = nullptr;
+    const IndexGrid* hf = nullptr;
     friend Point3 get(const PointMap& m, FaceId f)
     {
         const FaceCorners c = corners(*m.hf, f);
@@ -88,17 +88,23 @@ struct PointMap {
 
 // Tag_true: the maps live once in the tree, not in every primitive; Tag_false: no datum cache.
 using Primitive = CGAL::AABB_primitive<FaceId, TriangleMap, PointMap, CGAL::Tag_true, CGAL::Tag_false>;
-using Traits = CGAL::AABB_traits<K, Primitive>;
-using Tree = CGAL::AABB_tree<Traits>;
+using AabbTraits = CGAL::AABB_traits<K, Primitive>;
+using Tree = CGAL::AABB_tree<AabbTraits>;
 
 glm::dvec3 to_glm(const Point3& p) { return {p.x(), p.y(), p.z()}; }
 
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite_point(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 }  // namespace
 
+// Impl holds types of the anonymous namespace above, and is defined in this file alone. GCC
+// warns of that only outside a translation unit's main file: in a unity batch.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wsubobject-linkage"
+#endif
 struct Terrain::Index::Impl {
-    Grid hf;
+    IndexGrid hf;
     std::size_t face_count = 0;
 
     std::once_flag mesh_once, tree_once;
@@ -165,6 +171,9 @@ struct Terrain::Index::Impl {
         return tree;
     }
 };
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 Terrain::Index::Index(const Heightfield& hf) : impl(std::make_unique<Impl>(hf)) {}
 Terrain::Index::~Index() = default;
@@ -179,7 +188,7 @@ std::optional<RayHit> Terrain::Index::intersect_ray(const glm::dvec3& origin, co
 {
     // A zero or non-finite direction has no hit rather than a NaN one.
     const double len = glm::length(dir);
-    if (!finite(origin) || !std::isfinite(len) || len == 0.0)
+    if (!finite_point(origin) || !std::isfinite(len) || len == 0.0)
         return std::nullopt;
     const glm::dvec3 d = dir / len;
     const Tree& tree = impl->aabb();
@@ -207,9 +216,9 @@ std::optional<RayHit> Terrain::Index::intersect_ray(const glm::dvec3& origin, co
 
 glm::dvec3 Terrain::Index::closest_point(const glm::dvec3& p) const
 {
-    if (!finite(p))
+    if (!finite_point(p))
         throw InputError("", "closest_point", "query point is not finite");
-    const Grid& hf = impl->hf;
+    const IndexGrid& hf = impl->hf;
     if (hf.size() == 0)
         throw InputError("", "closest_point", "empty terrain");
     const Tree& tree = impl->aabb();
