@@ -7,9 +7,9 @@ set -eu
 cd "$(dirname "$0")/.."
 sh scripts/setup.sh
 start=$(date +%s)
-# The unit tests (geometry, no GL) at -O1 without debug info: the sanitizers need no more
-# (measured 2026-11-27 on a clean clone, 2 cores: 267 s to build, 189 s to test). The GL and CLI tests under the
-# sanitizers build everything (docs/hardening.md): too slow for CI's 2 cores.
+# The unit tests (geometry, no GL) against kiri_geometry instrumented at -O1 without debug info:
+# the sanitizers need no more (docs/hardening.md has the figures). The GL and CLI tests under
+# the sanitizers build everything: too slow for CI's 2 cores.
 cmake -S . -B build/asan -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1" -DKIRI_SANITIZE=ON \
   -DKIRI_BUILD_RENDER=OFF -DKIRI_BUILD_APPS=OFF >/dev/null
 cmake --build build/asan -j"$(nproc)"
