@@ -41,7 +41,7 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
     const geometry::FroxelOptions options = render::scene_froxel_options(scene, terrain);
     const geometry::Medium* medium = products.medium.get();
     const geometry::ReferenceView view = render::reference_view(camera, width, height, options.far);
-    geometry::FogLighting light = render::scene_fog_lighting(scene, medium, options, products.light_volume);
+    geometry::FogLighting light = render::scene_fog_lighting(scene, &terrain, medium, options, products.light_volume);
     light.sky = !a.no_sky;
     const bool exr = render::is_exr_path(a.out);
     if (a.mode == "reference") {

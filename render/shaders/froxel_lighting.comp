@@ -7,7 +7,9 @@
 // smooth where the density is not: it is what the temporal filter blends and what the apply
 // looks up for each pixel's own density. Stored as (J, 1); (0, 0) where skipped: froxels
 // without fog (standard slicing), or every froxel of a tile without fog (fog-aware, where the
-// apply may look J up anywhere in a tile's range).
+// apply may look J up anywhere in a tile's range). J is as seen from the eye through the air
+// (geometry/air_light.hpp), mixed towards the horizon's colour by the froxel's distance, as
+// the layers, the particles, the terrain and the reference see theirs.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(rgba16f, binding = 0) writeonly uniform image3D o_light;
 uniform sampler3D u_density;
@@ -16,6 +18,7 @@ uniform float u_sun_jitter;
 uniform vec3 u_sun_direction;
 uniform vec3 u_sun_radiance;
 uniform vec3 u_ambient;
+uniform vec4 u_air;           // the air's radiance (rgb) and extinction (1/m; 0: none)
 uniform vec2 u_albedo;        // medium, height fog
 uniform vec2 u_anisotropy;    // medium, height fog
 uniform int u_fog_shadows;
@@ -43,6 +46,7 @@ void main()
     // the tile see farther) take the light of the ray's last point before the ground, not that
     // of a point inside the hill.
     vec3 p = fx_world(uv, min(mix(d0, d1, density.z), 0.998 * fx_tile_ground(id.xy)));
+    float haze = 1.0 - exp(-length(p - u_fx_eye) * u_air.w);
     // The phase by the direction of the rays through the froxel.
     float cos_theta = dot(normalize(p - u_fx_eye), u_sun_direction);
     // J is the light of fog. A point above the Medium's top or below its bottom (the tile's
@@ -75,5 +79,5 @@ void main()
             baked += u_albedo.y * weights.y * lv_in_scattered_at(p, towards, u_anisotropy.y, false);
         s += u_sun_radiance * baked;
     }
-    imageStore(o_light, id, vec4(s / (weights.x + weights.y), 1.0));
+    imageStore(o_light, id, vec4(mix(s / (weights.x + weights.y), u_air.rgb, haze), 1.0));
 }

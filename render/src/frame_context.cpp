@@ -8,10 +8,12 @@
 #include <glm/gtc/matrix_inverse.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "kiri/geometry/medium/air_light.hpp"
+
 namespace kiri::render::detail {
 
 FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int width, int height,
-                                const glm::dvec3& scene_min, const glm::dvec3& scene_max)
+                                const glm::dvec3& scene_min, const glm::dvec3& scene_max, double terrain_across)
 {
     FrameContext f;
     f.width = width;
@@ -29,11 +31,10 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
         fitted.far_m = std::max(far_distance * 1.05, 10.0);
         // A 32-bit float depth buffer keeps a far/near ratio of 1e5 comfortably.
         fitted.near_m = std::clamp(near_distance * 0.9, std::max(fitted.far_m * 1e-5, 0.05), fitted.far_m * 0.5);
-        // The haze grows with the terrain: a DEM wider than 50 km is hazed across as a 30 km one
-        // is, instead of fading to the sky's grey (smaller ones keep the default).
-        const double across = std::hypot(scene_max.x - scene_min.x, scene_max.y - scene_min.y);
-        f.haze_density = float(1.0 / std::max(1.0 / double(f.haze_density), 3.0 * across));
     }
+    // The air: the same for every renderer and the CPU reference (FogLighting::air).
+    const geometry::AirLight air = geometry::scene_air(terrain_across, sun.ambient, sun.sky);
+    f.haze_density = float(air.extinction);
     f.view = fitted.view();
     f.projection = fitted.projection(double(width) / double(height));
     const glm::dmat4 vp = f.projection * f.view;
@@ -46,7 +47,7 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
     f.ambient = glm::vec3(sun.ambient);
     // The sky is the ambient light seen directly: deeper blue overhead, paler at the horizon.
     f.sky_zenith = glm::vec3(sun.ambient * glm::dvec3(0.9, 1.5, 2.6));
-    f.sky_horizon = glm::vec3(glm::mix(sun.ambient * 3.0, glm::dvec3(1.0, 1.0, 1.0), 0.3));
+    f.sky_horizon = glm::vec3(geometry::sky_horizon(sun.ambient));
     if (!sun.sky) {  // a black world: no sky light, no sky, no glow
         f.ambient = f.sky_zenith = f.sky_horizon = glm::vec3(0.0f);
         f.sun_glow = false;

@@ -21,7 +21,7 @@ struct FrameContext {
     glm::vec3 sky_zenith{0.3f}, sky_horizon{0.8f};
     bool sun_glow = true;                      // the sky draws the sun's glow (SunLight::sky)
     float exposure = float(display_exposure);  // tone_map.hpp
-    float haze_density = 1.0f / 150000.0f;     // 1/m: the far side of a 30 km DEM is ~20% hazed (at least)
+    float haze_density = 0.0f;                 // 1/m: the air's extinction (geometry::scene_air), towards sky_horizon
     //! Combined mode: each fog renderer draws its share of the Medium (fog_partition.hpp).
     bool partitioned = false;
     glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band
@@ -41,7 +41,9 @@ void set_partition_uniforms(const Program& program, const FrameContext& frame)
 
 //! Builds the frame's context; near and far planes are fitted to the scene's bounds so that
 //! depth precision is spent where the scene is (the camera's own planes are the fallback).
+//! `scene_min`, `scene_max`: everything drawn (the clip planes); `terrain_across`: the diagonal
+//! of the terrain's extent, which sets the air (geometry::scene_air).
 FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int width, int height,
-                                const glm::dvec3& scene_min, const glm::dvec3& scene_max);
+                                const glm::dvec3& scene_min, const glm::dvec3& scene_max, double terrain_across);
 
 }  // namespace kiri::render::detail

@@ -423,6 +423,7 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
     lighting_.set("u_sun_direction", sun_march_direction(frame.sun_direction));
     lighting_.set("u_sun_radiance", frame.sun_radiance);
     lighting_.set("u_ambient", frame.ambient);
+    lighting_.set("u_air", glm::vec4(frame.sky_horizon, frame.haze_density));
     const double albedo = medium_ ? medium_->options().albedo : 0.0, g = medium_ ? medium_->options().anisotropy : 0.0;
     lighting_.set("u_albedo", glm::vec2(float(albedo), float(haze.albedo)));
     lighting_.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));

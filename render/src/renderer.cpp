@@ -363,7 +363,10 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     const detail::FroxelPass* fog = r.froxel && r.froxel->enabled() ? r.froxel.get() : nullptr;
     if (fog)
         r.froxel->extend_bounds(scene_min, scene_max);
-    FrameContext frame = detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max);
+    const glm::dvec3 terrain_extent = r.terrain.bounds_max() - r.terrain.bounds_min();
+    FrameContext frame =
+        detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max,
+                                   std::hypot(std::max(terrain_extent.x, 0.0), std::max(terrain_extent.y, 0.0)));
     if (r.partition) {
         frame.partitioned = true;
         frame.partition = glm::vec4(r.partition->near_start, r.partition->near_end, r.partition->particle_share,

@@ -1,6 +1,9 @@
 #include "kiri/render/scene_rendering.hpp"
 
+#include <cmath>
+
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/air_light.hpp"
 #include "kiri/geometry/medium/fog_partition.hpp"
 
 namespace kiri::render {
@@ -119,8 +122,16 @@ geometry::ReferenceView reference_view(const Camera& camera, int width, int heig
     return view;
 }
 
-geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
-                                         const geometry::FroxelOptions& froxel,
+geometry::AirLight terrain_air(const geometry::Terrain* terrain, const glm::dvec3& ambient, bool sky)
+{
+    if (!terrain)
+        return {};
+    const geometry::Bounds3 b = terrain->bounds();
+    return geometry::scene_air(std::hypot(b.max.x - b.min.x, b.max.y - b.min.y), ambient, sky);
+}
+
+geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Terrain* terrain,
+                                         const geometry::Medium* medium, const geometry::FroxelOptions& froxel,
                                          std::shared_ptr<const geometry::LightVolume> light_volume)
 {
     geometry::FogLighting light;
@@ -132,6 +143,7 @@ geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geo
     light.multiple_scattering = geometry::multiple_scattering_of(medium);
     light.scattering_octaves = geometry::scattering_octaves_of(medium);
     light.light_volume = std::move(light_volume);
+    light.air = terrain_air(terrain, scene.sun.ambient);
     return light;
 }
 

@@ -47,7 +47,7 @@ inline geometry::ReferenceImage scene_reference(const std::string& scene_file, c
     const geometry::FroxelOptions options = render::scene_froxel_options(scene, terrain);
     const geometry::ReferenceView view = render::reference_view(view_camera, width, height, options.far);
     const geometry::FogLighting light =
-        render::scene_fog_lighting(scene, products.medium.get(), options, products.light_volume);
+        render::scene_fog_lighting(scene, &terrain, products.medium.get(), options, products.light_volume);
     return geometry::render_reference_fog(
         {products.medium.get(), height_fog ? options.height_fog : geometry::HeightFog{}}, &terrain.heightfield(), view,
         light);

@@ -10,6 +10,7 @@ kiri_test(layer_lod_test SOURCES layer_lod_test.cpp LIBS kiri_geometry LABELS un
 kiri_test(layer_export_test SOURCES layer_export_test.cpp LIBS kiri_geometry nlohmann_json::nlohmann_json LABELS unit)
 kiri_test(medium_test SOURCES medium_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(reference_fog_test SOURCES reference_fog_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(air_light_test SOURCES air_light_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(path_tracer_test SOURCES path_tracer_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(multiple_scattering_test SOURCES multiple_scattering_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(light_volume_test SOURCES light_volume_test.cpp LIBS kiri_geometry LABELS unit)

@@ -149,7 +149,7 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
     const SceneRendering combined(scene, fog, FogMode::combined);
     combined.apply(fogged);
     const g::FroxelOptions& froxel = combined.froxel_options();
-    const g::FogLighting light = scene_fog_lighting(scene, &medium, froxel);
+    const g::FogLighting light = scene_fog_lighting(scene, &terrain, &medium, froxel);
     // The frame without fog sees the same terrain in the same shadows of the sun (as `kiri
     // bench`'s judge draws it).
     bare.set_sun(combined.sun());

@@ -29,7 +29,7 @@ Applied apply(const g::Terrain& ground, const g::Medium& fog, const g::FroxelOpt
     a.compared.gpu = r.read_froxel_fog();
     const g::ReferenceView view = kiri::render::reference_view(c, w, h, o.far);
     a.compared.reference =
-        g::render_reference_fog({&fog, o.height_fog}, &ground.heightfield(), view, lighting(sun(), o, &fog));
+        g::render_reference_fog({&fog, o.height_fog}, &ground.heightfield(), view, lighting(sun(), o, &fog, ground));
     a.compared.error = kiri::render::compare_fog(a.compared.gpu, a.compared.reference, min_depth, max_depth);
     expect_finite(a.compared.gpu);
     std::printf("    marched %d of %d pixels, mean %.4f, p99 %.4f\n", a.stats.marched_pixels, a.stats.applied_pixels,

@@ -75,9 +75,12 @@ inline SunLight sun()
     return s;
 }
 
-inline g::FogLighting lighting(const SunLight& s, const g::FroxelOptions& o, const g::Medium* medium)
+// The renderer's lighting model for the reference, with the air the renderer draws over `terrain`.
+inline g::FogLighting lighting(const SunLight& s, const g::FroxelOptions& o, const g::Medium* medium,
+                               const g::Terrain& terrain)
 {
     g::FogLighting l;
+    l.air = kiri::render::terrain_air(&terrain, s.ambient, s.sky);
     l.sun_direction = s.direction;
     l.sun_radiance = s.color * s.intensity;
     l.ambient = s.ambient;
@@ -127,7 +130,7 @@ protected:
         Compared c;
         c.gpu = r.read_froxel_fog();
         const g::ReferenceView view = kiri::render::reference_view(camera, width, height, options.far);
-        g::FogLighting lit = lighting(light, options, medium);
+        g::FogLighting lit = lighting(light, options, medium, terrain);
         lit.light_volume = light_volume;
         c.reference = g::render_reference_fog({medium, options.height_fog}, &terrain.heightfield(), view, lit);
         c.error = kiri::render::compare_fog(c.gpu, c.reference, min_depth, max_depth);

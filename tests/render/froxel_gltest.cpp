@@ -55,7 +55,7 @@ TEST_F(FroxelGl, AReducedResolutionKeepsThePixelsPerTile)
     EXPECT_EQ(r.last_stats().froxel.size, glm::ivec3(12, 7, o.slices));
     const g::ReferenceImage truth =
         g::render_reference_fog({&fog, o.height_fog}, &ground.heightfield(),
-                                kiri::render::reference_view(c, 48, 27, o.far), lighting(light, o, &fog));
+                                kiri::render::reference_view(c, 48, 27, o.far), lighting(light, o, &fog, ground));
     const kiri::render::FogError e = kiri::render::compare_fog(r.read_froxel_fog(), truth);
     std::printf("    half the tiles at half the size: mean %.4f, p99 %.4f\n", e.mean_relative, e.p99_relative);
     EXPECT_GT(e.fog_pixels, 48 * 27 / 2);
@@ -352,7 +352,7 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     view.height = 56;
     view.max_depth = o.far;
     const g::ReferenceImage before =
-        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(sun(), o, &s.fog));
+        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(sun(), o, &s.fog, s.ground));
     r.render(c, 96, 56);
     const double converged = kiri::render::compare_fog(r.read_froxel_fog(), before).mean_relative;
     EXPECT_LT(converged, std::max(1.5 * still, 0.02));  // the jittered average blurs J over the tile
@@ -366,7 +366,7 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     const FogBuffer after = r.read_froxel_fog();
     expect_finite(after);
     const g::ReferenceImage truth =
-        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog));
+        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog, s.ground));
     const double stale = kiri::render::compare_fog(r.read_froxel_fog(), before).mean_relative;
     const double fresh = kiri::render::compare_fog(after, truth).mean_relative;
     std::printf("    still %.4f, converged %.4f, after the sun moved %.4f (against the old sun %.4f)\n", still,
@@ -393,7 +393,7 @@ TEST_F(FroxelGl, TemporalFilterConvergesAndDoesNotGhost)
     r.draw(moved, 96, 56);
     view.eye = moved.position;
     const g::ReferenceImage truth_moved =
-        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog));
+        g::render_reference_fog({&s.fog, {}}, &s.ground.heightfield(), view, lighting(other, o, &s.fog, s.ground));
     const double moved_error = kiri::render::compare_fog(r.read_froxel_fog(), truth_moved).mean_relative;
     EXPECT_LT(moved_error, std::max(1.5 * without_history(other, moved, truth_moved), 0.01));
 }

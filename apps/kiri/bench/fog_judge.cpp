@@ -40,7 +40,7 @@ FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int w
     options.surround = base.terrain.surround;
     reference_ = geometry::render_reference_fog(
         {fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
-        render::scene_fog_lighting(base, fog.medium.get(), froxel, fog.light_volume), options);
+        render::scene_fog_lighting(base, &terrain, fog.medium.get(), froxel, fog.light_volume), options);
     reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     context_ = render::create_headless_context();
     renderer_ = std::make_unique<render::Renderer>();

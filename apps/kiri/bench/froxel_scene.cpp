@@ -31,7 +31,7 @@ geometry::FroxelOptions FroxelBenchScene::options() const
 
 geometry::FogLighting FroxelBenchScene::lighting(const geometry::FroxelOptions& o) const
 {
-    return render::scene_fog_lighting(scene, &medium, o);
+    return render::scene_fog_lighting(scene, &terrain, &medium, o);
 }
 
 geometry::ReferenceView FroxelBenchScene::view(int width, int height, const geometry::FroxelOptions& o) const

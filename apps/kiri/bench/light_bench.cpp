@@ -221,7 +221,7 @@ Prepared prepare_view(const Context& c, const LightView& v, int width, int heigh
     const render::Camera camera = render::to_camera(scene.camera(v.camera, bounds.min, bounds.max));
     p.froxel = render::scene_froxel_options(scene, *p.products.terrain);
     p.reference_view = render::reference_view(camera, width, height, p.froxel.far);
-    p.light = render::scene_fog_lighting(scene, p.products.medium.get(), p.froxel);
+    p.light = render::scene_fog_lighting(scene, p.products.terrain.get(), p.products.medium.get(), p.froxel);
     p.light.sky = false;
     const fs::path cached = dir / (v.name + "." + std::to_string(samples) + ".path.exr");
     if (fs::exists(cached)) {

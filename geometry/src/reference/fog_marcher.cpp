@@ -37,8 +37,10 @@ FogMarcher::FogMarcher(const FogVolume& fog, const Heightfield* terrain, const F
         terrain_ = std::make_unique<HeightfieldRay>(*terrain, o.surround);
     const double len = glm::length(light.sun_direction);
     sun_ = len > 0.0 && std::isfinite(len) ? light.sun_direction / len : glm::dvec3(0.0, 0.0, 1.0);
-    if (!light_.sky)
+    if (!light_.sky) {
         light_.ambient = glm::dvec3(0.0);
+        light_.air = {};
+    }
     if (fog_.medium && !(fog_.medium->max_extinction() > 0.0))
         fog_.medium = nullptr;
     o_.optical_step = std::clamp(o_.optical_step, 1e-4, 1.0);
@@ -276,7 +278,7 @@ void FogMarcher::split_at_shadow_edges(MarchScratch& s) const
 
 glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s) const
 {
-    // render/shaders/terrain.frag without its distance haze, with the cast shadows and the
+    // render/shaders/terrain.frag before the air's haze (trace adds it), with the cast shadows and the
     // fog's shade of the sun that the lighting model adds.
     const glm::dvec3 n = terrain_->normal(p.x, p.y);
     const glm::dvec3 base = ground_albedo(terrain_->ground(), p, n);
@@ -378,6 +380,11 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
                      albedo_h * st.sigma_height * volume->in_scattered(p.x, p.y, h, weights_h, scale));
         }
         const double sigma = st.sigma_medium + st.sigma_height;
+        // Seen through the air in front of the step: J e^(-beta t) + H (1 - e^(-beta t)).
+        if (light_.air.extinction > 0.0) {
+            const double haze = light_.air.haze(st.t);
+            source = source * (1.0 - haze) + sigma * haze * light_.air.radiance;
+        }
         r.inscatter += std::exp(-st.tau_before) * source * step_weight(sigma, st.dt);
         tau = st.tau_before + sigma * st.dt;
     }
@@ -385,7 +392,8 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
     r.steps = int(s.steps.size());
     r.sun_knots = int(s.knots.size());
     if (r.hit_terrain)
-        r.surface = o_.shade_terrain ? surface_radiance(o + w * t_end, s) : glm::dvec3(0.0);
+        // terrain.frag hazes the lit ground as the air above says; a black ground stays black.
+        r.surface = o_.shade_terrain ? light_.air.seen(surface_radiance(o + w * t_end, s), t_end) : glm::dvec3(0.0);
     else
         r.surface = sky_radiance(w);
     return r;

@@ -37,10 +37,14 @@ geometry::FroxelOptions scene_froxel_options(const geometry::Scene& scene, const
 //! The CPU reference's view of `camera` at width x height, ending at view depth max_depth (the
 //! froxel volume's far plane; 0: no limit).
 geometry::ReferenceView reference_view(const Camera& camera, int width, int height, double max_depth);
+//! The air the renderer draws over `terrain` (its extent's diagonal, geometry::scene_air) under a
+//! sky light `ambient`; `sky` false or no terrain: none.
+geometry::AirLight terrain_air(const geometry::Terrain* terrain, const glm::dvec3& ambient, bool sky = true);
 //! The lighting the CPU reference judges a scene's fog with (the renderers' model), with the
-//! pipeline's light volume for the model `baked` (PipelineProducts::light_volume; null: none).
-geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Medium* medium,
-                                         const geometry::FroxelOptions& froxel,
+//! pipeline's light volume for the model `baked` (PipelineProducts::light_volume; null: none)
+//! and the air over `terrain` (geometry::scene_air, as the renderer draws it; null: no air).
+geometry::FogLighting scene_fog_lighting(const geometry::Scene& scene, const geometry::Terrain* terrain,
+                                         const geometry::Medium* medium, const geometry::FroxelOptions& froxel,
                                          std::shared_ptr<const geometry::LightVolume> light_volume = nullptr);
 
 //! A scene drawn in one mode from the pipeline's products (pipeline_target(mode, scene)). It

@@ -43,6 +43,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "kiri/geometry/medium/air_light.hpp"
 #include "kiri/geometry/medium/medium_options.hpp"
 
 namespace kiri::geometry {
@@ -92,8 +93,12 @@ struct FogLighting {
     //! The multiple scattering `baked` reads (bake_light_volume, for this sun); null: none.
     std::shared_ptr<const LightVolume> light_volume;
     //! false: no sky light at all, for comparisons with renderers set up in a black world: the
-    //! ambient is taken as 0 and the sky seen behind the fog is black (`kiri render --no-sky`).
+    //! ambient is taken as 0, the sky seen behind the fog is black and there is no air
+    //! (`kiri render --no-sky`).
     bool sky = true;
+    //! The air between the eye and the fog and terrain (air_light.hpp); none by default. The
+    //! renderers' is the scene's (scene_air), and the reference judging them takes the same.
+    AirLight air;
 };
 
 //! The sum over the octaves of J above, a^i p_HG(cos_theta, c^i g) exp(-b^i tau_sun) (1/sr);

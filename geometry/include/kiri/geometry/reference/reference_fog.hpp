@@ -10,7 +10,8 @@
 //! with E_sun the sun's colour times intensity, s the direction towards the sun, w the view
 //! direction, V the terrain's shadow (is the sun visible from x over the heightfield), p the
 //! Henyey-Greenstein phase (g clamped strictly inside (-1, 1)) and L_amb the isotropic sky
-//! ambient. Each medium scatters with its own albedo and g.
+//! ambient. Each medium scatters with its own albedo and g. The fog and the ground are seen
+//! through the air the renderers draw (FogLighting::air, air_light.hpp).
 //!
 //! How: the shell's entry and exit along each ray are found exactly (roots of quadratics per
 //! grid cell), inside the shell the ray is cut into steps of at most `optical_step` optical
