@@ -42,12 +42,13 @@ TEST(KiriFroxel, RendersTheFogAsAVolumeAndTheReferenceAgrees)
     ASSERT_EQ(b.width, 64);
     ASSERT_EQ(c.height, 36);
     // The fog changes the picture a lot, and the froxel frame is close to the reference's (its own
-    // terrain shading, no haze): measured 4.6 grey levels apart on average (the bare terrain 31.6).
+    // terrain shading, seen through the same air): measured 3.0 grey levels apart on average (the
+    // bare terrain 30.1; 4.6 before the reference's ground and fog were seen through the air).
     const double froxels_off = mean_abs_difference(b, c);
     std::printf("    mean |difference| in grey levels: froxels to reference %.3f, bare terrain to reference %.3f\n",
                 froxels_off, mean_abs_difference(a, c));
     EXPECT_GT(mean_abs_difference(a, b), 8.0);
-    EXPECT_LT(froxels_off, 5.5);
+    EXPECT_LT(froxels_off, 4.0);
     // A grey overlay does not pass: the bare terrain half-veiled in a grey as bright as the froxels.
     double bright_fog = 0.0, bright_bare = 0.0;  // sums of the colour channels
     for (std::size_t i = 0; i < b.rgba.size(); ++i)
