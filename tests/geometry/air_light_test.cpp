@@ -55,7 +55,7 @@ TEST(AirLight, SceneAirGrowsWithTheTerrainAndVanishesInABlackWorld)
 {
     const glm::dvec3 ambient(0.22, 0.28, 0.38);
     const AirLight small = scene_air(20000.0, ambient);
-    EXPECT_DOUBLE_EQ(small.extinction, 1.0 / 150000.0);  // up to 50 km across: 150 km
+    EXPECT_DOUBLE_EQ(small.extinction, 1.0 / 150000.0);                         // up to 50 km across: 150 km
     EXPECT_DOUBLE_EQ(scene_air(200000.0, ambient).extinction, 1.0 / 600000.0);  // 3 x across
     EXPECT_DOUBLE_EQ(scene_air(std::nan(""), ambient).extinction, 1.0 / 150000.0);
     // The horizon's colour of sky.frag: mix(3 ambient, white, 0.3).

@@ -18,8 +18,8 @@
 namespace kiri::geometry {
 
 struct AirLight {
-    double extinction = 0.0;    //!< beta (1/m); 0: no air
-    glm::dvec3 radiance{0.0};   //!< H: the sky's horizon colour
+    double extinction = 0.0;   //!< beta (1/m); 0: no air
+    glm::dvec3 radiance{0.0};  //!< H: the sky's horizon colour
 
     //! 1 - e^(-beta d): how much of H a point at distance d takes on (0 without air).
     double haze(double distance) const;
