@@ -15,25 +15,8 @@
 
 using namespace kiri::geometry;
 
-namespace {
-
-void expect_rel(const glm::dvec3& a, const glm::dvec3& b, double tol)
-{
-    for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(a[c], b[c], tol * std::abs(b[c]) + 1e-15) << "channel " << c;
-}
-
-FogLighting sky_only()
-{
-    FogLighting l;
-    l.sun_radiance = glm::dvec3(0.0);
-    l.ambient = glm::dvec3(0.2, 0.3, 0.4);
-    l.terrain_shadows = false;
-    l.fog_shadows = false;
-    return l;
-}
-
-}  // namespace
+using kiri::test::expect_rel;
+using kiri::test::sky_only;
 
 TEST(AirLight, HazeAndSeenInClosedForm)
 {

@@ -12,6 +12,7 @@
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/geometry/terrain/ground.hpp"
+#include "slab_medium.hpp"
 
 using namespace kiri::geometry;
 
@@ -45,21 +46,8 @@ Heightfield flat(double z = 0.0, double half = 5000.0, int n = 11)
     return kiri::test::make_heightfield(n, n, 2.0 * half / (n - 1), -half, -half, [z](double, double) { return z; });
 }
 
-FogLighting sky_only()
-{
-    FogLighting l;
-    l.sun_radiance = glm::dvec3(0.0);
-    l.ambient = glm::dvec3(0.2, 0.3, 0.4);
-    l.terrain_shadows = false;
-    l.fog_shadows = false;
-    return l;
-}
-
-void expect_rel(const glm::dvec3& a, const glm::dvec3& b, double tol)
-{
-    for (int c = 0; c < 3; ++c)
-        EXPECT_NEAR(a[c], b[c], tol * std::abs(b[c]) + 1e-15) << "channel " << c;
-}
+using kiri::test::expect_rel;
+using kiri::test::sky_only;
 
 }  // namespace
 

@@ -1,10 +1,16 @@
 #pragma once
-// Test helpers shared by the lighting tests: a uniform slab of fog and Gauss-Legendre quadrature.
+// Test helpers shared by the lighting tests: a uniform slab of fog, light from the sky alone, a
+// relative comparison of colours and Gauss-Legendre quadrature.
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <numbers>
 #include <utility>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
+#include "kiri/geometry/medium/fog_lighting.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 
 namespace kiri::test {
@@ -32,6 +38,24 @@ inline geometry::Medium slab_medium(double bottom, double top, double sigma, dou
     d.detail = detail;
     d.detail_scale = 150.0;
     return geometry::Medium(std::move(grid), o, d);
+}
+
+// Lit by the sky alone: no sun, no shadows.
+inline geometry::FogLighting sky_only()
+{
+    geometry::FogLighting l;
+    l.sun_radiance = glm::dvec3(0.0);
+    l.ambient = glm::dvec3(0.2, 0.3, 0.4);
+    l.terrain_shadows = false;
+    l.fog_shadows = false;
+    return l;
+}
+
+// Each channel of a within tol of b's, relatively.
+inline void expect_rel(const glm::dvec3& a, const glm::dvec3& b, double tol)
+{
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(a[c], b[c], tol * std::abs(b[c]) + 1e-15) << "channel " << c;
 }
 
 // Gauss-Legendre nodes and weights on [-1, 1] (Newton on the Legendre polynomial).

@@ -278,8 +278,8 @@ void FogMarcher::split_at_shadow_edges(MarchScratch& s) const
 
 glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s) const
 {
-    // render/shaders/terrain.frag before the air's haze (trace adds it), with the cast shadows and the
-    // fog's shade of the sun that the lighting model adds.
+    // render/shaders/terrain.frag before the air's haze (trace adds it), with the cast shadows
+    // and the fog's shade of the sun that the lighting model adds.
     const glm::dvec3 n = terrain_->normal(p.x, p.y);
     const glm::dvec3 base = ground_albedo(terrain_->ground(), p, n);
     double direct = std::max(glm::dot(n, sun_), 0.0);
@@ -297,7 +297,7 @@ glm::dvec3 FogMarcher::sky_radiance(const glm::dvec3& w) const
     if (!light_.sky)
         return glm::dvec3(0.0);
     const glm::dvec3 zenith = light_.ambient * glm::dvec3(0.9, 1.5, 2.6);
-    const glm::dvec3 horizon = mix(light_.ambient * 3.0, glm::dvec3(1.0), 0.3);
+    const glm::dvec3 horizon = sky_horizon(light_.ambient);
     const double elevation = std::clamp(w.z, -1.0, 1.0);
     glm::dvec3 sky = mix(horizon, zenith, std::pow(std::max(elevation, 0.0), 0.45));
     if (elevation < 0.0)
