@@ -5,6 +5,7 @@
 const float kFootprintSigma = 0.4;
 const float kMinLogGain = -16.0;
 const float kMinLogGamma = -80.0;
+const float kOwnShare = 0.5;  // geometry::billboard_own_share (attenuation_cpu.hpp)
 
 // f(x) = (exp(-x^2 / 2s^2) - e0) / (1 - e0) for x < 1, else 0.
 float footprint_profile(float x)
@@ -96,8 +97,22 @@ float self_log_gamma(vec3 g, vec3 self_grid, vec3 self_optics)
     return sum;
 }
 
+// own_column_log_gain (attenuation_cpu.hpp): the particle's footprint in the read's four columns,
+// weighted as the read weighs them, over the whole column (as if its shadow started before g).
+float own_column_log_gain(vec3 g, vec3 self_grid, vec3 self_optics)
+{
+    vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y);
+    float sum = 0.0;
+    for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+            ivec2 c = ivec2(di == 0 ? tx.x : tx.y, dj == 0 ? ty.x : ty.y);
+            sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * column_self_log_gain(c, self_grid, self_optics);
+        }
+    return sum;
+}
+
 // log Gamma at grid point g for the particle described by self_grid / self_optics (it does not
-// shade itself): trilinear log Gamma - its own part.
+// shade itself, Harris's particle at its centre): trilinear log Gamma - its own part.
 float particle_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, vec3 self_optics)
 {
     float raw = texture(log_gamma, g / vec3(u_grid_size)).r;

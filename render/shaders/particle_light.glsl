@@ -13,8 +13,11 @@ layout(std430, binding = 5) buffer SelfGains { float self_gains[]; };
 
 uniform int u_self_table;  // 0: the table is missing (too large), the gains are computed
 
-// self_log_gamma (particle_footprint.glsl) with the column gains read from the table.
-float table_self_log_gamma(vec3 g, vec3 self_grid, ivec4 window, uint offset)
+// What a billboard's read at g holds of its own particle that it should not:
+// self_log_gamma - own_column_log_gain (particle_footprint.glsl), the column gains read from the
+// table. The read holds the own cylinder from the particle's depth on; the billboard takes its
+// footprint's whole column instead (billboard_log_gamma).
+float table_own_excess(vec3 g, vec3 self_grid, ivec4 window, uint offset)
 {
     vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y), tz = linear_taps(g.z, u_grid_size.z);
     float sum = 0.0;
@@ -26,18 +29,22 @@ float table_self_log_gamma(vec3 g, vec3 self_grid, ivec4 window, uint offset)
                 continue;  // beyond the particle's radius: no deposit
             float gain = self_gains[offset + uint(local.y * window.z + local.x)];
             if (gain != 0.0)
-                sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * self_depth_weight(c, self_grid, tz) * gain;
+                sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * (self_depth_weight(c, self_grid, tz) - kOwnShare) * gain;
         }
     return sum;
 }
 
-// log Gamma at grid point g for a particle (its record's self_grid, window and offset; optics
-// radius, tau, albedo): the trilinear read less the particle's own cylinder.
+// log Gamma at grid point g on a particle's billboard (its record's self_grid, window and offset;
+// optics radius, tau, albedo), attenuation_cpu.hpp's billboard_log_gamma: the trilinear read less
+// the particle's own cylinder, plus its footprint's whole column. The particle stands for the
+// Medium around it, whose neighbourhood the blue-noise sampler left about one particle short
+// (docs/particles.md, "Lit as the Medium").
 float billboard_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, ivec4 window, uint offset, vec3 optics)
 {
     float raw = texture(log_gamma, g / vec3(u_grid_size)).r;
-    float self = u_self_table != 0 ? table_self_log_gamma(g, self_grid, window, offset) : self_log_gamma(g, self_grid, optics);
-    return clamp(raw - self, kMinLogGamma, 0.0);
+    float excess = u_self_table != 0 ? table_own_excess(g, self_grid, window, offset)
+                                     : self_log_gamma(g, self_grid, optics) - kOwnShare * own_column_log_gain(g, self_grid, optics);
+    return clamp(raw - excess, kMinLogGamma, 0.0);
 }
 
 uniform float u_anisotropy;

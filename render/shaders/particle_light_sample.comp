@@ -1,7 +1,7 @@
 #version 450 core
 // log Gamma at given points on given particles' billboards, both as a billboard's fragment
 // reads it (billboard_log_gamma: the particle's record and gain table) and with the own
-// cylinder computed in full from the particle (self_log_gamma): the check that the
+// footprint computed in full from the particle (self_log_gamma, own_column_log_gain): the check that the
 // per-particle light changes nothing (render/src/particle_light.hpp).
 layout(local_size_x = 64) in;
 
@@ -23,6 +23,7 @@ void main()
     vec3 g = grid_of(q.xyz), optics = vec3(p.position_radius.w, p.optics.xy);
     float by_table = billboard_log_gamma(u_log_gamma, g, record.grid_visible.xyz, record.window, record.offset.x, optics);
     float raw = texture(u_log_gamma, g / vec3(u_grid_size)).r;
-    float direct = clamp(raw - self_log_gamma(g, shadow_grid(grid_of(p.position_radius.xyz)), optics), kMinLogGamma, 0.0);
+    vec3 self_grid = shadow_grid(grid_of(p.position_radius.xyz));
+    float direct = clamp(raw - self_log_gamma(g, self_grid, optics) + kOwnShare * own_column_log_gain(g, self_grid, optics), kMinLogGamma, 0.0);
     results[id] = vec2(by_table, direct);
 }

@@ -1,9 +1,10 @@
 #version 450 core
 // A particle billboard: opacity 1 - T from its Gaussian footprint, lit by the fog's shared model
 // (geometry::fog_source, fog_lighting.hpp) with the sun seen through the attenuation buffer:
-// Gamma at this fragment (the particle's own cylinder removed) stands for exp(-tau_sun), so
-// octave i sees Gamma^(b^i); hazed with distance like the terrain, faded out where it meets the
-// terrain (soft edge); in the terrain's shadow from the sun (the renderer's shadow map, as the
+// Gamma at this fragment (billboard_log_gamma, particle_light.glsl: the particle's own footprint
+// counted as the Medium around it would be) stands for exp(-tau_sun), so octave i sees
+// Gamma^(b^i); hazed with distance like the terrain, faded out where it meets the terrain (soft
+// edge); in the terrain's shadow from the sun (the renderer's shadow map, as the
 // froxels and the CPU reference see it). Blended back to front, premultiplied linear radiance:
 // E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
 in vec3 v_relative;

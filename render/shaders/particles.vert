@@ -1,6 +1,6 @@
 #version 450 core
-// Particle billboards (Harris's render pass, [Shimada08] (5)-(6)): a camera-facing square of the
-// particle's radius, drawn back to front in the order the CPU sorted (u_order). The froxel fog in
+// Particle billboards (Harris's render pass, [Shimada08] (5)-(6)): a square of the particle's
+// radius facing the eye, drawn back to front in the order the CPU sorted (u_order). The froxel fog in
 // front of it (froxel_apply.glsl; none without it) is read at the corners and interpolated: at
 // the billboard's one depth it changes over the froxels' tiles, and the fragments of the
 // billboards' overdraw then pay no lookup. What the particle's light needs of the particle
@@ -32,7 +32,14 @@ void main()
     uint id = order[u_first + uint(gl_VertexID >> 2)];
     vec4 p = particles[id].position_radius;
     vec2 corner = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
-    v_relative = p.xyz + (corner.x * u_camera_right + corner.y * u_camera_up) * p.w;
+    // The disc faces the eye, not the screen's plane: it then covers the solid angle pi r^2 / d^2
+    // its optical depth is spread over. A disc in the screen's plane covers cos(theta) of that at
+    // theta off the view's axis, and drew the default view's fog 0.7 points too thin.
+    vec3 to_eye = normalize(u_eye - (p.xyz + u_centre));
+    vec3 right = cross(u_camera_up, to_eye);
+    right = dot(right, right) > 1e-8 ? normalize(right) : u_camera_right;
+    vec3 up = cross(to_eye, right);
+    v_relative = p.xyz + (corner.x * right + corner.y * up) * p.w;
     v_world = v_relative + u_centre;
     v_offset = corner;
     v_grid_visible = particle_lights[id].grid_visible;

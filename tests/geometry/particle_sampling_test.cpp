@@ -139,7 +139,11 @@ TEST(ParticleSampling, CarriesTheMediumsExtinction)
         EXPECT_EQ(p.albedo, m.options().albedo);
     }
     EXPECT_NEAR(carried, 0.03 * c.density_integral, 1e-9 * carried);
-    EXPECT_NEAR(c.forward_scattering, forward_scattering_fraction(0.8), 1e-15);
+    // By default no light stays in the sun's beam: the shared lighting model carries it.
+    EXPECT_EQ(c.forward_scattering, 0.0);
+    ParticleOptions harris = options(300);
+    harris.forward_scattering = forward_scattering_fraction(m.options().anisotropy);  // Harris's own model
+    EXPECT_NEAR(sample_particles(m, harris).forward_scattering, 0.228, 1e-3);
     // Overrides.
     ParticleOptions o = options(300);
     o.extinction = 0.06;

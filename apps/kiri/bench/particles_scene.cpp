@@ -40,6 +40,8 @@ geometry::ParticleCloud ParticleBenchScene::sample(const geometry::Medium& mediu
 {
     geometry::ParticleOptions o;
     o.count = int(count);
+    // Harris's c from the Medium's g: his own model, measured against his exact pass.
+    o.forward_scattering = geometry::forward_scattering_fraction(medium.options().anisotropy);
     return geometry::sample_particles(medium, o);
 }
 

@@ -60,7 +60,13 @@ double sample_log_gamma(const AttenuationVolume& v, const glm::dvec3& p)
     return sum;
 }
 
-double self_log_gamma(const LightGrid& g, const Particle& self, double forward, const glm::dvec3& q)
+namespace {
+
+// The own footprint's log gain in the four columns a trilinear read at q takes, weighted as the
+// read weighs them: from the particle's shadow start on (what the read holds of it), or over the
+// whole column.
+double own_read_log_gain(const LightGrid& g, const Particle& self, double forward, const glm::dvec3& q,
+                         bool whole_column)
 {
     const glm::dvec3 c = g.to_grid(q);
     const glm::dvec3 s = g.light_coordinates(self.position);
@@ -75,11 +81,30 @@ double self_log_gamma(const LightGrid& g, const Particle& self, double forward, 
                 continue;
             const int start = std::max(g.shadow_start(s.z, i, j), 0);
             // Depth taps at or beyond the start hold the particle (the prefix sum).
-            const double depth = (z.a >= start ? 1.0 - z.t : 0.0) + (z.b >= start ? z.t : 0.0);
+            const double depth = whole_column ? 1.0 : (z.a >= start ? 1.0 - z.t : 0.0) + (z.b >= start ? z.t : 0.0);
             sum += (di ? x.t : 1.0 - x.t) * (dj ? y.t : 1.0 - y.t) * depth *
                 footprint_log_gain(rho, self.radius, self.optical_depth, self.albedo, forward);
         }
     return sum;
+}
+
+}  // namespace
+
+double self_log_gamma(const LightGrid& g, const Particle& self, double forward, const glm::dvec3& q)
+{
+    return own_read_log_gain(g, self, forward, q, false);
+}
+
+double own_column_log_gain(const LightGrid& g, const Particle& self, double forward, const glm::dvec3& q)
+{
+    return own_read_log_gain(g, self, forward, q, true);
+}
+
+double billboard_log_gamma(const AttenuationVolume& v, const Particle& self, double forward, const glm::dvec3& q)
+{
+    const double log_gamma = sample_log_gamma(v, q) - self_log_gamma(v.grid, self, forward, q) +
+        billboard_own_share * own_column_log_gain(v.grid, self, forward, q);
+    return std::clamp(log_gamma, min_log_gamma, 0.0);
 }
 
 double particle_gamma(const AttenuationVolume& v, const ParticleCloud& cloud, std::size_t k)

@@ -95,8 +95,7 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     ParticleCloud cloud;
     cloud.anisotropy = medium.options().anisotropy;
     cloud.scattering_octaves = shader_octaves(medium.options());
-    cloud.forward_scattering =
-        options.forward_scattering >= 0.0 ? options.forward_scattering : forward_scattering_fraction(cloud.anisotropy);
+    cloud.forward_scattering = options.forward_scattering;
     cloud.candidate_count = candidates.size();
     cloud.trial_count = trials;
     if (candidates.empty())

@@ -44,8 +44,21 @@ void for_each_deposit(const LightGrid& grid, const Particle& p, double forward, 
 double sample_log_gamma(const AttenuationVolume& volume, const glm::dvec3& p);
 //! What the buffer's trilinear read at world point q holds of particle `self`'s own cylinder.
 double self_log_gamma(const LightGrid& grid, const Particle& self, double forward, const glm::dvec3& q);
-//! Gamma of particle k at its centre: exp(sample - self), in (0, 1].
+//! What the read at q would hold of particle `self`'s footprint if its shadow started before q:
+//! the footprint's log gain in the read's four columns, weighted as the read weighs them.
+double own_column_log_gain(const LightGrid& grid, const Particle& self, double forward, const glm::dvec3& q);
+//! Gamma of particle k at its centre: exp(sample - self), in (0, 1] (Harris: a particle is not
+//! lit through itself).
 double particle_gamma(const AttenuationVolume& volume, const ParticleCloud& cloud, std::size_t k);
+//! The share of its own footprint's column that shades a particle's billboard. A particle stands
+//! for the Medium around it, and the blue-noise sampler keeps the others away from it: its
+//! neighbourhood holds about one particle less than the Medium would (a hyperuniform set), half of
+//! it towards the sun. The particle's own mass, spread as its footprint, makes that up.
+inline constexpr double billboard_own_share = 0.5;
+//! log Gamma at point q of particle `self`'s billboard, as particles.frag reads it: the read less
+//! its own cylinder, plus billboard_own_share of its footprint's column, in [min_log_gamma, 0]
+//! (docs/particles.md, "Lit as the Medium").
+double billboard_log_gamma(const AttenuationVolume& volume, const Particle& self, double forward, const glm::dvec3& q);
 
 }  // namespace kiri::geometry
 

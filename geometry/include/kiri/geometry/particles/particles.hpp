@@ -41,11 +41,14 @@ struct ParticleOptions {
     int count = 20000;     //!< ignored when spacing > 0
     double spacing = 0.0;  //!< 0: use count
     double radius_scale = 1.5;
-    double radius_min = 0.0;           //!< 0: radius_scale * the spacing at full density
-    double radius_max = 0.0;           //!< 0: twice that (densities below 1/8 get no larger particles)
-    double albedo = -1.0;              //!< < 0: the Medium's albedo
-    double extinction = 0.0;           //!< 0: the Medium's
-    double forward_scattering = -1.0;  //!< < 0: from the Medium's g
+    double radius_min = 0.0;  //!< 0: radius_scale * the spacing at full density
+    double radius_max = 0.0;  //!< 0: twice that (densities below 1/8 get no larger particles)
+    double albedo = -1.0;     //!< < 0: the Medium's albedo
+    double extinction = 0.0;  //!< 0: the Medium's
+    //! c of (7). 0: none, the default: the shared lighting model's multiple scattering carries
+    //! the light scattered forward, and the sun's optical depth is then the fog's, as every
+    //! renderer reads it. Harris's own model: forward_scattering_fraction(the Medium's g).
+    double forward_scattering = 0.0;
     std::uint64_t seed = 1;
     double candidates = 5.0;
     // The attenuation buffer and the billboards (render).
@@ -118,8 +121,9 @@ void visit_fields(O& o, V&& v)
     v(o.forward_scattering,
       {.key = "forward_scattering",
        .range = closed(0, 1),
-       .doc = "c = p(l,l)/4pi of (7)",
-       .shown_default = "from the Medium's g",
+       .doc = "c = p(l,l)/4pi of (7), Harris's light scattered on along the sun's beam; 0: the shared "
+              "lighting model's multiple scattering carries that light",
+       .shown_default = "0",
        .omit_default = true});
     v(o.seed, {.key = "seed", .range = closed(0, 2147483647), .doc = "the same seed, the same particles"});
     v(o.candidates,
