@@ -1,9 +1,14 @@
 #include "render_targets.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
+#include <glm/mat3x3.hpp>
+#include <glm/matrix.hpp>
+
 #include "kiri/geometry/core/error.hpp"
+#include "shader_program.hpp"
 
 namespace kiri::render::detail {
 namespace {
@@ -26,12 +31,12 @@ void RenderTargets::ensure(int width, int height)
         throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) +
                     " is outside what this OpenGL supports (1.." + std::to_string(max_size) + ")");
     msaa_color_ = make_renderbuffer();
-    msaa_depth_ = make_renderbuffer();
+    msaa_depth_ = make_texture(GL_TEXTURE_2D_MULTISAMPLE);
     display_color_ = make_renderbuffer();
     resolved_color_ = make_texture(GL_TEXTURE_2D);
     resolved_depth_ = make_texture(GL_TEXTURE_2D);
     glNamedRenderbufferStorageMultisample(msaa_color_.get(), samples, GL_RGBA16F, width, height);
-    glNamedRenderbufferStorageMultisample(msaa_depth_.get(), samples, GL_DEPTH_COMPONENT32F, width, height);
+    glTextureStorage2DMultisample(msaa_depth_.get(), samples, GL_DEPTH_COMPONENT32F, width, height, GL_TRUE);
     glNamedRenderbufferStorage(display_color_.get(), GL_RGBA8, width, height);
     for (const Texture* t : {&resolved_color_, &resolved_depth_}) {
         glTextureStorage2D(t->get(), 1, t == &resolved_color_ ? GL_RGBA16F : GL_DEPTH_COMPONENT32F, width, height);
@@ -44,7 +49,7 @@ void RenderTargets::ensure(int width, int height)
     resolved_ = make_framebuffer();
     display_ = make_framebuffer();
     glNamedFramebufferRenderbuffer(msaa_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_.get());
-    glNamedFramebufferRenderbuffer(msaa_.get(), GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth_.get());
+    glNamedFramebufferTexture(msaa_.get(), GL_DEPTH_ATTACHMENT, msaa_depth_.get(), 0);
     glNamedFramebufferTexture(resolved_.get(), GL_COLOR_ATTACHMENT0, resolved_color_.get(), 0);
     glNamedFramebufferTexture(resolved_.get(), GL_DEPTH_ATTACHMENT, resolved_depth_.get(), 0);
     glNamedFramebufferRenderbuffer(display_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, display_color_.get());
@@ -54,6 +59,44 @@ void RenderTargets::ensure(int width, int height)
     check_complete(display_.get(), "display");
     width_ = width;
     height_ = height;
+    prepare_depth_resolve();
+}
+
+void RenderTargets::prepare_depth_resolve()
+{
+    if (!depth_resolve_) {
+        depth_resolve_ = std::make_shared<ShaderProgram>(
+            std::initializer_list<std::string_view>{"fullscreen.vert", "depth_resolve.frag"});
+        empty_vao_ = make_vertex_array();
+    }
+    // Where the implementation puts the samples, as offsets from the pixel's centre, and the
+    // least-squares plane through them: (a, b, c) = (A^T A)^-1 A^T d, rows [1, dx, dy] of A.
+    glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
+    GLint n = 0;
+    glGetIntegerv(GL_SAMPLES, &n);
+    n = std::clamp(n, 1, 8);
+    resolve_samples_ = n;
+    sample_offsets_.assign(16, 0.0f);
+    glm::dmat3 normal(0.0);
+    std::vector<glm::dvec3> rows(std::size_t(n), glm::dvec3(1.0, 0.0, 0.0));
+    for (int s = 0; s < n; ++s) {
+        float position[2] = {0.5f, 0.5f};
+        if (n > 1)
+            glGetMultisamplefv(GL_SAMPLE_POSITION, GLuint(s), position);
+        rows[std::size_t(s)] = {1.0, position[0] - 0.5, position[1] - 0.5};
+        sample_offsets_[std::size_t(2 * s)] = float(rows[std::size_t(s)].y);
+        sample_offsets_[std::size_t(2 * s + 1)] = float(rows[std::size_t(s)].z);
+        normal += glm::outerProduct(rows[std::size_t(s)], rows[std::size_t(s)]);
+    }
+    // With fewer than three samples (or all in a line) the plane is the mean: a alone.
+    const bool solvable = n >= 3 && std::abs(glm::determinant(normal)) > 1e-12;
+    const glm::dmat3 inverse = solvable ? glm::inverse(normal) : glm::dmat3(0.0);
+    sample_fit_.assign(24, 0.0f);  // 3 rows x 8 samples
+    for (int s = 0; s < n; ++s) {
+        const glm::dvec3 column = solvable ? inverse * rows[std::size_t(s)] : glm::dvec3(1.0 / n, 0.0, 0.0);
+        for (int k = 0; k < 3; ++k)
+            sample_fit_[std::size_t(8 * k + s)] = float(column[k]);
+    }
 }
 
 void RenderTargets::bind_for_drawing() const
@@ -64,11 +107,29 @@ void RenderTargets::bind_for_drawing() const
     glClear(GL_DEPTH_BUFFER_BIT);
 }
 
-void RenderTargets::resolve() const
+void RenderTargets::resolve()
 {
-    // Depth cannot be averaged: NEAREST takes one sample, colour samples are averaged anyway.
     glBlitNamedFramebuffer(msaa_.get(), resolved_.get(), 0, 0, width_, height_, 0, 0, width_, height_,
-                           GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+                           GL_COLOR_BUFFER_BIT, GL_NEAREST);
+    // A blit of depth copies one sample; the pixel's centre comes from all of them.
+    const ShaderProgram& p = *depth_resolve_;
+    p.set("u_depth", 0);
+    p.set("u_samples", resolve_samples_);
+    glProgramUniform2fv(p.id(), p.location("u_offsets"), 8, sample_offsets_.data());
+    glProgramUniform4fv(p.id(), p.location("u_fit"), 6, sample_fit_.data());
+    p.use();
+    glBindFramebuffer(GL_FRAMEBUFFER, resolved_.get());
+    glViewport(0, 0, width_, height_);
+    glBindTextureUnit(0, msaa_depth_.get());
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_ALWAYS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    glBindVertexArray(empty_vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_LESS);
 }
 
 std::vector<std::uint8_t> RenderTargets::read_rgba() const

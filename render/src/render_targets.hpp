@@ -1,14 +1,18 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "gl_objects.hpp"
 
 namespace kiri::render::detail {
 
+class ShaderProgram;
+
 //! The offscreen framebuffers of a frame. Passes draw linear radiance into a 4x multisampled
 //! half-float target (colour RGBA16F, depth 32F), resolved into single-sampled copies ("hdr")
-//! that later passes blend into (layers, fog); one tone-mapping pass turns it into the 8-bit
+//! that later passes blend into (layers, fog); the depth is resolved to each pixel's centre
+//! (depth_resolve.frag), where those passes take it to lie; one tone-mapping pass turns it into the 8-bit
 //! "display" image that is read back or shown, which shares the resolved depth so overlays
 //! drawn on it are depth-tested against the scene.
 class RenderTargets {
@@ -17,7 +21,9 @@ public:
     //! (Re)allocates only when the size changes.
     void ensure(int width, int height);
     void bind_for_drawing() const;
-    void resolve() const;
+    //! The colour averaged, the depth at each pixel's centre (the samples' plane there, or the
+    //! nearest sample at an edge).
+    void resolve();
     //! Colour rows top to bottom (the GL origin is bottom-left).
     std::vector<std::uint8_t> read_rgba() const;
     //! Depth in [0, 1] of pixel (x, y), origin top-left.
@@ -32,10 +38,16 @@ public:
     int height() const { return height_; }
 
 private:
+    void prepare_depth_resolve();
     int width_ = 0, height_ = 0;
     Framebuffer msaa_, resolved_, display_;
-    Renderbuffer msaa_color_, msaa_depth_, display_color_;
+    Renderbuffer msaa_color_, display_color_;
+    Texture msaa_depth_;                       // multisampled, read by the depth resolve
     Texture resolved_color_, resolved_depth_;  // sampled by passes drawn after the resolve
+    std::shared_ptr<ShaderProgram> depth_resolve_;
+    VertexArray empty_vao_;
+    int resolve_samples_ = 0;
+    std::vector<float> sample_offsets_, sample_fit_;  // depth_resolve.frag's u_offsets, u_fit
 };
 
 }  // namespace kiri::render::detail

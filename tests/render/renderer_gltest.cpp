@@ -92,6 +92,52 @@ TEST_F(RendererGl, ACoarseTerrainLevelDrawsAFractionOfTheGridAndTheSameGround)
     EXPECT_LT(difference, 0.01);
 }
 
+TEST_F(RendererGl, TheResolvedDepthIsThePixelCentres)
+{
+    // A tilted plane seen at a grazing angle: the depth every pass after the resolve reads at a
+    // pixel (pick unprojects it through the pixel's centre) must be where the centre's ray meets
+    // the plane. A copy of one MSAA sample put it 0.4 pixel off: tens of metres at a distance.
+    kiri::geometry::Heightfield hf;
+    hf.nx = hf.ny = 65;
+    hf.dx = hf.dy = 40.0;
+    hf.x0 = hf.y0 = -1280.0;
+    const auto plane = [](double x, double y) { return 200.0 + 0.1 * x + 0.3 * y; };
+    for (int j = 0; j < hf.ny; ++j)
+        for (int i = 0; i < hf.nx; ++i)
+            hf.z.push_back(plane(hf.x_of(i), hf.y_of(j)));
+    hf.valid.assign(hf.z.size(), 1);
+    const kiri::geometry::Terrain ground(std::move(hf));
+    Renderer renderer;
+    renderer.set_terrain(ground, 1.0, false);
+    Camera camera;
+    // Above the terrain's box: its near plane then keeps the depth's precision (an eye inside
+    // the box gets a near plane of centimetres).
+    camera.position = {-100.0, -3000.0, 1100.0};
+    camera.target = {0.0, 0.0, 200.0};
+    camera.fov_y_deg = 30.0;
+    const int w = 64, h = 48;
+    renderer.render(camera, w, h);
+    double worst = 0.0;
+    int checked = 0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const auto seen = renderer.pick(x, y);
+            if (!seen || std::abs(seen->x) > 1100.0 || std::abs(seen->y) > 1100.0)
+                continue;  // sky, or the plane's rim, where a pixel straddles two surfaces
+            // The centre's ray (through the picked point) meets the plane at t: pick's distance
+            // against it.
+            const glm::dvec3 d = glm::normalize(*seen - camera.position);
+            const glm::dvec3 e = camera.position;
+            const double t = (plane(e.x, e.y) - e.z) / (d.z - 0.1 * d.x - 0.3 * d.y);
+            const double rel = glm::length(*seen - e) / t - 1.0;
+            worst = std::max(worst, std::abs(rel));
+            ++checked;
+        }
+    EXPECT_GT(checked, w * h / 3);
+    // Measured: 1.6e-7 (a copy of sample 0: 7.9e-3).
+    EXPECT_LT(worst, 1e-4) << "relative distance along the ray";
+}
+
 TEST_F(RendererGl, KnownTerrainPointsAppearAtTheirProjectedPixels)
 {
     const kiri::geometry::Terrain hill = kiri::test::gaussian_hill();
