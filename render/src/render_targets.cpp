@@ -4,9 +4,6 @@
 #include <cstring>
 #include <string>
 
-#include <glm/mat3x3.hpp>
-#include <glm/matrix.hpp>
-
 #include "kiri/geometry/core/error.hpp"
 #include "shader_program.hpp"
 
@@ -69,33 +66,17 @@ void RenderTargets::prepare_depth_resolve()
             std::initializer_list<std::string_view>{"fullscreen.vert", "depth_resolve.frag"});
         empty_vao_ = make_vertex_array();
     }
-    // Where the implementation puts the samples, as offsets from the pixel's centre, and the
-    // least-squares plane through them: (a, b, c) = (A^T A)^-1 A^T d, rows [1, dx, dy] of A.
+    // Where the implementation puts the samples, as offsets from the pixel's centre.
     glBindFramebuffer(GL_FRAMEBUFFER, msaa_.get());
     GLint n = 0;
     glGetIntegerv(GL_SAMPLES, &n);
-    n = std::clamp(n, 1, 8);
-    resolve_samples_ = n;
+    resolve_samples_ = std::clamp(n, 1, 8);
     sample_offsets_.assign(16, 0.0f);
-    glm::dmat3 normal(0.0);
-    std::vector<glm::dvec3> rows(std::size_t(n), glm::dvec3(1.0, 0.0, 0.0));
-    for (int s = 0; s < n; ++s) {
+    for (int s = 0; s < resolve_samples_ && n > 1; ++s) {
         float position[2] = {0.5f, 0.5f};
-        if (n > 1)
-            glGetMultisamplefv(GL_SAMPLE_POSITION, GLuint(s), position);
-        rows[std::size_t(s)] = {1.0, position[0] - 0.5, position[1] - 0.5};
-        sample_offsets_[std::size_t(2 * s)] = float(rows[std::size_t(s)].y);
-        sample_offsets_[std::size_t(2 * s + 1)] = float(rows[std::size_t(s)].z);
-        normal += glm::outerProduct(rows[std::size_t(s)], rows[std::size_t(s)]);
-    }
-    // With fewer than three samples (or all in a line) the plane is the mean: a alone.
-    const bool solvable = n >= 3 && std::abs(glm::determinant(normal)) > 1e-12;
-    const glm::dmat3 inverse = solvable ? glm::inverse(normal) : glm::dmat3(0.0);
-    sample_fit_.assign(24, 0.0f);  // 3 rows x 8 samples
-    for (int s = 0; s < n; ++s) {
-        const glm::dvec3 column = solvable ? inverse * rows[std::size_t(s)] : glm::dvec3(1.0 / n, 0.0, 0.0);
-        for (int k = 0; k < 3; ++k)
-            sample_fit_[std::size_t(8 * k + s)] = float(column[k]);
+        glGetMultisamplefv(GL_SAMPLE_POSITION, GLuint(s), position);
+        sample_offsets_[std::size_t(2 * s)] = position[0] - 0.5f;
+        sample_offsets_[std::size_t(2 * s + 1)] = position[1] - 0.5f;
     }
 }
 
@@ -107,7 +88,7 @@ void RenderTargets::bind_for_drawing() const
     glClear(GL_DEPTH_BUFFER_BIT);
 }
 
-void RenderTargets::resolve()
+void RenderTargets::resolve(float near_plane, float far_plane)
 {
     glBlitNamedFramebuffer(msaa_.get(), resolved_.get(), 0, 0, width_, height_, 0, 0, width_, height_,
                            GL_COLOR_BUFFER_BIT, GL_NEAREST);
@@ -115,8 +96,9 @@ void RenderTargets::resolve()
     const ShaderProgram& p = *depth_resolve_;
     p.set("u_depth", 0);
     p.set("u_samples", resolve_samples_);
+    p.set("u_near", near_plane);
+    p.set("u_far", far_plane);
     glProgramUniform2fv(p.id(), p.location("u_offsets"), 8, sample_offsets_.data());
-    glProgramUniform4fv(p.id(), p.location("u_fit"), 6, sample_fit_.data());
     p.use();
     glBindFramebuffer(GL_FRAMEBUFFER, resolved_.get());
     glViewport(0, 0, width_, height_);

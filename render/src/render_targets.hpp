@@ -21,9 +21,9 @@ public:
     //! (Re)allocates only when the size changes.
     void ensure(int width, int height);
     void bind_for_drawing() const;
-    //! The colour averaged, the depth at each pixel's centre (the samples' plane there, or the
-    //! nearest sample at an edge).
-    void resolve();
+    //! The colour averaged, the depth at each pixel's centre (depth_resolve.frag); the near and
+    //! far planes of the frame's projection.
+    void resolve(float near_plane, float far_plane);
     //! Colour rows top to bottom (the GL origin is bottom-left).
     std::vector<std::uint8_t> read_rgba() const;
     //! Depth in [0, 1] of pixel (x, y), origin top-left.
@@ -47,7 +47,7 @@ private:
     std::shared_ptr<ShaderProgram> depth_resolve_;
     VertexArray empty_vao_;
     int resolve_samples_ = 0;
-    std::vector<float> sample_offsets_, sample_fit_;  // depth_resolve.frag's u_offsets, u_fit
+    std::vector<float> sample_offsets_;  // depth_resolve.frag's u_offsets
 };
 
 }  // namespace kiri::render::detail
