@@ -1,5 +1,6 @@
 #include "layers_pass.hpp"
 
+#include "depth_pass.hpp"
 #include "render_origin.hpp"
 
 #include "kiri/geometry/layers/layer_lod.hpp"
@@ -215,14 +216,7 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     depth_max_.set("u_far", float(p32 / (p22 + 1.0)));
     depth_max_.use();
     glBindTextureUnit(0, resolved_depth);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_ALWAYS);
-    glDepthMask(GL_TRUE);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glBindVertexArray(empty_vao_.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_LESS);
+    draw_fullscreen_depth(empty_vao_.get());
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
     draw_stack(frame, h);

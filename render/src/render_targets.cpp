@@ -5,6 +5,7 @@
 #include <string>
 
 #include "kiri/geometry/core/error.hpp"
+#include "depth_pass.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {
@@ -103,15 +104,8 @@ void RenderTargets::resolve(float near_plane, float far_plane)
     glBindFramebuffer(GL_FRAMEBUFFER, resolved_.get());
     glViewport(0, 0, width_, height_);
     glBindTextureUnit(0, msaa_depth_.get());
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_ALWAYS);
-    glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
-    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    glBindVertexArray(empty_vao_.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-    glDepthFunc(GL_LESS);
+    draw_fullscreen_depth(empty_vao_.get());
 }
 
 std::vector<std::uint8_t> RenderTargets::read_rgba() const
