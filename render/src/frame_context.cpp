@@ -55,6 +55,12 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
     return f;
 }
 
+glm::vec2 depth_planes(const FrameContext& frame)
+{
+    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    return {float(p32 / (p22 - 1.0)), float(p32 / (p22 + 1.0))};
+}
+
 bool box_in_view(const FrameContext& frame, const glm::dvec3& lo, const glm::dvec3& hi)
 {
     std::array<glm::dvec4, 8> clip;

@@ -27,6 +27,10 @@ struct FrameContext {
     glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band
 };
 
+//! The near and far planes of the frame's projection (x, y): what a depth-buffer value is turned
+//! into a view depth with, 2 n f / (f + n - z (f - n)) for z = 2 depth - 1.
+glm::vec2 depth_planes(const FrameContext& frame);
+
 //! False when the box [lo, hi] lies wholly outside one plane of the frame's view frustum
 //! (conservative: a box near a corner may pass).
 bool box_in_view(const FrameContext& frame, const glm::dvec3& lo, const glm::dvec3& hi);

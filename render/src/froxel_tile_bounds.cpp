@@ -90,14 +90,14 @@ void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, 
         glDepthMask(GL_TRUE);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
-    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    const glm::vec2 planes = depth_planes(frame);
     reduce_.set("u_first", 0);
     reduce_.set("u_last", 1);
     reduce_.set("u_ground", 2);
     reduce_.set("u_raster", raster_);
     reduce_.set("u_tiles", tiles);
-    reduce_.set("u_near_plane", float(p32 / (p22 - 1.0)));
-    reduce_.set("u_far_plane", float(p32 / (p22 + 1.0)));
+    reduce_.set("u_near_plane", planes.x);
+    reduce_.set("u_far_plane", planes.y);
     reduce_.set("u_near", float(near));
     reduce_.set("u_far", float(far));
     reduce_.set("u_mode", int(mode));

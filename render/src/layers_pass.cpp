@@ -211,9 +211,9 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     glViewport(0, 0, w, h);
     depth_max_.set("u_depth", 0);
     depth_max_.set("u_scale", glm::vec2(float(double(w) / frame.width), float(double(h) / frame.height)));
-    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
-    depth_max_.set("u_near", float(p32 / (p22 - 1.0)));
-    depth_max_.set("u_far", float(p32 / (p22 + 1.0)));
+    const glm::vec2 planes = depth_planes(frame);
+    depth_max_.set("u_near", planes.x);
+    depth_max_.set("u_far", planes.y);
     depth_max_.use();
     glBindTextureUnit(0, resolved_depth);
     draw_fullscreen_depth(empty_vao_.get());
@@ -225,8 +225,8 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned 
     composite_.set("u_low_depth", 1);
     composite_.set("u_depth", 2);
     composite_.set("u_low_size", glm::vec2(float(w), float(h)));
-    composite_.set("u_near", float(p32 / (p22 - 1.0)));
-    composite_.set("u_far", float(p32 / (p22 + 1.0)));
+    composite_.set("u_near", planes.x);
+    composite_.set("u_far", planes.y);
     composite_.use();
     glBindTextureUnit(0, low_color_.get());
     glBindTextureUnit(1, low_depth_.get());

@@ -171,7 +171,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
 
     const geometry::LightGrid& g = buffer_.grid();
     const glm::dmat4 inverse_view = glm::inverse(frame.view);
-    const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
+    const glm::vec2 planes = depth_planes(frame);
     // With froxel fog, the variant that reads it at each billboard's depth (froxel_apply.glsl).
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
@@ -200,8 +200,8 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     p.set("u_self_table", int(light_.has_table()));
     p.set("u_log_gamma", 0);
     p.set("u_depth", 1);
-    p.set("u_near", float(p32 / (p22 - 1.0)));
-    p.set("u_far", float(p32 / (p22 + 1.0)));
+    p.set("u_near", planes.x);
+    p.set("u_far", planes.y);
     p.set("u_soft_edge", float(style_.soft_edge));
     p.set("u_anisotropy", float(cloud_->anisotropy));
     p.set("u_eye", frame.eye);

@@ -407,8 +407,8 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     }
     {
         const ScopedPassTimer timed(r.resolve_timer);
-        const double p22 = frame.projection[2][2], p32 = frame.projection[3][2];
-        r.targets.resolve(float(p32 / (p22 - 1.0)), float(p32 / (p22 + 1.0)));
+        const glm::vec2 planes = detail::depth_planes(frame);
+        r.targets.resolve(planes.x, planes.y);
     }
     if (fog) {  // the volume from the frame's depth, then the fog on the resolved frame
         r.froxel->update(frame, r.terrain, r.targets.resolved_depth());
