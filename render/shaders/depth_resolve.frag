@@ -76,18 +76,9 @@ void main()
             if (plane_at_centre(lo, split, at))
                 depth = at;
         } else if (2.0 * near_count < float(u_samples)) {
-            // The far side: the sky (depth 1) where its samples see it, else their plane.
-            if (hi >= 1.0 && lo < 1.0 && split < 1.0) {
-                bool all_sky = true;
-                for (int s = 0; s < u_samples; ++s)
-                    all_sky = all_sky && (d[s] <= split || d[s] >= 1.0);
-                if (all_sky)
-                    depth = 1.0;
-                else if (plane_at_centre(split, hi, at))
-                    depth = at;
-            } else if (plane_at_centre(split, hi, at)) {
+            // The far side's plane: the sky (depth 1) where all its samples see the sky.
+            if (plane_at_centre(split, hi, at))
                 depth = at;
-            }
         }
     }
     gl_FragDepth = depth;

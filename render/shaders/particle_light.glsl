@@ -14,9 +14,9 @@ layout(std430, binding = 5) buffer SelfGains { float self_gains[]; };
 uniform int u_self_table;  // 0: the table is missing (too large), the gains are computed
 
 // What a billboard's read at g holds of its own particle that it should not:
-// self_log_gamma - own_column_log_gain (particle_footprint.glsl), the column gains read from the
-// table. The read holds the own cylinder from the particle's depth on; the billboard takes its
-// footprint's whole column instead (billboard_log_gamma).
+// self_log_gamma - kOwnShare own_column_log_gain (particle_footprint.glsl), the column gains read
+// from the table. The read holds the own cylinder from the particle's depth on; the billboard
+// takes kOwnShare of its footprint's column instead (billboard_log_gamma).
 float table_own_excess(vec3 g, vec3 self_grid, ivec4 window, uint offset)
 {
     vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y), tz = linear_taps(g.z, u_grid_size.z);
@@ -36,9 +36,9 @@ float table_own_excess(vec3 g, vec3 self_grid, ivec4 window, uint offset)
 
 // log Gamma at grid point g on a particle's billboard (its record's self_grid, window and offset;
 // optics radius, tau, albedo), attenuation_cpu.hpp's billboard_log_gamma: the trilinear read less
-// the particle's own cylinder, plus its footprint's whole column. The particle stands for the
-// Medium around it, whose neighbourhood the blue-noise sampler left about one particle short
-// (docs/particles.md, "Lit as the Medium").
+// the particle's own cylinder, plus kOwnShare of its footprint's column. The particle stands for
+// the Medium around it, whose neighbourhood the blue-noise sampler left about one particle short,
+// half of it towards the sun (docs/particles.md, "Lit as the Medium").
 float billboard_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, ivec4 window, uint offset, vec3 optics)
 {
     float raw = texture(log_gamma, g / vec3(u_grid_size)).r;
