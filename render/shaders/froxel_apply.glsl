@@ -66,6 +66,8 @@ vec4 froxel_fog(vec3 world)
     if (u_fx_apply == 0)
         return vec4(0.0, 0.0, 0.0, 1.0);
     vec4 clip = u_fx_view_projection * vec4(world, 1.0);
+    if (!(clip.w > 1e-6))  // at the eye or behind it: no fog in front
+        return vec4(0.0, 0.0, 0.0, 1.0);
     return froxel_fog_at(clip.xy / clip.w * 0.5 + 0.5, dot(world - u_fx_eye, u_fx_forward));
 }
 

@@ -16,6 +16,41 @@ float footprint_profile(float x)
     return (exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma)) - e0) / (1.0 - e0);
 }
 
+// erf by Abramowitz and Stegun 7.1.26 (absolute error below 1.5e-7).
+float erf_approx(float x)
+{
+    float t = 1.0 / (1.0 + 0.3275911 * abs(x));
+    float y = 1.0 - t * (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429)))) * exp(-x * x);
+    return x < 0.0 ? -y : y;
+}
+
+// footprint_ray_share (particle_footprint.hpp): of the column a ray passing x = rho / r from a
+// particle's centre crosses, the share between u0 and u1 (metres along the ray from its point
+// nearest the centre). The particle in three dimensions is the footprint's Gaussian,
+// exp(-q^2 / 2 (s r)^2) - e0 at distance q < r from its centre.
+float chord_integral(float x, float u)  // from 0 to u along the chord, radius 1
+{
+    float g = exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma));
+    float e0 = exp(-1.0 / (2.0 * kFootprintSigma * kFootprintSigma));
+    return 1.2533141373155 * kFootprintSigma * g * erf_approx(u * 0.70710678118655 / kFootprintSigma) - e0 * u;
+}
+float footprint_ray_share(float x, float radius, float u0, float u1)
+{
+    if (!(x < 1.0) || !(radius > 0.0))
+        return 0.0;
+    x = max(x, 0.0);
+    float half_chord = sqrt(1.0 - x * x);
+    float a = clamp(u0 / radius, -half_chord, half_chord), b = clamp(u1 / radius, -half_chord, half_chord);
+    if (!(b > a))
+        return 0.0;
+    float whole = 2.0 * chord_integral(x, half_chord);
+    // At the rim float loses the integral to cancellation; the density is nearly even along so
+    // short a chord: share by length (the CPU's threshold is lower).
+    if (!(whole > 1e-4))
+        return (b - a) / (2.0 * half_chord);
+    return clamp((chord_integral(x, b) - chord_integral(x, a)) / whole, 0.0, 1.0);
+}
+
 // log G, G = T + a c (1 - T), T = exp(-tau f(rho / r)), clamped to [kMinLogGain, 0].
 float footprint_log_gain(float rho, float radius, float tau, float albedo, float forward)
 {

@@ -1,15 +1,15 @@
 #version 450 core
-// A particle billboard: opacity 1 - T from its Gaussian footprint, lit by the fog's shared model
+// A particle billboard: opacity 1 - T from its Gaussian footprint along this fragment's ray, the
+// part of the particle's column between the eye and the terrain (footprint_ray_share), lit by the
+// fog's shared model
 // (geometry::fog_source, fog_lighting.hpp) with the sun seen through the attenuation buffer:
 // Gamma at this fragment (billboard_log_gamma, particle_light.glsl: the particle's own footprint
 // counted as the Medium around it would be) stands for exp(-tau_sun), so octave i sees
-// Gamma^(b^i); hazed with distance like the terrain, faded out where it meets the terrain (soft
-// edge); in the terrain's shadow from the sun (the renderer's shadow map, as the
+// Gamma^(b^i); hazed with distance like the terrain; in the terrain's shadow from the sun (the renderer's shadow map, as the
 // froxels and the CPU reference see it). Blended back to front, premultiplied linear radiance:
 // E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
-in vec3 v_relative;
-in vec3 v_world;
-in vec2 v_offset;
+in vec3 v_ray;
+flat in vec3 v_centre;
 flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
@@ -24,6 +24,8 @@ uniform float u_near;
 uniform float u_far;
 uniform float u_soft_edge;       // metres
 uniform vec3 u_eye;
+uniform vec3 u_camera_forward;
+uniform vec3 u_centre;  // the cloud's centre
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
 out vec4 o_color;
@@ -36,23 +38,31 @@ float linear_depth(float d)
 
 void main()
 {
-    float x = length(v_offset);
+    // The ray through this fragment and where it passes the particle: its distance rho from the
+    // centre and the part of the particle's column between the eye and the terrain behind.
+    vec3 ray = normalize(v_ray);
+    float along = dot(v_centre, ray);
+    float x = sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_optics.x;
     if (x >= 1.0)
         discard;
-    float alpha = 1.0 - exp(-v_optics.y * footprint_profile(x));
-    float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy * u_depth_scale), 0).r);
-    float here = linear_depth(gl_FragCoord.z);
-    alpha *= u_soft_edge > 0.0 ? clamp((scene - here) / u_soft_edge, 0.0, 1.0) : step(here, scene);
+    float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy * u_depth_scale), 0).r) /
+                  max(dot(ray, u_camera_forward), 1e-6);
+    float share = footprint_ray_share(x, v_optics.x, -along, scene - along);
+    float alpha = 1.0 - exp(-v_optics.y * footprint_profile(x) * share);
+    // Lit where the ray's visible part passes nearest the centre.
+    float t = clamp(along, 0.0, scene);
+    if (u_soft_edge > 0.0)  // a softer meeting with the terrain than the particle's own, if asked
+        alpha *= clamp((scene - t) / u_soft_edge, 0.0, 1.0);
     if (alpha < 1e-5)
         discard;
+    vec3 relative = u_eye - u_centre + ray * t;
     float log_gamma = 0.0;
     if (u_lit != 0)
-        log_gamma = billboard_log_gamma(u_log_gamma, grid_of(v_relative), v_grid_visible.xyz, v_window, v_table, v_optics);
-    vec3 view = normalize(v_world - u_eye);
-    vec3 radiance = particle_radiance(log_gamma, dot(view, u_sun_direction), v_optics.z, v_grid_visible.w);
+        log_gamma = billboard_log_gamma(u_log_gamma, grid_of(relative), v_grid_visible.xyz, v_window, v_table, v_optics);
+    vec3 radiance = particle_radiance(log_gamma, dot(ray, u_sun_direction), v_optics.z, v_grid_visible.w);
     // The baked multiple scattering, not hidden by the terrain's shadow (particles.vert).
     radiance += clamp(v_optics.z, 0.0, 1.0) * v_baked * u_sun_radiance;
-    float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);
+    float haze = 1.0 - exp(-t * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
     // The froxel fog in front of this billboard (read at its corners, particles.vert), as the
     // layers read it: over the already fogged frame, T C + a S composes to S + T (...).

@@ -1,6 +1,7 @@
 #version 450 core
-// Particle billboards (Harris's render pass, [Shimada08] (5)-(6)): a square of the particle's
-// radius facing the eye, drawn back to front in the order the CPU sorted (u_order). The froxel fog in
+// Particle billboards (Harris's render pass, [Shimada08] (5)-(6)): a square facing the eye that
+// holds the cone of rays passing the particle, or the whole screen for a particle around the eye,
+// drawn back to front in the order the CPU sorted (u_order). The froxel fog in
 // front of it (froxel_apply.glsl; none without it) is read at the corners and interpolated: at
 // the billboard's one depth it changes over the froxels' tiles, and the fragments of the
 // billboards' overdraw then pay no lookup. What the particle's light needs of the particle
@@ -15,9 +16,8 @@ uniform mat4 u_view_projection;
 uniform vec3 u_centre;  // the cloud's centre (positions are relative to it)
 uniform vec3 u_camera_right;
 uniform vec3 u_camera_up;
-out vec3 v_relative;  // relative to the cloud's centre
-out vec3 v_world;
-out vec2 v_offset;    // in radii, (0, 0) at the centre
+out vec3 v_ray;       // from the eye through this corner
+flat out vec3 v_centre;  // the particle's centre, from the eye
 flat out vec4 v_grid_visible;  // the particle's record (particle_light.glsl)
 flat out ivec4 v_window;
 flat out uint v_table;
@@ -25,6 +25,9 @@ flat out vec3 v_optics;  // radius, tau, albedo
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
 flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
 uniform vec3 u_eye;
+uniform vec3 u_camera_forward;
+uniform vec2 u_tan_half;  // tan of half the view's angle across and up
+const float kWholeScreen = 1.5;  // a particle nearer than this many radii covers the screen
 
 void main()
 {
@@ -32,24 +35,39 @@ void main()
     uint id = order[u_first + uint(gl_VertexID >> 2)];
     vec4 p = particles[id].position_radius;
     vec2 corner = vec2((gl_VertexID & 1) == 0 ? -1.0 : 1.0, (gl_VertexID & 2) == 0 ? -1.0 : 1.0);
-    // The disc faces the eye, not the screen's plane: it then covers the solid angle pi r^2 / d^2
-    // its optical depth is spread over. A disc in the screen's plane covers cos(theta) of that at
-    // theta off the view's axis, and drew the default view's fog 0.7 points too thin.
-    vec3 to_eye = normalize(u_eye - (p.xyz + u_centre));
-    vec3 right = cross(u_camera_up, to_eye);
-    right = dot(right, right) > 1e-8 ? normalize(right) : u_camera_right;
-    vec3 up = cross(to_eye, right);
-    v_relative = p.xyz + (corner.x * right + corner.y * up) * p.w;
-    v_world = v_relative + u_centre;
-    v_offset = corner;
+    vec3 centre_world = p.xyz + u_centre;
+    vec3 from_eye = centre_world - u_eye;
+    float d = length(from_eye);
+    float r = p.w;
+    v_centre = from_eye;
+    vec3 corner_world;
+    if (d > kWholeScreen * r) {
+        // The disc faces the eye: it then covers the cone of rays passing within r of the
+        // centre, once its radius is r d / sqrt(d^2 - r^2) (the fragments measure each ray's own
+        // distance from the centre). A disc in the screen's plane covered cos(theta) of that at
+        // theta off the view's axis, and drew the default view's fog 0.7 points too thin.
+        vec3 to_eye = -from_eye / d;
+        vec3 right = cross(u_camera_up, to_eye);
+        right = dot(right, right) > 1e-8 ? normalize(right) : u_camera_right;
+        vec3 up = cross(to_eye, right);
+        float disc = r * d / sqrt(d * d - r * r);
+        corner_world = centre_world + (corner.x * right + corner.y * up) * disc;
+        v_ray = corner_world - u_eye;
+        gl_Position = u_view_projection * vec4(corner_world, 1.0);
+    } else {
+        // The eye is in the particle or at its rim: every ray from it may cross the particle, so
+        // it covers the whole screen (the fragments take the part of it in front of the eye).
+        v_ray = u_camera_forward + corner.x * u_tan_half.x * u_camera_right + corner.y * u_tan_half.y * u_camera_up;
+        vec3 ray = normalize(v_ray);
+        corner_world = u_eye + ray * max(dot(from_eye, ray), 0.05 * r);  // in front of the eye
+        gl_Position = vec4(corner, 0.0, 1.0);
+    }
     v_grid_visible = particle_lights[id].grid_visible;
     v_window = particle_lights[id].window;
     v_table = particle_lights[id].offset.x;
     v_optics = vec3(p.w, particles[id].optics.xy);
-    v_fog = froxel_fog(v_world);
+    v_fog = froxel_fog(corner_world);
     // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
     // may stand out of the Medium's shell, where the volume holds nothing.
-    vec3 centre = p.xyz + u_centre;
-    v_baked = u_lv_on != 0 ? lv_in_scattered_at(centre, normalize(u_eye - centre), u_anisotropy, false) : 0.0;
-    gl_Position = u_view_projection * vec4(v_world, 1.0);
+    v_baked = u_lv_on != 0 ? lv_in_scattered_at(centre_world, -from_eye / max(d, 1e-6), u_anisotropy, false) : 0.0;
 }

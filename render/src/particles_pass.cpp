@@ -196,6 +196,8 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     p.set("u_view_projection", frame.view_projection);
     p.set("u_camera_right", glm::vec3(inverse_view[0]));
     p.set("u_camera_up", glm::vec3(inverse_view[1]));
+    p.set("u_camera_forward", -glm::vec3(inverse_view[2]));
+    p.set("u_tan_half", glm::vec2(1.0 / frame.projection[0][0], 1.0 / frame.projection[1][1]));
     p.set("u_lit", 1);
     p.set("u_self_table", int(light_.has_table()));
     p.set("u_log_gamma", 0);

@@ -3,9 +3,11 @@
 // fraction of Henyey-Greenstein scattering.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/particles/particle_footprint.hpp"
@@ -59,6 +61,39 @@ TEST(ParticleFootprint, LogGainIsShimadasGainSaturated)
     // Never above 1: a particle does not add light, even very thick and white.
     for (double t : {0.1, 1.0, 5.0, 50.0, 1e6})
         EXPECT_LE(footprint_log_gain(0.0, r, t, 1.0, 0.5), 0.0);
+}
+
+TEST(ParticleFootprint, RayShareIsTheParticlesDensityIntegratedAlongTheRay)
+{
+    // The particle in three dimensions: k(q) = exp(-q^2 / 2 (s r)^2) - e0 for q < r. Along a ray
+    // passing rho from the centre, q^2 = rho^2 + u^2; integrated by Simpson's rule.
+    const double r = 50.0, s = 0.4 * r, e0 = std::exp(-1.0 / (2.0 * 0.16));
+    const auto k = [&](double rho, double u) { return std::max(std::exp(-(rho * rho + u * u) / (2.0 * s * s)) - e0, 0.0); };
+    const auto integral = [&](double rho, double a, double b) {
+        const int n = 4000;
+        double sum = 0.0;
+        for (int i = 0; i <= n; ++i)
+            sum += (i == 0 || i == n ? 1.0 : i % 2 ? 4.0 : 2.0) * k(rho, a + (b - a) * i / n);
+        return sum * (b - a) / (3.0 * n);
+    };
+    for (double x : {0.0, 0.3, 0.7, 0.95}) {
+        const double half = r * std::sqrt(1.0 - x * x), whole = integral(x * r, -half, half);
+        for (const auto& [u0, u1] : {std::pair{-half, 0.2 * half}, {-0.4 * half, 0.9 * half}, {0.5 * half, 2.0 * r}})
+            EXPECT_NEAR(footprint_ray_share(x, r, u0, u1), integral(x * r, u0, std::min(u1, half)) / whole, 1e-7)
+                << x << " " << u0 << " " << u1;
+    }
+    // The whole chord, half of it by symmetry, none of it; beyond the rim nothing.
+    EXPECT_NEAR(footprint_ray_share(0.4, r, -1e9, 1e9), 1.0, 1e-14);
+    EXPECT_NEAR(footprint_ray_share(0.4, r, 0.0, 1e9), 0.5, 1e-14);
+    EXPECT_NEAR(footprint_ray_share(0.4, r, -1e9, 0.0), 0.5, 1e-14);
+    EXPECT_EQ(footprint_ray_share(0.4, r, 10.0, 10.0), 0.0);
+    EXPECT_EQ(footprint_ray_share(0.4, r, 10.0, -10.0), 0.0);
+    EXPECT_EQ(footprint_ray_share(1.0, r, -1e9, 1e9), 0.0);
+    // At the rim, where the integral cancels, by length; never NaN.
+    EXPECT_NEAR(footprint_ray_share(1.0 - 1e-14, r, 0.0, 1e9), 0.5, 1e-6);
+    EXPECT_EQ(footprint_ray_share(std::nan(""), r, 0.0, 1.0), 0.0);
+    EXPECT_EQ(footprint_ray_share(0.2, r, std::nan(""), 1.0), 0.0);
+    EXPECT_EQ(footprint_ray_share(0.2, 0.0, -1.0, 1.0), 0.0);
 }
 
 TEST(ParticleFootprint, OpaqueParticlesGiveFiniteLogGains)

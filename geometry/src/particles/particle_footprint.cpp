@@ -1,6 +1,7 @@
 #include "kiri/geometry/particles/particle_footprint.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "kiri/geometry/particles/particles.hpp"
@@ -9,6 +10,15 @@ namespace kiri::geometry {
 namespace {
 
 const double e0 = std::exp(-1.0 / (2.0 * footprint_sigma * footprint_sigma));
+
+// The integral of k along a ray at x = rho / r from u = 0 to u (|u| within the half chord),
+// in units where the radius is 1: sqrt(pi / 2) s g erf(u / (s sqrt 2)) - e0 u, g = exp(-x^2 / 2s^2).
+double chord_integral(double x, double u)
+{
+    const double s = footprint_sigma;
+    const double g = std::exp(-x * x / (2.0 * s * s));
+    return std::sqrt(std::numbers::pi / 2.0) * s * g * std::erf(u / (s * std::numbers::sqrt2)) - e0 * u;
+}
 
 }  // namespace
 
@@ -54,6 +64,23 @@ double footprint_transmittance(double rho, double radius, double optical_depth)
         return 1.0;
     const double f = footprint_profile(rho / radius);
     return f <= 0.0 ? 1.0 : std::exp(-optical_depth * f);
+}
+
+double footprint_ray_share(double x, double radius, double u0, double u1)
+{
+    if (!(x < 1.0) || !(radius > 0.0) || std::isnan(u0) || std::isnan(u1))
+        return 0.0;
+    x = std::max(x, 0.0);
+    const double half = std::sqrt(1.0 - x * x);
+    const double a = std::clamp(u0 / radius, -half, half), b = std::clamp(u1 / radius, -half, half);
+    if (!(b > a))
+        return 0.0;
+    const double whole = 2.0 * chord_integral(x, half);
+    // At the rim the density along so short a chord is nearly even, and the integral is lost to
+    // cancellation: share by length there.
+    if (!(whole > 1e-12))
+        return (b - a) / (2.0 * half);
+    return std::clamp((chord_integral(x, b) - chord_integral(x, a)) / whole, 0.0, 1.0);
 }
 
 double forward_scattering_fraction(double g, double solid_angle)

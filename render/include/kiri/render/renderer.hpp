@@ -48,7 +48,7 @@ struct SunLight {
 //! How particle clouds are drawn (docs/particles.md).
 struct ParticleStyle {
     AttenuationOptions buffer;  //!< the attenuation buffer's resolution, format and frame
-    double soft_edge = 40.0;    //!< metres over which a billboard fades out in front of the terrain
+    double soft_edge = 0.0;     //!< metres over which a billboard also fades in front of the terrain (0: none)
     //! Billboards near the eye, whose every radius spans at least `near_pixels` pixels, are
     //! drawn into a target `near_scale` times coarser a side (1: every billboard at full
     //! resolution) and laid over the others: they are smooth at that scale, and they are most of

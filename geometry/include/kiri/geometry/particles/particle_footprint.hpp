@@ -35,4 +35,13 @@ double footprint_log_gain(double rho, double radius, double optical_depth, doubl
 //! Transmittance exp(-tau f(rho / r)) of the billboard (what it hides of what lies behind it).
 double footprint_transmittance(double rho, double radius, double optical_depth);
 
+// The particle in three dimensions: the density k(q) = exp(-q^2 / (2 (s r)^2)) - e0 at distance
+// q < r from the centre, 0 beyond (the footprint's Gaussian, reaching 0 at the rim). A ray from
+// inside the particle, or one ending at the terrain within it, crosses only part of its column.
+
+//! Of the column a ray passing rho = x r from the centre crosses (tau f(x)), the share between
+//! u0 and u1: metres along the ray from its point nearest the centre. 1 for the whole chord,
+//! 0 for x >= 1 or u1 <= u0. (GLSL twin: particle_footprint.glsl.)
+double footprint_ray_share(double x, double radius, double u0, double u1);
+
 }  // namespace kiri::geometry

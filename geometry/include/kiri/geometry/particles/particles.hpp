@@ -55,7 +55,9 @@ struct ParticleOptions {
     int resolution = 128;
     bool half_float = true;  //!< storage of log Gamma
     LightFrame frame = LightFrame::automatic;
-    double soft_edge = 40.0;
+    //! Metres over which billboards also fade in front of the terrain; 0: each particle shows the
+    //! part of its column in front of the terrain and no more (particles.frag).
+    double soft_edge = 0.0;
     int near_scale = 2;         //!< the near billboards' target is this many times coarser a side
     double near_pixels = 16.0;  //!< from this radius on screen (pixels) a billboard is near
     bool operator==(const ParticleOptions&) const = default;
@@ -143,7 +145,7 @@ void visit_fields(O& o, V&& v)
       {.key = "soft_edge",
        .unit = "m",
        .range = at_least(0),
-       .doc = "over which billboards fade in front of the terrain",
+       .doc = "over which billboards also fade in front of the terrain (0: each shows its column in front of it)",
        .widget = closed(0, 500)});
     v(o.near_scale,
       {.key = "near_scale",

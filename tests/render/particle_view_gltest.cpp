@@ -1,0 +1,122 @@
+// What a billboard hides along each ray (particles.vert / particles.frag): the part of the
+// particle's column between the eye and the terrain (footprint_ray_share), read back from the
+// frame's linear radiance against the closed form, for a particle around the eye (its centre
+// behind the eye: the whole screen), one cut by the ground and one farther off (a disc).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <glm/geometric.hpp>
+
+#include "kiri/geometry/particles/particle_footprint.hpp"
+#include "kiri/render/renderer.hpp"
+#include "kiri/render/scene_rendering.hpp"
+#include "render/render_fixture.hpp"
+
+namespace {
+
+namespace g = kiri::geometry;
+
+class ParticleViewGl : public kiri::test::GlTest {};
+
+struct Agreement {
+    double mean = 0.0, worst = 0.0;
+    int pixels = 0;
+    double hidden = 0.0;  // the mean opacity the particle should show
+};
+
+// One black particle (albedo 0: it only hides what lies behind it) over flat ground. The frame's
+// radiance with it over the radiance without it is the transmittance T of each pixel's ray; the
+// closed form is exp(-tau f(rho / r) share), the share of the column between the eye and the
+// ground the ray meets there (pick).
+Agreement transmittance_agreement(const glm::dvec3& centre, double radius, double tau)
+{
+    const g::Terrain flat = kiri::test::gaussian_hill(33, 100.0, 0.0);
+    kiri::render::Camera cam;
+    cam.position = {0.0, 0.0, 30.0};
+    cam.target = {0.0, 200.0, 0.0};
+    cam.fov_y_deg = 60.0;
+    const int w = 64, h = 48;
+    kiri::render::SunLight sun;
+    sun.direction = glm::normalize(glm::dvec3(0.3, -0.4, 0.8));
+    kiri::render::ParticleStyle style;
+    style.near_scale = 1;  // every billboard at full resolution: the comparison is per pixel
+
+    kiri::render::Renderer bare;
+    bare.set_terrain(flat, 1.0, false);
+    bare.set_sun(sun);
+    bare.render(cam, w, h);
+    const kiri::render::RadianceImage behind = bare.read_radiance();
+
+    g::ParticleCloud cloud;
+    cloud.scattering_octaves = 1;
+    cloud.particles.push_back({centre, radius, tau, 0.0});
+    kiri::render::Renderer r;
+    r.set_terrain(flat, 1.0, false);
+    r.set_sun(sun);
+    r.set_particles(cloud, style);
+    r.render(cam, w, h);
+    const kiri::render::RadianceImage seen = r.read_radiance();
+
+    const g::ReferenceView view = kiri::render::reference_view(cam, w, h, 0.0);
+    Agreement a;
+    double sum = 0.0, hidden = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = (std::size_t(y) * w + x) * 4 + 1;  // green
+            if (!(behind.rgba[i] > 0.02f))
+                continue;
+            const glm::dvec3 ray = view.ray(x, y);
+            const std::optional<glm::dvec3> ground = r.pick(x, y);
+            const double end = ground ? glm::length(*ground - cam.position) : 1e9;
+            const glm::dvec3 to_centre = centre - cam.position;
+            const double along = glm::dot(to_centre, ray);
+            const double rho = std::sqrt(std::max(glm::dot(to_centre, to_centre) - along * along, 0.0));
+            const double share = g::footprint_ray_share(rho / radius, radius, -along, end - along);
+            const double expected = std::exp(-tau * g::footprint_profile(rho / radius) * share);
+            const double measured = double(seen.rgba[i]) / double(behind.rgba[i]);
+            sum += std::abs(measured - expected);
+            a.worst = std::max(a.worst, std::abs(measured - expected));
+            hidden += 1.0 - expected;
+            ++a.pixels;
+        }
+    a.mean = sum / std::max(a.pixels, 1);
+    a.hidden = hidden / std::max(a.pixels, 1);
+    return a;
+}
+
+}  // namespace
+
+TEST_F(ParticleViewGl, AParticleAroundTheEyeHidesWhatLiesInFrontOfTheEye)
+{
+    // The centre 20 m behind the eye, radius 80 m: every ray from the eye crosses the front part
+    // of the particle, more of it on rays towards the centre. A billboard at the centre would lie
+    // behind the eye, and hide nothing.
+    const Agreement a = transmittance_agreement({0.0, -20.0, 35.0}, 80.0, 2.0);
+    EXPECT_GT(a.pixels, 64 * 48 * 9 / 10);
+    EXPECT_GT(a.hidden, 0.15);
+    EXPECT_LT(a.mean, 0.001) << a.worst;
+    EXPECT_LT(a.worst, 0.01);
+}
+
+TEST_F(ParticleViewGl, AParticleHalfUnderTheGroundShowsTheColumnAboveIt)
+{
+    // In front of the eye, its centre 10 m under the ground: the rays that meet the ground within
+    // it cross only the part in front of the ground.
+    const Agreement a = transmittance_agreement({0.0, 150.0, -10.0}, 70.0, 3.0);
+    EXPECT_GT(a.hidden, 0.05);
+    EXPECT_LT(a.mean, 0.001) << a.worst;
+    EXPECT_LT(a.worst, 0.01);
+}
+
+TEST_F(ParticleViewGl, AFarParticleCoversItsWholeConeOfRays)
+{
+    // 3.3 radii off, above the ground: a disc facing the eye, wide enough that the rays at its rim
+    // pass the radius from the centre.
+    const Agreement a = transmittance_agreement({40.0, 400.0, 60.0}, 120.0, 2.0);
+    EXPECT_GT(a.hidden, 0.05);
+    EXPECT_LT(a.mean, 0.001) << a.worst;
+    EXPECT_LT(a.worst, 0.01);
+}
