@@ -221,10 +221,10 @@ bool froxel_resolved(ivec2 px, vec2 uv, float depth)
 // (3e38: sky). Fog-aware: where the slices resolve the fog around the pixel, the volume's
 // lookup (froxel_fog_at, as [Wronski14] applies it); elsewhere the pixel's own ray, over its
 // stretch of the shell (or all of it where the fog is everywhere), the height fog over the rest.
-vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
+// Pixel px's own ray marched through the fog (what froxel_pixel_fog does where the volume does
+// not resolve it).
+vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
 {
-    if (u_fx_apply != 2 || froxel_resolved(px, uv, depth))
-        return froxel_fog_at(uv, depth);
     float end = min(depth, u_fx_far);
     float near = u_fx_near;
     vec4 fog = vec4(0.0, 0.0, 0.0, 1.0);
@@ -248,4 +248,11 @@ vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
     if (haze)
         froxel_march(fog, uv, taps, last, end, haze_steps, false);
     return fog;
+}
+
+vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
+{
+    if (u_fx_apply != 2 || froxel_resolved(px, uv, depth))
+        return froxel_fog_at(uv, depth);
+    return froxel_marched_fog(px, uv, depth);
 }

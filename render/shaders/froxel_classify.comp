@@ -25,6 +25,7 @@ uniform float u_near_plane;  // of the frame's projection
 uniform float u_far_plane;
 uniform float u_tolerance;
 uniform float u_edge_slices;
+uniform float u_missed;      // transmittance, or radiance relative to the tile's, a lookup may miss by
 
 float view_depth(ivec2 px)
 {
@@ -106,6 +107,23 @@ bool march(ivec2 t)
             worst = max(worst, abs(froxel_column(y0, d) + froxel_column(y1, d) - 2.0 * c));
         worst /= 8.0;
         if (worst.a > u_tolerance || max3(worst.rgb) > u_tolerance * scale)
+            return true;
+    }
+    // The tile's central pixel marched as the apply would, against the lookup there: a fog
+    // thinner than the slices are deep (a blanket seen from afar, 15 km off through slices
+    // hundreds of metres deep) that the froxels' density samples missed in some tiles, whose
+    // neighbours missed it too (so the lookup across them looked smooth). Only a gross miss: the
+    // lookup's usual error (a few per cent) would send whole views to march for nothing.
+    // With the eye outside the shell (u_fx_shell): the march then covers the pixel's stretch in
+    // the shell alone, finely; from inside it spreads its steps over the whole ray, and the
+    // volume is the better of the two.
+    if (u_fx_shell != 0) {
+        ivec2 centre = clamp(ivec2((vec2(t) + 0.5) * cell), ivec2(0), u_raster - 1);
+        vec2 centre_uv = (vec2(centre) + 0.5) / vec2(u_raster);
+        float centre_depth = view_depth(centre);
+        vec4 looked = froxel_fog_at(centre_uv, centre_depth);
+        vec4 marched = froxel_marched_fog(centre, centre_uv, centre_depth);
+        if (abs(looked.a - marched.a) > u_missed || max3(abs(looked.rgb - marched.rgb)) > u_missed * scale)
             return true;
     }
     // Surfaces inside a slice whose transmittance falls steeply.

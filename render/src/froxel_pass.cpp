@@ -37,7 +37,7 @@ const char* const stage_names[stage_count] = {"froxel tiles",    "froxel density
 // in-scattering) and how far the fog's edge may spread over a tile's slices. At 0.004 the
 // stress tests' anisotropic and far-off slabs drifted up to a point from the reference; at
 // 0.002 they stay within 0.1 point of the march everywhere (tests/render/stress_gltest.cpp).
-constexpr float classify_tolerance = 0.002f, classify_edge_slices = 1.0f;
+constexpr float classify_tolerance = 0.002f, classify_edge_slices = 1.0f, classify_missed = 0.05f;
 
 double halton(int index, int base)
 {
@@ -515,6 +515,7 @@ void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
     p.set("u_far_plane", planes.y);
     p.set("u_tolerance", classify_tolerance);
     p.set("u_edge_slices", classify_edge_slices);
+    p.set("u_missed", classify_missed);
     p.use();
     glBindTextureUnit(0, depth_texture);
     glBindImageTexture(0, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
 #include "froxel_pass.hpp"
@@ -157,6 +158,14 @@ bool LayersPass::visible(const FrameContext& frame) const
         return false;
     glm::dvec3 lo, hi;
     stack_bounds(lo, hi);
+    if (frame.partitioned && options_.shading == geometry::LayerShading::medium) {
+        // Combined mode: the layers draw only the fog beyond near_start (fog_partition.glsl), and
+        // none of the stack may lie that far from the eye (the default: the froxels draw it all).
+        const glm::dvec3 eye(frame.eye);
+        const glm::dvec3 farthest = glm::max(glm::abs(lo - eye), glm::abs(hi - eye));
+        if (glm::length(farthest) <= double(frame.partition.x))
+            return false;
+    }
     return box_in_view(frame, lo, hi);
 }
 

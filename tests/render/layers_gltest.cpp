@@ -279,4 +279,33 @@ TEST_F(LayersGl, OffScreenStackIsCulledAndUploadsHappenOnce)
     EXPECT_EQ(renderer.last_stats().layers, 0);
 }
 
+// Combined mode: the layers draw only the fog beyond near_start. A stack wholly nearer than that
+// has nothing to draw, and its pass does not run; the picture is the same.
+TEST_F(LayersGl, CombinedLayersWithNoShareInReachDrawNothing)
+{
+    const int w = 160, h = 120;
+    Renderer renderer;
+    renderer.set_terrain(*hill());
+    g::LayerOptions o = options();
+    o.shading = g::LayerShading::medium;
+    o.optics.extinction = 0.01;
+    const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
+    renderer.set_layers(base, o);
+    g::FogPartition near_only;
+    near_only.near_start = near_only.near_end = 1e6;  // the whole stack is nearer
+    g::FogPartition far_only;
+    far_only.near_start = far_only.near_end = 0.0;    // all of it is the layers'
+    far_only.particle_share = near_only.particle_share = 0.0;
+    renderer.set_fog_partition(far_only);
+    const Image drawn = renderer.render(above(), w, h);
+    EXPECT_GT(renderer.last_stats().layers, 0);
+    renderer.set_fog_partition(near_only);
+    const Image skipped = renderer.render(above(), w, h);
+    EXPECT_EQ(renderer.last_stats().layers, 0);
+    renderer.clear_layers();
+    const Image bare = renderer.render(above(), w, h);
+    EXPECT_EQ(skipped.rgba, bare.rgba);   // nothing of the layers' drawn
+    EXPECT_NE(drawn.rgba, bare.rgba);     // where they have their share, fog
+}
+
 }  // namespace
