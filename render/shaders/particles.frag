@@ -1,13 +1,13 @@
 #version 450 core
 // A particle billboard: opacity 1 - T from its Gaussian footprint along this fragment's ray, the
-// part of the particle's column between the eye and the terrain (footprint_ray_share), lit by the
-// fog's shared model
-// (geometry::fog_source, fog_lighting.hpp) with the sun seen through the attenuation buffer:
-// Gamma at this fragment (billboard_log_gamma, particle_light.glsl: the particle's own footprint
-// counted as the Medium around it would be) stands for exp(-tau_sun), so octave i sees
-// Gamma^(b^i); hazed with distance like the terrain; in the terrain's shadow from the sun (the renderer's shadow map, as the
-// froxels and the CPU reference see it). Blended back to front, premultiplied linear radiance:
-// E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
+// part of the particle's column between the eye and the terrain (footprint_ray_share), lit by
+// the fog's shared model (geometry::fog_source, fog_lighting.hpp) with the sun seen through the
+// attenuation buffer: Gamma at this fragment (billboard_log_gamma, particle_light.glsl: the
+// particle's own footprint counted as the Medium around it would be) stands for exp(-tau_sun),
+// so octave i sees Gamma^(b^i); hazed with distance like the terrain; in the terrain's shadow
+// from the sun (the renderer's shadow map, as the froxels and the CPU reference see it).
+// Blended back to front, premultiplied linear radiance: E_k = S_k + T_k E_(k-1) ([Shimada08]
+// (5)), S_k = (1 - T) J.
 in vec3 v_ray;
 flat in vec3 v_centre;
 flat in vec4 v_grid_visible;

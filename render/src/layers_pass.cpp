@@ -160,7 +160,8 @@ bool LayersPass::visible(const FrameContext& frame) const
     stack_bounds(lo, hi);
     if (frame.partitioned && options_.shading == geometry::LayerShading::medium) {
         // Combined mode: the layers draw only the fog beyond near_start (fog_partition.glsl), and
-        // none of the stack may lie that far from the eye (the default: the froxels draw it all).
+        // none of the stack may lie that far from the eye (an eye in a small fog, or a scene that
+        // gives the froxels every distance).
         const glm::dvec3 eye(frame.eye);
         const glm::dvec3 farthest = glm::max(glm::abs(lo - eye), glm::abs(hi - eye));
         if (glm::length(farthest) <= double(frame.partition.x))

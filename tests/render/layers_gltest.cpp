@@ -72,6 +72,14 @@ protected:
         o.ground_fade = 5.0;
         return o;
     }
+    // The layers as slabs of the Medium (LayerShading::medium), 0.01 / m at full density.
+    static g::LayerOptions medium_options()
+    {
+        g::LayerOptions o = options();
+        o.shading = g::LayerShading::medium;
+        o.optics.extinction = 0.01;
+        return o;
+    }
     static Camera above()
     {
         Camera c;
@@ -211,9 +219,7 @@ TEST_F(LayersGl, LevelOfDetailCoarsensFarPatchesAndKeepsThePicture)
     const int w = 240, h = 160;
     Renderer renderer;
     renderer.set_terrain(*hill());
-    g::LayerOptions o = options();
-    o.shading = g::LayerShading::medium;
-    o.optics.extinction = 0.01;
+    g::LayerOptions o = medium_options();
     const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
     ASSERT_EQ(base.grid.level, 6);
     const int patches = base.grid.patches, full = int(base.triangles.size() / 3);
@@ -286,9 +292,7 @@ TEST_F(LayersGl, CombinedLayersWithNoShareInReachDrawNothing)
     const int w = 160, h = 120;
     Renderer renderer;
     renderer.set_terrain(*hill());
-    g::LayerOptions o = options();
-    o.shading = g::LayerShading::medium;
-    o.optics.extinction = 0.01;
+    const g::LayerOptions o = medium_options();
     const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
     renderer.set_layers(base, o);
     g::FogPartition near_only;

@@ -101,8 +101,8 @@ std::vector<View> views(Context& c)
     }
     // The default scene as users render it: its height fog (a dense haze in the valleys) too.
     const geometry::Scene with_haze = geometry::load_scene(scenes / "jacksboro.json");
-    for (const std::string cam : {"default", "top"})
-        v.push_back({"jacksboro_with_height_fog/" + cam, with_haze, cam, true});
+    for (const char* cam : {"default", "top"})
+        v.push_back({std::string("jacksboro_with_height_fog/") + cam, with_haze, cam, true});
     const fs::path dir = c.out_dir() / "views";
     fs::create_directories(dir);
     const auto dem = [&](const std::string& name, int nx, int ny, double cell,
