@@ -68,7 +68,9 @@ TEST(ParticleFootprint, RayShareIsTheParticlesDensityIntegratedAlongTheRay)
     // The particle in three dimensions: k(q) = exp(-q^2 / 2 (s r)^2) - e0 for q < r. Along a ray
     // passing rho from the centre, q^2 = rho^2 + u^2; integrated by Simpson's rule.
     const double r = 50.0, s = 0.4 * r, e0 = std::exp(-1.0 / (2.0 * 0.16));
-    const auto k = [&](double rho, double u) { return std::max(std::exp(-(rho * rho + u * u) / (2.0 * s * s)) - e0, 0.0); };
+    const auto k = [&](double rho, double u) {
+        return std::max(std::exp(-(rho * rho + u * u) / (2.0 * s * s)) - e0, 0.0);
+    };
     const auto integral = [&](double rho, double a, double b) {
         const int n = 4000;
         double sum = 0.0;

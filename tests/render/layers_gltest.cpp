@@ -298,7 +298,7 @@ TEST_F(LayersGl, CombinedLayersWithNoShareInReachDrawNothing)
     g::FogPartition near_only;
     near_only.near_start = near_only.near_end = 1e6;  // the whole stack is nearer
     g::FogPartition far_only;
-    far_only.near_start = far_only.near_end = 0.0;    // all of it is the layers'
+    far_only.near_start = far_only.near_end = 0.0;  // all of it is the layers'
     far_only.particle_share = near_only.particle_share = 0.0;
     renderer.set_fog_partition(far_only);
     const Image drawn = renderer.render(above(), w, h);
@@ -308,8 +308,8 @@ TEST_F(LayersGl, CombinedLayersWithNoShareInReachDrawNothing)
     EXPECT_EQ(renderer.last_stats().layers, 0);
     renderer.clear_layers();
     const Image bare = renderer.render(above(), w, h);
-    EXPECT_EQ(skipped.rgba, bare.rgba);   // nothing of the layers' drawn
-    EXPECT_NE(drawn.rgba, bare.rgba);     // where they have their share, fog
+    EXPECT_EQ(skipped.rgba, bare.rgba);  // nothing of the layers' drawn
+    EXPECT_NE(drawn.rgba, bare.rgba);    // where they have their share, fog
 }
 
 }  // namespace
