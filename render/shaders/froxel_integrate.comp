@@ -2,7 +2,10 @@
 // Pass 3: front to back through each tile's slices, energy-conserving ([Hillaire15]): a slice
 // of extinction sigma, source S = sigma J and length l adds T (S - S exp(-sigma l)) / sigma
 // = T J (1 - exp(-sigma l)) and multiplies T by exp(-sigma l). Slice k stores (in-scattered
-// radiance, T) at its far end.
+// radiance, T) at its far end. J of the Medium from the lighting pass; the height fog's lit along
+// the tile's central ray where it is seen (froxel_light.glsl, HazeRuns), short of the ground that
+// ray meets: its light changes over tens of metres, its froxels are hundreds of metres deep from
+// afar.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba16f, binding = 0) writeonly uniform image3D o_integrated;
 uniform sampler3D u_light;    // (J, lit)
@@ -20,18 +23,47 @@ void main()
         return;
     }
     // Metres along the tile's central ray per metre of view depth.
-    float stretch = length(fx_ray((vec2(t) + 0.5) / vec2(u_fx_size.xy)));
-    vec3 radiance = vec3(0.0);
+    vec2 uv = (vec2(t) + 0.5) / vec2(u_fx_size.xy);
+    float stretch = length(fx_ray(uv));
+    float ground = 0.998 * fx_tile_ground(t);  // the height fog's light short of it
+    // Twice through the slices: first where the height fog's light is needed (its runs,
+    // froxel_light.glsl), then, with each run lit once, the sums.
+    HazeRuns runs = haze_runs_along_ray();
     float transmittance = 1.0;
     float d0 = range.x;
+    for (int k = 0; k < (u_hf.x > 0.0 ? u_fx_size.z : 0); ++k) {
+        float d1 = fx_slice_depth(float(k + 1) / float(u_fx_size.z), range);
+        vec2 m = texelFetch(u_density, ivec3(t, k), 0).xy;
+        float sigma = m.x + m.y, l = (d1 - d0) * stretch;
+        float through = exp(-sigma * l);
+        float opacity = sigma * l > 1e-5 ? transmittance * (1.0 - through) / sigma : transmittance * l;
+        if (m.y > 0.0)
+            haze_run_step(runs, opacity * m.y, fx_world(uv, min(d0, ground)), fx_world(uv, min(d1, ground)), m.y * l);
+        transmittance *= through;
+        d0 = d1;
+    }
+    vec3 light[haze_runs];
+    for (int i = 0; i < haze_runs; ++i)
+        light[i] = i < runs.count ? height_fog_segment_light(runs.a[i], runs.b[i], u_fx_eye, runs.tau[i]) : vec3(0.0);
+    if (runs.count == 0 && runs.before > 1e-5)
+        light[0] = height_fog_light(runs.at, u_fx_eye);
+    HazeRuns replay = haze_runs_along_ray();
+    vec3 radiance = vec3(0.0);
+    transmittance = 1.0;
+    d0 = range.x;
     for (int k = 0; k < u_fx_size.z; ++k) {
         float d1 = fx_slice_depth(float(k + 1) / float(u_fx_size.z), range);
         vec4 v = texelFetch(u_light, ivec3(t, k), 0);
         vec2 m = texelFetch(u_density, ivec3(t, k), 0).xy;
         float sigma = m.x + m.y, l = (d1 - d0) * stretch;
         float through = exp(-sigma * l);
-        vec3 added = v.a > 0.0 ? v.rgb * (sigma * l > 1e-5 ? 1.0 - through : sigma * l) : vec3(0.0);
-        radiance += transmittance * added;
+        float opacity = sigma * l > 1e-5 ? transmittance * (1.0 - through) / sigma : transmittance * l;
+        if (v.a > 0.0)
+            radiance += opacity * m.x * v.rgb;
+        if (m.y > 0.0) {
+            haze_run_step(replay, opacity * m.y, fx_world(uv, min(d0, ground)), fx_world(uv, min(d1, ground)), m.y * l);
+            radiance += opacity * m.y * light[max(replay.count - 1, 0)];
+        }
         transmittance *= through;
         imageStore(o_integrated, ivec3(t, k), vec4(radiance, transmittance));
         d0 = d1;

@@ -22,6 +22,9 @@ constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_histor
 constexpr int unit_first = 5, unit_last = 6;
 constexpr int unit_sun = 16;  // 16, 17, 18
 constexpr int unit_light_volume = 19;
+// The height fog's top for the slices (froxel_tiles.comp): e^-8 of its density at the base is left
+// above it, the cap froxel_light.glsl lights the height fog under.
+constexpr double haze_top_scale_heights = 8.0;
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
 // whole cycle at once: the same samples the 16 frames of history held, so the same error
 // against the CPU reference (kiri bench --stage presets, agreement), where 4 or 8 samples are
@@ -75,6 +78,30 @@ void dispatch_volume(const glm::ivec3& size, int depth)
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
+// The libraries of a program that lights fog (froxel_light.glsl), then its stage file.
+std::vector<std::string_view> light_libraries(std::string_view stage)
+{
+    return {"fog_partition.glsl",
+            "froxel_common.glsl",
+            "fog_lighting.glsl",
+            "medium_shell.glsl",
+            "froxel_medium.glsl",
+            "sun_march.glsl",
+            "sun_volume.glsl",
+            "terrain_shadow.glsl",
+            "light_volume.glsl",
+            "froxel_light.glsl",
+            stage};
+}
+
+// The libraries of a program that marches pixels' rays (froxel_march.glsl), then its stage file.
+std::vector<std::string_view> march_libraries(std::string_view stage)
+{
+    std::vector<std::string_view> files = light_libraries("froxel_apply.glsl");
+    files.insert(files.end(), {"froxel_march.glsl", stage});
+    return files;
+}
+
 }  // namespace
 
 struct FroxelPass::Volumes {
@@ -85,18 +112,12 @@ struct FroxelPass::Volumes {
 FroxelPass::FroxelPass()
     : v_(std::make_unique<Volumes>()), density_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
                                                  "medium_shell.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
-      lighting_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
-                 "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "terrain_shadow.glsl", "light_volume.glsl",
-                 "froxel_lighting.comp"}),
-      temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
+      lighting_(light_libraries("froxel_lighting.comp")), temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
-      integrate_({"froxel_common.glsl", "froxel_integrate.comp"}),
+      integrate_(light_libraries("froxel_integrate.comp")),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
-      classify_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
-                 "froxel_medium.glsl", "froxel_apply.glsl", "froxel_classify.comp"}),
-      apply_program_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
-                      "froxel_medium.glsl", "froxel_apply.glsl", "froxel_apply.comp"}),
+      classify_(march_libraries("froxel_classify.comp")), apply_program_(march_libraries("froxel_apply.comp")),
       marched_(make_buffer())
 {
     const GLuint zero = 0;
@@ -284,6 +305,7 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     const ScopedPassTimer timed(timers_[apply_stage]);
     const ShaderProgram& p = apply_program_;
     bind_apply(p);
+    bind_light(p, frame);
     const glm::vec2 planes = depth_planes(frame);
     p.set("u_depth", 0);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
@@ -331,7 +353,7 @@ void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, boo
     if (options_.temporal)
         history_valid_ = true;
     ++frame_index_;
-    run_integrate();
+    run_integrate(frame);
     run_classify(frame, depth_texture);
 }
 
@@ -369,13 +391,17 @@ void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
         // The shell's per-pixel depths hold unless the eye is in it (the near plane cuts it).
         shell_ok_ = medium_ &&
             !shell_.contains(glm::dvec3(frame.eye), 2.0 * o.near + 1e-3 * glm::length(glm::dvec3(frame.eye)));
-        mode_ = shell_ok_ && !o.height_fog.enabled() ? FroxelTileBounds::Mode::shell : FroxelTileBounds::Mode::ground;
+        if (medium_ && !shell_ok_)
+            mode_ = FroxelTileBounds::Mode::ground;
+        else
+            mode_ = o.height_fog.enabled() ? FroxelTileBounds::Mode::haze : FroxelTileBounds::Mode::shell;
     }
     const ScopedPassTimer timed(timers_[tiles]);
     use_shell_for_resolution();
     // The depths each tile's slices span.
     tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
-                        v_->tiles[current_].get());
+                        v_->tiles[current_].get(),
+                        o.height_fog.base + haze_top_scale_heights * o.height_fog.scale_height);
     if (mode_ == FroxelTileBounds::Mode::shell) {  // ranges end where the fog turns opaque
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         bind_layout(opaque_);
@@ -400,47 +426,52 @@ void FroxelPass::run_density()
     dispatch_volume(v_->size, v_->size.z);
 }
 
-void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
+void FroxelPass::bind_light(const ShaderProgram& p, const FrameContext& frame) const
 {
     const geometry::FroxelOptions& o = options_;
     const geometry::HeightFog& haze = o.height_fog;
-    bind_layout(lighting_);
     // tau_sun: the sun volume's Medium is this one (Renderer::draw), so its grid and uniforms
     // are the same as those bound next.
     if (sun_) {
-        sun_->bind(lighting_, unit_sun, o.sun_steps, o.sun_volume);
+        sun_->bind(p, unit_sun, o.sun_steps, o.sun_volume);
     } else {
-        lighting_.set("u_sv_on", 0);
-        lighting_.set("u_sv_steps", o.sun_steps);
-        lighting_.set("u_sv_volume", unit_sun + 2);
+        p.set("u_sv_on", 0);
+        p.set("u_sv_steps", o.sun_steps);
+        p.set("u_sv_volume", unit_sun + 2);
     }
-    medium_gpu_.bind(lighting_, haze, unit_medium);
-    bind_terrain_shadow(lighting_, shadow_);
-    lighting_.set("u_density", unit_density);
-    lighting_.set("u_jitter", jitter.froxel);
-    lighting_.set("u_sun_jitter", jitter.sun);
-    lighting_.set("u_sun_direction", sun_march_direction(frame.sun_direction));
-    lighting_.set("u_sun_radiance", frame.sun_radiance);
-    lighting_.set("u_ambient", frame.ambient);
-    lighting_.set("u_air", glm::vec4(frame.sky_horizon, frame.haze_density));
+    medium_gpu_.bind(p, haze, unit_medium);
+    bind_terrain_shadow(p, shadow_);
+    p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
+    p.set("u_sun_radiance", frame.sun_radiance);
+    p.set("u_ambient", frame.ambient);
+    p.set("u_air", glm::vec4(frame.sky_horizon, frame.haze_density));
     const double albedo = medium_ ? medium_->options().albedo : 0.0, g = medium_ ? medium_->options().anisotropy : 0.0;
-    lighting_.set("u_albedo", glm::vec2(float(albedo), float(haze.albedo)));
-    lighting_.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
-    lighting_.set("u_fog_shadows", int(o.fog_shadows));
-    lighting_.set(
+    p.set("u_albedo", glm::vec2(float(albedo), float(haze.albedo)));
+    p.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
+    p.set("u_fog_shadows", int(o.fog_shadows));
+    p.set(
         "u_octaves",
         geometry::shader_octaves(geometry::multiple_scattering_of(medium_), geometry::scattering_octaves_of(medium_)));
-    lighting_.set("u_whole_tiles", int(o.fog_aware));
     // The baked multiple scattering, with the Medium's model `baked` only (others draw theirs).
     // The Medium's grid is bound already (medium_gpu_ above): the same Medium's.
     if (light_volume_)
-        light_volume_->bind(lighting_, unit_light_volume, baked_light(), false);
+        light_volume_->bind(p, unit_light_volume, baked_light(), false);
     else
-        LightVolumeTexture{}.bind(lighting_, unit_light_volume, false, false);
+        LightVolumeTexture{}.bind(p, unit_light_volume, false, false);
     const glm::dvec3 box_lo = medium_ ? medium_->bounds().min : glm::dvec3(0.0);
     const glm::dvec3 box_hi = medium_ ? medium_->bounds().max : glm::dvec3(0.0);
-    lighting_.set("u_box_min", glm::vec3(box_lo));
-    lighting_.set("u_box_max", glm::vec3(box_hi));
+    p.set("u_box_min", glm::vec3(box_lo));
+    p.set("u_box_max", glm::vec3(box_hi));
+}
+
+void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
+{
+    bind_layout(lighting_);
+    bind_light(lighting_, frame);
+    lighting_.set("u_density", unit_density);
+    lighting_.set("u_jitter", jitter.froxel);
+    lighting_.set("u_sun_jitter", jitter.sun);
+    lighting_.set("u_whole_tiles", int(options_.fog_aware));
     lighting_.use();
     glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -480,11 +511,12 @@ void FroxelPass::run_temporal(int history, const View& from, bool history_valid,
     dispatch_volume(v_->size, v_->size.z);
 }
 
-void FroxelPass::run_integrate()
+void FroxelPass::run_integrate(const FrameContext& frame)
 {
     const GLuint lit = options_.temporal ? v_->resolved[current_].get() : v_->light.get();
     const ScopedPassTimer timed(timers_[integrate]);
     bind_layout(integrate_);
+    bind_light(integrate_, frame);  // the height fog's light
     integrate_.set("u_light", unit_light);
     integrate_.set("u_density", unit_density);
     integrate_.use();
@@ -507,6 +539,7 @@ void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
     const ShaderProgram& p = classify_;
     classified_ = false;  // the apply's library: every pixel's taps still to be decided
     bind_apply(p);
+    bind_light(p, frame);
     classified_ = true;
     p.set("u_depth", 0);
     p.set("u_raster", glm::ivec2(frame.width, frame.height));
@@ -555,9 +588,7 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     if (!enabled_ || frame.width <= 0 || frame.height <= 0)
         return out;
     if (!readback_) {
-        readback_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "froxel_medium.glsl",
-            "froxel_apply.glsl", "froxel_readback.comp"});
+        readback_ = std::make_unique<ShaderProgram>(march_libraries("froxel_readback.comp"));
         depth_program_ =
             std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
     }
@@ -587,6 +618,7 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     glTextureStorage2D(image.get(), 1, GL_RGBA32F, frame.width, frame.height);
     glTextureStorage2D(depth.get(), 1, GL_R32F, frame.width, frame.height);
     bind_apply(p);
+    bind_light(p, frame);
     p.set("u_depth", 0);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     const glm::vec2 planes = depth_planes(frame);

@@ -140,10 +140,12 @@ private:
     //! The lighting just run blended with resolved[history] (seen from `from`, its tiles
     //! tiles[history]; the history's weight `weight`) into resolved[into].
     void run_temporal(int history, const View& from, bool history_valid, int into, float weight);
-    void run_integrate();
+    void run_integrate(const FrameContext& frame);
     //! Per tile: may the apply read the volume, or must the pixels around it march?
     void run_classify(const FrameContext& frame, GLuint depth_texture);
-    void bind_apply_textures(const ShaderProgram& program) const;
+    //! froxel_light.glsl's uniforms and textures (the sun volume, the terrain's shadow map, the
+    //! baked light) on the lighting pass or a program that marches pixels (froxel_march.glsl).
+    void bind_light(const ShaderProgram& program, const FrameContext& frame) const;
 };
 
 }  // namespace kiri::render::detail

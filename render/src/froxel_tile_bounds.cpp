@@ -1,5 +1,7 @@
 #include "froxel_tile_bounds.hpp"
 
+#include <glm/matrix.hpp>
+
 #include <algorithm>
 
 namespace kiri::render::detail {
@@ -59,7 +61,7 @@ void FroxelTileBounds::ensure_raster(const glm::ivec2& size)
 }
 
 void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, const glm::ivec2& tiles, double near,
-                              double far, GLuint depth_texture, GLuint tiles_texture)
+                              double far, GLuint depth_texture, GLuint tiles_texture, double haze_top)
 {
     ensure_raster({frame.width, frame.height});
     const float none_first[4] = {3e38f, 0.0f, 0.0f, 0.0f}, none_last[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -102,6 +104,10 @@ void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, 
     reduce_.set("u_far", float(far));
     reduce_.set("u_mode", int(mode));
     reduce_.set("u_pad", relative_pad);
+    reduce_.set("u_inverse_view_projection", glm::inverse(frame.view_projection));
+    reduce_.set("u_eye", frame.eye);
+    reduce_.set("u_forward", glm::vec3(-frame.view[0][2], -frame.view[1][2], -frame.view[2][2]));
+    reduce_.set("u_haze_top", float(haze_top));
     set_partition_uniforms(reduce_, frame);
     reduce_.use();
     glBindTextureUnit(0, first_.get());

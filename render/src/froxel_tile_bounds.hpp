@@ -18,15 +18,18 @@ public:
     enum class Mode {
         standard = 0,  //!< [near, far] everywhere
         shell = 1,     //!< from the shell's entry to its exit in front of the ground
-        ground = 2,    //!< fog anywhere (eye inside the shell, height fog): [near, ground]
+        ground = 2,    //!< fog anywhere (eye inside the shell): [near, ground]
+        haze = 3,      //!< the shell's ranges (if any) and a height fog's: from where the ray
+                       //!< comes down to its top (haze_top) to the ground
     };
     FroxelTileBounds();
     //! Uploads the shell mesh (once per medium).
     void set_shell(const ShellMesh& shell);
     //! Writes the tiles' ranges and central ground depths into `tiles` (RGBA32F, tiles.x by
     //! tiles.y) from the frame's depth texture; rasterises the shell when `shell` (or in shell mode).
+    //! haze_top: in haze mode, the height above which the height fog adds nothing to see.
     void update(const FrameContext& frame, Mode mode, bool shell, const glm::ivec2& tiles, double near, double far,
-                GLuint depth_texture, GLuint tiles_texture);
+                GLuint depth_texture, GLuint tiles_texture, double haze_top = 0.0);
     //! Per pixel of the last update with the shell: its nearest and farthest view depth.
     GLuint first() const { return first_.get(); }
     GLuint last() const { return last_.get(); }

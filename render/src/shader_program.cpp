@@ -44,7 +44,7 @@ std::string info_log(GLuint object, bool is_program)
 
 }  // namespace
 
-ShaderProgram::ShaderProgram(std::initializer_list<std::string_view> files, std::string_view preamble)
+ShaderProgram::ShaderProgram(const std::vector<std::string_view>& files, std::string_view preamble)
     : program_(glCreateProgram())
 {
     std::vector<GLuint> shaders;

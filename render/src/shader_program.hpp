@@ -5,6 +5,7 @@
 
 #include <initializer_list>
 #include <string_view>
+#include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
@@ -24,7 +25,10 @@ public:
     //! (.vert, .frag, .comp, .geom). A .glsl file is a library: its text (and `preamble`, e.g.
     //! "#define X 1\n") goes after the #version line of every stage file that follows it.
     //! Throws kiri::Error naming the file on failure.
-    explicit ShaderProgram(std::initializer_list<std::string_view> files, std::string_view preamble = {});
+    explicit ShaderProgram(std::initializer_list<std::string_view> files, std::string_view preamble = {})
+        : ShaderProgram(std::vector<std::string_view>(files), preamble)
+    {}
+    explicit ShaderProgram(const std::vector<std::string_view>& files, std::string_view preamble = {});
     GLuint id() const { return program_.get(); }
     void use() const { glUseProgram(program_.get()); }
     GLint location(const char* uniform) const { return glGetUniformLocation(program_.get(), uniform); }

@@ -1,0 +1,179 @@
+// Library (after fog_lighting.glsl, medium_shell.glsl, froxel_medium.glsl, sun_march.glsl,
+// sun_volume.glsl, terrain_shadow.glsl and light_volume.glsl): each medium's lighting at a point
+// (geometry/fog_lighting.hpp, docs/froxel.md), as the froxels' lighting pass lights a froxel
+// and as the apply lights the height fog along a pixel's own ray. S = albedo sigma (E_sun V P +
+// L_amb) per medium, V the terrain's visibility of the sun (terrain_shadow.glsl), P the sun's
+// phase through tau_sun (sun_volume.glsl) over the scattering octaves, plus the baked multiple
+// scattering (light_volume.glsl, the Medium's model `baked` only).
+uniform vec3 u_sun_direction;
+uniform vec3 u_sun_radiance;
+uniform vec3 u_ambient;
+uniform vec4 u_air;         // the air's radiance (rgb) and extinction (1/m; 0: none)
+uniform vec2 u_albedo;      // medium, height fog
+uniform vec2 u_anisotropy;  // medium, height fog
+uniform int u_fog_shadows;
+uniform int u_octaves;      // 1: single scattering
+
+// The height fog's light is followed in pieces of at most this optical depth (at most this many).
+const float froxel_haze_piece_depth = 0.25;
+const int froxel_haze_pieces = 16;
+// A step or froxel whose height fog adds less than this share of what the eye sees
+// (T (1 - exp(-tau))) takes the height fog's light lit nearest along its ray (HazeRuns): a ray
+// through the haze's thin top, tens of steps of it, would pay the whole lighting at each.
+const float froxel_haze_significant = 1e-2;
+
+// J / albedo's share of medium m (0: the Medium, 1: the height fog) at p, seen along `ray` (unit,
+// from the eye), with the sun's visibility and optical depth there: in-scattered radiance per
+// unit of that medium's extinction.
+vec3 medium_light(int m, vec3 p, vec3 ray, float visible, float tau)
+{
+    float albedo = u_albedo[m], g = u_anisotropy[m];
+    vec3 sun = 3.14159265358979 * u_sun_radiance * visible;  // pi sun: fog_lighting.hpp
+    float sun_sine = normalize(u_sun_direction).z;
+    vec3 s = albedo * (sun * sun_scattering(dot(ray, u_sun_direction), g, albedo, tau, sun_sine, u_octaves) + u_ambient);
+    // The baked light scattered at least once towards the eye, inside the Medium's shell, not
+    // hidden by the terrain's shadow (it reaches the shadow from the sunlit fog beside it).
+    if (u_lv_on != 0)
+        s += u_sun_radiance * albedo * lv_in_scattered_at(p, -ray, g, false);
+    return s;
+}
+
+// J as seen from `eye` through the air (geometry/air_light.hpp): mixed towards the horizon's
+// colour by the distance, as the layers, the particles, the terrain and the reference see theirs.
+vec3 through_air(vec3 j, vec3 p, vec3 eye) { return mix(j, u_air.rgb, 1.0 - exp(-distance(p, eye) * u_air.w)); }
+
+// The height fog's J at p, seen from the eye, with the terrain's visibility of the sun and the
+// Medium's optical depth towards it there (both change over hundreds of metres, the height fog's
+// own optical depth over tens: added here in closed form).
+vec3 height_fog_light_with(vec3 p, vec3 eye, float visible, float medium_tau)
+{
+    float tau = u_fog_shadows != 0 && visible > 0.0 ? medium_tau + height_fog_sun(p, u_sun_direction) : 0.0;
+    return through_air(medium_light(1, p, normalize(p - eye), visible, tau), p, eye);
+}
+
+// The height fog's J at p, seen from the eye: its visibility and tau_sun at p itself. The height
+// fog is a closed form, so its light is too wherever its optical depth changes faster than a
+// froxel or a march step can follow (tens of metres under a grazing sun).
+vec3 height_fog_light(vec3 p, vec3 eye)
+{
+    float visible = terrain_visibility(p, u_ts_bias);
+    float medium_tau = u_fog_shadows != 0 && visible > 0.0 ? medium_sun_optical_depth(p, u_sun_direction, 0.5) : 0.0;
+    return height_fog_light_with(p, eye, visible, medium_tau);
+}
+
+// The height fog along the segment [a, b] (in it, `tau` of its optical depth): its in-scattered
+// radiance per unit of opacity as the eye at a's side sees it, each of n pieces' light weighted
+// by the light the pieces in front of it let through. The pieces split the part of the segment
+// below 8 scale heights over the base, where all but e^-8 of the haze is (a step of a march
+// from afar is a kilometre long, its haze in its last hundred metres), and share the terrain's
+// visibility of the sun and the Medium's optical depth towards it, taken at that part's middle.
+vec3 height_fog_segment_light(vec3 a, vec3 b, vec3 eye, float tau)
+{
+    float cap = u_hf.y + 8.0 * u_hf.z, rise = b.z - a.z;
+    float t0 = 0.0, t1 = 1.0;
+    if (abs(rise) > 1e-6) {
+        float at_cap = (cap - a.z) / rise;
+        if (rise > 0.0)
+            t1 = clamp(at_cap, 0.0, 1.0);
+        else
+            t0 = clamp(at_cap, 0.0, 1.0);
+    }
+    if (!(t1 > t0)) {  // all of it above the cap
+        t0 = 0.0;
+        t1 = 1.0;
+    }
+    vec3 lo = mix(a, b, t0), hi = mix(a, b, t1);
+    int n = clamp(int(ceil(tau / froxel_haze_piece_depth)), 1, froxel_haze_pieces);
+    if (n == 1)
+        return height_fog_light(0.5 * (lo + hi), eye);
+    vec3 middle = 0.5 * (lo + hi);
+    float visible = terrain_visibility(middle, u_ts_bias);
+    float medium_tau = u_fog_shadows != 0 && visible > 0.0 ? medium_sun_optical_depth(middle, u_sun_direction, 0.5) : 0.0;
+    vec3 sum = vec3(0.0);
+    float weight = 0.0, through = 1.0;
+    for (int i = 0; i < n && through > 0.01; ++i) {  // what lies behind 99 % of it weighs little
+        vec3 p0 = mix(lo, hi, float(i) / float(n)), p1 = mix(lo, hi, float(i + 1) / float(n));
+        float piece = exp(-height_fog_segment(p0, p1)), opacity = through * (1.0 - piece);
+        sum += opacity * height_fog_light_with(0.5 * (p0 + p1), eye, visible, medium_tau);
+        weight += opacity;
+        through *= piece;
+    }
+    return weight > 0.0 ? sum / weight : height_fog_light_with(middle, eye, visible, medium_tau);
+}
+
+// The height fog's light along a ray, front to back in steps (the apply's march, the
+// integration's froxels), lit once the steps are known: on a GPU's SIMD lanes a light taken at
+// whichever step each ray needs it costs every lane each of those steps (the apply's march took
+// 4.6 times as long so on llvmpipe). The steps that add more than froxel_haze_significant of
+// what the eye sees (T (1 - exp(-tau_step)) tau / tau_step, over both media) must be lit; runs
+// of them make one stretch each, lit as one segment (height_fog_segment_light: its pieces follow
+// the light within it); at most haze_runs of them, a later run joins the last. Steps between runs
+// take the light of the run before them (those before the first, of the first; with no run, of
+// the heaviest of them, once they add up to 5 times froxel_haze_significant).
+const int haze_runs = 2;
+struct HazeRuns {
+    vec3 a[haze_runs], b[haze_runs];  // each run's ends
+    float tau[haze_runs];             // its height fog's optical depth
+    float share[haze_runs];           // what takes its light
+    int count;
+    bool open;                        // the last step was lit: the next one lit extends its run
+    float before;                     // the share of the steps before the first run
+    vec3 at;                          // the middle of the heaviest of those
+    float heaviest;
+};
+
+HazeRuns haze_runs_along_ray()
+{
+    HazeRuns r;
+    for (int i = 0; i < haze_runs; ++i) {
+        r.a[i] = r.b[i] = vec3(0.0);
+        r.tau[i] = r.share[i] = 0.0;
+    }
+    r.count = 0;
+    r.open = false;
+    r.before = r.heaviest = 0.0;
+    r.at = vec3(0.0);
+    return r;
+}
+
+// Step [a, b] of the height fog's optical depth tau, whose light adds `share` of it.
+void haze_run_step(inout HazeRuns r, float share, vec3 a, vec3 b, float tau)
+{
+    bool needs = share > froxel_haze_significant || (r.count == 0 && r.before + share > 5.0 * froxel_haze_significant);
+    if (needs) {
+        if (!r.open && r.count < haze_runs) {
+            r.a[r.count] = a;
+            r.tau[r.count] = 0.0;
+            r.share[r.count] = r.count == 0 ? r.before : 0.0;
+            ++r.count;
+        }
+        int last = r.count - 1;
+        r.b[last] = b;
+        r.tau[last] += tau;  // a later run joined to the last: the stretch between adds little
+        r.share[last] += share;
+        r.open = true;
+        return;
+    }
+    r.open = false;
+    if (r.count > 0) {
+        r.share[r.count - 1] += share;
+        return;
+    }
+    r.before += share;
+    if (share > r.heaviest) {
+        r.heaviest = share;
+        r.at = 0.5 * (a + b);
+    }
+}
+
+void haze_runs_finish(HazeRuns r, inout vec3 radiance)
+{
+    if (r.count == 0) {
+        if (r.before > 1e-5)
+            radiance += r.before * height_fog_light(r.at, u_fx_eye);
+        return;
+    }
+    for (int i = 0; i < haze_runs; ++i)
+        if (i < r.count)
+            radiance += r.share[i] * height_fog_segment_light(r.a[i], r.b[i], u_fx_eye, r.tau[i]);
+}

@@ -1,0 +1,214 @@
+// Library (after froxel_apply.glsl and froxel_light.glsl): the fog-aware apply for the terrain
+// and the sky (froxel_apply.comp, froxel_classify.comp, froxel_readback.comp).
+//
+// froxel_pixel_fog: where the volume's slices resolve the fog around a pixel
+// (froxel_classify.comp, froxel_resolved) the volume's lookup (froxel_fog_at); elsewhere the
+// pixel's own ray is integrated over its own stretch of the Medium's shell (the shell's entry and
+// exit rasterised at full resolution, cut at the pixel's depth) with the Medium's exact density,
+// lit by the froxels' lighting J, and the height fog's closed-form optical depth, lit at its own
+// points (froxel_light.glsl): thin layers and narrow valleys smaller than a tile keep their
+// shape, and so does the light of a height fog tens of metres deep.
+
+uniform int u_fx_shell;               // the shell's per-pixel depths are there (eye outside it)
+uniform int u_fx_pixel_steps;
+uniform float u_fx_near;              // the volume's first depth
+uniform sampler3D u_fx_light;         // (J, lit) per froxel, linear filtering
+uniform sampler2D u_fx_first;         // per pixel: the shell's nearest depth (3e38: none)
+uniform sampler2D u_fx_last;          // per pixel: the shell's farthest depth (0: none)
+uniform int u_fx_classified;          // the tiles' w marks where pixels march (froxel_classify.comp)
+
+// The froxels' lighting J at view depth d on the ray through uv: bilinear across the four tiles
+// around uv, each looked up at that depth in its own slices (linear between two slices).
+struct FroxelTaps {
+    ivec2 tile[4];
+    vec2 range[4];
+    float weight[4];
+    float rise[4];  // height gained per unit view depth along each tile's central ray
+    float ray_rise; // and along the pixel's ray
+};
+
+FroxelTaps froxel_taps(vec2 uv)
+{
+    FroxelTaps t;
+    vec2 p = uv * vec2(u_fx_size.xy) - 0.5;
+    vec2 f = p - floor(p);
+    ivec2 base = ivec2(floor(p));
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        t.tile[k] = clamp(base + o, ivec2(0), u_fx_size.xy - 1);
+        t.range[k] = fx_tile_range(t.tile[k]);
+        t.weight[k] = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        t.rise[k] = fx_ray((vec2(t.tile[k]) + 0.5) / vec2(u_fx_size.xy)).z;
+    }
+    t.ray_rise = fx_ray(uv).z;
+    return t;
+}
+
+vec3 froxel_light(FroxelTaps t, float d)
+{
+    vec4 sum = vec4(0.0);
+    for (int k = 0; k < 4; ++k) {
+        vec2 range = t.range[k];
+        if (!(range.y > range.x) || t.weight[k] <= 0.0)
+            continue;
+        // At the pixel's height, not its depth: J changes fastest with height (the sun's path
+        // through the fog above), and seen at a grazing angle the next tile's ray at the same
+        // depth is tens of metres higher or lower. Where the two rays rise too differently
+        // (near level), the same depth.
+        float h = d * t.ray_rise, dk = abs(t.rise[k]) > 1e-6 ? h / t.rise[k] : -1.0;
+        dk = dk > 0.5 * d && dk < 2.0 * d ? dk : d;
+        float s = fx_slice_coordinate(clamp(dk, range.x, range.y), range);
+        vec2 centre = (vec2(t.tile[k]) + 0.5) / vec2(u_fx_size.xy);
+        // A tile whose central ray met the ground before this depth was lit on the ground's
+        // near side (a sunlit ridge beside a valley in its shadow): it says little here.
+        float w = t.weight[k] * (fx_tile_ground(t.tile[k]) >= 0.999 * dk ? 1.0 : 1e-3);
+        sum += w * textureLod(u_fx_light, vec3(centre, s), 0.0);  // (J, lit): linear in depth only
+    }
+    return sum.a > 0.0 ? sum.rgb / sum.a : vec3(0.0);
+}
+
+// Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
+// spread like the slices. The Medium (when with_medium): its extinction at each step's middle,
+// lit by the froxels' J every fourth step, in between linear. The height fog: its optical depth
+// over each step in closed form, lit at its own points (the volume's J would light a haze a few
+// tens of metres deep at one point of a slice hundreds of metres deep: the plain under the
+// default scene's haze was 20 % too dark from above).
+void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, FroxelTaps taps, float a, float b, int n,
+                  bool with_medium)
+{
+    if (!(b > a) || n < 1)
+        return;
+    vec3 ray = fx_ray(uv);
+    float stretch = length(ray);
+    float d0 = a;
+    vec3 j0 = with_medium ? froxel_light(taps, a) : vec3(0.0), j1 = j0;
+    for (int k = 0; k < n; ++k) {
+        if (with_medium && k % 4 == 0) {  // J at the end of the next four steps
+            j0 = j1;
+            j1 = froxel_light(taps, fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)));
+        }
+        float d1 = fx_slice_depth(float(k + 1) / float(n), vec2(a, b));
+        vec3 q0 = u_fx_eye + ray * d0, q1 = u_fx_eye + ray * d1;
+        float haze = height_fog_segment(q0, q1);
+        float medium = with_medium ? froxel_sigma(0.5 * (q0 + q1)) * (d1 - d0) * stretch : 0.0;
+        if (haze + medium > 0.0) {
+            float through = exp(-(haze + medium));
+            float opacity = fog.a * (1.0 - through) / (haze + medium);  // per unit of optical depth
+            if (medium > 0.0) {
+                float span = float(min(4, n - (k / 4) * 4));
+                fog.rgb += opacity * medium * mix(j0, j1, (float(k % 4) + 0.5) / span);
+            }
+            if (haze > 0.0)
+                haze_run_step(h, opacity * haze, q0, q1, haze);
+            fog.a *= through;
+        }
+        d0 = d1;
+    }
+}
+
+// The stretch [first, last] of view depths over which pixel px's ray (its surface at `end`, at
+// most the volume's far depth) is in the Medium's shell, cut where the fog turns opaque (`cut`:
+// the farthest end of the ranges of the tiles it reads, which end there: froxel_opaque.comp;
+// 0: no cut) and where the froxels' share ends (combined mode); last <= first: none. Only with
+// the shell's per-pixel depths (u_fx_shell).
+vec2 froxel_pixel_stretch(ivec2 px, float end, float cut)
+{
+    float first = max(texelFetch(u_fx_first, px, 0).r, u_fx_near);
+    float last = min(texelFetch(u_fx_last, px, 0).r, end);
+    if (!(u_hf.x > 0.0) && cut > first)  // without height fog the tiles' ranges end where the fog turns opaque
+        last = min(last, cut);
+    if (u_partitioned != 0)  // combined mode: the froxels' share ends at near_end from the eye
+        last = min(last, u_partition.y);
+    return vec2(first, last);
+}
+
+float froxel_taps_cut(FroxelTaps taps)
+{
+    float cut = 0.0;
+    for (int k = 0; k < 4; ++k)
+        cut = taps.range[k].y > taps.range[k].x ? max(cut, taps.range[k].y) : cut;
+    return cut;
+}
+
+// Whether the volume resolves the fog of pixel px (screen point uv, its surface at view depth
+// `depth`): none of the four tiles its lookup reads was marked to march (froxel_classify.comp
+// writes w), and those the lookup weighs (fog-aware: whose central ray reaches the pixel's
+// depth, if any) have slices as deep as the pixel's fog goes, or are opaque by then (not so
+// at a ground edge, where the tiles' ranges end at different grounds).
+bool froxel_resolved(ivec2 px, vec2 uv, float depth)
+{
+    if (u_fx_classified == 0)
+        return false;
+    float end = min(depth, u_fx_far);
+    float fog_end = end;  // where the pixel's fog ends: its surface, or where it leaves the shell
+    if (u_fx_shell != 0 && !(u_hf.x > 0.0)) {
+        fog_end = min(texelFetch(u_fx_last, px, 0).r, end);
+        if (!(fog_end > max(texelFetch(u_fx_first, px, 0).r, u_fx_near)))
+            fog_end = 0.0;
+    }
+    vec2 p = uv * vec2(u_fx_size.xy) - 0.5;
+    vec2 f = p - floor(p);
+    ivec2 base = ivec2(floor(p));
+    bool aware = false, all_reach = true, aware_reach = true;
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        ivec2 tile = clamp(base + o, ivec2(0), u_fx_size.xy - 1);
+        vec4 c = texelFetch(u_fx_tiles, tile, 0);
+        if (c.w != 0.0)
+            return false;
+        float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+        if (w <= 0.0 || fog_end <= 0.0)
+            continue;
+        bool deep = (c.y > c.x && c.y * 1.001 >= fog_end) ||
+            texelFetch(u_fx_volume, ivec3(tile, u_fx_size.z - 1), 0).a < 1e-3;
+        all_reach = all_reach && deep;
+        if (c.z >= end * 0.999) {
+            aware = true;
+            aware_reach = aware_reach && deep;
+        }
+    }
+    return aware ? aware_reach : all_reach;
+}
+
+// The fog in front of pixel px (screen point uv) whose surface lies at view depth `depth`
+// (3e38: sky). Fog-aware: where the slices resolve the fog around the pixel, the volume's
+// lookup (froxel_fog_at, as [Wronski14] applies it); elsewhere the pixel's own ray, over its
+// stretch of the shell (or all of it where the fog is everywhere), the height fog over the rest.
+// Pixel px's own ray marched through the fog (what froxel_pixel_fog does where the volume does
+// not resolve it).
+vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
+{
+    float end = min(depth, u_fx_far);
+    float near = u_fx_near;
+    vec4 fog = vec4(0.0, 0.0, 0.0, 1.0);
+    HazeRuns h = haze_runs_along_ray();
+    FroxelTaps taps = froxel_taps(uv);
+    bool haze = u_hf.x > 0.0;
+    if (u_fx_shell == 0) {  // the Medium may be anywhere along the ray
+        froxel_march(fog, h, uv, taps, near, end, u_fx_pixel_steps, true);
+        haze_runs_finish(h, fog.rgb);
+        return fog;
+    }
+    vec2 stretch = froxel_pixel_stretch(px, end, froxel_taps_cut(taps));
+    float first = stretch.x, last = stretch.y;
+    int haze_steps = max(u_fx_pixel_steps / 2, 1);
+    if (!(last > first)) {
+        if (haze)
+            froxel_march(fog, h, uv, taps, near, end, haze_steps, false);
+    } else {
+        if (haze)
+            froxel_march(fog, h, uv, taps, near, first, haze_steps, false);
+        froxel_march(fog, h, uv, taps, first, last, u_fx_pixel_steps, true);
+        if (haze)
+            froxel_march(fog, h, uv, taps, last, end, haze_steps, false);
+    }
+    haze_runs_finish(h, fog.rgb);
+    return fog;
+}
+
+vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
+{
+    if (u_fx_apply != 2 || froxel_resolved(px, uv, depth))
+        return froxel_fog_at(uv, depth);
+    return froxel_marched_fog(px, uv, depth);
+}
