@@ -202,7 +202,8 @@ void add_render_command(CLI::App& app)
     sub->add_option("--mode", a->mode,
                     "what to draw: terrain, layers (the fog's layer stack), particles (the fog as lit particles), "
                     "froxel (the fog as a volume), combined (each of them drawing its share of the fog: froxels "
-                    "near, layers far, particles in the top band), reference (the CPU reference ray marcher of "
+                    "at every distance, or near and the layers far when the scene's combined section sets "
+                    "near_end, particles in the top band), reference (the CPU reference ray marcher of "
                     "that volume: slow), path (the CPU path tracer of that volume, every order of scattering: "
                     "slower, noisy), auto (default: combined when the scene has fog, else terrain)")
         ->check(CLI::IsMember({"auto", "terrain", "layers", "particles", "froxel", "combined", "reference", "path"}));

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
 #include "kiri/geometry/scene/scene.hpp"
 
 namespace kiri::geometry {
@@ -83,6 +84,25 @@ TEST(Quality, SavedScenesReadBackEqual)
     EXPECT_EQ(b.combined.near_end, 900.0);
     ASSERT_TRUE(b.quality);
     EXPECT_EQ(*b.quality, Quality::medium);
+}
+
+TEST(Quality, TheFroxelsDrawEveryDistanceUnlessAHandOverIsGiven)
+{
+    // By default the froxels draw every distance and the layers nothing; one end of a hand-over
+    // given alone sets the other: a hand-over 4 times as far as it starts.
+    const Scene none = parse("");
+    EXPECT_EQ(none.combined.near_start, fog_partition_everywhere);
+    EXPECT_EQ(none.combined.near_end, fog_partition_everywhere);
+    EXPECT_EQ(fog_shares(none.combined, 5e4, 0.0).froxels, 1.0);  // 50 km off: still theirs
+    const Scene end = parse(R"(, "combined": {"near_end": 1600})");
+    EXPECT_EQ(end.combined.near_start, 400.0);
+    EXPECT_EQ(end.combined.near_end, 1600.0);
+    EXPECT_EQ(fog_shares(end.combined, 2000.0, 0.0).layers, 1.0);
+    const Scene start = parse(R"(, "combined": {"near_start": 300})");
+    EXPECT_EQ(start.combined.near_start, 300.0);
+    EXPECT_EQ(start.combined.near_end, 1200.0);
+    const Scene far = parse(R"(, "combined": {"near_start": 5e6})");
+    EXPECT_EQ(far.combined.near_end, fog_partition_everywhere);
 }
 
 TEST(Quality, BadValuesNameTheirKey)

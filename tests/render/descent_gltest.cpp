@@ -1,5 +1,7 @@
-// An eye that moves through the cloud without seams. The default scene in combined mode
-// (froxels near, layers far, particles in the top band; docs/combined.md): the eye comes
+// An eye that moves through the cloud without seams. The default scene in combined mode with
+// the layers drawing the far fog (froxels near, layers far from the hand-over of 400 to 1600 m,
+// particles in the top band; docs/combined.md; by default the froxels draw every distance and
+// there is no hand-over to cross): the eye comes
 // straight down over a valley in steps of 10 m through each place where the picture could jump:
 // where the fog straight below crosses the hand-over distances near_end and near_start and the
 // layers' spacing floor, through the fog's top, onto a layer of the stack, and out through the
@@ -86,6 +88,8 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
     // Stills: without the temporal filter each frame is final at once (its convergence and
     // history rejection are FroxelGl's tests), so every frame is one draw.
     scene.froxel.temporal = false;
+    scene.combined.near_start = 400.0;
+    scene.combined.near_end = 1600.0;
     const g::PipelineProducts fog = g::author_scene(scene, pipeline_target(FogMode::combined, scene));
     const g::Terrain& terrain = *fog.terrain;
     const g::Medium& medium = *fog.medium;

@@ -56,8 +56,21 @@ bool combined_panel(geometry::Scene& scene)
         return false;
     bool changed = quality_combo(scene);
     geometry::FogPartition& o = scene.combined;
-    changed |= edit("froxels up to (m)", o, o.near_start, "%.0f");
-    changed |= edit("layers from (m)", o, o.near_end, "%.0f");
+    // By default the froxels draw every distance; the layers can take the far fog.
+    bool layers_far = o.near_end < geometry::fog_partition_everywhere;
+    if (ImGui::Checkbox("layers draw the far fog", &layers_far)) {
+        o.near_start = layers_far ? 400.0 : geometry::fog_partition_everywhere;
+        o.near_end = layers_far ? 1600.0 : geometry::fog_partition_everywhere;
+        changed = true;
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "off (the default): the froxels draw the fog at every distance; on: the layers draw it "
+            "beyond the hand-over below (docs/combined.md)");
+    if (layers_far) {
+        changed |= edit("froxels up to (m)", o, o.near_start, "%.0f");
+        changed |= edit("layers from (m)", o, o.near_end, "%.0f");
+    }
     changed |= edit("particle share", o, o.particle_share, "%.2f");
     changed |= edit("particle band", o, o.particle_band, "%.2f");
     if (o.near_end < o.near_start)  // the sliders move one at a time: keep the hand-over ordered

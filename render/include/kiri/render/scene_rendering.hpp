@@ -3,7 +3,8 @@
 //! One place that turns a scene, the pipeline's products and a render mode into what the
 //! Renderer draws, so `kiri render`, `kiri bench` and the preview agree: terrain, layers,
 //! particles, froxel, or combined (docs/combined.md: every renderer draws its share of the one
-//! Medium, froxels near, layers far, particles in the top band, set_fog_partition).
+//! Medium: froxels at every distance, or near and the layers far, particles in the top band,
+//! set_fog_partition).
 #include <memory>
 #include <optional>
 #include <string_view>
