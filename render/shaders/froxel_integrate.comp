@@ -6,6 +6,10 @@
 // the tile's central ray where it is seen (froxel_light.glsl, HazeRuns), short of the ground that
 // ray meets: its light changes over tens of metres, its froxels are hundreds of metres deep from
 // afar.
+// FROXEL_HEIGHT_FOG 0: the variant for scenes without one (froxel_march.glsl says why).
+#ifndef FROXEL_HEIGHT_FOG
+#define FROXEL_HEIGHT_FOG 1
+#endif
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba16f, binding = 0) writeonly uniform image3D o_integrated;
 uniform sampler3D u_light;    // (J, lit)
@@ -26,21 +30,25 @@ void main()
     vec2 uv = (vec2(t) + 0.5) / vec2(u_fx_size.xy);
     float stretch = length(fx_ray(uv));
     float ground = 0.998 * fx_tile_ground(t);  // the height fog's light short of it
+#if FROXEL_HEIGHT_FOG
     // Twice through the slices: first where the height fog's light is needed (its runs,
     // froxel_light.glsl), then, with each run lit once, the sums.
     HazeRuns runs = haze_runs_along_ray();
-    float transmittance = 1.0;
-    float d0 = range.x;
-    for (int k = 0; k < (u_hf.x > 0.0 ? u_fx_size.z : 0); ++k) {
-        float d1 = fx_slice_depth(float(k + 1) / float(u_fx_size.z), range);
-        vec2 m = texelFetch(u_density, ivec3(t, k), 0).xy;
-        float sigma = m.x + m.y, l = (d1 - d0) * stretch;
-        float through = exp(-sigma * l);
-        float opacity = sigma * l > 1e-5 ? transmittance * (1.0 - through) / sigma : transmittance * l;
-        if (m.y > 0.0)
-            haze_run_step(runs, opacity * m.y, fx_world(uv, min(d0, ground)), fx_world(uv, min(d1, ground)), m.y * l);
-        transmittance *= through;
-        d0 = d1;
+    {
+        float transmittance = 1.0;
+        float d0 = range.x;
+        for (int k = 0; k < u_fx_size.z; ++k) {
+            float d1 = fx_slice_depth(float(k + 1) / float(u_fx_size.z), range);
+            vec2 m = texelFetch(u_density, ivec3(t, k), 0).xy;
+            float sigma = m.x + m.y, l = (d1 - d0) * stretch;
+            float through = exp(-sigma * l);
+            float opacity = sigma * l > 1e-5 ? transmittance * (1.0 - through) / sigma : transmittance * l;
+            if (m.y > 0.0)
+                haze_run_step(runs, opacity * m.y, fx_world(uv, min(d0, ground)), fx_world(uv, min(d1, ground)),
+                              m.y * l);
+            transmittance *= through;
+            d0 = d1;
+        }
     }
     vec3 light[haze_runs];
     for (int i = 0; i < haze_runs; ++i)
@@ -48,9 +56,10 @@ void main()
     if (runs.count == 0 && runs.before > 1e-5)
         light[0] = height_fog_light(runs.at, u_fx_eye);
     HazeRuns replay = haze_runs_along_ray();
+#endif
     vec3 radiance = vec3(0.0);
-    transmittance = 1.0;
-    d0 = range.x;
+    float transmittance = 1.0;
+    float d0 = range.x;
     for (int k = 0; k < u_fx_size.z; ++k) {
         float d1 = fx_slice_depth(float(k + 1) / float(u_fx_size.z), range);
         vec4 v = texelFetch(u_light, ivec3(t, k), 0);
@@ -60,10 +69,12 @@ void main()
         float opacity = sigma * l > 1e-5 ? transmittance * (1.0 - through) / sigma : transmittance * l;
         if (v.a > 0.0)
             radiance += opacity * m.x * v.rgb;
+#if FROXEL_HEIGHT_FOG
         if (m.y > 0.0) {
             haze_run_step(replay, opacity * m.y, fx_world(uv, min(d0, ground)), fx_world(uv, min(d1, ground)), m.y * l);
             radiance += opacity * m.y * light[max(replay.count - 1, 0)];
         }
+#endif
         transmittance *= through;
         imageStore(o_integrated, ivec3(t, k), vec4(radiance, transmittance));
         d0 = d1;

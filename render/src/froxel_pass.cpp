@@ -118,12 +118,21 @@ FroxelPass::FroxelPass()
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
       classify_(march_libraries("froxel_classify.comp")), apply_program_(march_libraries("froxel_apply.comp")),
-      marched_(make_buffer())
+      readback_(march_libraries("froxel_readback.comp")), marched_(make_buffer())
 {
     const GLuint zero = 0;
     glNamedBufferStorage(marched_.get(), sizeof(GLuint), &zero, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
     for (const char* name : stage_names)
         timers_.emplace_back(name);
+}
+
+const ShaderProgram& FroxelPass::HazeVariants::get(bool height_fog)
+{
+    std::unique_ptr<ShaderProgram>& p = programs_[height_fog ? 1 : 0];
+    if (!p)
+        p = std::make_unique<ShaderProgram>(
+            files_, height_fog ? "#define FROXEL_HEIGHT_FOG 1\n" : "#define FROXEL_HEIGHT_FOG 0\n");
+    return *p;
 }
 
 FroxelPass::~FroxelPass() = default;
@@ -303,7 +312,7 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     if (!visible_ || !apply_)
         return;
     const ScopedPassTimer timed(timers_[apply_stage]);
-    const ShaderProgram& p = apply_program_;
+    const ShaderProgram& p = apply_program_.get(options_.height_fog.enabled());
     bind_apply(p);
     bind_light(p, frame);
     const glm::vec2 planes = depth_planes(frame);
@@ -515,11 +524,12 @@ void FroxelPass::run_integrate(const FrameContext& frame)
 {
     const GLuint lit = options_.temporal ? v_->resolved[current_].get() : v_->light.get();
     const ScopedPassTimer timed(timers_[integrate]);
-    bind_layout(integrate_);
-    bind_light(integrate_, frame);  // the height fog's light
-    integrate_.set("u_light", unit_light);
-    integrate_.set("u_density", unit_density);
-    integrate_.use();
+    const ShaderProgram& p = integrate_.get(options_.height_fog.enabled());
+    bind_layout(p);
+    bind_light(p, frame);  // the height fog's light
+    p.set("u_light", unit_light);
+    p.set("u_density", unit_density);
+    p.use();
     glBindTextureUnit(unit_light, lit);
     glBindTextureUnit(unit_density, v_->density.get());
     glBindImageTexture(0, v_->integrated.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
@@ -536,7 +546,7 @@ void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
     if (!classified_)
         return;  // the standard apply reads the volume everywhere; fog-aware, every pixel marches
     const ScopedPassTimer timed(timers_[classify]);
-    const ShaderProgram& p = classify_;
+    const ShaderProgram& p = classify_.get(options_.height_fog.enabled());
     classified_ = false;  // the apply's library: every pixel's taps still to be decided
     bind_apply(p);
     bind_light(p, frame);
@@ -587,11 +597,9 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     FogBuffer out;
     if (!enabled_ || frame.width <= 0 || frame.height <= 0)
         return out;
-    if (!readback_) {
-        readback_ = std::make_unique<ShaderProgram>(march_libraries("froxel_readback.comp"));
+    if (!depth_program_)
         depth_program_ =
             std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
-    }
     // The terrain's depth at pixel centres, where the terrain's fragments applied the fog (the
     // multisampled frame's resolved depth holds one sample, off the centre).
     Texture surface = make_texture(GL_TEXTURE_2D);
@@ -613,7 +621,7 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     terrain.draw_mesh();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const GLuint depth_texture = surface.get();
-    const ShaderProgram& p = *readback_;
+    const ShaderProgram& p = readback_.get(options_.height_fog.enabled());
     Texture image = make_texture(GL_TEXTURE_2D), depth = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(image.get(), 1, GL_RGBA32F, frame.width, frame.height);
     glTextureStorage2D(depth.get(), 1, GL_R32F, frame.width, frame.height);
