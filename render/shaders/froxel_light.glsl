@@ -22,9 +22,9 @@ const int froxel_haze_pieces = 16;
 // through the haze's thin top, tens of steps of it, would pay the whole lighting at each.
 const float froxel_haze_significant = 1e-2;
 
-// J / albedo's share of medium m (0: the Medium, 1: the height fog) at p, seen along `ray` (unit,
-// from the eye), with the sun's visibility and optical depth there: in-scattered radiance per
-// unit of that medium's extinction.
+// J of medium m (0: the Medium, 1: the height fog) at p, seen along `ray` (unit, from the eye),
+// with the sun's visibility and optical depth there: the in-scattered radiance per unit of that
+// medium's extinction, before the air.
 vec3 medium_light(int m, vec3 p, vec3 ray, float visible, float tau)
 {
     float albedo = u_albedo[m], g = u_anisotropy[m];
@@ -64,7 +64,8 @@ vec3 height_fog_light(vec3 p, vec3 eye)
 // The height fog along the segment [a, b] (in it, `tau` of its optical depth): its in-scattered
 // radiance per unit of opacity as the eye at a's side sees it, each of n pieces' light weighted
 // by the light the pieces in front of it let through. The pieces split the part of the segment
-// below 8 scale heights over the base, where all but e^-8 of the haze is (a step of a march
+// below 8 scale heights over the base (the height fog's top for the slices too: FroxelPass's
+// haze_top_scale_heights), where all but e^-8 of the haze is (a step of a march
 // from afar is a kilometre long, its haze in its last hundred metres), and share the terrain's
 // visibility of the sun and the Medium's optical depth towards it, taken at that part's middle.
 vec3 height_fog_segment_light(vec3 a, vec3 b, vec3 eye, float tau)
