@@ -49,13 +49,8 @@ std::optional<SunVolume::Key> SunVolume::key(const glm::vec3& sun) const
     const geometry::Medium* medium = medium_gpu_.medium();
     if (!medium)
         return std::nullopt;
-    return Key{sun_march_direction(sun),
-               medium,
-               medium->grid().top.data(),
-               medium->options(),
-               medium->detail(),
-               haze_,
-               resolution_};
+    return Key{sun_march_direction(sun), medium,           medium->grid().top.data(),
+               medium->options(),        medium->detail(), resolution_};
 }
 
 bool SunVolume::stale(const glm::vec3& sun) const

@@ -66,8 +66,7 @@ private:
         const geometry::Medium* medium = nullptr;
         const void* grids = nullptr;
         geometry::MediumOptions options;
-        geometry::MediumDetail detail;
-        geometry::HeightFog haze;
+        geometry::MediumDetail detail;  // the height fog is not in it: added where it is read
         SunVolumeResolution resolution;
         bool operator==(const Key&) const = default;
     };
