@@ -54,12 +54,27 @@ FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& ref, 
     return e;
 }
 
+double reference_luminance(const geometry::ReferenceImage& ref, std::size_t k, double y_without_fog,
+                           double y_without_sun)
+{
+    // The ground under the fog lies in its shade: of the sun's part of the frame without fog
+    // (it less the frame without the sun either) the reference's fog lets ground_sun through;
+    // without that frame, the sunlight the reference's shade takes is taken from it.
+    double y_shaded = y_without_fog;
+    if (y_without_sun >= 0.0 && k < ref.ground_sun.size())
+        y_shaded = y_without_sun + ref.ground_sun[k] * std::max(y_without_fog - y_without_sun, 0.0);
+    else if (k < ref.fog_shade.size())
+        y_shaded = std::max(y_without_fog - geometry::luminance(ref.fog_shade[k]), 0.0);
+    return y_shaded * ref.transmittance[k] + geometry::luminance(ref.inscatter[k]);
+}
+
 FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
-                        const geometry::ReferenceImage& ref, std::vector<float>* signed_error)
+                        const geometry::ReferenceImage& ref, std::vector<float>* signed_error,
+                        const RadianceImage* without_sun)
 {
     const std::size_t n = std::size_t(ref.width) * std::size_t(ref.height);
-    for (const RadianceImage* image : {&with_fog, &without_fog})
-        if (image->width != ref.width || image->height != ref.height || image->rgba.size() != 4 * n)
+    for (const RadianceImage* image : {&with_fog, &without_fog, without_sun})
+        if (image && (image->width != ref.width || image->height != ref.height || image->rgba.size() != 4 * n))
             throw Error("compare_frames: a frame is " + std::to_string(image->width) + "x" +
                         std::to_string(image->height) + ", the reference " + std::to_string(ref.width) + "x" +
                         std::to_string(ref.height));
@@ -67,14 +82,16 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
     std::vector<double> errors;
     if (signed_error)
         signed_error->assign(n, std::numeric_limits<float>::quiet_NaN());
+    const auto luminance_at = [](const RadianceImage& image, std::size_t k) {
+        const float* p = &image.rgba[4 * k];
+        return geometry::luminance({p[0], p[1], p[2]});
+    };
     for (std::size_t k = 0; k < n; ++k) {
-        const float* w = &with_fog.rgba[4 * k];
-        const float* b = &without_fog.rgba[4 * k];
-        const double y_bg = geometry::luminance({b[0], b[1], b[2]});
-        const double y_ref = y_bg * ref.transmittance[k] + geometry::luminance(ref.inscatter[k]);
+        const double y_bg = luminance_at(without_fog, k);
+        const double y_ref = reference_luminance(ref, k, y_bg, without_sun ? luminance_at(*without_sun, k) : -1.0);
         if (!(std::abs(y_ref - y_bg) > 0.01 * y_ref))
             continue;  // the fog hardly shows here
-        const double y_gpu = geometry::luminance({w[0], w[1], w[2]});
+        const double y_gpu = luminance_at(with_fog, k);
         errors.push_back(std::abs(y_gpu - y_ref) / y_ref);
         if (signed_error)
             (*signed_error)[k] = float((y_gpu - y_ref) / y_ref);

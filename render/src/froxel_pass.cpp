@@ -81,17 +81,9 @@ void dispatch_volume(const glm::ivec3& size, int depth)
 // The libraries of a program that lights fog (froxel_light.glsl), then its stage file.
 std::vector<std::string_view> light_libraries(std::string_view stage)
 {
-    return {"fog_partition.glsl",
-            "froxel_common.glsl",
-            "fog_lighting.glsl",
-            "medium_shell.glsl",
-            "froxel_medium.glsl",
-            "sun_march.glsl",
-            "sun_volume.glsl",
-            "terrain_shadow.glsl",
-            "light_volume.glsl",
-            "froxel_light.glsl",
-            stage};
+    return {"fog_partition.glsl",  "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
+            "height_fog.glsl",     "froxel_medium.glsl", "sun_march.glsl",    "sun_volume.glsl",
+            "terrain_shadow.glsl", "light_volume.glsl",  "froxel_light.glsl", stage};
 }
 
 // The libraries of a program that marches pixels' rays (froxel_march.glsl), then its stage file.
@@ -110,12 +102,13 @@ struct FroxelPass::Volumes {
 };
 
 FroxelPass::FroxelPass()
-    : v_(std::make_unique<Volumes>()), density_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-                                                 "medium_shell.glsl", "froxel_medium.glsl", "froxel_density.comp"}),
+    : v_(std::make_unique<Volumes>()),
+      density_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
+                "froxel_medium.glsl", "froxel_density.comp"}),
       lighting_(light_libraries("froxel_lighting.comp")), temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
       integrate_(light_libraries("froxel_integrate.comp")),
-      opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
+      opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
       classify_(march_libraries("froxel_classify.comp")), apply_program_(march_libraries("froxel_apply.comp")),
       readback_(march_libraries("froxel_readback.comp")), marched_(make_buffer())

@@ -287,7 +287,8 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "froxel_common.glsl",
-            "fog_lighting.glsl", "terrain_shadow.glsl", "froxel_medium.glsl", "froxel_apply.glsl", "layers.frag"});
+            "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "froxel_apply.glsl",
+            "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
@@ -415,8 +416,8 @@ bool LayersPass::update_sun_columns(const FrameContext& frame)
     const double height = key->height;
     if (!sun_columns_program_)
         sun_columns_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "froxel_medium.glsl",
-            "sun_march.glsl", "sun_volume.glsl", "layers_sun.comp"});
+            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
+            "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "layers_sun.comp"});
     const ShaderProgram& c = *sun_columns_program_;
     const GLsizei vertices = GLsizei(base_->position.size());
     sun_columns_ = make_buffer();

@@ -176,7 +176,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-            "particle_light.glsl", "terrain_shadow.glsl", "medium_shell.glsl", "froxel_medium.glsl",
+            "particle_light.glsl", "terrain_shadow.glsl", "medium_shell.glsl", "height_fog.glsl", "froxel_medium.glsl",
             "froxel_apply.glsl", "light_volume.glsl", "particles.vert", "particles.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)

@@ -93,7 +93,7 @@ struct Renderer::Impl {
     void apply_froxel_fog();
     PassTimer shadow_timer{"shadow map"}, sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"},
         resolve_timer{"resolve"}, overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"},
-        sun_volume_timer{"sun volume"}, sun_columns_timer{"layers sun"};
+        sun_volume_timer{"sun volume"}, sun_columns_timer{"layers sun"}, ground_shade_timer{"ground shade"};
 
     //! The sun's shadow map brought up to date for the frame; null without terrain shadows.
     const detail::ShadowMapPass* update_shadow_map(const FrameContext& frame)
@@ -127,7 +127,7 @@ struct Renderer::Impl {
             medium = fog->medium();
             haze = fog->options().height_fog;
         }
-        if (!medium && !sun_volume)
+        if (!medium && !haze.enabled() && !sun_volume)
             return nullptr;
         if (!sun_volume)
             sun_volume = std::make_unique<detail::SunVolume>();
@@ -374,6 +374,13 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     }
     const detail::ShadowMapPass* shadow = r.update_shadow_map(frame);
     const detail::SunVolume* sun_volume = r.update_sun_volume(frame, fog);
+    r.ground_shade_timer.forget();
+    if (r.terrain.fog_shade_stale(sun_volume, frame.sun_direction)) {
+        const ScopedPassTimer timed(r.ground_shade_timer);
+        r.terrain.set_fog_shade(sun_volume, frame.sun_direction);
+    } else {
+        r.terrain.set_fog_shade(sun_volume, frame.sun_direction);  // drops the shade of a fog gone
+    }
     if (fog) {  // before the scene: is the fog in view
         r.froxel->prepare(frame, shadow);
         r.froxel->set_sun_volume(sun_volume);
@@ -443,7 +450,7 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     if (shadow && r.shadow_timer.ran())
         r.stats.passes.push_back(r.shadow_timer.result());
     r.stats.shadow_map_updates = r.shadow_map ? r.shadow_map->updates() : 0;
-    for (const PassTimer* t : {&r.sun_volume_timer, &r.sun_columns_timer})
+    for (const PassTimer* t : {&r.sun_volume_timer, &r.sun_columns_timer, &r.ground_shade_timer})
         if (t->ran())
             r.stats.passes.push_back(t->result());
     r.stats.sun_volume_updates = r.sun_volume ? r.sun_volume->updates() : 0;

@@ -202,7 +202,7 @@ const geometry::Medium* SceneRendering::medium() const
 
 const geometry::Medium* SceneRendering::sun_medium() const
 {
-    if (!(draws_layers() || draws_froxels()) || !products_.has_fog())
+    if (mode_ == FogMode::terrain || !products_.has_fog())
         return nullptr;
     return timed_medium_ ? timed_medium_.get() : products_.medium.get();
 }
@@ -232,7 +232,9 @@ void SceneRendering::apply(Renderer& renderer) const
         renderer.set_froxel_fog(medium(), froxel_);
     else
         renderer.clear_froxel_fog();
-    renderer.set_sun_medium(sun_medium(), froxel_.height_fog);
+    // The fog drawn shades the sun for every renderer and the ground under it; a height fog only
+    // the froxels draw shades nothing where they do not.
+    renderer.set_sun_medium(sun_medium(), draws_froxels() ? froxel_.height_fog : geometry::HeightFog{});
     // The baked multiple scattering, where the Medium's model is `baked` (the pipeline's light
     // stage made it for the scene's sun); the renderers draw single scattering without it.
     if (mode_ != FogMode::terrain && products_.light_volume)

@@ -32,8 +32,8 @@ glm::vec3 sun_march_direction(glm::vec3 d)
 }
 
 SunVolume::SunVolume()
-    : fill_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "froxel_medium.glsl",
-             "sun_march.glsl", "sun_volume.comp"})
+    : fill_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
+             "froxel_medium.glsl", "sun_march.glsl", "sun_volume.comp"})
 {}
 
 void SunVolume::set(const geometry::Medium* medium, const geometry::HeightFog& haze)
@@ -120,8 +120,8 @@ std::vector<float> SunVolume::probe(const std::vector<glm::vec3>& points, const 
         return {};
     if (!probe_)
         probe_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "froxel_medium.glsl",
-            "sun_march.glsl", "sun_volume.glsl", "sun_volume_probe.comp"});
+            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
+            "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "sun_volume_probe.comp"});
     std::vector<glm::vec4> in(points.size());
     for (std::size_t k = 0; k < points.size(); ++k)
         in[k] = glm::vec4(points[k], 1.0f);

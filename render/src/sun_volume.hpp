@@ -59,6 +59,9 @@ public:
                              bool use_volume = true) const;
     int updates() const { return updates_; }
     glm::ivec3 size() const { return size_; }
+    //! The Medium set (null: none, or one without fog) and the height fog.
+    const geometry::Medium* medium() const { return medium_gpu_.medium(); }
+    const geometry::HeightFog& haze() const { return haze_; }
 
 private:
     struct Key {

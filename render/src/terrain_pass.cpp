@@ -8,6 +8,7 @@
 #include "kiri/geometry/terrain/ground.hpp"
 #include "terrain_levels.hpp"
 #include "shadow_map_pass.hpp"
+#include "sun_volume.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
 
 namespace kiri::render::detail {
@@ -117,6 +118,9 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
         indices.insert(indices.end(), coarse.begin(), coarse.end());
     }
     vao_ = make_vertex_array();
+    shaded_ = false;
+    vertex_count_ = GLsizei(vertices.size());
+    ++uploads_;
     vertices_ = make_buffer();
     indices_ = make_buffer();
     glNamedBufferStorage(vertices_.get(), GLsizeiptr(vertices.size() * sizeof(TerrainPassVertex)), vertices.data(), 0);
@@ -176,6 +180,25 @@ void TerrainPass::draw_mesh() const
     glDrawElements(GL_TRIANGLES, grid_index_count_, GL_UNSIGNED_INT, nullptr);
 }
 
+bool TerrainPass::set_fog_shade(const SunVolume* sun, const glm::vec3& sun_direction)
+{
+    if (!has_terrain())
+        return false;
+    const int before = shade_.updates();
+    const bool shaded = shade_.update(sun, sun_direction, vertices_.get(), int(vertex_count_),
+                                      int(sizeof(TerrainPassVertex) / sizeof(float)), uploads_);
+    if (shaded) {
+        glVertexArrayVertexBuffer(vao_.get(), 1, shade_.buffer(), 0, sizeof(float));
+        glVertexArrayAttribFormat(vao_.get(), 2, 1, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(vao_.get(), 2, 1);
+        glEnableVertexArrayAttrib(vao_.get(), 2);
+    } else if (shaded_) {
+        glDisableVertexArrayAttrib(vao_.get(), 2);
+    }
+    shaded_ = shaded;
+    return shade_.updates() != before;
+}
+
 void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) const
 {
     if (!has_terrain())
@@ -195,6 +218,8 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) c
     p.set("u_haze_density", frame.haze_density);
     set_ground_uniforms(p);
     p.use();
+    if (!shaded_)
+        glVertexAttrib1f(2, 0.0f);  // no Medium's shade: tau_sun 0
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao_.get());

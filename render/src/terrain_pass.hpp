@@ -5,6 +5,7 @@
 #include <glm/vec3.hpp>
 
 #include "frame_context.hpp"
+#include "ground_shade.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::geometry {
@@ -23,8 +24,17 @@ public:
     //! Returns true when it had to upload (the terrain, the exaggeration or the surround changed).
     bool set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround = true);
     bool has_terrain() const { return grid_index_count_ > 0; }
+    //! The fog the sun shines through onto the ground: the sun volume's Medium and height fog
+    //! (GroundShade: tau_sun per vertex, rebuilt when the sun, the fog or the mesh change). Null,
+    //! or a volume without either, lights the ground fully. Returns true when it rebuilt.
+    bool set_fog_shade(const class SunVolume* sun, const glm::vec3& sun_direction);
+    //! Whether set_fog_shade would rebuild.
+    bool fog_shade_stale(const class SunVolume* sun, const glm::vec3& sun_direction) const
+    {
+        return has_terrain() && shade_.stale(sun, sun_direction, int(vertex_count_), uploads_);
+    }
     //! Draws the ground in the shadows of the sun's shadow map (terrain_shadow.glsl; null: no
-    //! shadows).
+    //! shadows) and in the fog's shade (set_fog_shade).
     void draw(const FrameContext& frame, const class ShadowMapPass* shadow = nullptr) const;
     //! Draws the grid's mesh, without the surround, with whatever program is bound (positions at
     //! attribute 0): depth passes (the sun's shadow map ignores the surround).
@@ -51,6 +61,10 @@ private:
     mutable std::unique_ptr<ShaderProgram> shadow_program_;  // in the shadow map's shadows, built on first use
     VertexArray vao_;
     Buffer vertices_, indices_;
+    GLsizei vertex_count_ = 0;
+    int uploads_ = 0;  // of the vertices: the fog's shade is theirs
+    GroundShade shade_;
+    bool shaded_ = false;  // attribute 2 reads shade_'s buffer
     GLsizei grid_index_count_ = 0, surround_index_count_ = 0;
     glm::dvec3 min_{0.0}, max_{-1.0};
     // ground.glsl's and sky.frag's ground uniforms.

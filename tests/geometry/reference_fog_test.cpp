@@ -129,6 +129,28 @@ TEST(ReferenceFog, LookingDownThroughASlabWithTheSunOverhead)
     EXPECT_NEAR(r.transmittance, std::exp(-sigma * H), 1e-12);
 }
 
+TEST(ReferenceFog, TheGroundUnderTheFogLiesInItsShade)
+{
+    // Flat ground under a slab, the sun at the zenith, no sky: the ground gets e^-(sigma H) of the
+    // sun, and fog_shade holds what the fog took, so fog_shade / surface = e^(sigma H) - 1.
+    const double sigma = 0.015, H = 120.0;
+    const Medium m = slab(0.0, H, sigma);
+    const Heightfield ground = flat();
+    FogLighting light;
+    light.sun_direction = {0.0, 0.0, 1.0};
+    light.sun_radiance = glm::dvec3(2.5);
+    light.ambient = glm::dvec3(0.0);
+    light.sky = false;
+    const RayFog r = reference_ray({&m, {}}, &ground, {10.0, 20.0, 2.0 * H}, {0.0, 0.0, -1.0}, 1e6, light);
+    ASSERT_TRUE(r.hit_terrain);
+    ASSERT_GT(luminance(r.surface), 0.0);
+    expect_rel(r.fog_shade, r.surface * std::expm1(sigma * H), 1e-3);  // the sun is traced from a cm above it
+    // Without fog nothing is shaded.
+    const RayFog bare = reference_ray({}, &ground, {10.0, 20.0, 2.0 * H}, {0.0, 0.0, -1.0}, 1e6, light);
+    EXPECT_EQ(bare.fog_shade, glm::dvec3(0.0));
+    expect_rel(bare.surface, r.surface + r.fog_shade, 1e-9);
+}
+
 TEST(ReferenceFog, LayerProfileOpticalDepth)
 {
     // Density 1 - (1 - td) h: straight down through the shell, tau = sigma H (1 + td) / 2.

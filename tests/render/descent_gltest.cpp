@@ -43,12 +43,14 @@ bool finite(const RadianceImage& image)
 }
 
 // The reference's frame: its fog composed over the GPU's own background.
-double mean_luminance(const g::ReferenceImage& ref, const RadianceImage& background)
+// The reference over the GL frame without fog, in the fog's shade (compare_frames' reference).
+double mean_luminance(const g::ReferenceImage& ref, const RadianceImage& background, const RadianceImage& sky_lit)
 {
     double sum = 0.0;
     for (std::size_t k = 0; k < ref.transmittance.size(); ++k) {
-        const float* b = &background.rgba[4 * k];
-        sum += g::luminance({b[0], b[1], b[2]}) * ref.transmittance[k] + g::luminance(ref.inscatter[k]);
+        const float *b = &background.rgba[4 * k], *s = &sky_lit.rgba[4 * k];
+        sum += kiri::render::reference_luminance(ref, k, g::luminance({b[0], b[1], b[2]}),
+                                                 g::luminance({s[0], s[1], s[2]}));
     }
     return sum / double(ref.transmittance.size());
 }
@@ -157,6 +159,8 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
     // The frame without fog sees the same terrain in the same shadows of the sun (as `kiri
     // bench`'s judge draws it).
     bare.set_sun(combined.sun());
+    kiri::render::SunLight sunless = combined.sun();  // the ground's sky light alone (compare_frames)
+    sunless.intensity = 0.0;
     double gl_seconds = 0.0, reference_seconds = 0.0;
     for (Window& w : windows) {
         for (int k = 2; k >= -2; --k) {
@@ -173,18 +177,22 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
             const RadianceImage with_fog = fogged.read_radiance();
             bare.draw(camera, width, height);
             const RadianceImage without = bare.read_radiance();
+            bare.set_sun(sunless);
+            bare.draw(camera, width, height);
+            const RadianceImage sky_lit = bare.read_radiance();
+            bare.set_sun(combined.sun());
             gl_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             const g::ReferenceView view = reference_view(camera, width, height, froxel.far);
             const g::ReferenceImage ref =
                 g::render_reference_fog({&medium, froxel.height_fog}, &terrain.heightfield(), view, light, reference);
             reference_seconds += ref.seconds;
             f.finite = finite(with_fog);
-            const FogError e = compare_frames(with_fog, without, ref);
+            const FogError e = compare_frames(with_fog, without, ref, nullptr, &sky_lit);
             f.error = e.mean_relative;
             f.p99 = e.p99_relative;
             f.fog_pixels = e.fog_pixels;
             f.y_gpu = mean_luminance(with_fog);
-            f.y_ref = mean_luminance(ref, without);
+            f.y_ref = mean_luminance(ref, without, sky_lit);
             w.frames.push_back(f);
             std::printf(
                 "    %-16s eye at %7.1f m: fog pixels %4d, mean error %.4f, p99 %.3f, Y %.5f (reference %.5f)\n",

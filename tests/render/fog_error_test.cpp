@@ -50,4 +50,57 @@ TEST(FogError, SignedErrorsAreTheFramesAgainstTheReferenceComposedOverTheBackgro
     EXPECT_THROW(kiri::render::error_map({0.0f}, 2, 1), kiri::Error);
 }
 
+// The ground under the fog lies in its shade: the reference takes the sunlight the shade holds
+// back (ReferenceImage::fog_shade) from the frame without fog before composing its fog over it.
+TEST(FogError, TheFogsShadeOnTheGroundIsTakenFromTheFrameWithoutFog)
+{
+    // Background 1.0, of which the fog's shade takes 0.4; transmittance 0.5, in-scatter 0.3:
+    // Y_ref = 0.6 * 0.5 + 0.3 = 0.6 (0.8 without the shade).
+    kiri::geometry::ReferenceImage ref;
+    ref.width = 2;
+    ref.height = 1;
+    ref.transmittance = {0.5, 0.5};
+    ref.inscatter = {glm::dvec3(0.3), glm::dvec3(0.3)};
+    ref.fog_shade = {glm::dvec3(0.4), glm::dvec3(0.4)};
+    ref.depth.assign(2, 100.0);
+    RadianceImage fog = grey(2, 1, 0.6f);
+    fog.rgba[4] = fog.rgba[5] = fog.rgba[6] = 0.8f;  // pixel 1: the ground lit as if no fog were over it
+    std::vector<float> signed_error;
+    const kiri::render::FogError e = kiri::render::compare_frames(fog, grey(2, 1, 1.0f), ref, &signed_error);
+    EXPECT_EQ(e.fog_pixels, 2);
+    EXPECT_NEAR(signed_error[0], 0.0, 1e-6);
+    EXPECT_NEAR(signed_error[1], 0.2 / 0.6, 1e-6);
+    // A shade larger than the frame without fog (another terrain's light): the ground black, never negative.
+    ref.fog_shade = {glm::dvec3(2.0), glm::dvec3(0.0)};
+    EXPECT_EQ(kiri::render::compare_frames(grey(2, 1, 0.3f), grey(2, 1, 1.0f), ref, &signed_error).fog_pixels, 2);
+    EXPECT_NEAR(signed_error[0], 0.0, 1e-6);
+}
+
+// With the frame without the sun, the GPU's own ground is dimmed: of its sun's part the
+// reference's fog lets ground_sun through, whatever the two grounds' brightness.
+TEST(FogError, WithTheFrameWithoutTheSunTheGPUsOwnGroundIsShaded)
+{
+    // The GPU's ground 1.0 without fog, 0.2 of it sky light: the sun's 0.8 through the fog's
+    // ground_sun 0.25 gives 0.4; with transmittance 0.5 and in-scatter 0.3, Y_ref = 0.5. The
+    // reference's own fog_shade (of a brighter ground) is not used.
+    kiri::geometry::ReferenceImage ref;
+    ref.width = 2;
+    ref.height = 1;
+    ref.transmittance = {0.5, 0.5};
+    ref.inscatter = {glm::dvec3(0.3), glm::dvec3(0.3)};
+    ref.fog_shade = {glm::dvec3(0.9), glm::dvec3(0.9)};
+    ref.ground_sun = {0.25, 0.25};
+    ref.depth.assign(2, 100.0);
+    RadianceImage fog = grey(2, 1, 0.5f);
+    fog.rgba[4] = fog.rgba[5] = fog.rgba[6] = 0.55f;  // pixel 1: 10 % too bright
+    std::vector<float> signed_error;
+    const RadianceImage sky_lit = grey(2, 1, 0.2f);
+    const kiri::render::FogError e = kiri::render::compare_frames(fog, grey(2, 1, 1.0f), ref, &signed_error, &sky_lit);
+    EXPECT_EQ(e.fog_pixels, 2);
+    EXPECT_NEAR(signed_error[0], 0.0, 1e-6);
+    EXPECT_NEAR(signed_error[1], 0.1, 1e-6);
+    const RadianceImage wrong_size = grey(3, 1, 0.2f);
+    EXPECT_THROW(kiri::render::compare_frames(fog, grey(2, 1, 1.0f), ref, nullptr, &wrong_size), kiri::Error);
+}
+
 }  // namespace

@@ -145,8 +145,9 @@ render::FogError FogJudge::error(std::vector<float>* signed_error)
     const render::RadianceImage with = renderer_->read_radiance();
     // The frame without fog sees the same terrain, in the same shadows (the sun's, as set).
     const render::RadianceImage& plain = without_fog(rendering_->sun().terrain_shadows);
+    const render::RadianceImage& sky_lit = without_sun();
     rendering_->apply(*renderer_);  // back to the fog for what follows
-    return render::compare_frames(with, plain, reference_, signed_error);
+    return render::compare_frames(with, plain, reference_, signed_error, &sky_lit);
 }
 
 const render::RadianceImage& FogJudge::without_fog(bool shadows)
@@ -157,11 +158,30 @@ const render::RadianceImage& FogJudge::without_fog(bool shadows)
         renderer_->clear_particles();
         renderer_->set_fog_partition(std::nullopt);
         renderer_->clear_froxel_fog();
+        renderer_->clear_sun_medium();  // the ground fully lit: the reference's shade is applied to it
         renderer_->draw(camera_, width_, height_);
         renderer_->draw(camera_, width_, height_);
         plain = renderer_->read_radiance();
     }
     return *plain;
+}
+
+const render::RadianceImage& FogJudge::without_sun()
+{
+    if (!sky_lit_) {
+        renderer_->clear_layers();
+        renderer_->clear_particles();
+        renderer_->set_fog_partition(std::nullopt);
+        renderer_->clear_froxel_fog();
+        renderer_->clear_sun_medium();
+        render::SunLight dark = rendering_->sun();
+        dark.intensity = 0.0;
+        renderer_->set_sun(dark);
+        renderer_->draw(camera_, width_, height_);
+        sky_lit_ = renderer_->read_radiance();
+        renderer_->set_sun(rendering_->sun());
+    }
+    return *sky_lit_;
 }
 
 }  // namespace kiri::bench

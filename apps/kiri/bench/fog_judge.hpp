@@ -81,6 +81,8 @@ public:
 
 private:
     const render::RadianceImage& without_fog(bool terrain_shadows);
+    //! Without fog and without the sun: the ground's sky light (compare_frames' without_sun).
+    const render::RadianceImage& without_sun();
 
     geometry::Pipeline pipeline_;
     render::Camera camera_;
@@ -91,6 +93,7 @@ private:
     std::optional<render::SceneRendering> rendering_;
     render::Image last_image_, still_image_;
     std::optional<render::RadianceImage> plain_[2];  //!< without fog: [terrain shadows off, on]
+    std::optional<render::RadianceImage> sky_lit_;   //!< without fog and sun
 };
 
 }  // namespace kiri::bench

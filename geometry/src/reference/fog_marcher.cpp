@@ -276,19 +276,26 @@ void FogMarcher::split_at_shadow_edges(MarchScratch& s) const
     s.steps.swap(s.split);
 }
 
-glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s) const
+glm::dvec3 FogMarcher::surface_radiance(const glm::dvec3& p, MarchScratch& s, glm::dvec3* fog_shade,
+                                        double* sun_through) const
 {
     // render/shaders/terrain.frag before the air's haze (trace adds it), with the cast shadows
     // and the fog's shade of the sun that the lighting model adds.
     const glm::dvec3 n = terrain_->normal(p.x, p.y);
     const glm::dvec3 base = ground_albedo(terrain_->ground(), p, n);
+    // The sun's transmittance even where this ground turns from the sun or lies in the
+    // terrain's shadow: compare_frames dims another ground's sunlight by it.
+    const glm::dvec3 q = p + n * (0.01 + 1e-7 * glm::length(p));  // off the surface's own triangles
+    const double through = std::exp(-sun_optical_depth(q, s));
     double direct = std::max(glm::dot(n, sun_), 0.0);
-    if (direct > 0.0) {
-        const glm::dvec3 q = p + n * (0.01 + 1e-7 * glm::length(p));  // off the surface's own triangles
-        direct *= sun_visible(q) ? std::exp(-sun_optical_depth(q, s)) : 0.0;
-    }
+    if (direct > 0.0 && !sun_visible(q))
+        direct = 0.0;
+    if (fog_shade)
+        *fog_shade = base * light_.sun_radiance * (direct * (1.0 - through));
+    if (sun_through)
+        *sun_through = through;
     const glm::dvec3 sky = light_.ambient * (0.6 + 0.4 * n.z);
-    return base * (light_.sun_radiance * direct + sky);
+    return base * (light_.sun_radiance * (direct * through) + sky);
 }
 
 glm::dvec3 FogMarcher::sky_radiance(const glm::dvec3& w) const
@@ -391,10 +398,12 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
     r.transmittance = std::exp(-tau);
     r.steps = int(s.steps.size());
     r.sun_knots = int(s.knots.size());
-    if (r.hit_terrain)
+    if (r.hit_terrain && o_.shade_terrain) {
         // terrain.frag hazes the lit ground as the air above says; a black ground stays black.
-        r.surface = o_.shade_terrain ? light_.air.seen(surface_radiance(o + w * t_end, s), t_end) : glm::dvec3(0.0);
-    else
+        glm::dvec3 shade;
+        r.surface = light_.air.seen(surface_radiance(o + w * t_end, s, &shade, &r.ground_sun), t_end);
+        r.fog_shade = shade * (1.0 - light_.air.haze(t_end));
+    } else if (!r.hit_terrain)
         r.surface = sky_radiance(w);
     return r;
 }

@@ -57,7 +57,8 @@ private:
     //! Cuts the steps at the terrain shadow edges between knots.
     void split_at_shadow_edges(MarchScratch& s) const;
     SunKnot sun_knot(const glm::dvec3& o, const glm::dvec3& w, double t, MarchScratch& s) const;
-    glm::dvec3 surface_radiance(const glm::dvec3& p, MarchScratch& s) const;
+    glm::dvec3 surface_radiance(const glm::dvec3& p, MarchScratch& s, glm::dvec3* fog_shade = nullptr,
+                                double* sun_through = nullptr) const;
     glm::dvec3 sky_radiance(const glm::dvec3& w) const;
 };
 

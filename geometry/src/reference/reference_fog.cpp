@@ -54,6 +54,8 @@ ReferenceImage render_reference_fog(const FogVolume& fog, const Heightfield* ter
     out.inscatter.assign(n, glm::dvec3(0.0));
     out.transmittance.assign(n, 1.0);
     out.background.assign(n, glm::dvec3(0.0));
+    out.fog_shade.assign(n, glm::dvec3(0.0));
+    out.ground_sun.assign(n, 1.0);
     out.depth.assign(n, std::numeric_limits<double>::infinity());
     const detail::FogMarcher marcher(fog, terrain, light, options);
     const glm::dvec3 forward = view.forward();
@@ -71,6 +73,8 @@ ReferenceImage render_reference_fog(const FogVolume& fog, const Heightfield* ter
                 out.inscatter[k] = r.inscatter;
                 out.transmittance[k] = r.transmittance;
                 out.background[k] = r.surface;
+                out.fog_shade[k] = r.fog_shade;
+                out.ground_sun[k] = r.ground_sun;
                 if (r.hit_terrain)
                     out.depth[k] = r.distance * cos_axis;
                 my_steps += r.steps;

@@ -29,14 +29,25 @@ FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& refer
 
 //! Any renderer (layers, particles, froxels, combined) judged by its whole frame: `with_fog` and
 //! `without_fog` are the same view's linear radiance (Renderer::read_radiance) drawn with and
-//! without the fog; the reference's fog is composed over the GPU's own background,
-//! Y_ref = Y(without) T_ref + Y(S_ref), so both differ only by their fog. Over the pixels the
-//! reference's fog changes by more than 1 % (no silhouette test; the transmittance and in-scatter
-//! errors are not separable from a frame and stay 0). `signed_error`, when given, receives per
-//! pixel (Y - Y_ref) / Y_ref, NaN where the pixel is not judged: the error's map.
-//! \throw kiri::Error when the sizes differ.
+//! without the fog; the reference's fog is composed over the GPU's own background, so both
+//! differ only by their fog: Y_ref = Y(shaded) T_ref + Y(S_ref), where Y(shaded) is the frame
+//! without fog in the fog's shade. With `without_sun` (the frame without fog and without the
+//! sun: the ground's sky light) the sun's part of the frame is dimmed by the reference's
+//! ground_sun, Y(shaded) = Y(without_sun) + ground_sun (Y(without) - Y(without_sun)), which
+//! keeps the GPU's own ground (its normals, its samples); without it the reference's fog_shade
+//! is taken from Y(without), which leaves the two grounds' differences in the shade. Over the
+//! pixels the reference's fog changes by more than 1 % (no silhouette test; the transmittance
+//! and in-scatter errors are not separable from a frame and stay 0). `signed_error`, when
+//! given, receives per pixel (Y - Y_ref) / Y_ref, NaN where the pixel is not judged: the error's
+//! map. \throw kiri::Error when the sizes differ.
 FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
-                        const geometry::ReferenceImage& reference, std::vector<float>* signed_error = nullptr);
+                        const geometry::ReferenceImage& reference, std::vector<float>* signed_error = nullptr,
+                        const RadianceImage* without_sun = nullptr);
+
+//! compare_frames' reference luminance at pixel k over the frame without fog of luminance
+//! y_without_fog there (and without the sun, y_without_sun; negative: not drawn).
+double reference_luminance(const geometry::ReferenceImage& reference, std::size_t k, double y_without_fog,
+                           double y_without_sun = -1.0);
 
 //! A signed error map as a picture: white where it is 0, red where kiri is brighter than the
 //! reference, blue where darker, full colour at +-`full_scale`; grey where not judged (NaN).

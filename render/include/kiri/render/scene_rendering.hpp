@@ -72,8 +72,9 @@ public:
     const geometry::ParticleCloud* particles() const;
     //! The Medium the froxels draw, at the scene's time (null: none).
     const geometry::Medium* medium() const;
-    //! The Medium the sun shines through for the layers' and the froxels' tau_sun, at the
-    //! scene's time (null: none drawn, or not made yet).
+    //! The Medium the sun shines through for the renderers' tau_sun and the ground's shade
+    //! (TerrainPass::set_fog_shade), at the scene's time: the fog's in every mode that draws fog
+    //! (null: terrain mode, no fog, or not made yet).
     const geometry::Medium* sun_medium() const;
     const geometry::FroxelOptions& froxel_options() const { return froxel_; }
     //! The scene's sun with the terrain's shadows as the scene sets them (its froxel keys

@@ -77,7 +77,13 @@ struct RayFog {
     double distance = 0.0;  //!< where the ray ended: the terrain, the depth limit or 1e6 m
     bool hit_terrain = false;
     glm::dvec3 surface{0.0};  //!< radiance of what ends the ray: lit terrain, or sky
-    int steps = 0;            //!< fine steps taken (cost)
+    //! The sunlight the fog's shade takes from that terrain, as seen through the air: what it
+    //! would add to `surface` without the fog (the ground under the fog lies in its shade).
+    glm::dvec3 fog_shade{0.0};
+    //! The sun's transmittance through the fog at that terrain, e^-tau_sun (1: sky, or a ground
+    //! turned from the sun), whether or not the terrain hides the sun there.
+    double ground_sun = 1.0;
+    int steps = 0;  //!< fine steps taken (cost)
     int sun_knots = 0;
 };
 
@@ -86,6 +92,8 @@ struct ReferenceImage {
     std::vector<glm::dvec3> inscatter;  //!< row-major, row 0 at the top
     std::vector<double> transmittance;
     std::vector<glm::dvec3> background;  //!< the surface's radiance (terrain or sky), unfogged
+    std::vector<glm::dvec3> fog_shade;   //!< RayFog::fog_shade (empty: none)
+    std::vector<double> ground_sun;      //!< RayFog::ground_sun (empty: 1)
     std::vector<double> depth;           //!< view depth of the terrain hit, +inf for sky
     double seconds = 0.0;
     long long steps = 0, sun_knots = 0;

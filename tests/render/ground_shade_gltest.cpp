@@ -1,0 +1,163 @@
+// The fog's shade on the ground (render/src/ground_shade.hpp): the sun reaches the ground under
+// a fog through its optical depth towards the sun, e^-tau, as the CPU reference lights its
+// ground (RayFog::fog_shade). What the sun adds to the ground, with the fog over it against
+// without, must be e^-tau in closed form: under a uniform slab of the Medium, and under a height
+// fog alone. The fog is not drawn (the sun's Medium only), so the frames differ by the shade.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/volume/height_fog.hpp"
+#include "kiri/render/camera.hpp"
+#include "kiri/render/renderer.hpp"
+#include "render/render_fixture.hpp"
+
+namespace {
+
+namespace g = kiri::geometry;
+using kiri::render::Camera;
+using kiri::render::RadianceImage;
+using kiri::render::Renderer;
+using kiri::render::SunLight;
+
+constexpr double sigma = 0.01, thickness = 100.0;  // the slab: 1/m, m
+
+// A flat plain at z = 0 under a uniform slab from the ground to `thickness`, 640 m a side: away
+// from its sides the sun's path leaves through its top, after thickness / sin(elevation).
+g::Medium slab()
+{
+    g::MediumGrid grid;
+    grid.nx = grid.ny = 33;
+    grid.dx = grid.dy = 20.0;
+    grid.x0 = grid.y0 = -320.0;
+    const std::size_t n = std::size_t(grid.nx) * std::size_t(grid.ny);
+    grid.floor.assign(n, 0.0);
+    grid.bottom.assign(n, 0.0);
+    grid.top.assign(n, thickness);
+    grid.coverage.assign(n, 1.0);
+    g::MediumOptions options;
+    options.extinction = sigma;
+    options.top_density = 1.0;
+    g::MediumDetail uniform;
+    uniform.detail = 0.0;
+    return g::Medium(std::move(grid), options, uniform);
+}
+
+// The sun 30 degrees up in the east; intensity 0 for the frame without it.
+SunLight sun(double intensity)
+{
+    SunLight s;
+    s.direction = glm::normalize(glm::dvec3(std::cos(0.5235987755982988), 0.0, 0.5));
+    s.intensity = intensity;
+    s.terrain_shadows = false;
+    return s;
+}
+
+Camera straight_down()
+{
+    Camera c;
+    c.position = {0.0, -1.0, 800.0};
+    c.target = {0.0, 0.0, 0.0};
+    c.fov_y_deg = 8.0;  // 110 m of ground across: the slab's middle
+    return c;
+}
+
+double mean_luminance(const RadianceImage& image)
+{
+    double sum = 0.0;
+    const std::size_t n = std::size_t(image.width) * std::size_t(image.height);
+    for (std::size_t k = 0; k < n; ++k)
+        sum += 0.2126 * image.rgba[4 * k] + 0.7152 * image.rgba[4 * k + 1] + 0.0722 * image.rgba[4 * k + 2];
+    return sum / double(n);
+}
+
+class GroundShadeGl : public kiri::test::GlTest {
+protected:
+    // The share of the sun's light on the ground that the fog set by `shade` lets through:
+    // (Y(sun, shade) - Y(no sun)) / (Y(sun, no shade) - Y(no sun)).
+    template <class Shade>
+    static double sun_let_through(Shade shade)
+    {
+        const g::Terrain plain = kiri::test::gaussian_hill(65, 20.0, 0.0);
+        Renderer r;
+        r.set_terrain(plain);
+        const auto frame = [&](double intensity, bool shaded) {
+            r.set_sun(sun(intensity));
+            if (shaded)
+                shade(r);
+            else
+                r.clear_sun_medium();
+            r.draw(straight_down(), 32, 32);
+            return mean_luminance(r.read_radiance());
+        };
+        const double dark = frame(0.0, false), lit = frame(3.0, false), shaded = frame(3.0, true);
+        EXPECT_GT(lit - dark, 0.05) << "the sun lights the plain";
+        return (shaded - dark) / (lit - dark);
+    }
+};
+
+}  // namespace
+
+// tau = sigma thickness / sin(30 deg) = 2: the ground gets e^-2 of the sun.
+TEST_F(GroundShadeGl, UnderAUniformSlabTheSunIsTheClosedForm)
+{
+    const g::Medium fog = slab();
+    const double got = sun_let_through([&](Renderer& r) { r.set_sun_medium(&fog, {}); });
+    const double want = std::exp(-sigma * thickness / 0.5);
+    EXPECT_NEAR(got, want, 0.02 * want) << "through the slab";
+}
+
+// A height fog alone, no Medium: tau in closed form (HeightFog::optical_depth towards the sun).
+TEST_F(GroundShadeGl, UnderAHeightFogTheSunIsTheClosedForm)
+{
+    g::HeightFog haze;
+    haze.extinction = 0.02;
+    haze.base = -20.0;
+    haze.scale_height = 40.0;
+    const glm::dvec3 s = sun(1.0).direction;
+    const double want = std::exp(-haze.optical_depth({0.0, 0.0, 0.0}, s, 0.0, HUGE_VAL));
+    ASSERT_GT(want, 0.2);
+    ASSERT_LT(want, 0.6);
+    const double got = sun_let_through([&](Renderer& r) { r.set_sun_medium(nullptr, haze); });
+    EXPECT_NEAR(got, want, 0.01 * want) << "through the height fog";
+}
+
+// The shade is built once per sun and fog: the pass reports only when it ran, and a fog gone
+// lights the ground fully again.
+TEST_F(GroundShadeGl, BuiltOncePerSunAndFog)
+{
+    const g::Terrain plain = kiri::test::gaussian_hill(65, 20.0, 0.0);
+    const g::Medium fog = slab();
+    Renderer r;
+    r.set_terrain(plain);
+    r.set_sun(sun(3.0));
+    const auto ran = [&] {
+        const auto& passes = r.last_stats().passes;
+        return std::any_of(passes.begin(), passes.end(), [](const auto& p) { return p.pass == "ground shade"; });
+    };
+    r.draw(straight_down(), 16, 16);
+    EXPECT_FALSE(ran()) << "no fog, nothing to shade";
+    const double bare = mean_luminance(r.read_radiance());
+    r.set_sun_medium(&fog, {});
+    r.draw(straight_down(), 16, 16);
+    EXPECT_TRUE(ran());
+    EXPECT_LT(mean_luminance(r.read_radiance()), 0.8 * bare);
+    Camera moved = straight_down();
+    moved.position.x += 50.0;
+    r.draw(moved, 16, 16);
+    EXPECT_FALSE(ran()) << "another view, the same sun and fog";
+    SunLight higher = sun(3.0);
+    higher.direction = glm::normalize(glm::dvec3(0.5, 0.0, 1.0));
+    r.set_sun(higher);
+    r.draw(straight_down(), 16, 16);
+    EXPECT_TRUE(ran()) << "a new sun";
+    r.set_sun(sun(3.0));
+    r.clear_sun_medium();
+    r.draw(straight_down(), 16, 16);
+    EXPECT_NEAR(mean_luminance(r.read_radiance()), bare, 1e-6 * bare) << "the fog gone, the ground lit again";
+}
