@@ -23,7 +23,18 @@ vec4 froxel_column(ivec2 tile, float depth)
     int k = int(floor(w));
     vec4 a = k == 0 ? vec4(0.0, 0.0, 0.0, 1.0) : texelFetch(u_fx_volume, ivec3(tile, k - 1), 0);
     vec4 b = texelFetch(u_fx_volume, ivec3(tile, k), 0);
-    return mix(a, b, w - float(k));
+    // Within a slice sigma and J are one (froxel_integrate.comp): the transmittance falls
+    // exponentially and the in-scattered light follows it, so at the fraction x of the slice
+    // T = T_a r^x and S = S_a + (S_b - S_a) (1 - r^x) / (1 - r), r = T_b / T_a. The linear mix is
+    // their chord: at an optical depth of 2 a slice it was 54 % off mid-slice, in bands along
+    // the depths of the slices' ends wherever the slices are deep in dense fog (from inside it).
+    float x = w - float(k);
+    float r = b.a / max(a.a, 1e-20);
+    if (a.a > 1e-6 && r < 0.999) {
+        float rx = pow(max(r, 1e-30), x);
+        return vec4(a.rgb + (b.rgb - a.rgb) * ((1.0 - rx) / (1.0 - r)), a.a * rx);
+    }
+    return mix(a, b, x);
 }
 
 // (in-scattered radiance, transmittance) between the eye and screen point uv at view depth.
