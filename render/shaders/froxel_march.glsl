@@ -198,7 +198,7 @@ vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
     bool haze = u_hf.x > 0.0;
     if (u_fx_shell == 0) {  // the Medium may be anywhere along the ray
         froxel_march(fog, h, uv, taps, near, end, u_fx_pixel_steps, true);
-        #if FROXEL_HEIGHT_FOG
+#if FROXEL_HEIGHT_FOG
         haze_runs_finish(h, fog.rgb);
 #endif
         return fog;
@@ -216,8 +216,8 @@ vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
         if (haze)
             froxel_march(fog, h, uv, taps, last, end, haze_steps, false);
     }
-    #if FROXEL_HEIGHT_FOG
-        haze_runs_finish(h, fog.rgb);
+#if FROXEL_HEIGHT_FOG
+    haze_runs_finish(h, fog.rgb);
 #endif
     return fog;
 }

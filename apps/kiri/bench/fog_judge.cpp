@@ -150,15 +150,20 @@ render::FogError FogJudge::error(std::vector<float>* signed_error)
     return render::compare_frames(with, plain, reference_, signed_error, &sky_lit);
 }
 
+void FogJudge::clear_fog()
+{
+    renderer_->clear_layers();
+    renderer_->clear_particles();
+    renderer_->set_fog_partition(std::nullopt);
+    renderer_->clear_froxel_fog();
+    renderer_->clear_sun_medium();  // the ground fully lit: the reference's shade is applied to it
+}
+
 const render::RadianceImage& FogJudge::without_fog(bool shadows)
 {
     std::optional<render::RadianceImage>& plain = plain_[shadows ? 1 : 0];
     if (!plain) {
-        renderer_->clear_layers();
-        renderer_->clear_particles();
-        renderer_->set_fog_partition(std::nullopt);
-        renderer_->clear_froxel_fog();
-        renderer_->clear_sun_medium();  // the ground fully lit: the reference's shade is applied to it
+        clear_fog();
         renderer_->draw(camera_, width_, height_);
         renderer_->draw(camera_, width_, height_);
         plain = renderer_->read_radiance();
@@ -169,11 +174,7 @@ const render::RadianceImage& FogJudge::without_fog(bool shadows)
 const render::RadianceImage& FogJudge::without_sun()
 {
     if (!sky_lit_) {
-        renderer_->clear_layers();
-        renderer_->clear_particles();
-        renderer_->set_fog_partition(std::nullopt);
-        renderer_->clear_froxel_fog();
-        renderer_->clear_sun_medium();
+        clear_fog();
         render::SunLight dark = rendering_->sun();
         dark.intensity = 0.0;
         renderer_->set_sun(dark);

@@ -80,6 +80,8 @@ public:
     const render::Image& last_image() const { return last_image_; }
 
 private:
+    //! The renderer without any fog, nor the fog's shade on the ground.
+    void clear_fog();
     const render::RadianceImage& without_fog(bool terrain_shadows);
     //! Without fog and without the sun: the ground's sky light (compare_frames' without_sun).
     const render::RadianceImage& without_sun();
