@@ -156,6 +156,12 @@ void run(const RenderArgs& a)
         if (stats.layers > 0)
             std::fprintf(stderr, "kiri render: %d layers above the base, %d triangles each (level of detail)\n",
                          stats.layers, stats.layer_triangles);
+        if (stats.refined_shade_vertices > 0)
+            std::fprintf(stderr,
+                         "kiri render: the fog's shade on the ground read from a finer map around %d of %d vertices "
+                         "(%.1f %%), interpolated elsewhere\n",
+                         stats.refined_shade_vertices, stats.terrain_vertices,
+                         100.0 * stats.refined_shade_vertices / stats.terrain_vertices);
         if (stats.froxel.applied_pixels > 0)
             std::fprintf(stderr,
                          "kiri render: froxel apply marched %d of %d pixels (%.1f %%), read the volume elsewhere\n",

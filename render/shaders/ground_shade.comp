@@ -1,20 +1,84 @@
 #version 450 core
-// tau_sun (sun_volume.glsl: the Medium's marched, the height fog's in closed form) at each vertex
-// of the terrain's mesh (GroundShade): terrain.frag lights the ground with the sun's e^-tau
-// through the fog, as the reference does.
-layout(local_size_x = 64) in;
+// The fog's shade on the ground (GroundShade): terrain.frag lights the ground with the sun's
+// e^-tau through the fog, as the reference does. Phase 0, per vertex of the terrain's mesh:
+// (tau_sun, 0) (sun_volume.glsl: the Medium's marched, the height fog's in closed form).
+// Phase 1, per vertex of the DEM's grid (u_grid: its samples, its row in the mesh, the
+// surround's rings before it): refine 1 where the Medium's share of the sun's transmittance
+// bends between the vertex's neighbours (the second difference along a row, a column or a
+// diagonal over u_bend): a fog's shore or wall crosses the cell within metres, and interpolated
+// between the vertices the shade would spill over the sunlit ground beside it. Phase 2, per
+// texel of the fine map (u_fine samples a cell) in the cells around a marked vertex: tau_sun at
+// the mesh's ground there; ground_shade.glsl reads it in their triangles.
+layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };  // u_stride floats each, the position first
-layout(std430, binding = 1) writeonly buffer Depths { float depths[]; };
+layout(std430, binding = 1) buffer Shade { vec2 shade[]; };
+layout(std430, binding = 2) buffer Refined {  // phase 1: the vertices marked (their grid index i + nx j)
+    uint refined;
+    uint marked_vertices[];
+};
+layout(r32f, binding = 0) writeonly uniform image2D o_fine;
 uniform vec3 u_sun_direction;
 uniform int u_vertices;
 uniform int u_stride;
+uniform int u_phase;
+uniform ivec4 u_grid;  // the DEM's samples across and down, the mesh's row, the rings before the grid
+uniform int u_fine;
+uniform float u_bend;
+
+int mesh_vertex(int i, int j) { return (j + u_grid.w) * u_grid.z + i + u_grid.w; }
+
+vec3 position(int v)
+{
+    int k = u_stride * v;
+    return vec3(vertices[k], vertices[k + 1], vertices[k + 2]);
+}
+
+// The Medium's share of the sun's transmittance at grid sample (i, j): the height fog's closed
+// form is smooth and interpolates well; its tau is added back out of the pair.
+float medium_through(int i, int j)
+{
+    int v = mesh_vertex(i, j);
+    return exp(-max(shade[v].x - height_fog_sun(position(v), u_sun_direction), 0.0));
+}
 
 void main()
 {
-    int v = int(gl_GlobalInvocationID.x);
-    if (v >= u_vertices)
+    ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+    if (u_phase == 0) {
+        int v = id.y * 4096 + id.x;
+        if (id.x < 4096 && v < u_vertices)
+            shade[v] = vec2(sun_optical_depth(position(v), u_sun_direction, 0.5), 0.0);
         return;
-    int k = u_stride * v;
-    vec3 p = vec3(vertices[k], vertices[k + 1], vertices[k + 2]);
-    depths[v] = sun_optical_depth(p, u_sun_direction, 0.5);
+    }
+    if (u_phase == 1) {
+        int i = id.x, j = id.y;
+        if (i < 1 || j < 1 || i + 1 >= u_grid.x || j + 1 >= u_grid.y)
+            return;
+        float t = 2.0 * medium_through(i, j), bend = 0.0;
+        bend = max(bend, abs(medium_through(i - 1, j) + medium_through(i + 1, j) - t));
+        bend = max(bend, abs(medium_through(i, j - 1) + medium_through(i, j + 1) - t));
+        bend = max(bend, abs(medium_through(i - 1, j - 1) + medium_through(i + 1, j + 1) - t));
+        bend = max(bend, abs(medium_through(i - 1, j + 1) + medium_through(i + 1, j - 1) - t));
+        if (bend > u_bend) {
+            shade[mesh_vertex(i, j)].y = 1.0;
+            marked_vertices[atomicAdd(refined, 1u)] = uint(j * u_grid.x + i);
+        }
+        return;
+    }
+    // Phase 2: id.y a marked vertex, id.x a texel of the fine map in the four cells around it
+    // (texel (a, b) lies on the cells' corners at every u_fine-th texel). Neighbours marked both
+    // write their shared texels, with the same value.
+    int side = 2 * u_fine + 1;
+    if (id.y >= int(refined) || id.x >= side * side)
+        return;
+    int vertex = int(marked_vertices[id.y]);
+    ivec2 ab = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine + ivec2(id.x % side, id.x / side);
+    ivec2 cell = ab / u_fine;
+    // The ground as the mesh draws it: two triangles a cell, split along (i, j)-(i + 1, j + 1).
+    ivec2 c = min(cell, u_grid.xy - 2);
+    vec2 f = vec2(ab - c * u_fine) / float(u_fine);
+    vec3 p00 = position(mesh_vertex(c.x, c.y)), p10 = position(mesh_vertex(c.x + 1, c.y));
+    vec3 p11 = position(mesh_vertex(c.x + 1, c.y + 1)), p01 = position(mesh_vertex(c.x, c.y + 1));
+    vec3 p = f.x >= f.y ? p00 + f.x * (p10 - p00) + f.y * (p11 - p10) : p00 + f.x * (p11 - p01) + f.y * (p01 - p00);
+    imageStore(o_fine, ab, vec4(sun_optical_depth(p, u_sun_direction, 0.5)));
 }

@@ -4,7 +4,7 @@
 // comes through the fog above: the ground under it lies in its shade.
 in vec3 v_world;
 in vec3 v_normal;
-in float v_sun_depth;  // the fog's tau_sun (GroundShade)
+in vec2 v_shade;  // the fog's tau_sun and whether to refine it (GroundShade, ground_shade.glsl)
 uniform vec3 u_eye;
 uniform vec3 u_sun_direction;  // towards the sun, unit
 uniform vec3 u_sun_radiance;
@@ -19,9 +19,9 @@ void main()
     vec3 base = ground_albedo(v_world, n.z);
     float direct = max(dot(n, u_sun_direction), 0.0);
     // The terrain's own shadow where the froxel fog built the sun's shadow map (terrain_shadow.glsl;
-    // froxel_none.glsl without it), and the fog's shade: its tau_sun from the vertices.
+    // froxel_none.glsl without it), and the fog's shade (ground_shade.glsl).
     if (direct > 0.0)
-        direct *= terrain_shadow(v_world, n) * exp(-max(v_sun_depth, 0.0));
+        direct *= terrain_shadow(v_world, n) * exp(-max(ground_sun_depth(v_world, v_shade), 0.0));
     vec3 sky = u_ambient * (0.6 + 0.4 * n.z);
     vec3 radiance = base * (u_sun_radiance * direct + sky);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);

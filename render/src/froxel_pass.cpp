@@ -107,11 +107,11 @@ FroxelPass::FroxelPass()
                 "froxel_medium.glsl", "froxel_density.comp"}),
       lighting_(light_libraries("froxel_lighting.comp")), temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
-      integrate_(light_libraries("froxel_integrate.comp")),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
-      classify_(march_libraries("froxel_classify.comp")), apply_program_(march_libraries("froxel_apply.comp")),
-      readback_(march_libraries("froxel_readback.comp")), marched_(make_buffer())
+      integrate_(light_libraries("froxel_integrate.comp")), classify_(march_libraries("froxel_classify.comp")),
+      apply_program_(march_libraries("froxel_apply.comp")), readback_(march_libraries("froxel_readback.comp")),
+      marched_(make_buffer())
 {
     const GLuint zero = 0;
     glNamedBufferStorage(marched_.get(), sizeof(GLuint), &zero, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);

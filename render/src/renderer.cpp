@@ -479,6 +479,8 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     r.stats.layers = r.layers.last_layer_count();
     r.stats.layer_triangles = r.layers.last_triangle_count();
     r.stats.terrain_triangles = int(r.terrain.drawn_triangles());
+    r.stats.terrain_vertices = r.terrain.vertex_count();
+    r.stats.refined_shade_vertices = r.terrain.refined_shade_vertices();
     r.stats.frame_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     r.last_frame = frame;
 }

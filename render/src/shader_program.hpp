@@ -46,6 +46,10 @@ public:
         glProgramUniform3i(id(), location(uniform), v.x, v.y, v.z);
     }
     void set(const char* uniform, const glm::ivec2& v) const { glProgramUniform2i(id(), location(uniform), v.x, v.y); }
+    void set(const char* uniform, const glm::ivec4& v) const
+    {
+        glProgramUniform4i(id(), location(uniform), v.x, v.y, v.z, v.w);
+    }
 
 private:
     ProgramName program_;

@@ -50,9 +50,26 @@ std::vector<double> axis(double first, double step, int samples, const std::vect
     return out;
 }
 
+// The fog's fine shade map (GroundShade::bind_fine), clear of the shadow map's (shadow_map_pass.hpp).
+constexpr int fine_shade_unit = 12;
+static_assert(fine_shade_unit != shadow_map_unit);
+
 }  // namespace
 
-TerrainPass::TerrainPass() : program_({"terrain.vert", "froxel_none.glsl", "ground.glsl", "terrain.frag"}) {}
+TerrainPass::TerrainPass() { program(false, false); }
+
+const ShaderProgram& TerrainPass::program(bool shadow, bool refined) const
+{
+    std::unique_ptr<ShaderProgram>& p = programs_[shadow][refined];
+    if (!p) {
+        std::vector<std::string_view> files{"terrain.vert", shadow ? "terrain_shadow.glsl" : "froxel_none.glsl",
+                                            "ground.glsl"};
+        files.push_back(refined ? "ground_shade.glsl" : "ground_shade_none.glsl");
+        files.push_back("terrain.frag");
+        p = std::make_unique<ShaderProgram>(files);
+    }
+    return *p;
+}
 
 bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround)
 {
@@ -119,6 +136,7 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
     }
     vao_ = make_vertex_array();
     shaded_ = false;
+    shade_grid_ = {hf.nx, hf.ny, nx, k, glm::vec2(float(hf.x0), float(hf.y0)), glm::vec2(float(hf.dx), float(hf.dy))};
     vertex_count_ = GLsizei(vertices.size());
     ++uploads_;
     vertices_ = make_buffer();
@@ -186,10 +204,10 @@ bool TerrainPass::set_fog_shade(const SunVolume* sun, const glm::vec3& sun_direc
         return false;
     const int before = shade_.updates();
     const bool shaded = shade_.update(sun, sun_direction, vertices_.get(), int(vertex_count_),
-                                      int(sizeof(TerrainPassVertex) / sizeof(float)), uploads_);
+                                      int(sizeof(TerrainPassVertex) / sizeof(float)), shade_grid_, uploads_);
     if (shaded) {
-        glVertexArrayVertexBuffer(vao_.get(), 1, shade_.buffer(), 0, sizeof(float));
-        glVertexArrayAttribFormat(vao_.get(), 2, 1, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayVertexBuffer(vao_.get(), 1, shade_.buffer(), 0, 2 * sizeof(float));
+        glVertexArrayAttribFormat(vao_.get(), 2, 2, GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(vao_.get(), 2, 1);
         glEnableVertexArrayAttrib(vao_.get(), 2);
     } else if (shaded_) {
@@ -203,12 +221,12 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) c
 {
     if (!has_terrain())
         return;
-    if (shadow && !shadow_program_)
-        shadow_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "terrain.vert", "terrain_shadow.glsl", "ground.glsl", "terrain.frag"});
-    const ShaderProgram& p = shadow ? *shadow_program_ : program_;
+    const bool refined = shaded_ && shade_.refined_vertices() > 0;
+    const ShaderProgram& p = program(shadow != nullptr, refined);
     if (shadow)
         shadow->bind(p, true);
+    if (refined)
+        shade_.bind_fine(p, fine_shade_unit);
     p.set("u_view_projection", frame.view_projection);
     p.set("u_eye", frame.eye);
     p.set("u_sun_direction", frame.sun_direction);
@@ -219,7 +237,7 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) c
     set_ground_uniforms(p);
     p.use();
     if (!shaded_)
-        glVertexAttrib1f(2, 0.0f);  // no Medium's shade: tau_sun 0
+        glVertexAttrib2f(2, 0.0f, 0.0f);  // no fog's shade: tau_sun 0, nothing to refine
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao_.get());

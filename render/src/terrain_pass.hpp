@@ -33,6 +33,9 @@ public:
     {
         return has_terrain() && shade_.stale(sun, sun_direction, int(vertex_count_), uploads_);
     }
+    //! The mesh's vertices, and those the fog's shade marks to refine per fragment (set_fog_shade).
+    int vertex_count() const { return int(vertex_count_); }
+    int refined_shade_vertices() const { return shaded_ ? shade_.refined_vertices() : 0; }
     //! Draws the ground in the shadows of the sun's shadow map (terrain_shadow.glsl; null: no
     //! shadows) and in the fog's shade (set_fog_shade).
     void draw(const FrameContext& frame, const class ShadowMapPass* shadow = nullptr) const;
@@ -57,14 +60,18 @@ public:
     glm::dvec3 bounds_max() const { return max_; }
 
 private:
-    ShaderProgram program_;                                  // no shadow map: no shadows
-    mutable std::unique_ptr<ShaderProgram> shadow_program_;  // in the shadow map's shadows, built on first use
+    //! The program for a frame with or without the shadow map and with or without the fog's
+    //! shade refined per fragment (ground_shade.glsl): the plain one built at once, the others
+    //! on first use.
+    const ShaderProgram& program(bool shadow, bool refined) const;
+    mutable std::unique_ptr<ShaderProgram> programs_[2][2];  // [shadow][refined]
     VertexArray vao_;
     Buffer vertices_, indices_;
     GLsizei vertex_count_ = 0;
     int uploads_ = 0;  // of the vertices: the fog's shade is theirs
     GroundShade shade_;
-    bool shaded_ = false;  // attribute 2 reads shade_'s buffer
+    bool shaded_ = false;           // attribute 2 reads shade_'s buffer
+    GroundShade::Grid shade_grid_;  // the mesh's tensor grid
     GLsizei grid_index_count_ = 0, surround_index_count_ = 0;
     glm::dvec3 min_{0.0}, max_{-1.0};
     // ground.glsl's and sky.frag's ground uniforms.

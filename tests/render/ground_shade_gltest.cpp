@@ -27,25 +27,37 @@ using kiri::render::SunLight;
 
 constexpr double sigma = 0.01, thickness = 100.0;  // the slab: 1/m, m
 
-// A flat plain at z = 0 under a uniform slab from the ground to `thickness`, 640 m a side: away
-// from its sides the sun's path leaves through its top, after thickness / sin(elevation).
-g::Medium slab()
+// The Medium on a grid of `spacing` metres over [-320, 320]^2, from the ground to `thickness`,
+// where `covered` says (coverage 1, else 0).
+template <class Covered>
+g::Medium medium_where(double spacing, double extinction, Covered covered)
 {
     g::MediumGrid grid;
-    grid.nx = grid.ny = 33;
-    grid.dx = grid.dy = 20.0;
+    grid.nx = grid.ny = int(std::lround(640.0 / spacing)) + 1;
+    grid.dx = grid.dy = spacing;
     grid.x0 = grid.y0 = -320.0;
     const std::size_t n = std::size_t(grid.nx) * std::size_t(grid.ny);
     grid.floor.assign(n, 0.0);
     grid.bottom.assign(n, 0.0);
     grid.top.assign(n, thickness);
-    grid.coverage.assign(n, 1.0);
+    grid.coverage.assign(n, 0.0);
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i)
+            grid.coverage[std::size_t(j) * std::size_t(grid.nx) + std::size_t(i)] =
+                covered(grid.x0 + i * spacing) ? 1.0 : 0.0;
     g::MediumOptions options;
-    options.extinction = sigma;
+    options.extinction = extinction;
     options.top_density = 1.0;
     g::MediumDetail uniform;
     uniform.detail = 0.0;
     return g::Medium(std::move(grid), options, uniform);
+}
+
+// A flat plain at z = 0 under a uniform slab from the ground to `thickness`, 640 m a side: away
+// from its sides the sun's path leaves through its top, after thickness / sin(elevation).
+g::Medium slab()
+{
+    return medium_where(20.0, sigma, [](double) { return true; });
 }
 
 // The sun 30 degrees up in the east; intensity 0 for the frame without it.
@@ -100,6 +112,43 @@ protected:
         return (shaded - dark) / (lit - dark);
     }
 };
+
+// Per pixel column of a size x size frame looking straight down at `centre` over `across`
+// metres of `plain`: the share of the sun's light on the ground that `fog` lets through.
+std::vector<double> sun_let_through_across(const g::Terrain& plain, const g::Medium& fog, double centre, double across,
+                                           int size, int* refined_vertices)
+{
+    Renderer r;
+    r.set_terrain(plain);
+    Camera down;
+    down.position = {centre, -1.0, 3000.0};
+    down.target = {centre, 0.0, 0.0};
+    down.fov_y_deg = 2.0 * std::atan(0.5 * across / 3000.0) * 180.0 / 3.14159265358979;
+    const auto frame = [&](double intensity, bool shaded) {
+        r.set_sun(sun(intensity));
+        if (shaded)
+            r.set_sun_medium(&fog, {});
+        else
+            r.clear_sun_medium();
+        r.draw(down, size, size);
+        if (shaded)
+            *refined_vertices = r.last_stats().refined_shade_vertices;
+        return r.read_radiance();
+    };
+    const RadianceImage dark = frame(0.0, false), lit = frame(3.0, false), shaded = frame(3.0, true);
+    const auto y = [](const RadianceImage& image, int x, int row) {
+        const float* p = &image.rgba[4 * (std::size_t(row) * std::size_t(image.width) + std::size_t(x))];
+        return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
+    };
+    std::vector<double> through(std::size_t(size), 0.0);
+    for (int x = 0; x < size; ++x) {
+        double sum = 0.0;
+        for (int row = size / 4; row < 3 * size / 4; ++row)
+            sum += (y(shaded, x, row) - y(dark, x, row)) / (y(lit, x, row) - y(dark, x, row));
+        through[std::size_t(x)] = sum / double(size / 2);
+    }
+    return through;
+}
 
 }  // namespace
 
@@ -160,4 +209,35 @@ TEST_F(GroundShadeGl, BuiltOncePerSunAndFog)
     r.clear_sun_medium();
     r.draw(straight_down(), 16, 16);
     EXPECT_NEAR(mean_luminance(r.read_radiance()), bare, 1e-6 * bare) << "the fog gone, the ground lit again";
+}
+
+// A fog's wall crossing a cell of the terrain's grid (80 m) between two vertices: the sun,
+// 30 degrees up beyond the wall, reaches the ground behind it through the wall, within a cell
+// of it through the fog's top. The shade bends twice within two cells; interpolated between the
+// vertices it spilled 0.23 of the sun's transmittance over the sunlit ground beside the wall.
+// GroundShade marks the vertices there and the ground reads a finer map: each pixel column's
+// transmittance must follow the closed form exp(-sigma L), L the sun's path in the fog.
+TEST_F(GroundShadeGl, AFogsWallWithinACellShadesTheGroundWhereTheWallStands)
+{
+    constexpr double extinction = 0.02, wall = 31.0;  // the coverage falls from 1 at 30 m to 0 at 32 m
+    const g::Terrain plain = kiri::test::gaussian_hill(17, 80.0, 0.0);
+    const g::Medium fog = medium_where(2.0, extinction, [&](double x) { return x < wall; });
+    constexpr double centre = -60.0, across = 400.0;
+    constexpr int size = 64;
+    int refined = 0;
+    const std::vector<double> got = sun_let_through_across(plain, fog, centre, across, size, &refined);
+    EXPECT_GT(refined, 0) << "the vertices beside the wall are marked";
+    EXPECT_LT(refined, 17 * 17 * 4 / 10) << "and not the whole plain";
+    const double cos_elevation = std::cos(0.5235987755982988), sin_elevation = 0.5;
+    double sum = 0.0, worst = 0.0;
+    for (int x = 0; x < size; ++x) {
+        const double ground = centre + ((x + 0.5) / size - 0.5) * across;
+        const double path = std::min(thickness / sin_elevation, std::max(wall - ground, 0.0) / cos_elevation);
+        const double want = std::exp(-extinction * path);
+        const double off = std::abs(got[std::size_t(x)] - want);
+        sum += off;
+        worst = std::max(worst, off);
+    }
+    EXPECT_LT(sum / size, 0.01) << "mean |dT| over the pixel columns (interpolated: 0.036)";
+    EXPECT_LT(worst, 0.12) << "at the wall's kink, between the fine map's samples (interpolated: 0.35)";
 }
