@@ -74,13 +74,13 @@ vec3 froxel_light(FroxelTaps t, float d)
 }
 
 // Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
-// spread like the slices. The Medium (when with_medium): its extinction at each step's middle,
+// spread like the slices over [a, b], up to `stop` (<= b: where the ray ends). The Medium (when with_medium): its extinction at each step's middle,
 // lit by the froxels' J every fourth step, in between linear. The height fog: its optical depth
 // over each step in closed form, lit at its own points (the volume's J would light a haze a few
 // tens of metres deep at one point of a slice hundreds of metres deep: the plain under the
 // default scene's haze was 20 % too dark from above).
 void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, FroxelTaps taps, float a, float b, int n,
-                  bool with_medium)
+                  bool with_medium, float stop)
 {
     if (!(b > a) || n < 1)
         return;
@@ -88,12 +88,12 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, FroxelTaps taps, fl
     float stretch = length(ray);
     float d0 = a;
     vec3 j0 = with_medium ? froxel_light(taps, a) : vec3(0.0), j1 = j0;
-    for (int k = 0; k < n; ++k) {
+    for (int k = 0; k < n && d0 < stop; ++k) {
         if (with_medium && k % 4 == 0) {  // J at the end of the next four steps
             j0 = j1;
-            j1 = froxel_light(taps, fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)));
+            j1 = froxel_light(taps, min(fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)), stop));
         }
-        float d1 = fx_slice_depth(float(k + 1) / float(n), vec2(a, b));
+        float d1 = min(fx_slice_depth(float(k + 1) / float(n), vec2(a, b)), stop);
         vec3 q0 = u_fx_eye + ray * d0, q1 = u_fx_eye + ray * d1;
 #if FROXEL_HEIGHT_FOG
         float haze = height_fog_segment(q0, q1);
@@ -116,6 +116,12 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, FroxelTaps taps, fl
         }
         d0 = d1;
     }
+}
+
+void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, FroxelTaps taps, float a, float b, int n,
+                  bool with_medium)
+{
+    froxel_march(fog, h, uv, taps, a, b, n, with_medium, b);
 }
 
 // The stretch [first, last] of view depths over which pixel px's ray (its surface at `end`, at
@@ -196,8 +202,13 @@ vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
     HazeRuns h = haze_runs_along_ray();
     FroxelTaps taps = froxel_taps(uv);
     bool haze = u_hf.x > 0.0;
-    if (u_fx_shell == 0) {  // the Medium may be anywhere along the ray
-        froxel_march(fog, h, uv, taps, near, end, u_fx_pixel_steps, true);
+    if (u_fx_shell == 0) {
+        // The Medium may be anywhere along the ray (the eye in its shell). Steps on one layout
+        // for every ray, the volume's slices to its far end, each ray stopping at its surface:
+        // spread over each ray's own length, the step straddling the fog's top or floor lay
+        // differently in every pixel, and the terrain's contours showed through the fog as bands
+        // (the descent from inside: 4.4 % off the reference, 1.5 % so).
+        froxel_march(fog, h, uv, taps, near, u_fx_far, u_fx_size.z, true, end);
 #if FROXEL_HEIGHT_FOG
         haze_runs_finish(h, fog.rgb);
 #endif

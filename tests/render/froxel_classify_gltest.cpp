@@ -137,4 +137,27 @@ TEST_F(FroxelGl, TheLookupFollowsTheSliceInside)
     EXPECT_LT(a.compared.error.mean_transmittance_error, 0.016);
 }
 
+// From inside the fog every ray marches from the eye. A hill rises out of a fog 100 m deep, so
+// the rays to its slopes leave the fog through its top at every distance. Steps spread over each
+// ray's own length (24 of them, from the eye to its surface) put the step that straddles the
+// fog's top at a different place for each pixel: the terrain's contours showed through as bands
+// (the descent's view from inside, 4.4 % off the reference). Steps on one layout for every ray
+// (the volume's slices, to the volume's far end, each ray stopping at its surface) end alike.
+TEST_F(FroxelGl, FromInsideTheFogTheMarchDrawsNoContours)
+{
+    const g::Terrain hill = gaussian_hill(81, 50.0, 400.0, 700.0);
+    const g::Medium fog = slab(0.0, 100.0, 0.01);
+    Camera c;
+    c.position = {0.0, -1900.0, 50.0};
+    c.target = {0.0, 0.0, 120.0};
+    const Applied a = apply(hill, fog, small(24, 14), c, 96, 54);
+    EXPECT_GT(a.compared.error.fog_pixels, 96 * 54 / 2);
+    std::printf("    transmittance off by %.4f on average\n", a.compared.error.mean_transmittance_error);
+    // 0.69 %, p99 3.3 %, 0.0045 in transmittance measured; with each ray's own steps 1.45 %,
+    // 6.8 %, 0.0105.
+    EXPECT_LT(a.compared.error.mean_relative, 0.010);
+    EXPECT_LT(a.compared.error.p99_relative, 0.05);
+    EXPECT_LT(a.compared.error.mean_transmittance_error, 0.0075);
+}
+
 }  // namespace

@@ -18,6 +18,7 @@
 #include "bench/valley_view.hpp"
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/terrain/terrain.hpp"
+#include "kiri/render/fog_error.hpp"
 #include "kiri/render/image.hpp"
 
 namespace kiri::bench {
@@ -135,7 +136,11 @@ void frame(Context& c)
                         c.out_dir() / ("frame_" + std::string(view) + "_" + render::to_string(mode) + ".png"),
                         judge.still_image());
                     judge.prepare(judged, mode);
-                    m.error = judge.error();
+                    std::vector<float> signed_error;
+                    m.error = judge.error(&signed_error);
+                    render::write_png_atomic(
+                        c.out_dir() / ("frame_" + std::string(view) + "_" + render::to_string(mode) + "_error.png"),
+                        render::error_map(signed_error, ew, eh));
                 }
                 rows.push_back(m);
             }
