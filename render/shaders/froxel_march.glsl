@@ -73,6 +73,26 @@ vec3 froxel_light(FroxelTaps t, float d)
     return sum.a > 0.0 ? sum.rgb / sum.a : vec3(0.0);
 }
 
+// The Medium's optical depth over the step [q0, q1] of length `len`: its extinction at the middle
+// of the part of the step between the floor and the top of its column there, times that part's
+// length. Taken at the step's middle alone, the step that straddles the fog's top or floor held
+// all of its fog or none, at a depth that steps from pixel to pixel: from inside the fog the
+// terrain's contours showed through as lines.
+float froxel_step_depth(vec3 q0, vec3 q1, float len)
+{
+    vec3 middle = 0.5 * (q0 + q1);
+    float rise = q1.z - q0.z;
+    if (abs(rise) > 1e-3 && shell_covers(middle.xy)) {
+        vec4 c = shell_column(middle.xy);  // floor, bottom, top, coverage
+        if (c.z > c.x) {
+            float t0 = clamp((c.x - q0.z) / rise, 0.0, 1.0), t1 = clamp((c.z - q0.z) / rise, 0.0, 1.0);
+            float lo = min(t0, t1), hi = max(t0, t1);
+            return hi > lo ? froxel_sigma(mix(q0, q1, 0.5 * (lo + hi))) * len * (hi - lo) : 0.0;
+        }
+    }
+    return froxel_sigma(middle) * len;
+}
+
 // Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
 // spread like the slices over [a, b], up to `stop` (<= b: where the ray ends). The Medium (when with_medium): its extinction at each step's middle,
 // lit by the froxels' J every fourth step, in between linear. The height fog: its optical depth
@@ -100,7 +120,7 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, FroxelTaps taps, fl
 #else
         const float haze = 0.0;
 #endif
-        float medium = with_medium ? froxel_sigma(0.5 * (q0 + q1)) * (d1 - d0) * stretch : 0.0;
+        float medium = with_medium ? froxel_step_depth(q0, q1, (d1 - d0) * stretch) : 0.0;
         if (haze + medium > 0.0) {
             float through = exp(-(haze + medium));
             float opacity = fog.a * (1.0 - through) / (haze + medium);  // per unit of optical depth
