@@ -297,8 +297,9 @@ TEST(ParticleSampling, AThinFogGetsFewParticlesNotAnError)
         EXPECT_TRUE(std::isfinite(p.optical_depth));
         carried += p.optical_depth * footprint_area() * p.radius * p.radius;
     }
-    if (!c.particles.empty())
+    if (!c.particles.empty()) {
         EXPECT_NEAR(carried, 0.03 * c.density_integral, 1e-9 * carried);
+    }
     // No fog at all under the weight: no particles, and no error.
     const ParticleCloud none = sample_particles(m, options(2000), "", {[](double) { return 0.0; }});
     EXPECT_TRUE(none.particles.empty());

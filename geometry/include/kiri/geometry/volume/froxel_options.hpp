@@ -117,7 +117,8 @@ void visit_fields(O& o, V&& v)
     v(o.pixel_steps,
       {.key = "pixel_steps",
        .range = closed(1, 256),
-       .doc = "fog-aware: steps along each pixel's stretch of the shell"});
+       .doc =
+           "fog-aware, the eye outside the Medium's shell: steps along each pixel's stretch of it (from inside, each ray marches the volume's slices)"});
     v(o.terrain_shadows,
       {.key = "terrain_shadows",
        .doc = "the terrain's shadow map (ESM) shades the ground and every fog renderer (froxels, layers, particles)"});
