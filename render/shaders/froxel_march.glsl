@@ -94,8 +94,9 @@ float froxel_step_depth(vec3 q0, vec3 q1, float len)
 }
 
 // Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
-// spread like the slices over [a, b], up to `stop` (<= b: where the ray ends). The Medium (when with_medium): its extinction at each step's middle,
-// lit by the froxels' J every fourth step, in between linear. The height fog: its optical depth
+// spread like the slices over [a, b], up to `stop` (<= b: where the ray ends). The Medium (when
+// with_medium): its optical depth over each step (froxel_step_depth), lit by the froxels' J
+// every fourth step, in between linear. The height fog: its optical depth
 // over each step in closed form, lit at its own points (the volume's J would light a haze a few
 // tens of metres deep at one point of a slice hundreds of metres deep: the plain under the
 // default scene's haze was 20 % too dark from above).

@@ -21,6 +21,7 @@ uniform vec3 u_sun_direction;
 uniform int u_vertices;
 uniform int u_stride;
 uniform int u_phase;
+uniform int u_row;     // phase 0: invocations a row (GroundShade's phase0_row)
 uniform ivec4 u_grid;  // the DEM's samples across and down, the mesh's row, the rings before the grid
 uniform int u_fine;
 uniform float u_bend;
@@ -45,8 +46,8 @@ void main()
 {
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
     if (u_phase == 0) {
-        int v = id.y * 4096 + id.x;
-        if (id.x < 4096 && v < u_vertices)
+        int v = id.y * u_row + id.x;
+        if (id.x < u_row && v < u_vertices)
             shade[v] = vec2(sun_optical_depth(position(v), u_sun_direction, 0.5), 0.0);
         return;
     }

@@ -102,7 +102,8 @@ bool GroundShade::update(const SunVolume* sun, const glm::vec3& sun_direction, G
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, depths_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, marks_.get());
     const auto groups = [](int n) { return GLuint((n + 7) / 8); };
-    p.set("u_phase", 0);  // tau_sun at every vertex, 4096 a row of invocations
+    p.set("u_phase", 0);  // tau_sun at every vertex, phase0_row a row of invocations
+    p.set("u_row", phase0_row);
     glDispatchCompute(groups(phase0_row), groups((vertex_count + phase0_row - 1) / phase0_row), 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     refined_ = 0;

@@ -33,7 +33,8 @@ public:
     {
         return has_terrain() && shade_.stale(sun, sun_direction, int(vertex_count_), uploads_);
     }
-    //! The mesh's vertices, and those the fog's shade marks to refine per fragment (set_fog_shade).
+    //! The mesh's vertices, and those around which the fog's shade is read from its finer map
+    //! (set_fog_shade).
     int vertex_count() const { return int(vertex_count_); }
     int refined_shade_vertices() const { return shaded_ ? shade_.refined_vertices() : 0; }
     //! Draws the ground in the shadows of the sun's shadow map (terrain_shadow.glsl; null: no
@@ -61,8 +62,7 @@ public:
 
 private:
     //! The program for a frame with or without the shadow map and with or without the fog's
-    //! shade refined per fragment (ground_shade.glsl): the plain one built at once, the others
-    //! on first use.
+    //! finer shade map (ground_shade.glsl): the plain one built at once, the others on first use.
     const ShaderProgram& program(bool shadow, bool refined) const;
     mutable std::unique_ptr<ShaderProgram> programs_[2][2];  // [shadow][refined]
     VertexArray vao_;

@@ -101,8 +101,8 @@ struct FrameStats {
     int sun_volume_updates = 0;
     int layers = 0;             //!< fog layers above the base drawn (0: none, or culled off-screen)
     int terrain_triangles = 0;  //!< the grid's triangles drawn (set_terrain_resolution's level)
-    //! The terrain mesh's vertices, and those in the fog's shade whose triangles' fragments march
-    //! their own optical depth towards the sun (where the shade bends within a cell).
+    //! The terrain mesh's vertices, and those in the fog's shade whose cells' fragments read the
+    //! finer map of the sun's optical depth (where the shade bends within a cell).
     int terrain_vertices = 0, refined_shade_vertices = 0;
     int layer_triangles = 0;               //!< the base's triangles drawn for each layer (the level of detail's)
     int particles = 0;                     //!< particle billboards drawn
