@@ -1,4 +1,4 @@
-// `kiri bench [--quick] -o DIR [--stage NAME ...]`: runs the benchmark stages; each writes
+// `kiri bench [--quick] -o DIR [--stage NAME ...] [--view TEXT ...]`: runs the benchmark stages; each writes
 // DIR/<stage>.csv (time, error and peak memory per row) and DIR/<stage>.png.
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +19,7 @@ namespace {
 struct BenchArgs {
     std::string out;
     std::vector<std::string> stages;
+    std::vector<std::string> views;
     bool quick = false;
     bool list = false;
 };
@@ -60,7 +61,7 @@ void run(const BenchArgs& a)
             continue;
         std::printf("== %s: %s\n", stage.name.c_str(), stage.title.c_str());
         std::fflush(stdout);
-        bench::Context context(a.out, data_dir(), a.quick);
+        bench::Context context(a.out, data_dir(), a.quick, a.views);
         stage.run(context);
         for (const bench::Row& r : context.rows()) {
             // Rows without an error metric leave the column empty rather than print a 0.
@@ -86,6 +87,8 @@ void add_bench_command(CLI::App& app)
     auto a = std::make_shared<BenchArgs>();
     sub->add_option("-o,--out", a->out, "output folder for the CSV files and plots");
     sub->add_option("--stage", a->stages, "run only these stages (repeatable)");
+    sub->add_option("--view", a->views,
+                    "the views stage: only the views whose label holds this text (repeatable; e.g. lake)");
     sub->add_flag("--quick", a->quick, "smaller sizes, for a quick look");
     sub->add_flag("--list", a->list, "list the stages and exit");
     sub->callback([a] { run(*a); });

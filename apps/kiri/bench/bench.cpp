@@ -28,9 +28,20 @@ void reset_peak_rss()
 
 }  // namespace
 
-Context::Context(std::filesystem::path out_dir, std::filesystem::path data_dir, bool quick)
-    : out_dir_(std::move(out_dir)), data_dir_(std::move(data_dir)), quick_(quick)
+Context::Context(std::filesystem::path out_dir, std::filesystem::path data_dir, bool quick,
+                 std::vector<std::string> view_filter)
+    : out_dir_(std::move(out_dir)), data_dir_(std::move(data_dir)), quick_(quick), view_filter_(std::move(view_filter))
 {}
+
+bool Context::wants_view(const std::string& label) const
+{
+    if (view_filter_.empty())
+        return true;
+    for (const std::string& text : view_filter_)
+        if (label.find(text) != std::string::npos)
+            return true;
+    return false;
+}
 
 Measured Context::measure(const std::function<void()>& fn, int repeats)
 {

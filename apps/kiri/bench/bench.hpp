@@ -38,8 +38,12 @@ struct Measured {
 
 class Context {
 public:
-    Context(std::filesystem::path out_dir, std::filesystem::path data_dir, bool quick);
+    Context(std::filesystem::path out_dir, std::filesystem::path data_dir, bool quick,
+            std::vector<std::string> view_filter = {});
     bool quick() const { return quick_; }
+    //! Whether a stage with views should run the view with this label: every one unless
+    //! `kiri bench --view` named texts, then those whose label holds one of them.
+    bool wants_view(const std::string& label) const;
     const std::filesystem::path& out_dir() const { return out_dir_; }
     //! The repository's data/ folder (terrains, scenes).
     const std::filesystem::path& data_dir() const { return data_dir_; }
@@ -51,6 +55,7 @@ public:
 private:
     std::filesystem::path out_dir_, data_dir_;
     bool quick_;
+    std::vector<std::string> view_filter_;
     std::vector<Row> rows_;
 };
 

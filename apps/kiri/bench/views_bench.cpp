@@ -142,6 +142,8 @@ void views_stage(Context& c)
     int index = 0;
     std::vector<double> worst(std::size(modes), 0.0);
     for (const View& view : views(c)) {
+        if (!c.wants_view(view.label))
+            continue;
         FogJudge judge(view.scene, view.camera, w, h);
         std::string safe = view.label;
         std::replace(safe.begin(), safe.end(), '/', '_');
