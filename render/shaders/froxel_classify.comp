@@ -49,7 +49,7 @@ bool march(ivec2 t)
     int with_fog = 0, without_fog = 0;
     vec2 enter = vec2(3e38, 0.0), leave = vec2(3e38, 0.0), surface = vec2(3e38, 0.0);
     float deepest = 0.0;  // the farthest surface among the pixels
-    float cut = 0.0;      // the pixels' taps' farthest range (froxel_taps_cut), over the tiles around
+    float cut = 0.0;      // the pixels' taps' farthest range (froxel_pixel_cut), over the tiles around
     for (int k = 0; k < 9; ++k) {
         vec2 r = fx_tile_range(clamp(t + ivec2(k % 3 - 1, k / 3 - 1), ivec2(0), u_fx_size.xy - 1));
         cut = r.y > r.x ? max(cut, r.y) : cut;
