@@ -33,9 +33,13 @@ vec3 froxel_point_light(vec3 ray, float d)
 {
     vec3 p = u_fx_eye + ray * d, lit = p;
     if (shell_covers(p.xy)) {
+        // Within the fog by a thousandth of its depth at either end: the baked light
+        // (lv_in_scattered_at) ends at the column's floor, and a ray's last point lies on the
+        // ground, at the floor, where rounding put it in or out.
         vec4 column = shell_column(p.xy);
-        if (column.z > column.y)
-            lit.z = clamp(p.z, column.y, column.z - 1e-3 * (column.z - column.y));
+        float lo = max(column.x, column.y), hi = column.z;
+        if (hi > lo)
+            lit.z = clamp(p.z, mix(lo, hi, 1e-3), mix(lo, hi, 0.999));
     }
     float visible = terrain_visibility(lit, u_ts_bias);
     float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(lit, u_sun_direction, 0.5) : 0.0;
