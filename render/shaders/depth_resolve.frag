@@ -15,7 +15,9 @@ uniform float u_near;       // the frame's projection
 uniform float u_far;
 out vec4 o_unused;
 
-float d[8];
+// Written in main before anything reads it; initialised so that Mesa's compiler, which cannot
+// see that from plane_at_centre, does not warn of it on every start.
+float d[8] = float[8](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
 
 float view_depth(float window)
 {

@@ -18,7 +18,6 @@
 uniform int u_fx_shell;               // the shell's per-pixel depths are there (eye outside it)
 uniform int u_fx_pixel_steps;
 uniform float u_fx_near;              // the volume's first depth
-uniform sampler3D u_fx_light;         // (J, lit) per froxel, linear filtering
 uniform sampler2D u_fx_first;         // per pixel: the shell's nearest depth (3e38: none)
 uniform sampler2D u_fx_last;          // per pixel: the shell's farthest depth (0: none)
 uniform int u_fx_classified;          // the tiles' w marks where pixels march (froxel_classify.comp)

@@ -566,7 +566,6 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
     // Every sampler on its own unit, even unused ones: types may not share a unit.
     p.set("u_fx_tiles", unit_tiles);
     p.set("u_fx_volume", unit_volume);
-    p.set("u_fx_light", unit_light);
     p.set("u_fx_first", unit_first);
     p.set("u_fx_last", unit_last);
     p.set("u_md_grid", unit_medium);
@@ -582,7 +581,6 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
     p.set("u_fx_near", view_.near);
     p.set("u_fx_pixel_steps", options_.pixel_steps);
     glBindTextureUnit(unit_volume, v_->integrated.get());
-    glBindTextureUnit(unit_light, options_.temporal ? v_->resolved[current_].get() : v_->light.get());
     glBindTextureUnit(unit_first, tile_bounds_.first());
     glBindTextureUnit(unit_last, tile_bounds_.last());
 }
