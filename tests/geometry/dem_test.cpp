@@ -387,7 +387,7 @@ TEST_F(Dem, VoidsAreFilledByAMembraneWithoutSpikes)
             ++filled;
             double sum = 0.0;
             int n = 0;
-            for (const auto [a, b] : {std::pair{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}})
+            for (const auto& [a, b] : {std::pair{i - 1, j}, {i + 1, j}, {i, j - 1}, {i, j + 1}})
                 if (a >= 0 && a < w && b >= 0 && b < h)
                     sum += hf.at(a, b), ++n;
             EXPECT_NEAR(hf.at(i, j), sum / n, 1e-6) << i << "," << j;

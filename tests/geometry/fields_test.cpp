@@ -23,11 +23,13 @@ void expect_sound(const char* section, Fields fields = {})
         const std::string key(info.key);
         EXPECT_FALSE(key.empty()) << section;
         EXPECT_FALSE(info.doc.empty()) << section << "/" << key;
-        if (info.element <= 0)
+        if (info.element <= 0) {
             EXPECT_TRUE(keys.insert(key).second) << section << "/" << key << " is declared twice";
+        }
         if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
-            if (!info.omit_default)
+            if (!info.omit_default) {
                 EXPECT_TRUE(info.range.contains(double(m))) << section << "/" << key << ": default outside its range";
+            }
             if (info.widget.bounded()) {
                 // A slider may reach the default that stands for "not given" (0 = automatic).
                 const double lo = info.omit_default ? std::min(info.range.lo.value, double(m)) : info.range.lo.value;
@@ -35,8 +37,9 @@ void expect_sound(const char* section, Fields fields = {})
                 EXPECT_LE(info.widget.hi.value, info.range.hi.value) << section << "/" << key;
             }
         }
-        if constexpr (std::is_enum_v<T>)
+        if constexpr (std::is_enum_v<T>) {
             EXPECT_FALSE(info.choices.empty()) << section << "/" << key << ": an enumeration needs its names";
+        }
     });
 }
 

@@ -410,8 +410,9 @@ TEST(LightVolume, AThinLayerBesideAThickBodyInOneCellGetsItsOwnLight)
         const double old = reference_ray({&m, {}}, &ground, origin, down, 1e6, unnormalised, ro).inscatter.x;
         const double bound = 0.25 * truth.radiance.x + 3.0 * truth.std_error.x;
         EXPECT_NEAR(model, truth.radiance.x, bound) << "over x = " << origin.x;
-        if (origin.x > 700.0)
+        if (origin.x > 700.0) {
             EXPECT_GT(old, 1.6 * truth.radiance.x) << "the unnormalised cell, over the thin layer";
+        }
     }
 }
 
