@@ -42,6 +42,28 @@ vec3 medium_light(int m, vec3 p, vec3 ray, float visible, float tau)
 // colour by the distance, as the layers, the particles, the terrain and the reference see theirs.
 vec3 through_air(vec3 j, vec3 p, vec3 eye) { return mix(j, u_air.rgb, 1.0 - exp(-distance(p, eye) * u_air.w)); }
 
+// The Medium's J at p seen from the eye (the froxels' lighting pass at a froxel, the marches at a
+// ray's points). J is the light of fog: a point above the fog's top or below its bottom (a
+// tile's jittered point above the fog its central ray is in, a froxel without fog whose J the
+// apply reads for fog nearby, a march's point between the fog's top and the ground) would take
+// the sun's light in empty air, unshadowed by the fog, under a grazing sun all of the
+// difference; it takes the light of its column's fog nearest to it, a thousandth of the fog's
+// depth inside either end (the baked light ends at the column's floor, where a ray's last point
+// lies on the ground). sun_jitter: where along its steps the sun's optical depth is marched.
+vec3 medium_light_at(vec3 p, vec3 eye, float sun_jitter)
+{
+    vec3 lit = p;
+    if (shell_covers(p.xy)) {
+        vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
+        float lo = max(column.x, column.y), hi = column.z;
+        if (hi > lo)
+            lit.z = clamp(p.z, mix(lo, hi, 1e-3), mix(lo, hi, 0.999));
+    }
+    float visible = terrain_visibility(lit, u_ts_bias);
+    float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(lit, u_sun_direction, sun_jitter) : 0.0;
+    return through_air(medium_light(0, lit, normalize(p - eye), visible, tau), p, eye);
+}
+
 // The height fog's J at p, seen from the eye, with the terrain's visibility of the sun and the
 // Medium's optical depth towards it there (both change over hundreds of metres, the height fog's
 // own optical depth over tens: added here in closed form).

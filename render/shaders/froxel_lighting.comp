@@ -33,19 +33,5 @@ void main()
     // the tile see farther) take the light of the ray's last point before the ground, not that
     // of a point inside the hill.
     vec3 p = fx_world(uv, min(mix(d0, d1, density.z), 0.998 * fx_tile_ground(id.xy)));
-    // The phase by the direction of the rays through the froxel.
-    vec3 ray = normalize(p - u_fx_eye), lit = p;
-    // J is the light of fog. A point above the Medium's top or below its bottom (the tile's
-    // jittered point above the fog its central ray is in, or a froxel without fog, whose J the
-    // apply reads for fog its pixels find nearby) would take the sun's light in empty air,
-    // unshadowed by the fog: under a grazing sun, all of the difference. It takes the sun's light
-    // of its column's fog nearest to it.
-    if (shell_covers(p.xy)) {
-        vec4 column = shell_column(p.xy);
-        if (column.z > column.y)
-            lit.z = clamp(p.z, column.y, column.z - 1e-3 * (column.z - column.y));
-    }
-    float visible = terrain_visibility(lit, u_ts_bias);
-    float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(lit, u_sun_direction, u_sun_jitter) : 0.0;
-    imageStore(o_light, id, vec4(through_air(medium_light(0, lit, ray, visible, tau), p, u_fx_eye), 1.0));
+    imageStore(o_light, id, vec4(medium_light_at(p, u_fx_eye, u_sun_jitter), 1.0));
 }

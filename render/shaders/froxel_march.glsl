@@ -22,29 +22,6 @@ uniform sampler2D u_fx_first;         // per pixel: the shell's nearest depth (3
 uniform sampler2D u_fx_last;          // per pixel: the shell's farthest depth (0: none)
 uniform int u_fx_classified;          // the tiles' w marks where pixels march (froxel_classify.comp)
 
-// The Medium's J at view depth d on the ray (fx_ray, not unit) from the eye, lit at its own
-// point as the froxels' lighting pass lights a froxel (froxel_lighting.comp): a point above the
-// fog's top or below its bottom takes the light of its column's fog nearest to it. The froxels'
-// J, bilinear across four tiles, mixed the light of a sunlit ridge and of a valley in its shadow
-// in one tile; the lake's threads of fog in narrow valleys were 7.8 % off the reference so, 4.7 %
-// lit here.
-vec3 froxel_point_light(vec3 ray, float d)
-{
-    vec3 p = u_fx_eye + ray * d, lit = p;
-    if (shell_covers(p.xy)) {
-        // Within the fog by a thousandth of its depth at either end: the baked light
-        // (lv_in_scattered_at) ends at the column's floor, and a ray's last point lies on the
-        // ground, at the floor, where rounding put it in or out.
-        vec4 column = shell_column(p.xy);
-        float lo = max(column.x, column.y), hi = column.z;
-        if (hi > lo)
-            lit.z = clamp(p.z, mix(lo, hi, 1e-3), mix(lo, hi, 0.999));
-    }
-    float visible = terrain_visibility(lit, u_ts_bias);
-    float tau = u_fog_shadows != 0 && visible > 0.0 ? sun_optical_depth(lit, u_sun_direction, 0.5) : 0.0;
-    return through_air(medium_light(0, lit, normalize(ray), visible, tau), p, u_fx_eye);
-}
-
 // The Medium's optical depth over the step [q0, q1] of length `len`: its extinction at the middle
 // of the part of the step between the floor and the top of its column there, times that part's
 // length. Taken at the step's middle alone, the step that straddles the fog's top or floor held
@@ -68,7 +45,9 @@ float froxel_step_depth(vec3 q0, vec3 q1, float len)
 // Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
 // spread like the slices over [a, b], up to `stop` (<= b: where the ray ends). The Medium (when
 // with_medium): its optical depth over each step (froxel_step_depth), lit at the ray's own
-// points every fourth step (froxel_point_light), in between linear. The height fog: its optical depth
+// points every fourth step (medium_light_at, froxel_light.glsl), in between linear; the froxels'
+// J, bilinear across four tiles, mixed the light of a sunlit ridge and of a valley in its shadow
+// (the lake's threads from afar 7.8 % off the reference so, 4.7 % lit at their own points). The height fog: its optical depth
 // over each step in closed form, lit at its own points (the volume's J would light a haze a few
 // tens of metres deep at one point of a slice hundreds of metres deep: the plain under the
 // default scene's haze was 20 % too dark from above).
@@ -80,11 +59,12 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
     vec3 ray = fx_ray(uv);
     float stretch = length(ray);
     float d0 = a;
-    vec3 j0 = with_medium ? froxel_point_light(ray, a) : vec3(0.0), j1 = j0;
+    vec3 j0 = with_medium ? medium_light_at(u_fx_eye + ray * a, u_fx_eye, 0.5) : vec3(0.0), j1 = j0;
     for (int k = 0; k < n && d0 < stop; ++k) {
         if (with_medium && k % 4 == 0) {  // J at the end of the next four steps
             j0 = j1;
-            j1 = froxel_point_light(ray, min(fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)), stop));
+            j1 = medium_light_at(u_fx_eye + ray * min(fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)), stop),
+                                 u_fx_eye, 0.5);
         }
         float d1 = min(fx_slice_depth(float(k + 1) / float(n), vec2(a, b)), stop);
         vec3 q0 = u_fx_eye + ray * d0, q1 = u_fx_eye + ray * d1;
