@@ -1,5 +1,6 @@
 // `kiri bench [--quick] -o DIR [--stage NAME ...] [--view TEXT ...]`: runs the benchmark stages; each writes
 // DIR/<stage>.csv (time, error and peak memory per row) and DIR/<stage>.png.
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -50,6 +51,8 @@ void run(const BenchArgs& a)
     for (const std::string& s : a.stages)
         if (!known.count(s))
             throw InputError("", "--stage", "unknown stage \"" + s + "\" (see kiri bench --list)");
+    if (!a.views.empty() && !a.stages.empty() && std::find(a.stages.begin(), a.stages.end(), "views") == a.stages.end())
+        throw InputError("", "--view", "chooses views of the views stage, which is not run (add --stage views)");
     std::error_code ec;
     std::filesystem::create_directories(a.out, ec);
     if (ec || !std::filesystem::is_directory(a.out))

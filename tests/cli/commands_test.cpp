@@ -60,6 +60,16 @@ TEST(KiriRender, DefaultSceneWritesAPictureAndPrintsItsPath)
 
 // The benchmark stages are compiled in with KIRI_BUILD_BENCH (tests/cli/CMakeLists.txt).
 #if KIRI_BUILD_BENCH
+// A bench CSV row's cells (none of them holds a comma).
+std::vector<std::string> csv_cells(const std::string& line)
+{
+    std::vector<std::string> cols;
+    std::string col;
+    for (std::istringstream cells(line); std::getline(cells, col, ',');)
+        cols.push_back(col);
+    return cols;
+}
+
 TEST(KiriBench, EndToEndStageWritesCsvAndPlot)
 {
     const fs::path dir = kiri::test::temp_path("commands_test_bench");
@@ -77,10 +87,7 @@ TEST(KiriBench, EndToEndStageWritesCsvAndPlot)
     for (const char* size : {"320x180", "640x360"}) {
         ASSERT_TRUE(std::getline(lines, line));
         EXPECT_NE(line.find(size), std::string::npos) << line;
-        std::vector<std::string> cols;
-        std::string col;
-        for (std::istringstream cells(line); std::getline(cells, col, ',');)
-            cols.push_back(col);
+        const std::vector<std::string> cols = csv_cells(line);
         ASSERT_EQ(cols.size(), 9u) << line;
         EXPECT_GT(std::stod(cols[4]), 0.0) << line;  // time_s
         // The picture's error against the CPU reference, judged at 64 x 36: measured 0.105 at
@@ -110,10 +117,7 @@ TEST(KiriBench, ViewsStageJudgesTheViewsNamed)
     std::getline(lines, line);
     std::vector<std::string> modes;
     while (std::getline(lines, line)) {
-        std::vector<std::string> cols;
-        std::string col;
-        for (std::istringstream cells(line); std::getline(cells, col, ',');)
-            cols.push_back(col);
+        const std::vector<std::string> cols = csv_cells(line);
         ASSERT_EQ(cols.size(), 9u) << line;
         EXPECT_EQ(cols[2], "\"canyon/derived\"") << line;
         modes.push_back(cols[1]);
@@ -124,6 +128,25 @@ TEST(KiriBench, ViewsStageJudgesTheViewsNamed)
     EXPECT_EQ(modes, (std::vector<std::string>{"\"layers\"", "\"particles\"", "\"froxel\"", "\"combined\""}));
     const std::string md = kiri::test::read_all(dir / "views.md");
     EXPECT_EQ(std::count(md.begin(), md.end(), '\n'), 7) << md;  // its header, one row and the worst
+    fs::remove_all(dir);
+}
+
+// A --view that names no view, or one without the views stage: one line, exit 2, nothing written.
+TEST(KiriBench, AViewThatNamesNothingIsAUsageError)
+{
+    const fs::path dir = kiri::test::temp_path("commands_test_bench_no_view");
+    fs::remove_all(dir);
+    auto r = run_kiri("bench --quick -o " + dir.string() + " --stage views --view nonsense");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err.rfind("kiri: --view: names none of the views (jacksboro/default, ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "views.md"));
+    EXPECT_FALSE(fs::exists(dir / "views"));
+    EXPECT_FALSE(fs::exists(dir / "views.csv"));
+    r = run_kiri("bench --quick -o " + dir.string() + "_other --stage terrain --view lake");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "kiri: --view: chooses views of the views stage, which is not run (add --stage views)\n");
+    EXPECT_FALSE(fs::exists(dir.string() + "_other"));
     fs::remove_all(dir);
 }
 

@@ -17,6 +17,7 @@
 
 #include "bench/bench.hpp"
 #include "bench/fog_judge.hpp"
+#include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/scene/dem_scene.hpp"
 #include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/render/image.hpp"
@@ -132,6 +133,22 @@ void views_stage(Context& c)
     const int w = c.quick() ? 160 : 320, h = c.quick() ? 90 : 180;
     const render::FogMode modes[] = {render::FogMode::layers, render::FogMode::particles, render::FogMode::froxel,
                                      render::FogMode::combined};
+    // The views `kiri bench --view` named, before anything is written of them: a text that names
+    // none is an error, and the DEMs views() wrote go with it.
+    std::vector<View> chosen;
+    std::string labels;
+    for (View& view : views(c)) {
+        labels += (labels.empty() ? "" : ", ") + view.label;
+        if (c.wants_view(view.label))
+            chosen.push_back(std::move(view));
+    }
+    if (chosen.empty()) {
+        std::error_code ec;
+        for (const char* dem : {"canyon.asc", "peak.asc"})
+            fs::remove(c.out_dir() / "views" / dem, ec);
+        fs::remove(c.out_dir() / "views", ec);  // only if it is empty now
+        throw InputError("", "--view", "names none of the views (" + labels + ")");
+    }
     std::ofstream md(c.out_dir() / "views.md");
     md << w << "x" << h << ", the Medium alone (no height fog; the views with_height_fog keep the scene's, which only "
        << "the froxels and combined draw), every renderer at its default quality; mean / p99 "
@@ -141,9 +158,7 @@ void views_stage(Context& c)
     md << "\n|---|---|---|---|---|---|---|\n";
     int index = 0;
     std::vector<double> worst(std::size(modes), 0.0);
-    for (const View& view : views(c)) {
-        if (!c.wants_view(view.label))
-            continue;
+    for (const View& view : chosen) {
         FogJudge judge(view.scene, view.camera, w, h);
         std::string safe = view.label;
         std::replace(safe.begin(), safe.end(), '/', '_');
