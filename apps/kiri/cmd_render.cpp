@@ -164,9 +164,12 @@ void run(const RenderArgs& a)
                          100.0 * stats.refined_shade_vertices / stats.terrain_vertices);
         if (stats.froxel.applied_pixels > 0)
             std::fprintf(stderr,
-                         "kiri render: froxel apply marched %d of %d pixels (%.1f %%), read the volume elsewhere\n",
+                         "kiri render: froxel apply marched %d of %d pixels (%.1f %%), took the mean of the marched "
+                         "samples around them at %d (%.1f %%), read the volume elsewhere\n",
                          stats.froxel.marched_pixels, stats.froxel.applied_pixels,
-                         100.0 * stats.froxel.marched_pixels / stats.froxel.applied_pixels);
+                         100.0 * stats.froxel.marched_pixels / stats.froxel.applied_pixels,
+                         stats.froxel.upsampled_pixels,
+                         100.0 * stats.froxel.upsampled_pixels / stats.froxel.applied_pixels);
     }
     if (const geometry::ParticleCloud* particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();

@@ -52,9 +52,13 @@ void main()
     }
     vec3 light[haze_runs];
     for (int i = 0; i < haze_runs; ++i)
-        light[i] = i < runs.count ? height_fog_segment_light(runs.a[i], runs.b[i], u_fx_eye, runs.tau[i]) : vec3(0.0);
-    if (runs.count == 0 && runs.before > 1e-5)
-        light[0] = height_fog_light(runs.at, u_fx_eye);
+        light[i] = vec3(0.0);
+    // Each run's light (without one, the heaviest step's at its middle: a segment of no length),
+    // one call of it in a loop the compiler keeps (haze_runs_finish says why).
+    bool lone = runs.count == 0 && runs.before > 1e-5;
+    for (int i = 0; i < (lone ? 1 : runs.count); ++i)
+        light[i] = height_fog_segment_light(lone ? runs.at : runs.a[i], lone ? runs.at : runs.b[i], u_fx_eye,
+                                            lone ? 0.0 : runs.tau[i]);
     HazeRuns replay = haze_runs_along_ray();
 #endif
     vec3 radiance = vec3(0.0);

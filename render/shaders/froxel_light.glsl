@@ -76,13 +76,6 @@ vec3 height_fog_light_with(vec3 p, vec3 eye, float visible, float medium_tau)
 // The height fog's J at p, seen from the eye: its visibility and tau_sun at p itself. The height
 // fog is a closed form, so its light is too wherever its optical depth changes faster than a
 // froxel or a march step can follow (tens of metres under a grazing sun).
-vec3 height_fog_light(vec3 p, vec3 eye)
-{
-    float visible = terrain_visibility(p, u_ts_bias);
-    float medium_tau = u_fog_shadows != 0 && visible > 0.0 ? medium_sun_optical_depth(p, u_sun_direction, 0.5) : 0.0;
-    return height_fog_light_with(p, eye, visible, medium_tau);
-}
-
 // The height fog along the segment [a, b] (in it, `tau` of its optical depth): its in-scattered
 // radiance per unit of opacity as the eye at a's side sees it, each of n pieces' light weighted
 // by the light the pieces in front of it let through. The pieces split the part of the segment
@@ -107,22 +100,28 @@ vec3 height_fog_segment_light(vec3 a, vec3 b, vec3 eye, float tau)
     }
     vec3 lo = mix(a, b, t0), hi = mix(a, b, t1);
     int n = clamp(int(ceil(tau / froxel_haze_piece_depth)), 1, froxel_haze_pieces);
-    if (n == 1)
-        return height_fog_light(0.5 * (lo + hi), eye);
     vec3 middle = 0.5 * (lo + hi);
     float visible = terrain_visibility(middle, u_ts_bias);
     float medium_tau = u_fog_shadows != 0 && visible > 0.0 ? medium_sun_optical_depth(middle, u_sun_direction, 0.5) : 0.0;
-    vec3 sum = vec3(0.0);
+    // One call of the light, in a loop the compiler keeps (each copy of it inlined cost llvmpipe
+    // a second of compiling each program that lights the height fog).
+    vec3 sum = vec3(0.0), first = vec3(0.0);
     float weight = 0.0, through = 1.0;
-    for (int i = 0; i < n && through > 0.01; ++i) {  // what lies behind 99 % of it weighs little
+    for (int i = 0; i < n && (i == 0 || through > 0.01); ++i) {  // what lies behind 99 % of it weighs little
         vec3 p0 = mix(lo, hi, float(i) / float(n)), p1 = mix(lo, hi, float(i + 1) / float(n));
         float piece = exp(-height_fog_segment(p0, p1)), opacity = through * (1.0 - piece);
-        sum += opacity * height_fog_light_with(0.5 * (p0 + p1), eye, visible, medium_tau);
+        vec3 j = height_fog_light_with(0.5 * (p0 + p1), eye, visible, medium_tau);
+        first = i == 0 ? j : first;
+        sum += opacity * j;
         weight += opacity;
         through *= piece;
     }
-    return weight > 0.0 ? sum / weight : height_fog_light_with(middle, eye, visible, medium_tau);
+    return weight > 0.0 ? sum / weight : first;
 }
+
+// The height fog's J at p, seen from the eye: its visibility and tau_sun at p itself (a segment
+// of no length).
+vec3 height_fog_light(vec3 p, vec3 eye) { return height_fog_segment_light(p, p, eye, 0.0); }
 
 // The height fog's light along a ray, front to back in steps (the apply's march, the
 // integration's froxels), lit once the steps are known: on a GPU's SIMD lanes a light taken at
@@ -191,12 +190,12 @@ void haze_run_step(inout HazeRuns r, float share, vec3 a, vec3 b, float tau)
 
 void haze_runs_finish(HazeRuns r, inout vec3 radiance)
 {
-    if (r.count == 0) {
-        if (r.before > 1e-5)
-            radiance += r.before * height_fog_light(r.at, u_fx_eye);
+    // Without a run, the heaviest step's light at its middle (a segment of no length); one call of
+    // the light in a loop the compiler keeps.
+    bool lone = r.count == 0;
+    if (lone && !(r.before > 1e-5))
         return;
-    }
-    for (int i = 0; i < haze_runs; ++i)
-        if (i < r.count)
-            radiance += r.share[i] * height_fog_segment_light(r.a[i], r.b[i], u_fx_eye, r.tau[i]);
+    for (int i = 0; i < max(r.count, 1); ++i)
+        radiance += (lone ? r.before : r.share[i]) *
+            height_fog_segment_light(lone ? r.at : r.a[i], lone ? r.at : r.b[i], u_fx_eye, lone ? 0.0 : r.tau[i]);
 }

@@ -45,11 +45,16 @@ float medium_through(int i, int j)
 void main()
 {
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
+    // Phases 0 and 2 end in one march of the sun's optical depth (a second copy of it inlined
+    // doubled the program's compile time on llvmpipe).
+    vec3 p;
+    int v = -1;  // phase 0's vertex; phase 2 writes texel ab
+    ivec2 ab = ivec2(0);
     if (u_phase == 0) {
-        int v = id.y * u_row + id.x;
-        if (id.x < u_row && v < u_vertices)
-            shade[v] = vec2(sun_optical_depth(position(v), u_sun_direction, 0.5), 0.0);
-        return;
+        v = id.y * u_row + id.x;
+        if (!(id.x < u_row && v < u_vertices))
+            return;
+        p = position(v);
     }
     if (u_phase == 1) {
         int i = id.x, j = id.y;
@@ -66,20 +71,26 @@ void main()
         }
         return;
     }
-    // Phase 2: id.y a marked vertex, id.x a texel of the fine map in the four cells around it
-    // (texel (a, b) lies on the cells' corners at every u_fine-th texel). Neighbours marked both
-    // write their shared texels, with the same value.
-    int side = 2 * u_fine + 1;
-    if (id.y >= int(refined) || id.x >= side * side)
-        return;
-    int vertex = int(marked_vertices[id.y]);
-    ivec2 ab = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine + ivec2(id.x % side, id.x / side);
-    ivec2 cell = ab / u_fine;
-    // The ground as the mesh draws it: two triangles a cell, split along (i, j)-(i + 1, j + 1).
-    ivec2 c = min(cell, u_grid.xy - 2);
-    vec2 f = vec2(ab - c * u_fine) / float(u_fine);
-    vec3 p00 = position(mesh_vertex(c.x, c.y)), p10 = position(mesh_vertex(c.x + 1, c.y));
-    vec3 p11 = position(mesh_vertex(c.x + 1, c.y + 1)), p01 = position(mesh_vertex(c.x, c.y + 1));
-    vec3 p = f.x >= f.y ? p00 + f.x * (p10 - p00) + f.y * (p11 - p10) : p00 + f.x * (p11 - p01) + f.y * (p01 - p00);
-    imageStore(o_fine, ab, vec4(sun_optical_depth(p, u_sun_direction, 0.5)));
+    if (u_phase == 2) {
+        // id.y a marked vertex, id.x a texel of the fine map in the four cells around it (texel
+        // (a, b) lies on the cells' corners at every u_fine-th texel). Neighbours marked both
+        // write their shared texels, with the same value.
+        int side = 2 * u_fine + 1;
+        if (id.y >= int(refined) || id.x >= side * side)
+            return;
+        int vertex = int(marked_vertices[id.y]);
+        ab = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine + ivec2(id.x % side, id.x / side);
+        ivec2 cell = ab / u_fine;
+        // The ground as the mesh draws it: two triangles a cell, split along (i, j)-(i + 1, j + 1).
+        ivec2 c = min(cell, u_grid.xy - 2);
+        vec2 f = vec2(ab - c * u_fine) / float(u_fine);
+        vec3 p00 = position(mesh_vertex(c.x, c.y)), p10 = position(mesh_vertex(c.x + 1, c.y));
+        vec3 p11 = position(mesh_vertex(c.x + 1, c.y + 1)), p01 = position(mesh_vertex(c.x, c.y + 1));
+        p = f.x >= f.y ? p00 + f.x * (p10 - p00) + f.y * (p11 - p10) : p00 + f.x * (p11 - p01) + f.y * (p01 - p00);
+    }
+    float tau = sun_optical_depth(p, u_sun_direction, 0.5);
+    if (v >= 0)
+        shade[v] = vec2(tau, 0.0);
+    else
+        imageStore(o_fine, ab, vec4(tau));
 }

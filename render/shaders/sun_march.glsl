@@ -27,15 +27,18 @@ float medium_sun_depth(vec3 p, vec3 s, int steps, float jitter)
             split = clamp(t0 + 2.0 * (c.z - max(p.z, c.y)) / s.z, t0, t1);
     }
     int near_steps = split > t0 ? max(steps / 2, 1) : 0, far_steps = max(steps - near_steps, 1);
-    float tau = 0.0;
-    for (int k = 0; k < near_steps; ++k) {
-        float s0 = mix(t0, split, float(k) / float(near_steps)), s1 = mix(t0, split, float(k + 1) / float(near_steps));
-        tau += medium_sigma(p + s * mix(s0, s1, jitter)) * (s1 - s0);
-    }
-    float n = float(far_steps);
-    for (int k = 0; k < far_steps; ++k) {
-        float u0 = float(k) / n, u1 = float(k + 1) / n;
-        float s0 = split + (t1 - split) * u0 * u0, s1 = split + (t1 - split) * u1 * u1;
+    // Both runs in one loop: one copy of the density's lookup for the compiler to inline.
+    float tau = 0.0, n = float(far_steps);
+    for (int k = 0; k < near_steps + far_steps; ++k) {
+        float s0, s1;
+        if (k < near_steps) {
+            s0 = mix(t0, split, float(k) / float(near_steps));
+            s1 = mix(t0, split, float(k + 1) / float(near_steps));
+        } else {
+            float u0 = float(k - near_steps) / n, u1 = float(k - near_steps + 1) / n;
+            s0 = split + (t1 - split) * u0 * u0;
+            s1 = split + (t1 - split) * u1 * u1;
+        }
         tau += medium_sigma(p + s * mix(s0, s1, jitter)) * (s1 - s0);
     }
     return tau;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -96,6 +97,14 @@ std::vector<std::string_view> march_libraries(std::string_view stage)
     return files;
 }
 
+// Those of a program over the frame's pixels (froxel_frame.glsl) that marches their rays.
+std::vector<std::string_view> pixel_libraries(std::string_view stage)
+{
+    std::vector<std::string_view> files = march_libraries("froxel_frame.glsl");
+    files.push_back(stage);
+    return files;
+}
+
 }  // namespace
 
 struct FroxelPass::Volumes {
@@ -112,11 +121,9 @@ FroxelPass::FroxelPass()
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
       integrate_(light_libraries("froxel_integrate.comp")), classify_(march_libraries("froxel_classify.comp")),
-      apply_program_(march_libraries("froxel_apply.comp")), readback_(march_libraries("froxel_readback.comp")),
-      marched_(make_buffer())
+      pixels_(pixel_libraries("froxel_pixels.comp")), upsample_(pixel_libraries("froxel_upsample.comp")),
+      apply_program_({"froxel_apply.comp"}), readback_({"froxel_frame.glsl", "froxel_readback.comp"})
 {
-    const GLuint zero = 0;
-    glNamedBufferStorage(marched_.get(), sizeof(GLuint), &zero, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
     for (const char* name : stage_names)
         timers_.emplace_back(name);
 }
@@ -307,24 +314,15 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     if (!visible_ || !apply_)
         return;
     const ScopedPassTimer timed(timers_[apply_stage]);
-    const ShaderProgram& p = apply_program_.get(options_.height_fog.enabled());
-    bind_apply(p);
-    bind_light(p, frame);
-    const glm::vec2 planes = depth_planes(frame);
-    p.set("u_depth", 0);
+    run_pixel_fog(frame, depth_texture, color_texture, applied_);
+    const ShaderProgram& p = apply_program_;
+    p.set("u_fog", 0);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
-    p.set("u_near_plane", planes.x);
-    p.set("u_far_plane", planes.y);
     p.use();
-    glBindTextureUnit(0, depth_texture);
+    glBindTextureUnit(0, applied_.fog.get());
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
-    const GLuint zero = 0;
-    glNamedBufferSubData(marched_.get(), 0, sizeof(GLuint), &zero);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, marched_.get());
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
-    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT |
-                    GL_BUFFER_UPDATE_BARRIER_BIT);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
     applied_pixels_ = frame.width * frame.height;
 }
 
@@ -614,19 +612,22 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     terrain.draw_mesh();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     const GLuint depth_texture = surface.get();
-    const ShaderProgram& p = readback_.get(options_.height_fog.enabled());
+    // Judged over the last frame's colour before its fog: the apply's (as sized as this frame)
+    PixelFog& pixel_fog = applied_;
+    run_pixel_fog(frame, depth_texture, 0, pixel_fog);
+    const ShaderProgram& p = readback_;
     Texture image = make_texture(GL_TEXTURE_2D), depth = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(image.get(), 1, GL_RGBA32F, frame.width, frame.height);
     glTextureStorage2D(depth.get(), 1, GL_R32F, frame.width, frame.height);
-    bind_apply(p);
-    bind_light(p, frame);
     p.set("u_depth", 0);
+    p.set("u_fog", 1);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     const glm::vec2 planes = depth_planes(frame);
     p.set("u_near_plane", planes.x);
     p.set("u_far_plane", planes.y);
     p.use();
     glBindTextureUnit(0, depth_texture);
+    glBindTextureUnit(1, pixel_fog.fog.get());
     glBindImageTexture(0, image.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
@@ -651,12 +652,9 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
 void FroxelPass::append_timings(std::vector<PassTime>& out) const
 {
     stats_.applied_pixels = applied_pixels_;
-    stats_.marched_pixels = 0;
-    if (applied_pixels_ > 0) {
-        GLuint marched = 0;
-        glGetNamedBufferSubData(marched_.get(), 0, sizeof(GLuint), &marched);
-        stats_.marched_pixels = int(marched);
-    }
+    stats_.marched_pixels = stats_.upsampled_pixels = 0;
+    if (applied_pixels_ > 0)
+        std::tie(stats_.marched_pixels, stats_.upsampled_pixels) = applied_.counts();
     for (const PassTimer& timer : timers_)
         if (timer.ran())
             out.push_back(timer.result());

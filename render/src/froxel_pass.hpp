@@ -15,6 +15,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "frame_context.hpp"
@@ -91,8 +92,22 @@ private:
         std::unique_ptr<ShaderProgram> programs_[2];
     };
     ShaderProgram density_, lighting_, temporal_, accumulate_, opaque_;
-    HazeVariants integrate_, classify_, apply_program_, readback_;
-    Buffer marched_;                                // the apply's count of pixels that marched their own rays
+    HazeVariants integrate_, classify_, pixels_, upsample_;
+    ShaderProgram apply_program_, readback_;
+    // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the half-resolution
+    // samples, the fog, the list of pixels that march and its counts, the frame before its fog.
+    struct PixelFog {
+        int width = 0, height = 0;
+        Texture samples, fog, background;
+        Buffer list;
+        void resize(int width, int height);
+        //! (pixels that marched, pixels that took their samples' mean) in the last run.
+        std::pair<int, int> counts() const;
+    };
+    PixelFog applied_;  // the apply's (read_fog runs its own)
+    //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,
+    //! judged over its colour (RGBA16F, before the fog; 0: out.background's, the last one copied).
+    void run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out);
     std::unique_ptr<ShaderProgram> depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;

@@ -97,7 +97,7 @@ TEST(FroxelOptionsJson, DefaultsKeysErrorsAndRoundTrip)
               "s.json: /froxel/slices: unknown key (expected one of: density_samples, "
               "distribution, esm_sharpness, far, fog_aware, fog_shadows, height_fog, "
               "history_weight, log2_scale, near, pixel_steps, power, "
-              "shadow_map_size, size, sun_steps, sun_volume, temporal, terrain_shadows)");
+              "shadow_map_size, size, sun_steps, sun_volume, temporal, terrain_shadows, upsample)");
     EXPECT_EQ(error(R"({"size": [160, 90]})"),
               "s.json: /froxel/size: expected an array of 3 integers [width, height, slices]");
     EXPECT_EQ(error(R"({"size": [160, 90, 1]})"), "s.json: /froxel/size/2: must be in [2, 512], got 1");

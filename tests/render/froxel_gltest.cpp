@@ -343,6 +343,7 @@ TEST_F(FroxelGl, EveryOptionChangeReruns)
         {"sun_steps", [](g::FroxelOptions& o) { o.sun_steps = 8; }},
         {"sun_volume", [](g::FroxelOptions& o) { o.sun_volume = !o.sun_volume; }},
         {"pixel_steps", [](g::FroxelOptions& o) { o.pixel_steps = 16; }},
+        {"upsample", [](g::FroxelOptions& o) { o.upsample = 0.05; }},
         {"terrain_shadows", [](g::FroxelOptions& o) { o.terrain_shadows = !o.terrain_shadows; }},
         {"fog_shadows", [](g::FroxelOptions& o) { o.fog_shadows = !o.fog_shadows; }},
         {"shadow_map_size", [](g::FroxelOptions& o) { o.shadow_map_size = 512; }},

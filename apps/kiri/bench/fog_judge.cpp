@@ -106,8 +106,10 @@ FrameCost FogJudge::frame_cost(int width, int height, int frames)
     cost.frame_ms = median(ms);
     cost.frames = int(ms.size());
     const render::FroxelStats& froxel = renderer_->last_stats().froxel;
-    if (froxel.applied_pixels > 0)
+    if (froxel.applied_pixels > 0) {
         cost.marched = double(froxel.marched_pixels) / froxel.applied_pixels;
+        cost.upsampled = double(froxel.upsampled_pixels) / froxel.applied_pixels;
+    }
     cost.near_particles = renderer_->last_stats().near_particles;
     cost.particle_fragments = renderer_->last_stats().particle_fragments;
     for (const render::PassTime& pass : passes.back()) {

@@ -39,6 +39,8 @@ struct FrameCost {
     std::vector<render::PassTime> passes;
     //! The froxel apply's pixels that marched their own rays, of all it applied (last frame; -1: none).
     double marched = -1.0;
+    //! Those that took the mean of the marched half-resolution samples around them (-1: none).
+    double upsampled = -1.0;
     //! The particles' billboards (last frame): drawn at the near resolution, fragments blended.
     int near_particles = 0;
     std::uint64_t particle_fragments = 0;

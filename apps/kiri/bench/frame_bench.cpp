@@ -41,7 +41,8 @@ std::string passes_line(const FrameCost& cost)
     for (const render::PassTime& p : cost.passes)
         s << (s.tellp() > 0 ? ", " : "") << p.pass << ' ' << p.gpu_ms;
     if (cost.marched >= 0.0)
-        s << "; froxel apply marched " << 100.0 * cost.marched << " % of the pixels";
+        s << "; froxel apply marched " << 100.0 * cost.marched << " % of the pixels, took their samples' mean at "
+          << 100.0 * cost.upsampled << " %";
     if (cost.particle_fragments > 0)
         s << "; particles blended " << cost.particle_fragments << " fragments, " << cost.near_particles
           << " billboards near";

@@ -76,9 +76,11 @@ struct FroxelStats {
     bool converged = false;
     int updates = 0;     //!< frames whose passes ran since set_froxel_fog
     glm::ivec3 size{0};  //!< the volume's froxels across, down and in depth (set_froxel_resolution)
-    //! The last apply: its pixels, and those that marched their own rays (fog-aware: where the
-    //! volume's slices do not resolve the fog around them) instead of reading the volume.
-    int applied_pixels = 0, marched_pixels = 0;
+    //! The last apply: its pixels; those that marched their own rays (fog-aware: where the
+    //! volume's slices do not resolve the fog around them) instead of reading the volume; and
+    //! those that took the mean of the marched half-resolution samples around them
+    //! (FroxelOptions::upsample).
+    int applied_pixels = 0, marched_pixels = 0, upsampled_pixels = 0;
 };
 
 //! Float pixels, rows top to bottom: the fog a frame's pixels received (froxel fog).

@@ -39,6 +39,11 @@ struct FroxelOptions {
     //! layers); false: each froxel marches it in sun_steps steps for each lighting sample.
     bool sun_volume = true;
     int pixel_steps = 24;  //!< fog-aware apply
+    //! Fog-aware apply: a pixel between the marched half-resolution samples takes their mean
+    //! where their transmittances and in-scattered radiances (relative to the largest) differ by
+    //! no more than this and its depths lie within theirs; 0: every pixel that the volume does not
+    //! resolve marches its own ray.
+    double upsample = 0.02;
     bool terrain_shadows = true;
     bool fog_shadows = true;
     int shadow_map_size = 1024;
@@ -103,7 +108,7 @@ void visit_fields(O& o, V&& v)
     v(o.temporal,
       {.key = "temporal",
        .doc = "Halton-jittered lighting: a sample a frame blended with the reprojected, clamped "
-              "history while the view moves, a still's 16 at once"});
+              "history while the view moves, a still's first 4 at once"});
     v(o.history_weight, {.key = "history_weight", .range = closed(0, 0.99), .doc = "weight of that history"});
     v(o.density_samples,
       {.key = "density_samples", .range = closed(1, 16), .doc = "density samples per froxel, spread over its depth"});
@@ -119,6 +124,13 @@ void visit_fields(O& o, V&& v)
        .range = closed(1, 256),
        .doc =
            "fog-aware, the eye outside the Medium's shell: steps along each pixel's stretch of it (from inside, each ray marches the volume's slices)"});
+    v(o.upsample,
+      {.key = "upsample",
+       .range = closed(0, 1),
+       .doc = "fog-aware: a pixel between the marched half-resolution samples takes their mean where their "
+              "transmittances and radiances (relative) differ by at most this and its depths lie within theirs; "
+              "0: every pixel the volume does not resolve marches",
+       .widget = closed(0, 0.1)});
     v(o.terrain_shadows,
       {.key = "terrain_shadows",
        .doc = "the terrain's shadow map (ESM) shades the ground and every fog renderer (froxels, layers, particles)"});

@@ -1,0 +1,44 @@
+#version 450 core
+// The fog-aware apply's marches (froxel_march.glsl's froxel_pixel_fog): u_stage 0, the
+// half-resolution samples (frame_sample_pixel) into o_fog (frame_samples() in size), read or
+// marched; u_stage 1, the pixels froxel_upsample.comp listed, which march, into o_fog (the
+// frame's size). One invocation a pixel, so that the marches run side by side: in the apply's
+// own pass a marching pixel among pixels that do not held its neighbours' lanes (llvmpipe runs
+// eight invocations as one).
+layout(local_size_x = 64) in;
+layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
+uniform int u_stage;
+shared uint group_marched;
+
+void main()
+{
+    if (gl_LocalInvocationIndex == 0u)
+        group_marched = 0u;
+    barrier();
+    uint i = gl_GlobalInvocationID.x;
+    // The pixel, and where its fog goes (its sample, or itself); one call of the march below,
+    // which the compiler inlines whole (a second one doubled the program's compile time).
+    ivec2 px = ivec2(-1), at = ivec2(-1);
+    if (u_stage == 0) {
+        ivec2 n = frame_samples();
+        if (i < uint(n.x * n.y)) {
+            at = ivec2(int(i) % n.x, int(i) / n.x);
+            px = frame_sample_pixel(at);
+        }
+    } else if (i < fm_listed) {
+        px = ivec2(int(fm_pixels[i] & 0xffffu), int(fm_pixels[i] >> 16));
+        at = px;
+    }
+    if (px.x >= 0) {
+        vec2 uv = frame_uv(px);
+        float depth = frame_depth(px);
+        bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
+        vec4 fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(px, uv, depth);
+        if (u_stage == 0 && !resolved)
+            atomicAdd(group_marched, 1u);
+        imageStore(o_fog, at, fog);
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u && group_marched > 0u)
+        atomicAdd(fm_sampled, group_marched);
+}
