@@ -110,9 +110,9 @@ FitReport BaseSurface::fit(const Terrain& terrain, const FitOptions& o)
     std::vector<double> z = solver.solve(assembly.faces);
     if (o.mode == FitMode::blanket) {
         z = enforce_clearance(layout, assembly, o, solver, std::move(z), rep.active_constraints);
-        rep.local_lift = lift_locally(layout, assembly.samples, o.clearance, z);
+        rep.local_lift = lift_locally(layout, assembly, o.clearance, z);
     }
-    const std::vector<double> at_samples = surface_at_samples(layout, z);
+    const std::vector<double> at_samples = surface_at_samples(layout, assembly, z);
     if (o.mode == FitMode::blanket)
         rep.lift = lift_uniformly(worst_shortfall(assembly.samples, o.clearance, at_samples), z);
     measure_fit(assembly.samples, at_samples, rep);

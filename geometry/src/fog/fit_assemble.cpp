@@ -36,6 +36,8 @@ void add_data_term(const FitLayout& layout, int f, const Terrain& terrain, const
     FaceWeights fw;
     for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
         layout.stencils.weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
+        std::copy(fw.w.begin(), fw.w.end(),
+                  out.weights.begin() + std::ptrdiff_t(out.face_weights[f] + (id - smp.face_begin[f]) * n));
         glm::dvec2 xy(0.0);
         for (std::size_t k = 0; k < n; ++k)
             xy += fw.w[k] * layout.relative_xy[S[k]];
@@ -166,9 +168,8 @@ FitLayout make_fit_layout(const ControlMesh& control, const FaceStencils& stenci
     return layout;
 }
 
-void add_row(FaceSystem& s, const std::vector<double>& w, double weight, double rhs)
+void add_row(FaceSystem& s, const double* w, std::size_t n, double weight, double rhs)
 {
-    const std::size_t n = w.size();
     for (std::size_t a = 0; a < n; ++a) {
         const double wa = weight * w[a];
         s.r[a] += wa * rhs;
@@ -190,6 +191,13 @@ FitAssembly assemble_fit(const FitLayout& layout, const Terrain& terrain, const 
     out.samples.target.resize(ns);
     out.samples.has_data.assign(ns, 0);
     out.faces.resize(nf);
+    out.face_weights.resize(nf);
+    std::size_t weights = 0;
+    for (int f = 0; f < nf; ++f) {
+        out.face_weights[f] = weights;
+        weights += (smp.face_begin[f + 1] - smp.face_begin[f]) * layout.stencils.support(f).size();
+    }
+    out.weights.resize(weights);
     for (int f = 0; f < nf; ++f) {
         const std::size_t n = layout.stencils.support(f).size();
         out.faces[f].L.assign(n * n, 0.0);

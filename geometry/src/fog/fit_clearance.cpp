@@ -9,7 +9,7 @@
 
 namespace kiri::geometry {
 
-double surface_z(const FitLayout& layout, int face, const std::vector<double>& w, const std::vector<double>& heights)
+double surface_z(const FitLayout& layout, int face, const double* w, const std::vector<double>& heights)
 {
     const auto& S = layout.stencils.support(face);
     double z = 0.0;
@@ -45,7 +45,6 @@ std::vector<double> enforce_clearance(const FitLayout& layout, const FitAssembly
     // The one-step inner solves can cycle on hard terrains: keep the best iterate.
     std::vector<double> best = hts;
     double best_worst = inf;
-    FaceWeights fw;
     for (int it = 0; it < o.max_active_set_iterations; ++it) {
         long long count = 0;
         double worst = 0.0;
@@ -62,15 +61,16 @@ std::vector<double> enforce_clearance(const FitLayout& layout, const FitAssembly
                 const bool was = holding[id];
                 if (!was && !full)
                     continue;
-                layout.stencils.weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
-                const double need = samples.terrain[id] + o.clearance, lack = need - surface_z(layout, f, fw.w, hts);
+                const double* w = assembly.weights_of(layout, f, id);
+                const double need = samples.terrain[id] + o.clearance, lack = need - surface_z(layout, f, w, hts);
                 worst = std::max(worst, lack);
                 if (was)
                     raise[id] = float(std::max(0.0, double(raise[id]) + lack));
                 const bool hold = double(raise[id]) + lack > 0.0;
                 holding[id] = hold;
                 if (hold) {
-                    add_row(sys[f], fw.w, rho * assembly.data_weight[f], need + double(raise[id]));
+                    add_row(sys[f], w, layout.stencils.support(f).size(), rho * assembly.data_weight[f],
+                            need + double(raise[id]));
                     ++count;
                 } else if (full) {
                     min_slack[f] = std::min(min_slack[f], -lack - double(raise[id]));
@@ -98,12 +98,12 @@ std::vector<double> enforce_clearance(const FitLayout& layout, const FitAssembly
 
 // The positive weights of a sample sum to >= 1, so raising the control vertices under it by
 // its shortfall raises it at least that much; a few passes settle the interplay of neighbours.
-double lift_locally(const FitLayout& layout, const SampleHeights& samples, double clearance, std::vector<double>& hts)
+double lift_locally(const FitLayout& layout, const FitAssembly& assembly, double clearance, std::vector<double>& hts)
 {
     const int nf = layout.num_faces(), nv = layout.num_vertices();
     const FitSamples& smp = layout.samples;
+    const SampleHeights& samples = assembly.samples;
     double largest = 0.0;
-    FaceWeights fw;
     for (int pass = 0; pass < 4; ++pass) {
         std::vector<double> up(nv, 0.0);
         double worst = 0.0;
@@ -112,13 +112,13 @@ double lift_locally(const FitLayout& layout, const SampleHeights& samples, doubl
             for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
                 if (!samples.has_data[id])
                     continue;
-                layout.stencils.weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
-                const double lack = samples.terrain[id] + clearance - surface_z(layout, f, fw.w, hts);
+                const double* w = assembly.weights_of(layout, f, id);
+                const double lack = samples.terrain[id] + clearance - surface_z(layout, f, w, hts);
                 if (lack <= 0.0)
                     continue;
                 worst = std::max(worst, lack);
                 for (std::size_t k = 0; k < S.size(); ++k)
-                    if (fw.w[k] > 1e-12)
+                    if (w[k] > 1e-12)
                         up[S[k]] = std::max(up[S[k]], lack * (1.0 + 1e-9));
             }
         }
@@ -132,16 +132,14 @@ double lift_locally(const FitLayout& layout, const SampleHeights& samples, doubl
     return largest;
 }
 
-std::vector<double> surface_at_samples(const FitLayout& layout, const std::vector<double>& hts)
+std::vector<double> surface_at_samples(const FitLayout& layout, const FitAssembly& assembly,
+                                       const std::vector<double>& hts)
 {
     const FitSamples& smp = layout.samples;
     std::vector<double> z(smp.uv.size());
-    FaceWeights fw;
     for (int f = 0; f < layout.num_faces(); ++f)
-        for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id) {
-            layout.stencils.weights(f, smp.uv[id].x, smp.uv[id].y, fw, 0);
-            z[id] = surface_z(layout, f, fw.w, hts);
-        }
+        for (std::size_t id = smp.face_begin[f]; id < smp.face_begin[f + 1]; ++id)
+            z[id] = surface_z(layout, f, assembly.weights_of(layout, f, id), hts);
     return z;
 }
 

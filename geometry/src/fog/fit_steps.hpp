@@ -59,8 +59,12 @@ struct SampleHeights {
 struct FaceSystem {
     std::vector<double> L, r;
 };
-//! Adds weight * (w . h_S - rhs)^2 to the face's energy.
-void add_row(FaceSystem& system, const std::vector<double>& w, double weight, double rhs);
+//! Adds weight * (w . h_S - rhs)^2 to the face's energy (w: the support's n weights).
+void add_row(FaceSystem& system, const double* w, std::size_t n, double weight, double rhs);
+inline void add_row(FaceSystem& system, const std::vector<double>& w, double weight, double rhs)
+{
+    add_row(system, w.data(), w.size(), weight, rhs);
+}
 
 //! The fit's energy face by face (FitOptions::smoothness): the data term, each face's samples
 //! sharing a data weight of 1 (data_weight per sample), then the thin-plate term.
@@ -68,6 +72,16 @@ struct FitAssembly {
     std::vector<FaceSystem> faces;
     std::vector<double> data_weight;  // per face
     SampleHeights samples;
+    //! Every sample's stencil weights (order 0), a face's samples' in a row, support-sized each,
+    //! evaluated once here: the clearance's iterations and the lifts revisit them (evaluated
+    //! again at each visit they were a third of authoring the default scene).
+    std::vector<double> weights;
+    std::vector<std::size_t> face_weights;  // per face, where its first sample's weights start
+    const double* weights_of(const FitLayout& layout, int face, std::size_t sample) const
+    {
+        return weights.data() + face_weights[face] +
+            (sample - layout.samples.face_begin[face]) * layout.stencils.support(face).size();
+    }
 };
 FitAssembly assemble_fit(const FitLayout& layout, const Terrain& terrain, const FitTarget& target,
                          const FitOptions& options);
@@ -79,8 +93,9 @@ void require_fog(const SampleHeights& samples, const FitOptions& options);
 //! The target under each control vertex (the solver's regularisation pulls towards it).
 std::vector<double> vertex_targets(const FitLayout& layout, const FitTarget& target);
 
-//! The surface's height on face f where its stencil weights are w, for the given control heights.
-double surface_z(const FitLayout& layout, int face, const std::vector<double>& w, const std::vector<double>& heights);
+//! The surface's height on face f where its stencil weights are w (support-sized), for the given
+//! control heights.
+double surface_z(const FitLayout& layout, int face, const double* w, const std::vector<double>& heights);
 
 //! Blanket: z >= terrain + clearance at every sample, by augmented-Lagrangian iterations from
 //! `heights` (the unconstrained solution); returns the best iterate and counts the samples
@@ -90,11 +105,12 @@ std::vector<double> enforce_clearance(const FitLayout& layout, const FitAssembly
 
 //! Blanket, local guarantee: raises the control vertices under samples still short of
 //! terrain + clearance; returns the largest raise.
-double lift_locally(const FitLayout& layout, const SampleHeights& samples, double clearance,
+double lift_locally(const FitLayout& layout, const FitAssembly& assembly, double clearance,
                     std::vector<double>& heights);
 
 //! The surface's height at every sample (with or without data).
-std::vector<double> surface_at_samples(const FitLayout& layout, const std::vector<double>& heights);
+std::vector<double> surface_at_samples(const FitLayout& layout, const FitAssembly& assembly,
+                                       const std::vector<double>& heights);
 
 //! The largest shortfall below terrain + clearance over the samples with data (>= 0).
 double worst_shortfall(const SampleHeights& samples, double clearance, const std::vector<double>& surface);
