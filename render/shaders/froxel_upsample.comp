@@ -8,11 +8,13 @@
 // The samples around a pixel stand for it (froxel_upsampled) when its surface's depth and its
 // stretch of the Medium's shell lie within theirs (a ridge or a thread of fog between them that
 // they missed shows in its own depths, which the shell and the terrain give at full resolution)
-// and the pixel's colour through their fogs (its background radiance B: B T + S) differs from
-// sample to sample by no more than u_fx_upsample of its value through their mean: the bound of
-// the mean's error wherever the fog changes monotonically between them. Judged without B (the
-// in-scattered light alone), the fog's faint threads over a bright ground marched for nothing:
-// over half of the pixels that did on the default scene.
+// and the mean's error in the pixel's colour through the fog (its background radiance B: B T +
+// S), estimated from the samples' second differences along the axes it lies between samples on,
+// is no more than u_fx_upsample of its value. Judged by the samples' spread instead (the bound
+// of the mean's error for any monotone change), a smooth gradient of the fog's depth over the
+// terrain marched as well: 44.7 % of the default scene's pixels marched, 31.7 % so. Judged
+// without B (the in-scattered light alone), the fog's faint threads over a bright ground marched
+// for nothing.
 layout(local_size_x = 32, local_size_y = 8) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
 uniform sampler2D u_fx_samples;  // frame_samples() in size; stage 0's
@@ -49,6 +51,13 @@ float fog_over_surface(ivec2 px, float depth)
     return c.z > c.x ? max(c.z - p.z, 0.0) : 0.0;
 }
 
+// Sample c's fog over background b: what the pixel would show through it.
+vec3 seen(ivec2 c, vec3 b)
+{
+    vec4 f = texelFetch(u_fx_samples, c, 0);
+    return b * f.a + f.rgb;
+}
+
 bool froxel_upsampled(ivec2 px, float depth, out vec4 fog)
 {
     fog = vec4(0.0, 0.0, 0.0, 1.0);
@@ -81,8 +90,23 @@ bool froxel_upsampled(ivec2 px, float depth, out vec4 fog)
     }
     fog = 0.25 * sum;  // a sample met twice (the pixel on one axis's sample) weighs twice
     vec3 b = max(texelFetch(u_background, px, 0).rgb, vec3(0.0));
-    vec4 spread = most - least;
-    if (!all(lessThanEqual(spread.rgb + b * spread.a, u_fx_upsample * (b * fog.a + fog.rgb))))
+    // The mean's error, from the samples' second differences along each axis the pixel lies
+    // between samples on (half of the largest: a step between the two samples gives its own
+    // error, a smooth bend four times it; a gradient none).
+    vec3 bend = vec3(0.0);
+    ivec2 last = frame_samples() - 1;
+    for (int axis = 0; axis < 2; ++axis) {
+        if (on[axis])
+            continue;
+        for (int r = 0; r < (on[1 - axis] ? 1 : 2); ++r) {
+            ivec2 across = axis == 0 ? ivec2(1, 0) : ivec2(0, 1);
+            ivec2 p = axis == 0 ? ivec2(lo.x, r == 0 ? lo.y : hi.y) : ivec2(r == 0 ? lo.x : hi.x, lo.y);
+            vec3 f0 = seen(clamp(p - across, ivec2(0), last), b), f1 = seen(p, b), f2 = seen(p + across, b),
+                 f3 = seen(clamp(p + 2 * across, ivec2(0), last), b);
+            bend = max(bend, max(abs(f0 - 2.0 * f1 + f2), abs(f1 - 2.0 * f2 + f3)));
+        }
+    }
+    if (!all(lessThanEqual(0.5 * bend, u_fx_upsample * (b * fog.a + fog.rgb))))
         return false;
     // The fog over the surface within the samples' to a metre.
     if (!within(depth, depths) || !within(fog_over_surface(px, depth), Range(over.lo - 1.0, over.hi + 1.0)))

@@ -71,9 +71,9 @@ g::FroxelOptions options(int tiles_x, int tiles_y)
 TEST_F(FroxelGl, SmoothFogTakesItsSamplesMean)
 {
     // A 1.5 km slab seen from 200 m above its top: where its fog changes smoothly from pixel to
-    // pixel the pixels between samples take their mean (31 % of the frame measured at 96 x 54;
-    // more the finer the frame), as close to the reference as their own marches were (0.37 %
-    // and a p99 of 0.89 % both).
+    // pixel the pixels between samples take their mean (74 % of the frame measured at 96 x 54),
+    // about as close to the reference as their own marches were (0.41 % and a p99 of 1.12 %,
+    // marched 0.37 % and 0.89 %).
     const g::Terrain ground = flat_ground();
     const g::Medium fog = slab(0.0, 1500.0, 0.003);
     Camera c;
@@ -83,10 +83,9 @@ TEST_F(FroxelGl, SmoothFogTakesItsSamplesMean)
     const int pixels = 96 * 54;
     EXPECT_EQ(p.marched.stats.upsampled_pixels, 0);
     EXPECT_GT(p.marched.stats.marched_pixels, pixels * 9 / 10);
-    EXPECT_GT(p.upsampled.stats.upsampled_pixels, pixels / 4);
-    EXPECT_LT(p.upsampled.stats.marched_pixels, pixels * 3 / 4);
-    EXPECT_EQ(p.upsampled.stats.marched_pixels + p.upsampled.stats.upsampled_pixels,
-              p.marched.stats.marched_pixels);
+    EXPECT_GT(p.upsampled.stats.upsampled_pixels, pixels / 2);
+    EXPECT_LT(p.upsampled.stats.marched_pixels, pixels / 2);
+    EXPECT_EQ(p.upsampled.stats.marched_pixels + p.upsampled.stats.upsampled_pixels, p.marched.stats.marched_pixels);
     EXPECT_GT(p.upsampled.error.fog_pixels, pixels / 2);
     EXPECT_LT(p.upsampled.error.mean_relative, p.marched.error.mean_relative + 0.001);
     EXPECT_LT(p.upsampled.error.p99_relative, p.marched.error.p99_relative + 0.005);
@@ -97,8 +96,8 @@ TEST_F(FroxelGl, ThreadsOfFogBetweenSamplesMarch)
     // Parallel valleys 400 m apart with 40 m of fog in their floors, seen along them from 5 km
     // away at 48 x 27 pixels: a thread is a pixel or two wide, and two samples on the ridges
     // either side of one see no fog. The fog over the pixel's own surface tells it to march:
-    // without that test the threads between samples vanished (measured: 5.6 % off the reference
-    // on average and a p99 of 86 %; with it 3.5 % and 32 %, as with every pixel marching).
+    // without that test the threads between samples vanished (measured: 4.3 % off the reference
+    // on average and a p99 of 64 %; with it 3.5 % and 32 %, as with every pixel marching).
     g::Heightfield hf;
     hf.nx = hf.ny = 301;
     hf.dx = hf.dy = 20.0;
