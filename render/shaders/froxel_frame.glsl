@@ -17,21 +17,29 @@ float frame_depth(ivec2 px)
     return 2.0 * u_near_plane * u_far_plane / (u_far_plane + u_near_plane - z * (u_far_plane - u_near_plane));
 }
 
-// The half-resolution samples of the fog-aware apply: sample c is pixel 2c, or the last pixel of
-// the frame's row or column where 2c is past it (an even size), so that every pixel either is a
-// sample or lies midway between two on each axis.
-ivec2 frame_samples() { return u_size / 2 + 1; }
-ivec2 frame_sample_pixel(ivec2 c) { return min(2 * c, u_size - 1); }
-// Per axis, whether pixel px is in a sample's column (x) or row (y).
-bvec2 frame_sampled(ivec2 px) { return bvec2((px.x & 1) == 0 || px.x == u_size.x - 1, (px.y & 1) == 0 || px.y == u_size.y - 1); }
+// The fog-aware apply's grids of samples: at `spacing` (1: every pixel, 2, 4), point c is pixel
+// c spacing, or the last pixel of the frame's row or column where that is past it, so that every
+// point of a grid either is a point of the next coarser one (twice the spacing) or lies midway
+// between two of its points on each axis (the last one excepted where the coarser grid's last
+// point is clamped).
+uniform int u_spacing;  // the grid this pass works on
+ivec2 frame_grid(int spacing) { return spacing == 1 ? u_size : (max(u_size, ivec2(2)) - 2) / spacing + 2; }
+ivec2 frame_grid_pixel(ivec2 c, int spacing) { return min(c * spacing, u_size - 1); }
+// Per axis, whether point c of the grid at `spacing` is a point of the next coarser one.
+bvec2 frame_on_coarser(ivec2 c, int spacing)
+{
+    ivec2 px = frame_grid_pixel(c, spacing);
+    return bvec2((c.x & 1) == 0 || px.x == u_size.x - 1, (c.y & 1) == 0 || px.y == u_size.y - 1);
+}
 
 // The list the apply's passes share (froxel_pixels.comp, froxel_upsample.comp): the indirect
-// dispatch of the pixels left to march (groups of 64), the counts, the pixels (x | y << 16).
+// dispatch of the points left to march (groups of 64), the counts, the points of the grid at
+// u_spacing (x | y << 16).
 layout(std430, binding = 0) buffer FrameMarches {
     uvec4 fm_dispatch;   // groups x, y, z; unused
-    uint fm_listed;      // pixels in fm_pixels
-    uint fm_sampled;     // samples that marched their own rays
-    uint fm_upsampled;   // pixels that took their fog from the samples around them
+    uint fm_listed;      // points in fm_pixels
+    uint fm_sampled;     // the coarsest grid's points that marched their own rays
+    uint fm_upsampled;   // points that took their fog from the coarser grid's around them
     uint fm_unused;
     uint fm_pixels[];
 };

@@ -1,10 +1,10 @@
 #version 450 core
 // The fog-aware apply's marches (froxel_march.glsl's froxel_pixel_fog): u_stage 0, the
-// half-resolution samples (frame_sample_pixel) into o_fog (frame_samples() in size), read or
-// marched; u_stage 1, the pixels froxel_upsample.comp listed, which march, into o_fog (the
-// frame's size). One invocation a pixel, so that the marches run side by side: in the apply's
-// own pass a marching pixel among pixels that do not held its neighbours' lanes (llvmpipe runs
-// eight invocations as one).
+// coarsest grid's points (frame_grid at u_spacing) into o_fog (the grid's size), read or
+// marched; u_stage 1, the points of the grid at u_spacing that froxel_upsample.comp listed,
+// which march, into o_fog. One invocation a point, so that the marches run side by side: in the
+// apply's own pass a marching pixel among pixels that do not held its neighbours' lanes
+// (llvmpipe runs eight invocations as one).
 layout(local_size_x = 64) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
 uniform int u_stage;
@@ -20,15 +20,14 @@ void main()
     // which the compiler inlines whole (a second one doubled the program's compile time).
     ivec2 px = ivec2(-1), at = ivec2(-1);
     if (u_stage == 0) {
-        ivec2 n = frame_samples();
-        if (i < uint(n.x * n.y)) {
+        ivec2 n = frame_grid(u_spacing);
+        if (i < uint(n.x * n.y))
             at = ivec2(int(i) % n.x, int(i) / n.x);
-            px = frame_sample_pixel(at);
-        }
     } else if (i < fm_listed) {
-        px = ivec2(int(fm_pixels[i] & 0xffffu), int(fm_pixels[i] >> 16));
-        at = px;
+        at = ivec2(int(fm_pixels[i] & 0xffffu), int(fm_pixels[i] >> 16));
     }
+    if (at.x >= 0)
+        px = frame_grid_pixel(at, u_spacing);
     if (px.x >= 0) {
         vec2 uv = frame_uv(px);
         float depth = frame_depth(px);

@@ -1,11 +1,12 @@
 #version 450 core
-// The fog-aware apply's fog for every pixel of the frame, into o_fog: the volume's lookup where
-// its slices resolve the fog (froxel_resolved); a half-resolution sample's own (u_fx_samples,
-// froxel_pixels.comp stage 0) at the pixel it was marched for; the mean of the samples around
-// a pixel where they agree; the rest are listed to march their own rays (froxel_pixels.comp
-// stage 1), one invocation each.
+// The fog-aware apply's fog for every point of the grid at u_spacing (frame_grid: every pixel,
+// or every second pixel of every second row), into o_fog: the volume's lookup where its slices
+// resolve the fog (froxel_resolved); the coarser grid's own (u_fx_samples: froxel_pixels.comp
+// stage 0 at every fourth pixel, or this pass at every second) at its points; the mean of the
+// coarser points around a point where they agree; the rest are listed to march their own rays
+// (froxel_pixels.comp stage 1), one invocation each.
 //
-// The samples around a pixel stand for it (froxel_upsampled) when its surface's depth and its
+// The samples (the coarser points) around a pixel stand for it (froxel_upsampled) when its surface's depth and its
 // stretch of the Medium's shell lie within theirs (a ridge or a thread of fog between them that
 // they missed shows in its own depths, which the shell and the terrain give at full resolution)
 // and the mean's error in the pixel's colour through the fog (its background radiance B: B T +
@@ -17,7 +18,7 @@
 // for nothing.
 layout(local_size_x = 32, local_size_y = 8) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
-uniform sampler2D u_fx_samples;  // frame_samples() in size; stage 0's
+uniform sampler2D u_fx_samples;  // the grid at twice u_spacing (frame_grid)
 uniform float u_fx_upsample;     // the tolerance; 0: none, every pixel the volume does not resolve marches
 uniform sampler2D u_background;  // the frame's linear radiance before the fog
 shared uint group_upsampled;
@@ -58,28 +59,31 @@ vec3 seen(ivec2 c, vec3 b)
     return b * f.a + f.rgb;
 }
 
-bool froxel_upsampled(ivec2 px, float depth, out vec4 fog)
+// Point t of the grid at u_spacing (pixel px, its surface at `depth`) from the coarser grid's.
+bool froxel_upsampled(ivec2 t, ivec2 px, float depth, out vec4 fog)
 {
     fog = vec4(0.0, 0.0, 0.0, 1.0);
     if (!(u_fx_upsample > 0.0))
         return false;
-    // Per axis: the sample at the pixel (an even one, or the frame's last) or the two around it.
-    ivec2 hi = (px + 1) / 2;
-    bvec2 on = frame_sampled(px);
+    int coarse = 2 * u_spacing;
+    // Per axis: the coarser point at t (an even one, or the frame's last) or the two around it.
+    ivec2 hi = (t + 1) / 2;
+    bvec2 on = frame_on_coarser(t, u_spacing);
     if (all(on)) {
         fog = texelFetch(u_fx_samples, hi, 0);
         return true;
     }
     ivec2 lo = ivec2(on.x ? hi.x : hi.x - 1, on.y ? hi.y : hi.y - 1);
+    // Midway only: where the coarser grid's last point is clamped to the frame's edge, march.
+    ivec2 below = frame_grid_pixel(lo, coarse), above = frame_grid_pixel(hi, coarse);
+    if ((!on.x && above.x - px.x != px.x - below.x) || (!on.y && above.y - px.y != px.y - below.y))
+        return false;
     Range depths = Range(3e38, 0.0), firsts = depths, lasts = depths, over = depths;
-    vec4 least = vec4(3e38), most = vec4(-3e38), sum = vec4(0.0);
+    vec4 sum = vec4(0.0);
     for (int k = 0; k < 4; ++k) {
         ivec2 c = ivec2((k & 1) == 0 ? lo.x : hi.x, (k >> 1) == 0 ? lo.y : hi.y);
-        vec4 f = texelFetch(u_fx_samples, c, 0);
-        sum += f;
-        least = min(least, f);
-        most = max(most, f);
-        ivec2 q = frame_sample_pixel(c);
+        sum += texelFetch(u_fx_samples, c, 0);
+        ivec2 q = frame_grid_pixel(c, coarse);
         float d = frame_depth(q);
         widen(depths, d);
         widen(over, fog_over_surface(q, d));
@@ -88,13 +92,13 @@ bool froxel_upsampled(ivec2 px, float depth, out vec4 fog)
             widen(lasts, texelFetch(u_fx_last, q, 0).r);
         }
     }
-    fog = 0.25 * sum;  // a sample met twice (the pixel on one axis's sample) weighs twice
+    fog = 0.25 * sum;  // a point met twice (t on one axis's coarser point) weighs twice
     vec3 b = max(texelFetch(u_background, px, 0).rgb, vec3(0.0));
-    // The mean's error, from the samples' second differences along each axis the pixel lies
-    // between samples on (half of the largest: a step between the two samples gives its own
-    // error, a smooth bend four times it; a gradient none).
+    // The mean's error, from the coarser points' second differences along each axis t lies
+    // between them on (half of the largest: a step between the two points gives its own error,
+    // a smooth bend four times it; a gradient none).
     vec3 bend = vec3(0.0);
-    ivec2 last = frame_samples() - 1;
+    ivec2 last = frame_grid(coarse) - 1;
     for (int axis = 0; axis < 2; ++axis) {
         if (on[axis])
             continue;
@@ -120,22 +124,23 @@ void main()
     if (gl_LocalInvocationIndex == 0u)
         group_upsampled = 0u;
     barrier();
-    ivec2 px = ivec2(gl_GlobalInvocationID.xy);
-    if (px.x < u_size.x && px.y < u_size.y) {
+    ivec2 t = ivec2(gl_GlobalInvocationID.xy);
+    if (all(lessThan(t, frame_grid(u_spacing)))) {
+        ivec2 px = frame_grid_pixel(t, u_spacing);
         vec2 uv = frame_uv(px);
         float depth = frame_depth(px);
         vec4 fog;
         if (u_fx_apply != 2 || froxel_resolved(px, uv, depth)) {
-            imageStore(o_fog, px, froxel_fog_at(uv, depth));
-        } else if (froxel_upsampled(px, depth, fog)) {
-            imageStore(o_fog, px, fog);
-            if (!all(frame_sampled(px)))  // not a sample's own pixel
+            imageStore(o_fog, t, froxel_fog_at(uv, depth));
+        } else if (froxel_upsampled(t, px, depth, fog)) {
+            imageStore(o_fog, t, fog);
+            if (!all(frame_on_coarser(t, u_spacing)))  // not a coarser point's own pixel
                 atomicAdd(group_upsampled, 1u);
         } else {
             uint i = atomicAdd(fm_listed, 1u);
             if (i % 64u == 0u)
                 atomicAdd(fm_dispatch.x, 1u);
-            fm_pixels[i] = uint(px.x) | (uint(px.y) << 16);
+            fm_pixels[i] = uint(t.x) | (uint(t.y) << 16);
         }
     }
     barrier();

@@ -94,12 +94,13 @@ private:
     ShaderProgram density_, lighting_, temporal_, accumulate_, opaque_;
     HazeVariants integrate_, classify_, pixels_, upsample_;
     ShaderProgram apply_program_, readback_;
-    // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the half-resolution
-    // samples, the fog, the list of pixels that march and its counts, the frame before its fog.
+    // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the grids of
+    // samples at every fourth and every second pixel, the fog, the lists of the points that march
+    // (of the half grid, of the frame) and their counts, the frame before its fog.
     struct PixelFog {
         int width = 0, height = 0;
-        Texture samples, fog, background;
-        Buffer list;
+        Texture quarter, half, fog, background;
+        Buffer half_list, list;
         void resize(int width, int height);
         //! (pixels that marched, pixels that took their samples' mean) in the last run.
         std::pair<int, int> counts() const;

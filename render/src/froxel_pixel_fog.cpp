@@ -2,6 +2,10 @@
 // the frame and read_fog reads back, by the same passes.
 #include "froxel_pass.hpp"
 
+#include <algorithm>
+
+#include <glm/common.hpp>
+
 namespace kiri::render::detail {
 namespace {
 
@@ -32,24 +36,32 @@ void FroxelPass::PixelFog::resize(int w, int h)
         return;
     width = w;
     height = h;
-    samples = make_fog_image(w / 2 + 1, h / 2 + 1);
+    const auto points = [](int n, int spacing) { return (std::max(n, 2) - 2) / spacing + 2; };
+    quarter = make_fog_image(points(w, 4), points(h, 4));
+    half = make_fog_image(points(w, 2), points(h, 2));
     background = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(background.get(), 1, GL_RGBA16F, w, h);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(background.get(), 0, GL_RGBA, GL_FLOAT, black);
     fog = make_fog_image(w, h);
-    list = make_buffer();
-    glNamedBufferStorage(list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(w) * h), nullptr,
-                         GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+    const auto list_of = [](std::size_t n) {
+        Buffer b = make_buffer();
+        glNamedBufferStorage(b.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * n), nullptr,
+                             GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+        return b;
+    };
+    half_list = list_of(std::size_t(points(w, 2)) * points(h, 2));
+    list = list_of(std::size_t(w) * h);
 }
 
 std::pair<int, int> FroxelPass::PixelFog::counts() const
 {
     if (!list)
         return {0, 0};
-    MarchHeader h;
-    glGetNamedBufferSubData(list.get(), 0, sizeof h, &h);
-    return {int(h.sampled + h.listed), int(h.upsampled)};
+    MarchHeader a, b;
+    glGetNamedBufferSubData(half_list.get(), 0, sizeof a, &a);
+    glGetNamedBufferSubData(list.get(), 0, sizeof b, &b);
+    return {int(a.sampled + a.listed + b.sampled + b.listed), int(a.upsampled + b.upsampled)};
 }
 
 void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out)
@@ -59,52 +71,70 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glCopyImageSubData(color_texture, GL_TEXTURE_2D, 0, 0, 0, 0, out.background.get(), GL_TEXTURE_2D, 0, 0, 0, 0,
                            frame.width, frame.height, 1);
     const MarchHeader header;
+    glNamedBufferSubData(out.half_list.get(), 0, sizeof header, &header);
     glNamedBufferSubData(out.list.get(), 0, sizeof header, &header);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.list.get());
     glBindTextureUnit(unit_frame_depth, depth_texture);
     const glm::vec2 planes = depth_planes(frame);
     const bool haze = options_.height_fog.enabled();
     const bool marching = visible_ && apply_ && options_.fog_aware;
     const float tolerance = marching ? float(options_.upsample) : 0.0f;
-    const auto bind = [&](const ShaderProgram& p) {
+    const auto bind = [&](const ShaderProgram& p, int spacing) {
         bind_apply(p);
         bind_light(p, frame);  // every sampler on its own unit, used or not
         p.set("u_depth", unit_frame_depth);
         p.set("u_size", glm::ivec2(frame.width, frame.height));
         p.set("u_near_plane", planes.x);
         p.set("u_far_plane", planes.y);
+        p.set("u_spacing", spacing);
     };
-    if (tolerance > 0.0f) {  // the half-resolution samples
-        const ShaderProgram& pixels = pixels_.get(haze);
-        bind(pixels);
-        pixels.set("u_stage", 0);
-        pixels.use();
-        glBindImageTexture(0, out.samples.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        const int n = (frame.width / 2 + 1) * (frame.height / 2 + 1);
-        glDispatchCompute(GLuint((n + 63) / 64), 1, 1);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-    }
-    const ShaderProgram& upsample = upsample_.get(haze);
-    bind(upsample);
-    upsample.set("u_fx_samples", unit_samples);
-    upsample.set("u_fx_upsample", tolerance);
-    upsample.set("u_background", unit_background);
-    upsample.use();
-    glBindTextureUnit(unit_samples, out.samples.get());
-    glBindTextureUnit(unit_background, out.background.get());
-    glBindImageTexture(0, out.fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
-    if (marching) {  // the pixels left to march, one invocation each
+    const auto points = [&](int spacing) {
+        return spacing == 1 ? glm::ivec2(frame.width, frame.height)
+                            : (glm::max(glm::ivec2(frame.width, frame.height), glm::ivec2(2)) - 2) / spacing + 2;
+    };
+    // The grid at `spacing` into `image` from the one at twice it (`coarser`), listing into
+    // `list` the points that march, then marching them.
+    const auto refine = [&](int spacing, GLuint coarser, GLuint image, GLuint list) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
+        const ShaderProgram& upsample = upsample_.get(haze);
+        bind(upsample, spacing);
+        upsample.set("u_fx_samples", unit_samples);
+        // Half the tolerance on the half grid: its means' errors carry into the pixels' means.
+        upsample.set("u_fx_upsample", spacing == 1 ? tolerance : 0.5f * tolerance);
+        upsample.set("u_background", unit_background);
+        upsample.use();
+        glBindTextureUnit(unit_samples, coarser);
+        glBindTextureUnit(unit_background, out.background.get());
+        glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        const glm::ivec2 n = points(spacing);
+        glDispatchCompute(GLuint((n.x + 31) / 32), GLuint((n.y + 7) / 8), 1);
+        if (!marching)
+            return;
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         const ShaderProgram& pixels = pixels_.get(haze);
-        bind(pixels);
+        bind(pixels, spacing);
         pixels.set("u_stage", 1);
         pixels.use();
-        glBindImageTexture(0, out.fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.list.get());
+        glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list);
         glDispatchComputeIndirect(0);
         glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    };
+    if (tolerance > 0.0f) {
+        // Every fourth pixel of every fourth row marches (or reads the volume); every second of
+        // every second takes their mean where they agree, else marches; then every pixel.
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.half_list.get());
+        const ShaderProgram& pixels = pixels_.get(haze);
+        bind(pixels, 4);
+        pixels.set("u_stage", 0);
+        pixels.use();
+        glBindImageTexture(0, out.quarter.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        const glm::ivec2 n = points(4);
+        glDispatchCompute(GLuint((n.x * n.y + 63) / 64), 1, 1);
+        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+        refine(2, out.quarter.get(), out.half.get(), out.half_list.get());
     }
+    refine(1, out.half.get(), out.fog.get(), out.list.get());
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
 }

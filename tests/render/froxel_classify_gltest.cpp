@@ -72,8 +72,8 @@ TEST_F(FroxelGl, SlabSeenFromAboveMarchesWhereTheLookupWouldDrift)
     // The same slab from 200 m above its top: over 24 x 14 tiles the slab's in-scattering
     // changes faster from tile to tile than the bilinear lookup follows (without the haze, read
     // from the volume everywhere it was 2.1 % off the reference, marched 1.1 %): the
-    // classification keeps those pixels off the volume (all of them measured: 26 % march, the
-    // rest take the mean of the marched half-resolution samples around them).
+    // classification keeps those pixels off the volume (all of them measured: 16 % march, the
+    // rest take the mean of the marched samples around them).
     const g::Terrain ground = flat_ground();
     const g::Medium fog = slab(0.0, 1500.0, 0.003);
     Camera c;
