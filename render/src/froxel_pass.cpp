@@ -27,13 +27,14 @@ constexpr int unit_light_volume = 19;
 // above it, the cap froxel_light.glsl lights the height fog under.
 constexpr double haze_top_scale_heights = 8.0;
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
-// cycle's first four samples at once. The volume's J lights the pixels it resolves and the fog in
+// cycle's first two samples at once. The volume's J lights the pixels it resolves and the fog in
 // front of the layers and the particles; the pixels that march light their own points
-// (froxel_march.glsl). Since they do, 4 samples are as close to the CPU reference as the whole
+// (froxel_march.glsl). Since they do, 4 samples were as close to the CPU reference as the whole
 // cycle of 16 (kiri bench --quick --stage views: all 13 views within 0.15 points; agreement and
-// frame: the same to 0.01 point) for a quarter of the lighting passes (the default view's
-// combined still at 640x360, 4.9 -> 2.4 s). Each sample costs one lighting pass.
-constexpr int halton_cycle = 16, still_samples = 4;
+// frame: the same to 0.01 point; the default view's combined still at 640x360, 4.9 -> 2.4 s), and
+// 2 as 4 (all 13 views within 0.02 points, the lake's combined 5.71 -> 5.45 %; the default
+// scene's lighting at 1280x720 0.6 -> 0.3 s). Each sample costs one lighting pass.
+constexpr int halton_cycle = 16, still_samples = 2;
 enum Stage { tiles, density, lighting, temporal, integrate, classify, apply_stage, stage_count };
 const char* const stage_names[stage_count] = {"froxel tiles",    "froxel density",   "froxel lighting",
                                               "froxel temporal", "froxel integrate", "froxel classify",

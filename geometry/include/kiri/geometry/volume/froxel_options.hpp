@@ -108,7 +108,7 @@ void visit_fields(O& o, V&& v)
     v(o.temporal,
       {.key = "temporal",
        .doc = "Halton-jittered lighting: a sample a frame blended with the reprojected, clamped "
-              "history while the view moves, a still's first 4 at once"});
+              "history while the view moves, a still's first 2 at once"});
     v(o.history_weight, {.key = "history_weight", .range = closed(0, 0.99), .doc = "weight of that history"});
     v(o.density_samples,
       {.key = "density_samples", .range = closed(1, 16), .doc = "density samples per froxel, spread over its depth"});
