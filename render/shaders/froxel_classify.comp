@@ -1,7 +1,7 @@
 #version 450 core
 // After the integration: per tile, whether the apply may read the volume there (one lookup,
 // froxel_fog_at, as [Wronski14] applies it) or must march the pixels' own rays
-// (froxel_pixel_fog). A tile is read by the pixels within one tile of its centre (the bilinear
+// (froxel_marched_fog). A tile is read by the pixels within one tile of its centre (the bilinear
 // lookup's four taps): where its own pixels and a pixel around cannot be resolved, the pixels
 // between it and its neighbours march (w = 1): where its slices cannot resolve the fog along
 // their rays:

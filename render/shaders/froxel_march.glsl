@@ -1,8 +1,8 @@
 // Library (after froxel_apply.glsl and froxel_light.glsl): the fog-aware apply for the terrain
-// and the sky (froxel_apply.comp, froxel_classify.comp, froxel_readback.comp).
+// and the sky (froxel_pixels.comp, froxel_upsample.comp, froxel_classify.comp).
 //
-// froxel_pixel_fog: where the volume's slices resolve the fog around a pixel
-// (froxel_classify.comp, froxel_resolved) the volume's lookup (froxel_fog_at); elsewhere the
+// Where the volume's slices resolve the fog around a pixel (froxel_classify.comp,
+// froxel_resolved) the volume's lookup (froxel_fog_at); elsewhere (froxel_marched_fog) the
 // pixel's own ray is integrated over its own stretch of the Medium's shell (the shell's entry and
 // exit rasterised at full resolution, cut at the pixel's depth) with the Medium's exact density
 // and the height fog's closed-form optical depth, both lit at the ray's own points
@@ -47,8 +47,8 @@ float froxel_step_depth(vec3 q0, vec3 q1, float len)
 // with_medium): its optical depth over each step (froxel_step_depth), lit at the ray's own
 // points every fourth step (medium_light_at, froxel_light.glsl), in between linear; the froxels'
 // J, bilinear across four tiles, mixed the light of a sunlit ridge and of a valley in its shadow
-// (the lake's threads from afar 7.8 % off the reference so, 4.7 % lit at their own points). The height fog: its optical depth
-// over each step in closed form, lit at its own points (the volume's J would light a haze a few
+// (the lake's threads from afar 7.8 % off the reference so, 4.7 % lit at their own points). The
+// height fog: its optical depth over each step in closed form, lit at its own points (the volume's J would light a haze a few
 // tens of metres deep at one point of a slice hundreds of metres deep: the plain under the
 // default scene's haze was 20 % too dark from above).
 void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, int n,
@@ -164,11 +164,8 @@ bool froxel_resolved(ivec2 px, vec2 uv, float depth)
 }
 
 // The fog in front of pixel px (screen point uv) whose surface lies at view depth `depth`
-// (3e38: sky). Fog-aware: where the slices resolve the fog around the pixel, the volume's
-// lookup (froxel_fog_at, as [Wronski14] applies it); elsewhere the pixel's own ray, over its
-// stretch of the shell (or all of it where the fog is everywhere), the height fog over the rest.
-// Pixel px's own ray marched through the fog (what froxel_pixel_fog does where the volume does
-// not resolve it).
+// (3e38: sky), marched along its own ray where the volume does not resolve it: over its stretch
+// of the shell (or all of it where the fog is everywhere), the height fog over the rest.
 vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
 {
     float end = min(depth, u_fx_far);
@@ -210,11 +207,4 @@ vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
     haze_runs_finish(h, fog.rgb);
 #endif
     return fog;
-}
-
-vec4 froxel_pixel_fog(ivec2 px, vec2 uv, float depth)
-{
-    if (u_fx_apply != 2 || froxel_resolved(px, uv, depth))
-        return froxel_fog_at(uv, depth);
-    return froxel_marched_fog(px, uv, depth);
 }

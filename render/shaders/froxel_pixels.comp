@@ -1,5 +1,5 @@
 #version 450 core
-// The fog-aware apply's marches (froxel_march.glsl's froxel_pixel_fog): u_stage 0, the
+// The fog-aware apply's marches (froxel_march.glsl's froxel_marched_fog): u_stage 0, the
 // coarsest grid's points (frame_grid at u_spacing) into o_fog (the grid's size), read or
 // marched; u_stage 1, the points of the grid at u_spacing that froxel_upsample.comp listed,
 // which march, into o_fog. One invocation a point, so that the marches run side by side: in the

@@ -105,7 +105,7 @@ private:
         //! (pixels that marched, pixels that took their samples' mean) in the last run.
         std::pair<int, int> counts() const;
     };
-    PixelFog applied_;  // the apply's (read_fog runs its own)
+    PixelFog applied_;  // the apply's; read_fog runs over it again, judged over its background
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,
     //! judged over its colour (RGBA16F, before the fog; 0: out.background's, the last one copied).
     void run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out);

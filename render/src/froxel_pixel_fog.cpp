@@ -2,7 +2,7 @@
 // the frame and read_fog reads back, by the same passes.
 #include "froxel_pass.hpp"
 
-#include <algorithm>
+#include <cstddef>
 
 #include <glm/common.hpp>
 
@@ -19,10 +19,16 @@ struct MarchHeader {
 };
 static_assert(sizeof(MarchHeader) == 32);
 
-Texture make_fog_image(int width, int height)
+// Points across and down of the grid at `spacing` (froxel_frame.glsl's frame_grid).
+glm::ivec2 grid_points(const glm::ivec2& size, int spacing)
+{
+    return spacing == 1 ? size : (glm::max(size, glm::ivec2(2)) - 2) / spacing + 2;
+}
+
+Texture make_fog_image(const glm::ivec2& size)
 {
     Texture t = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(t.get(), 1, GL_RGBA32F, width, height);
+    glTextureStorage2D(t.get(), 1, GL_RGBA32F, size.x, size.y);
     glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return t;
@@ -36,21 +42,21 @@ void FroxelPass::PixelFog::resize(int w, int h)
         return;
     width = w;
     height = h;
-    const auto points = [](int n, int spacing) { return (std::max(n, 2) - 2) / spacing + 2; };
-    quarter = make_fog_image(points(w, 4), points(h, 4));
-    half = make_fog_image(points(w, 2), points(h, 2));
+    const glm::ivec2 size(w, h), quarter_points = grid_points(size, 4), half_points = grid_points(size, 2);
+    quarter = make_fog_image(quarter_points);
+    half = make_fog_image(half_points);
     background = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(background.get(), 1, GL_RGBA16F, w, h);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(background.get(), 0, GL_RGBA, GL_FLOAT, black);
-    fog = make_fog_image(w, h);
+    fog = make_fog_image(size);
     const auto list_of = [](std::size_t n) {
         Buffer b = make_buffer();
         glNamedBufferStorage(b.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * n), nullptr,
                              GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
         return b;
     };
-    half_list = list_of(std::size_t(points(w, 2)) * points(h, 2));
+    half_list = list_of(std::size_t(half_points.x) * half_points.y);
     list = list_of(std::size_t(w) * h);
 }
 
@@ -67,7 +73,12 @@ std::pair<int, int> FroxelPass::PixelFog::counts() const
 void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out)
 {
     out.resize(frame.width, frame.height);
-    if (color_texture != 0)  // the frame's before its fog, for this run and a later read_fog's
+    const bool haze = options_.height_fog.enabled();
+    const bool marching = visible_ && apply_ && options_.fog_aware;
+    const float tolerance = marching ? float(options_.upsample) : 0.0f;
+    // The frame before its fog, which only the means are judged over: for this run and a later
+    // read_fog's.
+    if (color_texture != 0 && tolerance > 0.0f)
         glCopyImageSubData(color_texture, GL_TEXTURE_2D, 0, 0, 0, 0, out.background.get(), GL_TEXTURE_2D, 0, 0, 0, 0,
                            frame.width, frame.height, 1);
     const MarchHeader header;
@@ -75,21 +86,15 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
     glNamedBufferSubData(out.list.get(), 0, sizeof header, &header);
     glBindTextureUnit(unit_frame_depth, depth_texture);
     const glm::vec2 planes = depth_planes(frame);
-    const bool haze = options_.height_fog.enabled();
-    const bool marching = visible_ && apply_ && options_.fog_aware;
-    const float tolerance = marching ? float(options_.upsample) : 0.0f;
+    const glm::ivec2 size(frame.width, frame.height);
     const auto bind = [&](const ShaderProgram& p, int spacing) {
         bind_apply(p);
         bind_light(p, frame);  // every sampler on its own unit, used or not
         p.set("u_depth", unit_frame_depth);
-        p.set("u_size", glm::ivec2(frame.width, frame.height));
+        p.set("u_size", size);
         p.set("u_near_plane", planes.x);
         p.set("u_far_plane", planes.y);
         p.set("u_spacing", spacing);
-    };
-    const auto points = [&](int spacing) {
-        return spacing == 1 ? glm::ivec2(frame.width, frame.height)
-                            : (glm::max(glm::ivec2(frame.width, frame.height), glm::ivec2(2)) - 2) / spacing + 2;
     };
     // The grid at `spacing` into `image` from the one at twice it (`coarser`), listing into
     // `list` the points that march, then marching them.
@@ -105,7 +110,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glBindTextureUnit(unit_samples, coarser);
         glBindTextureUnit(unit_background, out.background.get());
         glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        const glm::ivec2 n = points(spacing);
+        const glm::ivec2 n = grid_points(size, spacing);
         glDispatchCompute(GLuint((n.x + 31) / 32), GLuint((n.y + 7) / 8), 1);
         if (!marching)
             return;
@@ -129,7 +134,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         pixels.set("u_stage", 0);
         pixels.use();
         glBindImageTexture(0, out.quarter.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        const glm::ivec2 n = points(4);
+        const glm::ivec2 n = grid_points(size, 4);
         glDispatchCompute(GLuint((n.x * n.y + 63) / 64), 1, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         refine(2, out.quarter.get(), out.half.get(), out.half_list.get());
