@@ -171,16 +171,7 @@ TEST_F(FroxelGl, FromInsideTheFogTheMarchDrawsNoContours)
 // reference); the march lights each ray at its own points.
 TEST_F(FroxelGl, ThreadsOfFogInNarrowValleysKeepTheirOwnLight)
 {
-    g::Heightfield hf;
-    hf.nx = hf.ny = 201;
-    hf.dx = hf.dy = 20.0;
-    hf.x0 = hf.y0 = -2000.0;
-    hf.z.resize(std::size_t(hf.nx) * hf.ny);
-    hf.valid.assign(hf.z.size(), 1);
-    for (int j = 0; j < hf.ny; ++j)
-        for (int i = 0; i < hf.nx; ++i)
-            hf.z[std::size_t(j) * hf.nx + i] = 80.0 * (1.0 - std::cos(2.0 * M_PI * hf.x_of(i) / 400.0));
-    const g::Terrain valleys(std::move(hf));
+    const g::Terrain valleys = parallel_valleys(2000.0);
     const g::Medium fog = slab(-10.0, 40.0, 0.01);
     Camera c;
     c.position = {100.0, -2300.0, 450.0};

@@ -39,6 +39,22 @@ inline g::Terrain flat_ground(double half = 2000.0, double spacing = 50.0, doubl
     return g::Terrain(std::move(hf));
 }
 
+// Parallel valleys along y, 400 m apart and 160 m deep (z = 80 (1 - cos(2 pi x / 400))), on a
+// 20 m grid over [-half, half]^2: narrow valleys to hold threads of fog.
+inline g::Terrain parallel_valleys(double half)
+{
+    g::Heightfield hf;
+    hf.nx = hf.ny = int(std::lround(2.0 * half / 20.0)) + 1;
+    hf.dx = hf.dy = 20.0;
+    hf.x0 = hf.y0 = -half;
+    hf.z.resize(std::size_t(hf.nx) * hf.ny);
+    hf.valid.assign(hf.z.size(), 1);
+    for (int j = 0; j < hf.ny; ++j)
+        for (int i = 0; i < hf.nx; ++i)
+            hf.z[std::size_t(j) * hf.nx + i] = 80.0 * (1.0 - std::cos(2.0 * M_PI * hf.x_of(i) / 400.0));
+    return g::Terrain(std::move(hf));
+}
+
 // A shell between bottom and top over [-half, half]^2, coverage 1.
 // Single scattering unless told (the tests judge the froxel machinery; the octaves are one sum);
 // octaves 0: the fitted multiple scattering.

@@ -57,14 +57,11 @@ Pair apply_both(const g::Terrain& ground, const g::Medium& fog, g::FroxelOptions
 }
 
 // Seen from outside the Medium without a height fog the volume's lookup is not tried: every
-// pixel with fog along it marches or takes its samples' mean.
-g::FroxelOptions options(int tiles_x, int tiles_y)
+// pixel with fog along it marches or takes its samples' mean. The volume to the far side of the
+// scene.
+g::FroxelOptions to_the_far_side(g::FroxelOptions o)
 {
-    g::FroxelOptions o;
-    o.width = tiles_x;
-    o.height = tiles_y;
-    o.slices = 32;
-    o.temporal = false;
+    o.far = 0.0;
     return o;
 }
 
@@ -79,7 +76,7 @@ TEST_F(FroxelGl, SmoothFogTakesItsSamplesMean)
     Camera c;
     c.position = {0.0, -2500.0, 1700.0};
     c.target = {0.0, 0.0, 0.0};
-    const Pair p = apply_both(ground, fog, options(24, 14), c, 96, 54);
+    const Pair p = apply_both(ground, fog, to_the_far_side(small(24, 14, 32)), c, 96, 54);
     const int pixels = 96 * 54;
     EXPECT_EQ(p.marched.stats.upsampled_pixels, 0);
     EXPECT_GT(p.marched.stats.marched_pixels, pixels * 9 / 10);
@@ -98,23 +95,14 @@ TEST_F(FroxelGl, ThreadsOfFogBetweenSamplesMarch)
     // either side of one see no fog. The fog over the pixel's own surface tells it to march:
     // without that test the threads between samples vanished (measured: 4.3 % off the reference
     // on average and a p99 of 64 %; with it 3.5 % and 32 %, as with every pixel marching).
-    g::Heightfield hf;
-    hf.nx = hf.ny = 301;
-    hf.dx = hf.dy = 20.0;
-    hf.x0 = hf.y0 = -3000.0;
-    hf.z.resize(std::size_t(hf.nx) * hf.ny);
-    hf.valid.assign(hf.z.size(), 1);
-    for (int j = 0; j < hf.ny; ++j)
-        for (int i = 0; i < hf.nx; ++i)
-            hf.z[std::size_t(j) * hf.nx + i] = 80.0 * (1.0 - std::cos(2.0 * M_PI * hf.x_of(i) / 400.0));
-    const g::Terrain valleys(std::move(hf));
+    const g::Terrain valleys = parallel_valleys(3000.0);
     const g::Medium fog = slab(-10.0, 40.0, 0.01, 3000.0);
     Camera c;
     c.position = {100.0, -5000.0, 900.0};
     c.target = {100.0, 0.0, 0.0};
     SunLight light = sun();
     light.shadow_map_size = 4096;
-    const Pair p = apply_both(valleys, fog, options(24, 14), c, 48, 27, light);
+    const Pair p = apply_both(valleys, fog, to_the_far_side(small(24, 14, 32)), c, 48, 27, light);
     EXPECT_GT(p.upsampled.error.fog_pixels, 60);
     EXPECT_GT(p.upsampled.stats.upsampled_pixels, 0);
     EXPECT_LT(p.upsampled.error.mean_relative, p.marched.error.mean_relative + 0.003);
