@@ -17,7 +17,7 @@ float frame_depth(ivec2 px)
     return 2.0 * u_near_plane * u_far_plane / (u_far_plane + u_near_plane - z * (u_far_plane - u_near_plane));
 }
 
-// The fog-aware apply's grids of samples: at `spacing` (1: every pixel, 2, 4), point c is pixel
+// The fog-aware apply's grids of samples: at `spacing` (1: every pixel, 2, 4, 8), point c is pixel
 // c spacing, or the last pixel of the frame's row or column where that is past it, so that every
 // point of a grid either is a point of the next coarser one (twice the spacing) or lies midway
 // between two of its points on each axis (the last one excepted where the coarser grid's last

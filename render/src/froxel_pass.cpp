@@ -215,6 +215,17 @@ void FroxelPass::set_resolution(double scale)
     resolution_ = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;
 }
 
+int FroxelPass::marched_steps() const
+{
+    return std::max(1, int(std::lround(options_.pixel_steps * std::cbrt(resolution_))));
+}
+
+float FroxelPass::upsample_tolerance() const
+{
+    const double shrink = std::cbrt(resolution_);
+    return float(std::min(options_.upsample / (shrink * shrink), 1.0));
+}
+
 void FroxelPass::use_shell_for_resolution()
 {
     // The step: 2^-k of the tiles across, k = 0..3. Its shell has a 4^-k share of the whole
@@ -578,7 +589,7 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
     p.set("u_fx_view_projection", view_.view_projection);
     p.set("u_fx_shell", int(shell_ok_));
     p.set("u_fx_near", view_.near);
-    p.set("u_fx_pixel_steps", options_.pixel_steps);
+    p.set("u_fx_pixel_steps", marched_steps());
     glBindTextureUnit(unit_volume, v_->integrated.get());
     glBindTextureUnit(unit_first, tile_bounds_.first());
     glBindTextureUnit(unit_last, tile_bounds_.last());

@@ -97,10 +97,15 @@ private:
     // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the grids of
     // samples at every fourth and every second pixel, the fog, the lists of the points that march
     // (of the half grid, of the frame) and their counts, the frame before its fog.
+    //! The grids of samples, coarsest first: every 8th pixel of every 8th row, then every 4th and
+    //! 2nd (froxel_frame.glsl's frame_grid), each refined from the one before; then every pixel.
+    static constexpr std::array<int, 3> sample_spacings{8, 4, 2};
     struct PixelFog {
         int width = 0, height = 0;
-        Texture quarter, half, fog, background;
-        Buffer half_list, list;
+        std::array<Texture, sample_spacings.size()> samples;  // the grids at sample_spacings
+        Texture fog, background;
+        // The points each refinement (spacings 4, 2, 1) left to march, and its counts.
+        std::array<Buffer, sample_spacings.size()> lists;
         void resize(int width, int height);
         //! (pixels that marched, pixels that took their samples' mean) in the last run.
         std::pair<int, int> counts() const;
@@ -122,6 +127,13 @@ private:
     std::array<std::optional<ShellMesh>, 3> coarse_shells_;
     int drawn_shell_ = 0;  // which the tile bounds hold: 0 the whole shell, k the 2^-k step's
     void use_shell_for_resolution();
+    // A frame drawn at a share r of the still's resolution (set_resolution: the preview's moving
+    // frames, whose pixels are 1/r times as wide and whose volume is as coarse) marches r^(1/3)
+    // of pixel_steps and takes its samples' mean within r^(-2/3) times the tolerance: at the
+    // floor (1/8) half the steps and four times the tolerance, the apply 66 -> 33 ms of a
+    // 160x90 frame whose error against the reference went 5.4 -> 5.9 % (the still's 0.8 %).
+    int marched_steps() const;
+    float upsample_tolerance() const;
     //! The Medium's model is `baked`: its multiple scattering read from the light volume.
     bool baked_light() const
     {

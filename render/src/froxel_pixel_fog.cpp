@@ -42,32 +42,35 @@ void FroxelPass::PixelFog::resize(int w, int h)
         return;
     width = w;
     height = h;
-    const glm::ivec2 size(w, h), quarter_points = grid_points(size, 4), half_points = grid_points(size, 2);
-    quarter = make_fog_image(quarter_points);
-    half = make_fog_image(half_points);
+    const glm::ivec2 size(w, h);
+    for (std::size_t k = 0; k < sample_spacings.size(); ++k)
+        samples[k] = make_fog_image(grid_points(size, sample_spacings[k]));
     background = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(background.get(), 1, GL_RGBA16F, w, h);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(background.get(), 0, GL_RGBA, GL_FLOAT, black);
     fog = make_fog_image(size);
-    const auto list_of = [](std::size_t n) {
-        Buffer b = make_buffer();
-        glNamedBufferStorage(b.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * n), nullptr,
-                             GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
-        return b;
-    };
-    half_list = list_of(std::size_t(half_points.x) * half_points.y);
-    list = list_of(std::size_t(w) * h);
+    // Refinement k lists points of the grid at half the spacing of grid k.
+    for (std::size_t k = 0; k < sample_spacings.size(); ++k) {
+        const glm::ivec2 n = grid_points(size, sample_spacings[k] / 2);
+        lists[k] = make_buffer();
+        glNamedBufferStorage(lists[k].get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(n.x) * n.y),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+    }
 }
 
 std::pair<int, int> FroxelPass::PixelFog::counts() const
 {
-    if (!list)
-        return {0, 0};
-    MarchHeader a, b;
-    glGetNamedBufferSubData(half_list.get(), 0, sizeof a, &a);
-    glGetNamedBufferSubData(list.get(), 0, sizeof b, &b);
-    return {int(a.sampled + a.listed + b.sampled + b.listed), int(a.upsampled + b.upsampled)};
+    int marched = 0, upsampled = 0;
+    for (const Buffer& list : lists) {
+        if (!list)
+            return {0, 0};
+        MarchHeader h;
+        glGetNamedBufferSubData(list.get(), 0, sizeof h, &h);
+        marched += int(h.sampled + h.listed);
+        upsampled += int(h.upsampled);
+    }
+    return {marched, upsampled};
 }
 
 void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out)
@@ -75,15 +78,15 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
     out.resize(frame.width, frame.height);
     const bool haze = options_.height_fog.enabled();
     const bool marching = visible_ && apply_ && options_.fog_aware;
-    const float tolerance = marching ? float(options_.upsample) : 0.0f;
+    const float tolerance = marching ? upsample_tolerance() : 0.0f;
     // The frame before its fog, which only the means are judged over: for this run and a later
     // read_fog's.
     if (color_texture != 0 && tolerance > 0.0f)
         glCopyImageSubData(color_texture, GL_TEXTURE_2D, 0, 0, 0, 0, out.background.get(), GL_TEXTURE_2D, 0, 0, 0, 0,
                            frame.width, frame.height, 1);
     const MarchHeader header;
-    glNamedBufferSubData(out.half_list.get(), 0, sizeof header, &header);
-    glNamedBufferSubData(out.list.get(), 0, sizeof header, &header);
+    for (const Buffer& list : out.lists)
+        glNamedBufferSubData(list.get(), 0, sizeof header, &header);
     glBindTextureUnit(unit_frame_depth, depth_texture);
     const glm::vec2 planes = depth_planes(frame);
     const glm::ivec2 size(frame.width, frame.height);
@@ -103,8 +106,9 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         const ShaderProgram& upsample = upsample_.get(haze);
         bind(upsample, spacing);
         upsample.set("u_fx_samples", unit_samples);
-        // Half the tolerance on the half grid: its means' errors carry into the pixels' means.
-        upsample.set("u_fx_upsample", spacing == 1 ? tolerance : 0.5f * tolerance);
+        // A share of the tolerance as fine as the grid is coarse: a coarser grid's means' errors
+        // carry into every finer grid's means.
+        upsample.set("u_fx_upsample", tolerance / float(spacing));
         upsample.set("u_background", unit_background);
         upsample.use();
         glBindTextureUnit(unit_samples, coarser);
@@ -126,20 +130,22 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     };
     if (tolerance > 0.0f) {
-        // Every fourth pixel of every fourth row marches (or reads the volume); every second of
-        // every second takes their mean where they agree, else marches; then every pixel.
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.half_list.get());
+        // The coarsest grid's points march (or read the volume); every finer grid's points take
+        // the mean of the coarser points around them where they agree, else march.
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.lists[0].get());
         const ShaderProgram& pixels = pixels_.get(haze);
-        bind(pixels, 4);
+        const int coarsest = sample_spacings[0];
+        bind(pixels, coarsest);
         pixels.set("u_stage", 0);
         pixels.use();
-        glBindImageTexture(0, out.quarter.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        const glm::ivec2 n = grid_points(size, 4);
+        glBindImageTexture(0, out.samples[0].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        const glm::ivec2 n = grid_points(size, coarsest);
         glDispatchCompute(GLuint((n.x * n.y + 63) / 64), 1, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-        refine(2, out.quarter.get(), out.half.get(), out.half_list.get());
+        for (std::size_t k = 1; k < sample_spacings.size(); ++k)
+            refine(sample_spacings[k], out.samples[k - 1].get(), out.samples[k].get(), out.lists[k - 1].get());
     }
-    refine(1, out.half.get(), out.fog.get(), out.list.get());
+    refine(1, out.samples.back().get(), out.fog.get(), out.lists.back().get());
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
 }
