@@ -182,10 +182,11 @@ void run(const RenderArgs& a)
                      b.last_build_ms());
         if (a.timings && renderer.last_stats().particles > 0)
             std::fprintf(stderr,
-                         "kiri render: particles blended %llu fragments, %d billboards near (coarser), per-particle "
-                         "light %.2f MiB\n",
-                         (unsigned long long)renderer.last_stats().particle_fragments,
+                         "kiri render: particles: %d billboards in view of %d, %d of them near (coarser), blended "
+                         "%llu fragments, per-particle light %.2f MiB\n",
+                         renderer.last_stats().particles_drawn, renderer.last_stats().particles,
                          renderer.last_stats().near_particles,
+                         (unsigned long long)renderer.last_stats().particle_fragments,
                          double(renderer.last_stats().particle_light_bytes) / 1048576.0);
     }
 }

@@ -27,6 +27,8 @@ ParticlesPass::ParticlesPass()
 bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
 {
     cloud_ = &cloud;
+    if (style.cull_outside_view != style_.cull_outside_view)
+        sorted_eye_ = glm::vec3(1e30f);  // what the order holds changes
     style_ = style;
     // The buffer uploads the particles (when they changed); the billboards read the same SSBO.
     buffer_.set_particles(cloud);
@@ -135,23 +137,38 @@ void ParticlesPass::sort(const FrameContext& frame)
 {
     const glm::dmat4 inverse_view = glm::inverse(frame.view);
     const glm::vec3 forward = -glm::vec3(inverse_view[2]);
-    if (frame.eye == sorted_eye_ && forward == sorted_forward_)
+    if (frame.eye == sorted_eye_ && forward == sorted_forward_ && frame.projection == sorted_projection_)
         return;  // the same view: the order stands
-    // Slots of the buffer's particle SSBO (sorted by radius), keyed by depth along the view.
+    // A particle's footprint lies within its radius of its centre: one wholly outside a side of
+    // the view's pyramid, or behind the eye, reaches no pixel and is not drawn (a software
+    // rasteriser shades every billboard's vertices on one thread, whether it is seen or not).
+    // The sides' distances in view space: (|x| - depth tan) cos, with the tan of half the view's
+    // angle across and up.
+    const double tan_x = 1.0 / frame.projection[0][0], tan_y = 1.0 / frame.projection[1][1];
+    const double cos_x = 1.0 / std::sqrt(1.0 + tan_x * tan_x), cos_y = 1.0 / std::sqrt(1.0 + tan_y * tan_y);
     const std::vector<geometry::Particle>& P = cloud_->particles;
-    const std::vector<std::uint32_t>& cloud_index = buffer_.particle_order();
-    order_cpu_.resize(cloud_index.size());
+    const std::vector<std::uint32_t>& cloud_index = buffer_.particle_order();  // slots of the particle SSBO
+    order_cpu_.clear();
     keys_.resize(cloud_index.size());
-    const glm::dvec3 eye(frame.eye), f(forward);
-    for (std::size_t k = 0; k < cloud_index.size(); ++k)
-        keys_[k] = float(glm::dot(P[cloud_index[k]].position - eye, f));
-    std::iota(order_cpu_.begin(), order_cpu_.end(), 0u);
+    for (std::size_t k = 0; k < cloud_index.size(); ++k) {
+        const geometry::Particle& p = P[cloud_index[k]];
+        const glm::dvec3 v(frame.view * glm::dvec4(p.position, 1.0));
+        const double depth = -v.z;
+        keys_[k] = float(depth);
+        if (style_.cull_outside_view &&
+            (depth < -p.radius || (std::abs(v.x) - depth * tan_x) * cos_x > p.radius ||
+             (std::abs(v.y) - depth * tan_y) * cos_y > p.radius))
+            continue;
+        order_cpu_.push_back(std::uint32_t(k));
+    }
     std::sort(order_cpu_.begin(), order_cpu_.end(), [&](std::uint32_t a, std::uint32_t b) {
         return keys_[a] > keys_[b] || (keys_[a] == keys_[b] && a < b);  // far first
     });
-    glNamedBufferSubData(order_.get(), 0, GLsizeiptr(order_cpu_.size() * sizeof(std::uint32_t)), order_cpu_.data());
+    if (!order_cpu_.empty())
+        glNamedBufferSubData(order_.get(), 0, GLsizeiptr(order_cpu_.size() * sizeof(std::uint32_t)), order_cpu_.data());
     sorted_eye_ = frame.eye;
     sorted_forward_ = forward;
+    sorted_projection_ = frame.projection;
 }
 
 bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth)
@@ -163,10 +180,10 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     sort(frame);
     const int scale = std::max(style_.near_scale, 1);
     ensure_target(frame.width, frame.height, scale);
-    const std::size_t split = near_first(frame);
+    const std::size_t drawn = order_cpu_.size(), split = near_first(frame);
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, clear);
-    if (split < count_)
+    if (split < drawn)
         glClearNamedFramebufferfv(near_fbo_.get(), GL_COLOR, 0, clear);
 
     const geometry::LightGrid& g = buffer_.grid();
@@ -239,10 +256,10 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         glDrawElements(GL_TRIANGLES, GLsizei(6 * n), GL_UNSIGNED_INT, nullptr);
     };
     draw_range(0, split, fbo_.get(), frame.width, frame.height);
-    draw_range(split, count_ - split, near_fbo_.get(), near_size(frame.width, scale), near_size(frame.height, scale));
+    draw_range(split, drawn - split, near_fbo_.get(), near_size(frame.width, scale), near_size(frame.height, scale));
     glEndQuery(GL_SAMPLES_PASSED);
     fragments_pending_ = true;
-    last_near_ = int(count_ - split);
+    last_near_ = int(drawn - split);
 
     // Premultiplied "over" is associative: the near billboards' layer over the far ones' equals
     // every billboard blended over the frame in one order.
@@ -253,7 +270,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     composite_.set("u_inv_size", glm::vec2(0.0f));
     glBindTextureUnit(0, color_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    if (split < count_) {
+    if (split < drawn) {
         composite_.set("u_inv_size", glm::vec2(1.0f / float(frame.width), 1.0f / float(frame.height)));
         glBindTextureUnit(0, near_color_.get());
         glDrawArrays(GL_TRIANGLES, 0, 3);

@@ -43,8 +43,10 @@ public:
     //! The baked multiple scattering (null or not ready: none), for the frame.
     void set_light_volume(const LightVolumeTexture* volume) { light_volume_ = volume; }
     std::size_t count() const { return has_particles() ? count_ : 0; }
-    //! Of the last draw: billboards drawn at the near resolution, fragments blended (all targets).
+    //! Of the last draw: billboards drawn at the near resolution, all billboards drawn, fragments
+    //! blended (all targets).
     int last_near_count() const { return last_near_; }
+    int last_drawn_count() const { return int(order_cpu_.size()); }
     //! Read after the frame has finished (the query's result waits for the GPU): reading it in
     //! the pass would stall the CPU there on a GPU, in the middle of the frame.
     std::uint64_t last_fragments() const;
@@ -63,11 +65,12 @@ private:
     std::uint64_t uploaded_hash_ = 0;
     std::size_t count_ = 0;
     ParticleStyle style_;
-    Buffer order_;         // indices into the buffer's particle SSBO, back to front
-    Buffer quad_indices_;  // 4q, 4q + 1, 4q + 2, 4q + 2, 4q + 1, 4q + 3 for each billboard q
-    std::vector<std::uint32_t> order_cpu_;
+    Buffer order_;                          // indices into the buffer's particle SSBO, back to front
+    Buffer quad_indices_;                   // 4q, 4q + 1, 4q + 2, 4q + 2, 4q + 1, 4q + 3 for each billboard q
+    std::vector<std::uint32_t> order_cpu_;  // the billboards in view, far to near (sort)
     std::vector<float> keys_;
     glm::vec3 sorted_eye_{1e30f}, sorted_forward_{0.0f};
+    glm::dmat4 sorted_projection_{0.0};
     glm::dvec3 lo_{0.0}, hi_{0.0};
     double smallest_radius_ = 0.0;
     Framebuffer fbo_, near_fbo_;
@@ -79,6 +82,7 @@ private:
     mutable std::uint64_t last_fragments_ = 0;
     mutable bool fragments_pending_ = false;
     void ensure_target(int width, int height, int near_scale);
+    //! The billboards whose particle can reach a pixel of the frame, far to near, into order_.
     void sort(const FrameContext& frame);
     //! Of the billboards sorted far to near, the first one drawn at the near resolution.
     std::size_t near_first(const FrameContext& frame) const;

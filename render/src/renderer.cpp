@@ -466,6 +466,7 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
         r.stats.attenuation_rebuilds = rebuilt ? 1 : 0;
         r.stats.particle_light_rebuilds = r.particles.last_light_rebuilt() ? 1 : 0;
         r.stats.near_particles = r.particles.last_near_count();
+        r.stats.particles_drawn = r.particles.last_drawn_count();
         r.stats.particle_light_bytes = r.particles.light().bytes();
         r.stats.particle_fragments = r.particles.last_fragments();
     }

@@ -136,6 +136,47 @@ double mean_difference(const kiri::render::Image& a, const kiri::render::Image& 
     return sum / double(a.rgba.size());
 }
 
+TEST_F(ParticleLightGl, BillboardsOutOfViewAreLeftOutAndTheFrameIsTheSame)
+{
+    // The eye inside the cloud, some of it behind, beside, above and below the view: those
+    // billboards are not drawn; every one that reaches a pixel is, so the frame is the same to
+    // the bit as with every billboard drawn.
+    const g::ParticleCloud c = raised_ball(300, 0.3);
+    const g::Terrain ground = kiri::test::gaussian_hill(33, 100.0, 0.0);
+    kiri::render::Camera cam = eye_in();
+    cam.fov_y_deg = 40.0;
+    const int w = 96, h = 64;
+    const auto draw = [&](bool cull, kiri::render::RadianceImage* out) {
+        kiri::render::Renderer r;
+        r.set_terrain(ground, 1.0, false);
+        kiri::render::ParticleStyle style;
+        style.cull_outside_view = cull;
+        r.set_particles(c, style);
+        r.draw(cam, w, h);
+        *out = r.read_radiance();
+        return r.last_stats();
+    };
+    kiri::render::RadianceImage all, culled;
+    const kiri::render::FrameStats every = draw(false, &all), in_view = draw(true, &culled);
+    EXPECT_EQ(every.particles_drawn, int(c.particles.size()));
+    // The centres within the view's pyramid are the least that must be drawn.
+    const glm::dvec3 f = glm::normalize(cam.target - cam.position);
+    const double tan_y = std::tan(0.5 * cam.fov_y_deg * 3.14159265358979 / 180.0), tan_x = tan_y * w / h;
+    const glm::dvec3 right = glm::normalize(glm::cross(f, glm::dvec3(0, 0, 1))), up = glm::cross(right, f);
+    int centres_in_view = 0;
+    for (const g::Particle& p : c.particles) {
+        const glm::dvec3 v = p.position - cam.position;
+        const double depth = glm::dot(v, f);
+        centres_in_view +=
+            depth > 0.0 && std::abs(glm::dot(v, right)) < depth * tan_x && std::abs(glm::dot(v, up)) < depth * tan_y;
+    }
+    ASSERT_GT(centres_in_view, 30);
+    EXPECT_GE(in_view.particles_drawn, centres_in_view);
+    EXPECT_LT(in_view.particles_drawn, int(0.8 * c.particles.size()));
+    ASSERT_EQ(all.rgba.size(), culled.rgba.size());
+    EXPECT_TRUE(all.rgba == culled.rgba);
+}
+
 TEST_F(ParticleLightGl, NearBillboardsDrawCoarserAndLookTheSame)
 {
     // The eye inside a cloud: billboards fill the view, each with little opacity.
@@ -156,10 +197,12 @@ TEST_F(ParticleLightGl, NearBillboardsDrawCoarserAndLookTheSame)
     kiri::render::Image full, half, quarter;
     const kiri::render::FrameStats at_full = draw(1, &full), at_half = draw(2, &half), at_quarter = draw(4, &quarter);
     EXPECT_EQ(at_full.near_particles, 0);
-    // The billboards nearer than r P / near_pixels (P = h / 2 / tan 30 deg = 55 px): 206 m.
-    ASSERT_GT(at_half.near_particles, 250);
+    // The billboards in view nearer than r P / near_pixels (P = h / 2 / tan 30 deg = 55 px):
+    // 206 m, most of those in view.
+    EXPECT_EQ(at_half.particles_drawn, at_full.particles_drawn);
+    ASSERT_GT(at_half.near_particles, at_half.particles_drawn / 2);
     EXPECT_EQ(at_quarter.near_particles, at_half.near_particles);
-    const std::uint64_t far = std::uint64_t(c.particles.size() - at_half.near_particles);
+    const std::uint64_t far = std::uint64_t(at_half.particles_drawn - at_half.near_particles);
     // Each near billboard blends at most the whole coarse target, each far one the frame.
     EXPECT_LE(at_half.particle_fragments, std::uint64_t(at_half.near_particles) * (w / 2) * (h / 2) + far * w * h);
     EXPECT_LE(at_quarter.particle_fragments,

@@ -110,6 +110,7 @@ FrameCost FogJudge::frame_cost(int width, int height, int frames)
         cost.marched = double(froxel.marched_pixels) / froxel.applied_pixels;
         cost.upsampled = double(froxel.upsampled_pixels) / froxel.applied_pixels;
     }
+    cost.drawn_particles = renderer_->last_stats().particles_drawn;
     cost.near_particles = renderer_->last_stats().near_particles;
     cost.particle_fragments = renderer_->last_stats().particle_fragments;
     for (const render::PassTime& pass : passes.back()) {

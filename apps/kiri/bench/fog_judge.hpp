@@ -41,8 +41,9 @@ struct FrameCost {
     double marched = -1.0;
     //! Those that took the mean of the marched half-resolution samples around them (-1: none).
     double upsampled = -1.0;
-    //! The particles' billboards (last frame): drawn at the near resolution, fragments blended.
-    int near_particles = 0;
+    //! The particles' billboards (last frame): drawn (in view), drawn at the near resolution,
+    //! fragments blended.
+    int drawn_particles = 0, near_particles = 0;
     std::uint64_t particle_fragments = 0;
 };
 

@@ -44,8 +44,8 @@ std::string passes_line(const FrameCost& cost)
         s << "; froxel apply marched " << 100.0 * cost.marched << " % of the pixels, took their samples' mean at "
           << 100.0 * cost.upsampled << " %";
     if (cost.particle_fragments > 0)
-        s << "; particles blended " << cost.particle_fragments << " fragments, " << cost.near_particles
-          << " billboards near";
+        s << "; particles blended " << cost.particle_fragments << " fragments, " << cost.drawn_particles
+          << " billboards in view, " << cost.near_particles << " of them near";
     return s.str();
 }
 

@@ -55,6 +55,9 @@ struct ParticleStyle {
     //! the fragments when the eye is in the fog.
     int near_scale = 2;
     double near_pixels = 16.0;
+    //! Billboards whose particle lies wholly outside the view are not drawn (the picture is the
+    //! same; false draws every one, for tests and benches).
+    bool cull_outside_view = true;
 };
 
 struct PassTime {
@@ -107,7 +110,8 @@ struct FrameStats {
     //! finer map of the sun's optical depth (where the shade bends within a cell).
     int terrain_vertices = 0, refined_shade_vertices = 0;
     int layer_triangles = 0;               //!< the base's triangles drawn for each layer (the level of detail's)
-    int particles = 0;                     //!< particle billboards drawn
+    int particles = 0;                     //!< particles in the cloud
+    int particles_drawn = 0;               //!< billboards drawn: the particles that reach the view
     int attenuation_rebuilds = 0;          //!< attenuation buffer builds during this frame (0 when nothing changed)
     int particle_light_rebuilds = 0;       //!< builds of the billboards' per-particle light during this frame
     int near_particles = 0;                //!< billboards drawn at the coarser near resolution
