@@ -39,10 +39,11 @@ struct FroxelOptions {
     //! layers); false: each froxel marches it in sun_steps steps for each lighting sample.
     bool sun_volume = true;
     int pixel_steps = 24;  //!< fog-aware apply
-    //! Fog-aware apply: the pixels march at every fourth pixel of every fourth row, then every
-    //! second; a point between marched ones takes their mean where its estimated error is at most
-    //! this share of its colour through the fog and its depths lie within theirs (docs/froxel.md);
-    //! 0: every pixel that the volume does not resolve marches its own ray.
+    //! Fog-aware apply: the pixels march at every eighth pixel of every eighth row, then every
+    //! fourth and second; a point between marched ones takes their mean where its estimated error
+    //! is at most this share of its colour through the fog (a share as fine as its grid is
+    //! coarse on the coarser grids) and its depths lie within theirs (docs/froxel.md); 0: every
+    //! pixel that the volume does not resolve marches its own ray.
     double upsample = 0.02;
     bool terrain_shadows = true;
     bool fog_shadows = true;
@@ -127,9 +128,10 @@ void visit_fields(O& o, V&& v)
     v(o.upsample,
       {.key = "upsample",
        .range = closed(0, 1),
-       .doc = "fog-aware: the pixels march at every fourth, then every second pixel and row; a point between "
-              "marched ones takes their mean where its estimated error is at most this share of its colour through "
-              "the fog and its depths lie within theirs; 0: every pixel the volume does not resolve marches",
+       .doc =
+           "fog-aware: the pixels march at every eighth, then every fourth and second pixel and row; a point between "
+           "marched ones takes their mean where its estimated error is at most this share of its colour through "
+           "the fog and its depths lie within theirs; 0: every pixel the volume does not resolve marches",
        .widget = closed(0, 0.1)});
     v(o.terrain_shadows,
       {.key = "terrain_shadows",
