@@ -7,6 +7,7 @@
 // (llvmpipe runs eight invocations as one).
 layout(local_size_x = 64) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
+layout(rgba32f, binding = 1) writeonly uniform image2D o_info;  // stage 0: the points' frame_point_info
 uniform int u_stage;
 shared uint group_marched;
 
@@ -31,6 +32,8 @@ void main()
     if (px.x >= 0) {
         vec2 uv = frame_uv(px);
         float depth = frame_depth(px);
+        if (u_stage == 0)
+            imageStore(o_info, at, frame_point_info(px, depth));
         bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
         vec4 fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(px, uv, depth);
         if (u_stage == 0 && !resolved)

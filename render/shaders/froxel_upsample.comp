@@ -18,7 +18,10 @@
 // for nothing.
 layout(local_size_x = 32, local_size_y = 8) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
+layout(rgba32f, binding = 1) writeonly uniform image2D o_info;
 uniform sampler2D u_fx_samples;  // the grid at twice u_spacing (frame_grid)
+uniform sampler2D u_fx_sample_info;  // its points' frame_point_info
+uniform int u_fx_write_info;     // this grid's points' frame_point_info into o_info (a finer grid follows)
 uniform float u_fx_upsample;     // the tolerance; 0: none, every pixel the volume does not resolve marches
 uniform sampler2D u_background;  // the frame's linear radiance before the fog
 shared uint group_upsampled;
@@ -37,20 +40,6 @@ void widen(inout Range r, float v)
 }
 
 bool within(float v, Range r) { return v >= r.lo * (1.0 - depth_margin) && v <= r.hi * (1.0 + depth_margin); }
-
-// How deep the Medium's fog lies over pixel px's surface (0: the sky, or none there). A thread of
-// fog in a valley narrower than the samples' spacing, seen from afar between two ridges without
-// fog, shows here: the shell's blocks are too coarse to show it in its depths.
-float fog_over_surface(ivec2 px, float depth)
-{
-    if (!(depth < 3e38))
-        return 0.0;
-    vec3 p = fx_world(frame_uv(px), depth);
-    if (!shell_covers(p.xy))
-        return 0.0;
-    vec4 c = shell_column(p.xy);  // floor, bottom, top, coverage
-    return c.z > c.x ? max(c.z - p.z, 0.0) : 0.0;
-}
 
 // Sample c's fog over background b: what the pixel would show through it.
 vec3 seen(ivec2 c, vec3 b)
@@ -83,14 +72,11 @@ bool froxel_upsampled(ivec2 t, ivec2 px, float depth, out vec4 fog)
     for (int k = 0; k < 4; ++k) {
         ivec2 c = ivec2((k & 1) == 0 ? lo.x : hi.x, (k >> 1) == 0 ? lo.y : hi.y);
         sum += texelFetch(u_fx_samples, c, 0);
-        ivec2 q = frame_grid_pixel(c, coarse);
-        float d = frame_depth(q);
-        widen(depths, d);
-        widen(over, fog_over_surface(q, d));
-        if (u_fx_shell != 0) {
-            widen(firsts, texelFetch(u_fx_first, q, 0).r);
-            widen(lasts, texelFetch(u_fx_last, q, 0).r);
-        }
+        vec4 info = texelFetch(u_fx_sample_info, c, 0);
+        widen(depths, info.x);
+        widen(over, info.y);
+        widen(firsts, info.z);
+        widen(lasts, info.w);
     }
     fog = 0.25 * sum;  // a point met twice (t on one axis's coarser point) weighs twice
     vec3 b = max(texelFetch(u_background, px, 0).rgb, vec3(0.0));
@@ -129,6 +115,8 @@ void main()
         ivec2 px = frame_grid_pixel(t, u_spacing);
         vec2 uv = frame_uv(px);
         float depth = frame_depth(px);
+        if (u_fx_write_info != 0)
+            imageStore(o_info, t, frame_point_info(px, depth));
         vec4 fog;
         if (u_fx_apply != 2 || froxel_resolved(px, uv, depth)) {
             imageStore(o_fog, t, froxel_fog_at(uv, depth));

@@ -102,7 +102,7 @@ std::vector<std::string_view> march_libraries(std::string_view stage)
 std::vector<std::string_view> pixel_libraries(std::string_view stage)
 {
     std::vector<std::string_view> files = march_libraries("froxel_frame.glsl");
-    files.push_back(stage);
+    files.insert(files.end(), {"froxel_grid_point.glsl", stage});
     return files;
 }
 

@@ -103,6 +103,7 @@ private:
     struct PixelFog {
         int width = 0, height = 0;
         std::array<Texture, sample_spacings.size()> samples;  // the grids at sample_spacings
+        std::array<Texture, sample_spacings.size()> info;     // their points' frame_point_info
         Texture fog, background;
         // The points each refinement (spacings 4, 2, 1) left to march, and its counts.
         std::array<Buffer, sample_spacings.size()> lists;

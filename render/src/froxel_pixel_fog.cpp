@@ -10,7 +10,7 @@ namespace kiri::render::detail {
 namespace {
 
 // The fog's samplers stay clear of the apply's units (froxel_pass.cpp: 5..19).
-constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2;
+constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2, unit_sample_info = 3;
 
 // The list's header (froxel_frame.glsl, FrameMarches): the indirect dispatch, then the counts.
 struct MarchHeader {
@@ -43,8 +43,10 @@ void FroxelPass::PixelFog::resize(int w, int h)
     width = w;
     height = h;
     const glm::ivec2 size(w, h);
-    for (std::size_t k = 0; k < sample_spacings.size(); ++k)
+    for (std::size_t k = 0; k < sample_spacings.size(); ++k) {
         samples[k] = make_fog_image(grid_points(size, sample_spacings[k]));
+        info[k] = make_fog_image(grid_points(size, sample_spacings[k]));
+    }
     background = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(background.get(), 1, GL_RGBA16F, w, h);
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -99,13 +101,16 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         p.set("u_far_plane", planes.y);
         p.set("u_spacing", spacing);
     };
-    // The grid at `spacing` into `image` from the one at twice it (`coarser`), listing into
-    // `list` the points that march, then marching them.
-    const auto refine = [&](int spacing, GLuint coarser, GLuint image, GLuint list) {
+    // The grid at `spacing` into `image` (its points' info into `info`, 0: none) from the one at
+    // twice it (`coarser`, its points' info `coarser_info`), listing into `list` the points that
+    // march, then marching them.
+    const auto refine = [&](int spacing, GLuint coarser, GLuint coarser_info, GLuint image, GLuint info, GLuint list) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
         const ShaderProgram& upsample = upsample_.get(haze);
         bind(upsample, spacing);
         upsample.set("u_fx_samples", unit_samples);
+        upsample.set("u_fx_sample_info", unit_sample_info);
+        upsample.set("u_fx_write_info", int(info != 0));
         // A share of the tolerance as fine as the grid is coarse: a coarser grid's means' errors
         // carry into every finer grid's means.
         upsample.set("u_fx_upsample", tolerance / float(spacing));
@@ -113,7 +118,9 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         upsample.use();
         glBindTextureUnit(unit_samples, coarser);
         glBindTextureUnit(unit_background, out.background.get());
+        glBindTextureUnit(unit_sample_info, coarser_info);
         glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, info != 0 ? info : coarser_info, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         const glm::ivec2 n = grid_points(size, spacing);
         glDispatchCompute(GLuint((n.x + 31) / 32), GLuint((n.y + 7) / 8), 1);
         if (!marching)
@@ -139,13 +146,15 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         pixels.set("u_stage", 0);
         pixels.use();
         glBindImageTexture(0, out.samples[0].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindImageTexture(1, out.info[0].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         const glm::ivec2 n = grid_points(size, coarsest);
         glDispatchCompute(GLuint((n.x * n.y + 63) / 64), 1, 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
         for (std::size_t k = 1; k < sample_spacings.size(); ++k)
-            refine(sample_spacings[k], out.samples[k - 1].get(), out.samples[k].get(), out.lists[k - 1].get());
+            refine(sample_spacings[k], out.samples[k - 1].get(), out.info[k - 1].get(), out.samples[k].get(),
+                   out.info[k].get(), out.lists[k - 1].get());
     }
-    refine(1, out.samples.back().get(), out.fog.get(), out.lists.back().get());
+    refine(1, out.samples.back().get(), out.info.back().get(), out.fog.get(), 0, out.lists.back().get());
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
 }
