@@ -21,8 +21,9 @@ struct FrameBudget {
 //! clamped to the budget's range.
 float next_moving_scale(float scale, double measured_ms, const FrameBudget& budget);
 
-//! The froxel volume's and the terrain grid's resolution (Renderer::set_froxel_resolution,
-//! set_terrain_resolution) for a frame drawn at `ratio` of the still view's size: the largest
+//! The froxel volume's, the terrain grid's and the particles' resolution
+//! (Renderer::set_froxel_resolution, set_terrain_resolution, set_particle_resolution) for a
+//! frame drawn at `ratio` of the still view's size: the largest
 //! power of two no larger, in [1/8, 1]. So a moving frame keeps about the still's pixels per
 //! froxel tile and per terrain cell (the volume's passes cost the square of it, the terrain's
 //! vertices too), and the volume, rebuilt without history when it changes, changes only at

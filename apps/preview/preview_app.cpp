@@ -362,6 +362,7 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
         const double step = reduced ? resolution_step(scale / v.render_scale) : 1.0;
         renderer_->set_froxel_resolution(step);
         renderer_->set_terrain_resolution(step);
+        renderer_->set_particle_resolution(step);
         renderer_->draw(last_camera_, w, h);
         times_.scene_ms = renderer_->last_stats().frame_ms;
         // The next moving frame's scale follows this one's cost; a still's says nothing of it.

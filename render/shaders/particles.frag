@@ -14,6 +14,7 @@ flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
+flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale)
 in vec4 v_fog;
 flat in float v_baked;
 uniform sampler3D u_log_gamma;
@@ -42,12 +43,12 @@ void main()
     // centre and the part of the particle's column between the eye and the terrain behind.
     vec3 ray = normalize(v_ray);
     float along = dot(v_centre, ray);
-    float x = sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_optics.x;
+    float x = sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_footprint_radius;
     if (x >= 1.0)
         discard;
     float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy * u_depth_scale), 0).r) /
                   max(dot(ray, u_camera_forward), 1e-6);
-    float share = footprint_ray_share(x, v_optics.x, -along, scene - along);
+    float share = footprint_ray_share(x, v_footprint_radius, -along, scene - along);
     float alpha = 1.0 - exp(-v_optics.y * footprint_profile(x) * share);
     // Lit where the ray's visible part passes nearest the centre.
     float t = clamp(along, 0.0, scene);

@@ -25,6 +25,10 @@ flat out vec3 v_optics;  // radius, tau, albedo
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
 flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
 uniform vec3 u_eye;
+// A frame drawn small draws every k-th billboard, sqrt(k) times as wide with the same optical
+// depth: the same optical mass and cover (ParticlesPass::set_resolution); sqrt(k) here, 1 else.
+uniform float u_radius_scale;
+flat out float v_footprint_radius;  // the billboard's radius (the particle's light keeps its own)
 uniform vec3 u_camera_forward;
 uniform vec2 u_tan_half;  // tan of half the view's angle across and up
 const float kWholeScreen = 1.5;  // a particle nearer than this many radii covers the screen
@@ -38,7 +42,8 @@ void main()
     vec3 centre_world = p.xyz + u_centre;
     vec3 from_eye = centre_world - u_eye;
     float d = length(from_eye);
-    float r = p.w;
+    float r = p.w * u_radius_scale;
+    v_footprint_radius = r;
     v_centre = from_eye;
     vec3 corner_world;
     if (d > kWholeScreen * r) {

@@ -65,6 +65,17 @@ bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const Pa
     return true;
 }
 
+void ParticlesPass::set_resolution(double scale)
+{
+    std::size_t share = 1;
+    if (std::isfinite(scale) && scale > 0.0)
+        while (double(2 * share) <= 1.0 / (2.0 * scale) + 1e-9 && share < 64)
+            share *= 2;
+    if (share != share_)
+        sorted_eye_ = glm::vec3(1e30f);  // what the order holds changes
+    share_ = share;
+}
+
 void ParticlesPass::clear()
 {
     cloud_ = nullptr;
@@ -116,7 +127,7 @@ std::size_t ParticlesPass::near_first(const FrameContext& frame) const
     // of tan, the projection's y scale times half the height): every one nearer than
     // r_min P / near_pixels spans near_pixels or more. The order is far to near.
     const double pixels_per_tan = frame.projection[1][1] * 0.5 * frame.height;
-    const float nearer = float(smallest_radius_ * pixels_per_tan / style_.near_pixels);
+    const float nearer = float(smallest_radius_ * std::sqrt(double(share_)) * pixels_per_tan / style_.near_pixels);
     const auto first =
         std::partition_point(order_cpu_.begin(), order_cpu_.end(), [&](std::uint32_t k) { return keys_[k] >= nearer; });
     return std::size_t(first - order_cpu_.begin());
@@ -150,14 +161,18 @@ void ParticlesPass::sort(const FrameContext& frame)
     const std::vector<std::uint32_t>& cloud_index = buffer_.particle_order();  // slots of the particle SSBO
     order_cpu_.clear();
     keys_.resize(cloud_index.size());
+    // Every share_-th slot: the slots run by radius, so the share keeps the cloud's mix of sizes.
     for (std::size_t k = 0; k < cloud_index.size(); ++k) {
+        if (k % share_ != 0)
+            continue;
         const geometry::Particle& p = P[cloud_index[k]];
+        const double radius = p.radius * std::sqrt(double(share_));
         const glm::dvec3 v(frame.view * glm::dvec4(p.position, 1.0));
         const double depth = -v.z;
         keys_[k] = float(depth);
         if (style_.cull_outside_view &&
-            (depth < -p.radius || (std::abs(v.x) - depth * tan_x) * cos_x > p.radius ||
-             (std::abs(v.y) - depth * tan_y) * cos_y > p.radius))
+            (depth < -radius || (std::abs(v.x) - depth * tan_x) * cos_x > radius ||
+             (std::abs(v.y) - depth * tan_y) * cos_y > radius))
             continue;
         order_cpu_.push_back(std::uint32_t(k));
     }
@@ -230,6 +245,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     p.set("u_sky_horizon", frame.sky_horizon);
     p.set("u_haze_density", frame.haze_density);
     p.set("u_octaves", std::clamp(cloud_->scattering_octaves, 0, 8));
+    p.set("u_radius_scale", float(std::sqrt(double(share_))));
     p.use();
     glBindTextureUnit(0, buffer_.texture());
     glBindTextureUnit(1, resolved_depth);

@@ -40,6 +40,12 @@ public:
         fog_ = fog;
         shadow_ = shadow;
     }
+    //! For frames drawn at `scale` of the still's size (the preview while the view moves): every
+    //! k-th billboard, k the largest power of two no larger than 1 / (2 scale) (1 from a half
+    //! on, 4 at an eighth), drawn sqrt(k) times as wide with the particle's own optical depth, so
+    //! the fog keeps its optical mass and its cover while k times fewer billboards are set up (a
+    //! software rasteriser pays for each, however few pixels it covers). Default 1.
+    void set_resolution(double scale);
     //! The baked multiple scattering (null or not ready: none), for the frame.
     void set_light_volume(const LightVolumeTexture* volume) { light_volume_ = volume; }
     std::size_t count() const { return has_particles() ? count_ : 0; }
@@ -64,6 +70,7 @@ private:
     const geometry::ParticleCloud* cloud_ = nullptr;
     std::uint64_t uploaded_hash_ = 0;
     std::size_t count_ = 0;
+    std::size_t share_ = 1;  // every share_-th billboard is drawn (set_resolution)
     ParticleStyle style_;
     Buffer order_;                          // indices into the buffer's particle SSBO, back to front
     Buffer quad_indices_;                   // 4q, 4q + 1, 4q + 2, 4q + 2, 4q + 1, 4q + 3 for each billboard q

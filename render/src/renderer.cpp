@@ -257,6 +257,8 @@ void Renderer::set_froxel_resolution(double scale)
         impl_->froxel->set_resolution(impl_->froxel_resolution);
 }
 
+void Renderer::set_particle_resolution(double scale) { impl_->particles.set_resolution(scale); }
+
 void Renderer::set_layer_resolution(double scale, bool multisampled)
 {
     impl_->layer_scale = std::isfinite(scale) ? std::clamp(scale, 0.125, 1.0) : 1.0;

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -217,6 +218,49 @@ TEST_F(ParticleLightGl, NearBillboardsDrawCoarserAndLookTheSame)
     kiri::render::Renderer bare;
     bare.set_terrain(ground, 1.0, false);
     EXPECT_GT(mean_difference(full, bare.render(cam, w, h)), 5.0);  // there is fog to see
+}
+
+TEST_F(ParticleLightGl, AFrameDrawnSmallDrawsFewerWiderBillboardsOfTheSameMass)
+{
+    // The cloud from outside, at a small frame as the preview draws while the view moves: at an
+    // eighth of the still's size every 4th billboard, twice as wide with its optical depth. The
+    // fog it adds over the bare ground (summed radiance) is the whole cloud's; drawn as a
+    // quarter of the billboards at their own size it would be a quarter of it (shown so: 0.30).
+    // A semi-transparent cloud (optical depth about 1 across): an opaque one's rim widens by the
+    // billboards' extra radius, which at the preview's floor is a pixel or two.
+    g::ParticleCloud c = kiri::test::ball_cloud(3000, 400.0, 25.0, 0.1);
+    for (g::Particle& p : c.particles)
+        p.position.z -= 400.0;
+    const g::Terrain ground = kiri::test::gaussian_hill(33, 100.0, 0.0);
+    kiri::render::Camera cam;
+    cam.position = {-1500.0, -1200.0, 900.0};
+    cam.target = {0.0, 0.0, 600.0};
+    cam.fov_y_deg = 40.0;
+    const int w = 80, h = 45;
+    const auto fog_added = [&](double scale, int* drawn) {
+        kiri::render::Renderer r;
+        r.set_terrain(ground, 1.0, false);
+        r.draw(cam, w, h);
+        const kiri::render::RadianceImage bare = r.read_radiance();
+        r.set_particles(c);
+        r.set_particle_resolution(scale);
+        r.draw(cam, w, h);
+        *drawn = r.last_stats().particles_drawn;
+        const kiri::render::RadianceImage fog = r.read_radiance();
+        double sum = 0.0;
+        for (std::size_t i = 0; i < fog.rgba.size(); i += 4)
+            sum += std::abs(fog.rgba[i + 1] - bare.rgba[i + 1]);
+        return sum;
+    };
+    int all = 0, half = 0, eighth = 0;
+    const double whole = fog_added(1.0, &all), at_half = fog_added(0.5, &half), at_eighth = fog_added(0.125, &eighth);
+    ASSERT_GT(all, 1000);
+    EXPECT_EQ(half, all);  // from half the size on, every billboard
+    EXPECT_NEAR(double(eighth), all / 4.0, 0.05 * all);
+    EXPECT_DOUBLE_EQ(at_half, whole);
+    std::printf("    fog added over the ground: every billboard %.2f, every 4th twice as wide %.2f\n", whole,
+                at_eighth);
+    EXPECT_NEAR(at_eighth / whole, 1.0, 0.05);
 }
 
 }  // namespace

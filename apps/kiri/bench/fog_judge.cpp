@@ -130,6 +130,7 @@ void FogJudge::set_reduced_resolution(double scale)
 {
     renderer_->set_froxel_resolution(scale);
     renderer_->set_terrain_resolution(scale);
+    renderer_->set_particle_resolution(scale);
 }
 
 double FogJudge::still_ms(int width, int height)

@@ -68,8 +68,9 @@ public:
     double frame_ms(int width, int height, int frames);
     //! The same frames' median time and their passes' median times.
     FrameCost frame_cost(int width, int height, int frames);
-    //! The froxel volume's and the terrain grid's resolution for the frames that follow
-    //! (Renderer::set_froxel_resolution, set_terrain_resolution): the preview's moving frames.
+    //! The froxel volume's, the terrain grid's and the particles' resolution for the frames that
+    //! follow (Renderer::set_froxel_resolution, set_terrain_resolution, set_particle_resolution):
+    //! the preview's moving frames.
     void set_reduced_resolution(double scale);
     //! The time (ms) of a still picture at width x height as kiri render draws it: the first
     //! view of the fog, as a still (Renderer::render).

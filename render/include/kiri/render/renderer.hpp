@@ -190,6 +190,11 @@ public:
     //! the view moves) keeps its pixels per tile, and the volume's passes cost that fraction
     //! squared. A change of it rebuilds the volume without history. Default 1.
     void set_froxel_resolution(double scale);
+    //! The particles of a frame drawn at `scale` of its size (the preview while the view moves):
+    //! every k-th billboard, k the largest power of two no larger than 1 / (2 scale) (1 from a
+    //! half on, 4 at an eighth), sqrt(k) times as wide with its optical depth, so the fog keeps
+    //! its optical mass and cover. The particles' light is the same. Default 1.
+    void set_particle_resolution(double scale);
     //! The froxel fog each pixel of the last frame received at its depth (empty without it).
     FogBuffer read_froxel_fog();
     //! Adds or replaces the overlay mesh `name` (overlay_mesh.hpp), uploaded once here; its
