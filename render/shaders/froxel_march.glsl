@@ -31,12 +31,14 @@ float froxel_step_depth(vec3 q0, vec3 q1, float len)
 {
     vec3 middle = 0.5 * (q0 + q1);
     float rise = q1.z - q0.z;
-    if (abs(rise) > 1e-3 && shell_covers(middle.xy)) {
+    if (u_md_on != 0 && abs(rise) > 1e-3 && shell_covers(middle.xy)) {
         vec4 c = shell_column(middle.xy);  // floor, bottom, top, coverage
         if (c.z > c.x) {
             float t0 = clamp((c.x - q0.z) / rise, 0.0, 1.0), t1 = clamp((c.z - q0.z) / rise, 0.0, 1.0);
             float lo = min(t0, t1), hi = max(t0, t1);
-            return hi > lo ? froxel_sigma(mix(q0, q1, 0.5 * (lo + hi))) * len * (hi - lo) : 0.0;
+            // The density in the same column: the part's ends were cut by it (its middle lies
+            // within half a step of the step's across; one lookup of the grid, not two).
+            return hi > lo ? froxel_sigma_in(mix(q0, q1, 0.5 * (lo + hi)), c) * len * (hi - lo) : 0.0;
         }
     }
     return froxel_sigma(middle) * len;

@@ -11,13 +11,10 @@ uniform vec2 u_md_drift;         // wind * time
 uniform float u_md_time;
 uniform float u_md_half_life;
 
-// d(p) and the shell's height fraction h there.
-float medium_density_at(vec3 p, out float h)
+// d(p) and the shell's height fraction h there, in the column c (shell_column) over p.
+float medium_density_in(vec3 p, vec4 c, out float h)
 {
     h = 0.0;
-    if (u_md_on == 0 || !shell_covers(p.xy))
-        return 0.0;
-    vec4 c = shell_column(p.xy);  // floor, bottom, top, coverage
     if (c.w <= 0.0 || p.z < c.x || p.z > c.z || !(c.z > c.y))
         return 0.0;
     h = clamp((p.z - c.y) / (c.z - c.y), 0.0, 1.0);
@@ -32,6 +29,15 @@ float medium_density_at(vec3 p, out float h)
     return d;
 }
 
+// d(p) and the shell's height fraction h there.
+float medium_density_at(vec3 p, out float h)
+{
+    h = 0.0;
+    if (u_md_on == 0 || !shell_covers(p.xy))
+        return 0.0;
+    return medium_density_in(p, shell_column(p.xy), h);
+}
+
 float medium_density(vec3 p)
 {
     float h;
@@ -43,11 +49,24 @@ float medium_sigma(vec3 p) { return u_md_extinction * medium_density(p); }
 
 // The part the froxels draw (fog_partition.glsl): all of it, or in combined mode their share
 // by the distance from the eye and the height in the shell.
+float froxel_share_of(vec3 p, float d, float h)
+{
+    return d > 0.0 ? u_md_extinction * d * froxels_share(distance(p, u_fx_eye), h) : 0.0;
+}
+
 float froxel_sigma(vec3 p)
 {
     float h;
     float d = medium_density_at(p, h);
-    return d > 0.0 ? u_md_extinction * d * froxels_share(distance(p, u_fx_eye), h) : 0.0;
+    return froxel_share_of(p, d, h);
+}
+
+// The same, in the column c over p (shell_column; u_md_on and shell_covers checked).
+float froxel_sigma_in(vec3 p, vec4 c)
+{
+    float h;
+    float d = medium_density_in(p, c, h);
+    return froxel_share_of(p, d, h);
 }
 
 // Henyey-Greenstein, g clamped strictly inside (-1, 1) like geometry::henyey_greenstein.
