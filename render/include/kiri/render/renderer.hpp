@@ -54,7 +54,7 @@ struct ParticleStyle {
     //! resolution) and laid over the others: they are smooth at that scale, and they are most of
     //! the fragments when the eye is in the fog.
     int near_scale = 2;
-    double near_pixels = 16.0;
+    double near_pixels = 6.0;
     //! Billboards whose particle lies wholly outside the view are not drawn (the picture is the
     //! same; false draws every one, for tests and benches).
     bool cull_outside_view = true;

@@ -58,8 +58,8 @@ struct ParticleOptions {
     //! Metres over which billboards also fade in front of the terrain; 0: each particle shows the
     //! part of its column in front of the terrain and no more (particles.frag).
     double soft_edge = 0.0;
-    int near_scale = 2;         //!< the near billboards' target is this many times coarser a side
-    double near_pixels = 16.0;  //!< from this radius on screen (pixels) a billboard is near
+    int near_scale = 2;        //!< the near billboards' target is this many times coarser a side
+    double near_pixels = 6.0;  //!< from this radius on screen (pixels) a billboard is near
     bool operator==(const ParticleOptions&) const = default;
 };
 
