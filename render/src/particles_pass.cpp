@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
