@@ -1,10 +1,10 @@
 #version 450 core
-// The fog-aware apply's fog for every point of the grid at u_spacing (frame_grid: every pixel,
-// or every second pixel of every second row), into o_fog: the volume's lookup where its slices
-// resolve the fog (froxel_resolved); the coarser grid's own (u_fx_samples: froxel_pixels.comp
-// stage 0 at every fourth pixel, or this pass at every second) at its points; the mean of the
-// coarser points around a point where they agree; the rest are listed to march their own rays
-// (froxel_pixels.comp stage 1), one invocation each.
+// The fog-aware apply's fog for every point of the grid at u_spacing (frame_grid: every fourth
+// or second pixel of every fourth or second row, or every pixel), into o_fog: the volume's
+// lookup where its slices resolve the fog (froxel_resolved); the coarser grid's own
+// (u_fx_samples: froxel_pixels.comp stage 0 at every eighth pixel, or this pass at every fourth
+// or second) at its points; the mean of the coarser points around a point where they agree; the
+// rest are listed to march their own rays (froxel_pixels.comp stage 1), one invocation each.
 //
 // The samples (the coarser points) around a pixel stand for it (froxel_upsampled) when its surface's depth and its
 // stretch of the Medium's shell lie within theirs (a ridge or a thread of fog between them that
@@ -48,8 +48,9 @@ vec3 seen(ivec2 c, vec3 b)
     return b * f.a + f.rgb;
 }
 
-// Point t of the grid at u_spacing (pixel px, its surface at `depth`) from the coarser grid's.
-bool froxel_upsampled(ivec2 t, ivec2 px, float depth, out vec4 fog)
+// Point t of the grid at u_spacing (pixel px, its surface at `depth`; its frame_point_info `own`
+// where u_fx_write_info made it) from the coarser grid's.
+bool froxel_upsampled(ivec2 t, ivec2 px, float depth, vec4 own, out vec4 fog)
 {
     fog = vec4(0.0, 0.0, 0.0, 1.0);
     if (!(u_fx_upsample > 0.0))
@@ -99,10 +100,14 @@ bool froxel_upsampled(ivec2 t, ivec2 px, float depth, out vec4 fog)
     if (!all(lessThanEqual(0.5 * bend, u_fx_upsample * (b * fog.a + fog.rgb))))
         return false;
     // The fog over the surface within the samples' to a metre.
-    if (!within(depth, depths) || !within(fog_over_surface(px, depth), Range(over.lo - 1.0, over.hi + 1.0)))
+    bool known = u_fx_write_info != 0;
+    float own_over = known ? own.y : fog_over_surface(px, depth);
+    if (!within(depth, depths) || !within(own_over, Range(over.lo - 1.0, over.hi + 1.0)))
         return false;
-    return u_fx_shell == 0 ||
-        (within(texelFetch(u_fx_first, px, 0).r, firsts) && within(texelFetch(u_fx_last, px, 0).r, lasts));
+    if (u_fx_shell == 0)
+        return true;
+    vec2 shell = known ? own.zw : vec2(texelFetch(u_fx_first, px, 0).r, texelFetch(u_fx_last, px, 0).r);
+    return within(shell.x, firsts) && within(shell.y, lasts);
 }
 
 void main()
@@ -115,12 +120,15 @@ void main()
         ivec2 px = frame_grid_pixel(t, u_spacing);
         vec2 uv = frame_uv(px);
         float depth = frame_depth(px);
-        if (u_fx_write_info != 0)
-            imageStore(o_info, t, frame_point_info(px, depth));
+        vec4 own = vec4(0.0);  // what the finer grid judges this point by, where one follows
+        if (u_fx_write_info != 0) {
+            own = frame_point_info(px, depth);
+            imageStore(o_info, t, own);
+        }
         vec4 fog;
         if (u_fx_apply != 2 || froxel_resolved(px, uv, depth)) {
             imageStore(o_fog, t, froxel_fog_at(uv, depth));
-        } else if (froxel_upsampled(t, px, depth, fog)) {
+        } else if (froxel_upsampled(t, px, depth, own, fog)) {
             imageStore(o_fog, t, fog);
             if (!all(frame_on_coarser(t, u_spacing)))  // not a coarser point's own pixel
                 atomicAdd(group_upsampled, 1u);

@@ -95,8 +95,8 @@ private:
     HazeVariants integrate_, classify_, pixels_, upsample_;
     ShaderProgram apply_program_, readback_;
     // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the grids of
-    // samples at every fourth and every second pixel, the fog, the lists of the points that march
-    // (of the half grid, of the frame) and their counts, the frame before its fog.
+    // samples and what their points are judged by, the fog, the lists of the points that march
+    // (one per refinement) and their counts, the frame before its fog.
     //! The grids of samples, coarsest first: every 8th pixel of every 8th row, then every 4th and
     //! 2nd (froxel_frame.glsl's frame_grid), each refined from the one before; then every pixel.
     static constexpr std::array<int, 3> sample_spacings{8, 4, 2};
