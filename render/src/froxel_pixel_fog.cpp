@@ -3,8 +3,13 @@
 #include "froxel_pass.hpp"
 
 #include <cstddef>
+#include <cstring>
+#include <memory>
+#include <vector>
 
 #include <glm/common.hpp>
+
+#include "terrain_pass.hpp"
 
 namespace kiri::render::detail {
 namespace {
@@ -157,6 +162,72 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
     refine(1, out.samples.back().get(), out.info.back().get(), out.fog.get(), 0, out.lists.back().get());
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+}
+
+FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& terrain)
+{
+    FogBuffer out;
+    if (!enabled_ || frame.width <= 0 || frame.height <= 0)
+        return out;
+    if (!depth_program_)
+        depth_program_ =
+            std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{"terrain.vert", "depth_only.frag"});
+    // The terrain's depth at pixel centres, where the terrain's fragments applied the fog (the
+    // multisampled frame's resolved depth holds one sample, off the centre).
+    Texture surface = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(surface.get(), 1, GL_DEPTH_COMPONENT32F, frame.width, frame.height);
+    glTextureParameteri(surface.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(surface.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    Framebuffer fbo = make_framebuffer();
+    glNamedFramebufferTexture(fbo.get(), GL_DEPTH_ATTACHMENT, surface.get(), 0);
+    glNamedFramebufferDrawBuffer(fbo.get(), GL_NONE);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo.get());
+    glViewport(0, 0, frame.width, frame.height);
+    const float far_depth = 1.0f;
+    glClearNamedFramebufferfv(fbo.get(), GL_DEPTH, 0, &far_depth);
+    depth_program_->set("u_view_projection", frame.view_projection);
+    depth_program_->use();
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    terrain.draw_mesh();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const GLuint depth_texture = surface.get();
+    // Judged over the last frame's colour before its fog: the apply's (as sized as this frame)
+    PixelFog& pixel_fog = applied_;
+    run_pixel_fog(frame, depth_texture, 0, pixel_fog);
+    const ShaderProgram& p = readback_;
+    Texture image = make_texture(GL_TEXTURE_2D), depth = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(image.get(), 1, GL_RGBA32F, frame.width, frame.height);
+    glTextureStorage2D(depth.get(), 1, GL_R32F, frame.width, frame.height);
+    p.set("u_depth", 0);
+    p.set("u_fog", 1);
+    p.set("u_size", glm::ivec2(frame.width, frame.height));
+    const glm::vec2 planes = depth_planes(frame);
+    p.set("u_near_plane", planes.x);
+    p.set("u_far_plane", planes.y);
+    p.use();
+    glBindTextureUnit(0, depth_texture);
+    glBindTextureUnit(1, pixel_fog.fog.get());
+    glBindImageTexture(0, image.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    // Rows bottom-up in GL, top-down in the buffer.
+    auto read = [&](GLuint texture, GLenum format, int channels, std::vector<float>& into) {
+        std::vector<float> bottom_up(std::size_t(frame.width) * frame.height * channels);
+        glGetTextureImage(texture, 0, format, GL_FLOAT, GLsizei(bottom_up.size() * sizeof(float)), bottom_up.data());
+        into.resize(bottom_up.size());
+        const std::size_t row = std::size_t(frame.width) * channels;
+        for (int y = 0; y < frame.height; ++y)
+            std::memcpy(&into[std::size_t(y) * row], &bottom_up[std::size_t(frame.height - 1 - y) * row],
+                        row * sizeof(float));
+    };
+    out.width = frame.width;
+    out.height = frame.height;
+    read(image.get(), GL_RGBA, 4, out.rgba);
+    read(depth.get(), GL_RED, 1, out.depth);
+    return out;
 }
 
 }  // namespace kiri::render::detail
