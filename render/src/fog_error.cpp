@@ -68,16 +68,74 @@ double reference_luminance(const geometry::ReferenceImage& ref, std::size_t k, d
     return y_shaded * ref.transmittance[k] + geometry::luminance(ref.inscatter[k]);
 }
 
+std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& ref, double bend)
+{
+    std::vector<std::size_t> edges;
+    const auto depth = [&](int x, int y) { return ref.depth[std::size_t(y) * ref.width + x]; };
+    const int axes[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
+    for (int y = 0; y < ref.height; ++y)
+        for (int x = 0; x < ref.width; ++x) {
+            const double d = depth(x, y);
+            bool edge = false;
+            for (const auto& a : axes) {
+                const int x0 = x - a[0], y0 = y - a[1], x1 = x + a[0], y1 = y + a[1];
+                const bool has0 = x0 >= 0 && y0 >= 0 && x0 < ref.width && y0 < ref.height;
+                const bool has1 = x1 >= 0 && y1 >= 0 && x1 < ref.width && y1 < ref.height;
+                // The sky beside the terrain, either way (a neighbour outside the image: none).
+                const double before = has0 ? depth(x0, y0) : d, after = has1 ? depth(x1, y1) : d;
+                edge = edge || std::isinf(d) != std::isinf(before) || std::isinf(d) != std::isinf(after);
+                // The bend, along the axes whose both neighbours lie in the image.
+                if (has0 && has1 && !std::isinf(d) && !std::isinf(before) && !std::isinf(after))
+                    edge = edge || std::abs(before - 2.0 * d + after) > bend * d;
+            }
+            if (edge)
+                edges.push_back(std::size_t(y) * ref.width + x);
+        }
+    return edges;
+}
+
+std::vector<glm::dvec2> sample_points(const std::vector<std::size_t>& pixels, const RadianceSamples& samples)
+{
+    std::vector<glm::dvec2> points;
+    points.reserve(pixels.size() * std::size_t(samples.samples));
+    const std::size_t width = std::size_t(std::max(samples.width, 1));
+    for (std::size_t k : pixels)
+        for (int s = 0; s < samples.samples; ++s)
+            points.emplace_back(double(k % width) + 0.5 + samples.offsets[std::size_t(2 * s)],
+                                double(k / width) + 0.5 + samples.offsets[std::size_t(2 * s + 1)]);
+    return points;
+}
+
 FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
                         const geometry::ReferenceImage& ref, std::vector<float>* signed_error,
-                        const RadianceImage* without_sun)
+                        const RadianceImage* without_sun, const SampleReference* at_samples)
 {
     const std::size_t n = std::size_t(ref.width) * std::size_t(ref.height);
-    for (const RadianceImage* image : {&with_fog, &without_fog, without_sun})
-        if (image && (image->width != ref.width || image->height != ref.height || image->rgba.size() != 4 * n))
+    const auto check = [](const RadianceImage* image, int width, int height) {
+        if (image &&
+            (image->width != width || image->height != height ||
+             image->rgba.size() != 4 * std::size_t(width) * std::size_t(height)))
             throw Error("compare_frames: a frame is " + std::to_string(image->width) + "x" +
-                        std::to_string(image->height) + ", the reference " + std::to_string(ref.width) + "x" +
-                        std::to_string(ref.height));
+                        std::to_string(image->height) + ", the reference " + std::to_string(width) + "x" +
+                        std::to_string(height));
+    };
+    for (const RadianceImage* image : {&with_fog, &without_fog, without_sun})
+        check(image, ref.width, ref.height);
+    if (at_samples) {
+        for (const RadianceSamples* frame : {at_samples->without_fog, at_samples->without_sun})
+            if (frame &&
+                (frame->width != ref.width || frame->height != ref.height ||
+                 frame->rgba.size() != 4 * n * std::size_t(frame->samples)))
+                throw Error("compare_frames: the samples of a frame are " + std::to_string(frame->width) + "x" +
+                            std::to_string(frame->height) + ", the reference " + std::to_string(ref.width) + "x" +
+                            std::to_string(ref.height));
+        if (!at_samples->without_fog ||
+            at_samples->reference.transmittance.size() !=
+                at_samples->pixels.size() * std::size_t(at_samples->without_fog->samples))
+            throw Error("compare_frames: the reference at the samples has " +
+                        std::to_string(at_samples->reference.transmittance.size()) + " rays for " +
+                        std::to_string(at_samples->pixels.size()) + " pixels, or no frame without fog");
+    }
     FogError e;
     std::vector<double> errors;
     if (signed_error)
@@ -86,9 +144,32 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
         const float* p = &image.rgba[4 * k];
         return geometry::luminance({p[0], p[1], p[2]});
     };
+    // The reference's luminance per pixel: its centre's ray, or the mean over its samples.
+    std::vector<double> y_refs(n, -1.0);
+    if (at_samples) {
+        const int m = at_samples->without_fog->samples;
+        const auto sample_luminance = [&](const RadianceSamples& frame, std::size_t k, int s) {
+            const float* p = &frame.rgba[4 * (k * std::size_t(m) + std::size_t(s))];
+            return geometry::luminance({p[0], p[1], p[2]});
+        };
+        for (std::size_t i = 0; i < at_samples->pixels.size(); ++i) {
+            const std::size_t k = at_samples->pixels[i];
+            if (k >= n)
+                throw Error("compare_frames: pixel " + std::to_string(k) + " of the samples outside the frame");
+            double sum = 0.0;
+            for (int s = 0; s < m; ++s)
+                sum += reference_luminance(
+                    at_samples->reference, i * std::size_t(m) + std::size_t(s),
+                    sample_luminance(*at_samples->without_fog, k, s),
+                    at_samples->without_sun ? sample_luminance(*at_samples->without_sun, k, s) : -1.0);
+            y_refs[k] = sum / double(m);
+        }
+    }
     for (std::size_t k = 0; k < n; ++k) {
         const double y_bg = luminance_at(without_fog, k);
-        const double y_ref = reference_luminance(ref, k, y_bg, without_sun ? luminance_at(*without_sun, k) : -1.0);
+        const double y_ref = y_refs[k] >= 0.0
+            ? y_refs[k]
+            : reference_luminance(ref, k, y_bg, without_sun ? luminance_at(*without_sun, k) : -1.0);
         if (!(std::abs(y_ref - y_bg) > 0.01 * y_ref))
             continue;  // the fog hardly shows here
         const double y_gpu = luminance_at(with_fog, k);

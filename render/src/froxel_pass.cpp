@@ -122,7 +122,8 @@ FroxelPass::FroxelPass()
                "froxel_medium.glsl", "froxel_opaque.comp"}),
       integrate_(light_libraries("froxel_integrate.comp")), classify_(march_libraries("froxel_classify.comp")),
       pixels_(pixel_libraries("froxel_pixels.comp")), upsample_(pixel_libraries("froxel_upsample.comp")),
-      apply_program_({"froxel_apply.comp"}), readback_({"froxel_frame.glsl", "froxel_readback.comp"})
+      apply_program_({"froxel_apply.comp"}), readback_({"froxel_frame.glsl", "froxel_readback.comp"}),
+      edges_({"froxel_frame.glsl", "depth_samples.glsl", "froxel_edges.comp"})
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
@@ -287,17 +288,24 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     ++stats_.updates;
 }
 
-void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture)
+void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture,
+                       const FrameSamples& samples)
 {
     if (!visible_ || !apply_)
         return;
     const ScopedPassTimer timed(timers_[apply_stage]);
     run_pixel_fog(frame, depth_texture, color_texture, applied_);
+    const bool edges = run_edges(frame, depth_texture, samples, applied_);
     const ShaderProgram& p = apply_program_;
     p.set("u_fog", 0);
+    p.set("u_edges", int(edges));
+    p.set("u_edge", 1);
+    p.set("u_edge_fog", 2);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     p.use();
     glBindTextureUnit(0, applied_.fog.get());
+    glBindTextureUnit(1, applied_.edge.get());
+    glBindTextureUnit(2, applied_.edge_fog.get());
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -564,9 +572,11 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
 void FroxelPass::append_timings(std::vector<PassTime>& out) const
 {
     stats_.applied_pixels = applied_pixels_;
-    stats_.marched_pixels = stats_.upsampled_pixels = 0;
-    if (applied_pixels_ > 0)
+    stats_.marched_pixels = stats_.upsampled_pixels = stats_.edge_pixels = 0;
+    if (applied_pixels_ > 0) {
         std::tie(stats_.marched_pixels, stats_.upsampled_pixels) = applied_.counts();
+        stats_.edge_pixels = applied_.edge_count();
+    }
     for (const PassTimer& timer : timers_)
         if (timer.ran())
             out.push_back(timer.result());

@@ -65,8 +65,15 @@ public:
     void set_resolution(double scale);
     //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's).
     void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
-    //! The fog on the resolved frame (colour: RGBA8, read and written).
-    void apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture);
+    //! The frame's samples before the resolve (RenderTargets::multisampled_color, _depth).
+    struct FrameSamples {
+        GLuint color = 0, depth = 0;
+        int count = 1;
+        const float* offsets = nullptr;  //!< each sample's offset from the pixel's centre (x, y; 8)
+    };
+    //! The fog on the resolved frame (colour: RGBA16F, read and written); where a pixel's
+    //! samples see two surfaces, each side its own (froxel_edges.comp).
+    void apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture, const FrameSamples& samples);
     //! froxel_apply.glsl's uniforms and textures on a program linking froxel_common.glsl,
     //! froxel_medium.glsl and froxel_apply.glsl (for layers and particles: froxel_fog(world)).
     void bind_apply(const ShaderProgram& program) const;
@@ -93,7 +100,7 @@ private:
     };
     ShaderProgram density_, lighting_, temporal_, accumulate_, opaque_;
     HazeVariants integrate_, classify_, pixels_, upsample_;
-    ShaderProgram apply_program_, readback_;
+    ShaderProgram apply_program_, readback_, edges_;
     // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the grids of
     // samples and what their points are judged by, the fog, the lists of the points that march
     // (one per refinement) and their counts, the frame before its fog.
@@ -107,14 +114,27 @@ private:
         Texture fog, background;
         // The points each refinement (spacings 4, 2, 1) left to march, and its counts.
         std::array<Buffer, sample_spacings.size()> lists;
+        // Pixels whose samples see two surfaces (froxel_edges.comp): the other side's colour
+        // and share, its window depth, its fog; the list of them, which march.
+        Texture edge, edge_depth, edge_fog;
+        Buffer edge_list;
+        bool edges_run = false;  // the last frame split its edges
         void resize(int width, int height);
         //! (pixels that marched, pixels that took their samples' mean) in the last run.
         std::pair<int, int> counts() const;
+        //! Pixels split between two surfaces in the last frame.
+        int edge_count() const;
     };
     PixelFog applied_;  // the apply's; read_fog runs over it again, judged over its background
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,
     //! judged over its colour (RGBA16F, before the fog; 0: out.background's, the last one copied).
     void run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out);
+    //! The apply's pixels whose samples see two surfaces: the other side's colour, share and
+    //! depth, and its fog (out.edge, edge_depth, edge_fog). Whether it ran.
+    bool run_edges(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out);
+    //! A program of froxel_frame.glsl's pixels (the march's, the grids') bound for the frame, its
+    //! grid at `spacing`, the frame's depth on the unit u_depth reads.
+    void bind_pixel_program(const ShaderProgram& program, const FrameContext& frame, int spacing) const;
     std::unique_ptr<ShaderProgram> depth_program_;  // built on first use
     FroxelMedium medium_gpu_;
     FroxelTileBounds tile_bounds_;

@@ -57,6 +57,19 @@ void FroxelPass::PixelFog::resize(int w, int h)
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(background.get(), 0, GL_RGBA, GL_FLOAT, black);
     fog = make_fog_image(size);
+    edge = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(edge.get(), 1, GL_RGBA16F, w, h);
+    edge_depth = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(edge_depth.get(), 1, GL_R32F, w, h);
+    edge_fog = make_fog_image(size);
+    for (const Texture* t : {&edge, &edge_depth}) {
+        glTextureParameteri(t->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(t->get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
+    edge_list = make_buffer();
+    glNamedBufferStorage(edge_list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(w) * h),
+                         nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+    edges_run = false;
     // Refinement k lists points of the grid at half the spacing of grid k.
     for (std::size_t k = 0; k < sample_spacings.size(); ++k) {
         const glm::ivec2 n = grid_points(size, sample_spacings[k] / 2);
@@ -80,6 +93,78 @@ std::pair<int, int> FroxelPass::PixelFog::counts() const
     return {marched, upsampled};
 }
 
+int FroxelPass::PixelFog::edge_count() const
+{
+    if (!edges_run || !edge_list)
+        return 0;
+    MarchHeader h;
+    glGetNamedBufferSubData(edge_list.get(), 0, sizeof h, &h);
+    return int(h.listed);
+}
+
+void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& frame, int spacing) const
+{
+    bind_apply(p);
+    bind_light(p, frame);  // every sampler on its own unit, used or not
+    const glm::vec2 planes = depth_planes(frame);
+    p.set("u_depth", unit_frame_depth);
+    p.set("u_size", glm::ivec2(frame.width, frame.height));
+    p.set("u_near_plane", planes.x);
+    p.set("u_far_plane", planes.y);
+    p.set("u_spacing", spacing);
+}
+
+bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out)
+{
+    out.edges_run = false;
+    // Only where pixels march (the fog-aware apply), and only in a frame drawn at the still's
+    // resolution: a frame the preview draws small while the view moves has more edge pixels for
+    // its size and no time for their marches.
+    const bool marching = visible_ && apply_ && options_.fog_aware;
+    if (!marching || resolution_ < 1.0 || samples.count < 2 || samples.color == 0 || samples.depth == 0 ||
+        !samples.offsets)
+        return false;
+    const MarchHeader header;
+    glNamedBufferSubData(out.edge_list.get(), 0, sizeof header, &header);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.edge_list.get());
+    // The other side of each split pixel: its colour, share and depth, listed.
+    const ShaderProgram& e = edges_;
+    const glm::vec2 planes = depth_planes(frame);
+    e.set("u_depth", unit_frame_depth);
+    e.set("u_size", glm::ivec2(frame.width, frame.height));
+    e.set("u_near_plane", planes.x);
+    e.set("u_far_plane", planes.y);
+    e.set("u_ms_depth", unit_samples);
+    e.set("u_ms_color", unit_background);
+    e.set("u_samples", std::min(samples.count, 8));
+
+    glProgramUniform2fv(e.id(), e.location("u_offsets"), 8, samples.offsets);
+    e.use();
+    glBindTextureUnit(unit_frame_depth, depth_texture);
+    glBindTextureUnit(unit_samples, samples.depth);
+    glBindTextureUnit(unit_background, samples.color);
+    glBindImageTexture(0, out.edge.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+    glBindImageTexture(1, out.edge_depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
+    glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
+                    GL_TEXTURE_FETCH_BARRIER_BIT);
+    // Their marches at that depth: the grids' listed marches (froxel_pixels.comp's stage 1) at
+    // every pixel, over the other side's depth.
+    const ShaderProgram& pixels = pixels_.get(options_.height_fog.enabled());
+    bind_pixel_program(pixels, frame, 1);
+    pixels.set("u_stage", 1);
+    pixels.use();
+    glBindTextureUnit(unit_frame_depth, out.edge_depth.get());
+    glBindImageTexture(0, out.edge_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.edge_list.get());
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    out.edges_run = true;
+    return true;
+}
+
 void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out)
 {
     out.resize(frame.width, frame.height);
@@ -95,17 +180,8 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
     for (const Buffer& list : out.lists)
         glNamedBufferSubData(list.get(), 0, sizeof header, &header);
     glBindTextureUnit(unit_frame_depth, depth_texture);
-    const glm::vec2 planes = depth_planes(frame);
     const glm::ivec2 size(frame.width, frame.height);
-    const auto bind = [&](const ShaderProgram& p, int spacing) {
-        bind_apply(p);
-        bind_light(p, frame);  // every sampler on its own unit, used or not
-        p.set("u_depth", unit_frame_depth);
-        p.set("u_size", size);
-        p.set("u_near_plane", planes.x);
-        p.set("u_far_plane", planes.y);
-        p.set("u_spacing", spacing);
-    };
+    const auto bind = [&](const ShaderProgram& p, int spacing) { bind_pixel_program(p, frame, spacing); };
     // The grid at `spacing` into `image` (its points' info into `info`, 0: none) from the one at
     // twice it (`coarser`, its points' info `coarser_info`), listing into `list` the points that
     // march, then marching them.

@@ -5,6 +5,8 @@
 #include <string>
 
 #include "kiri/geometry/core/error.hpp"
+#include <glm/vec2.hpp>
+
 #include "depth_pass.hpp"
 #include "shader_program.hpp"
 
@@ -28,12 +30,12 @@ void RenderTargets::ensure(int width, int height)
     if (width <= 0 || height <= 0 || width > max_size || height > max_size)
         throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) +
                     " is outside what this OpenGL supports (1.." + std::to_string(max_size) + ")");
-    msaa_color_ = make_renderbuffer();
+    msaa_color_ = make_texture(GL_TEXTURE_2D_MULTISAMPLE);
     msaa_depth_ = make_texture(GL_TEXTURE_2D_MULTISAMPLE);
     display_color_ = make_renderbuffer();
     resolved_color_ = make_texture(GL_TEXTURE_2D);
     resolved_depth_ = make_texture(GL_TEXTURE_2D);
-    glNamedRenderbufferStorageMultisample(msaa_color_.get(), samples, GL_RGBA16F, width, height);
+    glTextureStorage2DMultisample(msaa_color_.get(), samples, GL_RGBA16F, width, height, GL_TRUE);
     glTextureStorage2DMultisample(msaa_depth_.get(), samples, GL_DEPTH_COMPONENT32F, width, height, GL_TRUE);
     glNamedRenderbufferStorage(display_color_.get(), GL_RGBA8, width, height);
     for (const Texture* t : {&resolved_color_, &resolved_depth_}) {
@@ -46,7 +48,7 @@ void RenderTargets::ensure(int width, int height)
     msaa_ = make_framebuffer();
     resolved_ = make_framebuffer();
     display_ = make_framebuffer();
-    glNamedFramebufferRenderbuffer(msaa_.get(), GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color_.get());
+    glNamedFramebufferTexture(msaa_.get(), GL_COLOR_ATTACHMENT0, msaa_color_.get(), 0);
     glNamedFramebufferTexture(msaa_.get(), GL_DEPTH_ATTACHMENT, msaa_depth_.get(), 0);
     glNamedFramebufferTexture(resolved_.get(), GL_COLOR_ATTACHMENT0, resolved_color_.get(), 0);
     glNamedFramebufferTexture(resolved_.get(), GL_DEPTH_ATTACHMENT, resolved_depth_.get(), 0);
@@ -64,7 +66,7 @@ void RenderTargets::prepare_depth_resolve()
 {
     if (!depth_resolve_) {
         depth_resolve_ = std::make_shared<ShaderProgram>(
-            std::initializer_list<std::string_view>{"fullscreen.vert", "depth_resolve.frag"});
+            std::initializer_list<std::string_view>{"depth_samples.glsl", "fullscreen.vert", "depth_resolve.frag"});
         empty_vao_ = make_vertex_array();
     }
     // Where the implementation puts the samples, as offsets from the pixel's centre.
@@ -117,6 +119,36 @@ std::vector<std::uint8_t> RenderTargets::read_rgba() const
     glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
     for (int y = 0; y < height_; ++y)
         std::memcpy(&top_down[std::size_t(y) * row], &bottom_up[std::size_t(height_ - 1 - y) * row], row);
+    return top_down;
+}
+
+std::vector<float> RenderTargets::read_samples() const
+{
+    const int n = std::max(resolve_samples_, 1);
+    std::vector<float> bottom_up(std::size_t(width_) * std::size_t(n) * std::size_t(height_) * 4);
+    if (bottom_up.empty())
+        return bottom_up;
+    if (!copy_samples_)
+        copy_samples_ = std::make_shared<ShaderProgram>(std::initializer_list<std::string_view>{"copy_samples.comp"});
+    Texture side_by_side = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(side_by_side.get(), 1, GL_RGBA32F, width_ * n, height_);
+    const ShaderProgram& p = *copy_samples_;
+    p.set("u_color", 0);
+    p.set("u_samples", n);
+    p.set("u_size", glm::ivec2(width_, height_));
+    p.use();
+    glBindTextureUnit(0, msaa_color_.get());
+    glBindImageTexture(0, side_by_side.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glGetTextureImage(side_by_side.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(bottom_up.size() * sizeof(float)),
+                      bottom_up.data());
+    std::vector<float> top_down(bottom_up.size());
+    const std::size_t row = std::size_t(width_) * std::size_t(n) * 4;
+    for (int y = 0; y < height_; ++y)
+        std::memcpy(&top_down[std::size_t(y) * row], &bottom_up[std::size_t(height_ - 1 - y) * row],
+                    row * sizeof(float));
     return top_down;
 }
 

@@ -26,12 +26,22 @@ public:
     void resolve(float near_plane, float far_plane);
     //! Colour rows top to bottom (the GL origin is bottom-left).
     std::vector<std::uint8_t> read_rgba() const;
+    //! Every sample's linear radiance before the resolve (RGBA; rows top to bottom, per pixel its
+    //! resolved_samples() samples in turn).
+    std::vector<float> read_samples() const;
     //! Depth in [0, 1] of pixel (x, y), origin top-left.
     float read_depth(int x, int y) const;
     //! Resolved linear radiance (+ depth): where passes after the resolve blend.
     GLuint hdr_framebuffer() const { return resolved_.get(); }
     GLuint hdr_color() const { return resolved_color_.get(); }
     GLuint resolved_depth() const { return resolved_depth_.get(); }
+    //! The multisampled colour and depth before the resolve (the froxels' apply splits a pixel
+    //! whose samples see two surfaces), and how many samples a pixel has.
+    GLuint multisampled_color() const { return msaa_color_.get(); }
+    GLuint multisampled_depth() const { return msaa_depth_.get(); }
+    int resolved_samples() const { return resolve_samples_; }
+    //! Each sample's offset from its pixel's centre (pixels; x, y per sample, 8 samples).
+    const float* sample_offsets() const { return sample_offsets_.data(); }
     //! The tone-mapped 8-bit image (+ the resolved depth).
     GLuint display_framebuffer() const { return display_.get(); }
     int width() const { return width_; }
@@ -41,10 +51,11 @@ private:
     void prepare_depth_resolve();
     int width_ = 0, height_ = 0;
     Framebuffer msaa_, resolved_, display_;
-    Renderbuffer msaa_color_, display_color_;
-    Texture msaa_depth_;                       // multisampled, read by the depth resolve
+    Renderbuffer display_color_;
+    Texture msaa_color_, msaa_depth_;          // multisampled, read by the resolve and the froxels' edges
     Texture resolved_color_, resolved_depth_;  // sampled by passes drawn after the resolve
     std::shared_ptr<ShaderProgram> depth_resolve_;
+    mutable std::shared_ptr<ShaderProgram> copy_samples_;  // built on first use
     VertexArray empty_vao_;
     int resolve_samples_ = 0;
     std::vector<float> sample_offsets_;  // depth_resolve.frag's u_offsets

@@ -421,7 +421,9 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     }
     if (fog) {  // the volume from the frame's depth, then the fog on the resolved frame
         r.froxel->update(frame, r.terrain, r.targets.resolved_depth());
-        r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth());
+        r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth(),
+                        {r.targets.multisampled_color(), r.targets.multisampled_depth(), r.targets.resolved_samples(),
+                         r.targets.sample_offsets()});
     }
     if (!layers_multisampled) {  // layers in their own target, composited after the resolve
         const ScopedPassTimer timed(r.layers_timer);
@@ -535,6 +537,22 @@ RadianceImage Renderer::read_radiance() const
                          image.rgba.begin() + std::ptrdiff_t((image.height - 1 - y) * row));
     detail::check_gl_errors("Renderer::read_radiance");
     return image;
+}
+
+RadianceSamples Renderer::read_radiance_samples() const
+{
+    const detail::RenderTargets& t = impl_->targets;
+    RadianceSamples out;
+    out.width = t.width();
+    out.height = t.height();
+    out.samples = std::max(t.resolved_samples(), 1);
+    out.rgba = t.read_samples();
+    // GL's sample positions run up the pixel, the image's rows down.
+    out.offsets.assign(t.sample_offsets(), t.sample_offsets() + 2 * out.samples);
+    for (int s = 0; s < out.samples; ++s)
+        out.offsets[std::size_t(2 * s + 1)] = -out.offsets[std::size_t(2 * s + 1)];
+    detail::check_gl_errors("Renderer::read_radiance_samples");
+    return out;
 }
 
 std::optional<glm::dvec3> Renderer::pick(int x, int y) const

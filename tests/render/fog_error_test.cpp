@@ -2,6 +2,7 @@
 // exactly: no GL, the reference and the frames written by hand.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -101,6 +102,87 @@ TEST(FogError, WithTheFrameWithoutTheSunTheGPUsOwnGroundIsShaded)
     EXPECT_NEAR(signed_error[1], 0.1, 1e-6);
     const RadianceImage wrong_size = grey(3, 1, 0.2f);
     EXPECT_THROW(kiri::render::compare_frames(fog, grey(2, 1, 1.0f), ref, nullptr, &wrong_size), kiri::Error);
+}
+
+// A pixel straddling a ridge (two samples, nothing behind them but air) and the fogged valley
+// behind it (two samples): the reference is the mean over its samples, each composed over that
+// sample of the frame without fog, not its centre's ray.
+TEST(FogError, APixelOfTwoSurfacesIsJudgedByTheMeanOverItsSamples)
+{
+    kiri::geometry::ReferenceImage centre;  // its centre sees the valley: T 0.2, in-scatter 0.5
+    centre.width = 2;
+    centre.height = 1;
+    centre.transmittance = {0.2, 0.2};
+    centre.inscatter = {glm::dvec3(0.5), glm::dvec3(0.5)};
+    centre.depth = {1000.0, 1000.0};
+    kiri::render::RadianceSamples samples;  // pixel 0: ridge 0.4, 0.4, valley 1.0, 1.0; pixel 1 all valley
+    samples.width = 2;
+    samples.height = 1;
+    samples.samples = 4;
+    samples.offsets = {-0.125f, -0.375f, 0.375f, -0.125f, -0.375f, 0.125f, 0.125f, 0.375f};
+    for (float y : {0.4f, 0.4f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f})
+        samples.rgba.insert(samples.rgba.end(), {y, y, y, 1.0f});
+    kiri::render::SampleReference at;
+    at.pixels = {0};
+    at.reference.width = 4;
+    at.reference.height = 1;
+    at.reference.transmittance = {1.0, 1.0, 0.2, 0.2};
+    at.reference.inscatter = {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.5), glm::dvec3(0.5)};
+    at.reference.depth = {500.0, 500.0, 1000.0, 1000.0};
+    at.without_fog = &samples;
+    // Pixel 0: (0.4 + 0.4 + 0.7 + 0.7) / 4 = 0.55 (its centre's ray over the mean 0.7: 0.64);
+    // pixel 1 by its centre: 1.0 * 0.2 + 0.5 = 0.7.
+    RadianceImage without = grey(2, 1, 1.0f);
+    without.rgba[0] = without.rgba[1] = without.rgba[2] = 0.7f;
+    RadianceImage fog = grey(2, 1, 0.7f);
+    fog.rgba[0] = fog.rgba[1] = fog.rgba[2] = 0.605f;  // 10 % too bright
+    std::vector<float> signed_error;
+    kiri::render::FogError e = kiri::render::compare_frames(fog, without, centre, &signed_error, nullptr, &at);
+    EXPECT_EQ(e.fog_pixels, 2);
+    EXPECT_NEAR(signed_error[0], 0.1, 1e-6);
+    EXPECT_NEAR(signed_error[1], 0.0, 1e-6);
+    // Without the samples the centre's ray judges pixel 0: 0.605 against 0.64.
+    e = kiri::render::compare_frames(fog, without, centre, &signed_error);
+    EXPECT_NEAR(signed_error[0], 0.605 / 0.64 - 1.0, 1e-6);
+    // A reference with a ray too few for its samples, or samples of another size: an error.
+    at.reference.transmittance.pop_back();
+    EXPECT_THROW(kiri::render::compare_frames(fog, without, centre, nullptr, nullptr, &at), kiri::Error);
+
+    // Where the samples lie: pixel (x, y)'s centre plus each offset, in image coordinates.
+    const std::vector<glm::dvec2> points = kiri::render::sample_points({1}, samples);
+    ASSERT_EQ(points.size(), 4u);
+    EXPECT_DOUBLE_EQ(points[0].x, 1.375);
+    EXPECT_DOUBLE_EQ(points[0].y, 0.125);
+    EXPECT_DOUBLE_EQ(points[3].x, 1.625);
+    EXPECT_DOUBLE_EQ(points[3].y, 0.875);
+}
+
+// A pixel's footprint holds two surfaces where its depth and its neighbours' do not lie on a
+// line, or the sky meets the terrain; a smooth slope's steadily growing depths do not.
+TEST(FogError, FootprintEdgesAreWhereTheDepthBendsOrTheSkyBegins)
+{
+    kiri::geometry::ReferenceImage ref;
+    ref.width = 8;
+    ref.height = 3;
+    ref.depth.resize(24);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 8; ++x)  // a slope: depth linear in x; a ridge in front of it from x = 5
+            ref.depth[std::size_t(y * 8 + x)] = x < 5 ? 1000.0 + 100.0 * x : 400.0;
+    std::vector<std::size_t> edges = kiri::render::footprint_edges(ref);
+    std::vector<std::size_t> expected;
+    for (int y = 0; y < 3; ++y)
+        for (int x : {4, 5})
+            expected.push_back(std::size_t(y * 8 + x));
+    EXPECT_EQ(edges, expected);
+    // The sky above the slope's first row.
+    for (int x = 0; x < 8; ++x)
+        ref.depth[std::size_t(x)] = HUGE_VAL;
+    edges = kiri::render::footprint_edges(ref);
+    for (int x = 0; x < 8; ++x) {
+        EXPECT_TRUE(std::count(edges.begin(), edges.end(), std::size_t(x)));      // the sky beside the terrain
+        EXPECT_TRUE(std::count(edges.begin(), edges.end(), std::size_t(8 + x)));  // the terrain beside the sky
+        EXPECT_EQ(std::count(edges.begin(), edges.end(), std::size_t(16 + x)), x == 4 || x == 5);
+    }
 }
 
 }  // namespace

@@ -38,14 +38,22 @@ FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int w
     const auto start = std::chrono::steady_clock::now();
     geometry::ReferenceOptions options;
     options.surround = base.terrain.surround;
-    reference_ = geometry::render_reference_fog(
-        {fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
-        render::scene_fog_lighting(base, &terrain, fog.medium.get(), froxel, fog.light_volume), options);
-    reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const geometry::FogLighting lighting =
+        render::scene_fog_lighting(base, &terrain, fog.medium.get(), froxel, fog.light_volume);
+    reference_ = geometry::render_reference_fog({fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
+                                                lighting, options);
     context_ = render::create_headless_context();
     renderer_ = std::make_unique<render::Renderer>();
     renderer_->set_terrain(terrain, 1.0, base.terrain.surround);
     renderer_->set_sun(render::to_sun(base.sun));
+    // Where a pixel's footprint holds two surfaces, the reference through each of the frame's
+    // samples there (where the renderer puts them: a frame drawn to see).
+    renderer_->draw(camera_, width, height);
+    at_samples_.pixels = render::footprint_edges(reference_);
+    at_samples_.reference = geometry::render_reference_rays(
+        {fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view, lighting,
+        render::sample_points(at_samples_.pixels, renderer_->read_radiance_samples()), options);
+    reference_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 FogJudge::~FogJudge() = default;
@@ -148,10 +156,12 @@ render::FogError FogJudge::error(std::vector<float>* signed_error)
     last_image_ = renderer_->render(camera_, width_, height_);
     const render::RadianceImage with = renderer_->read_radiance();
     // The frame without fog sees the same terrain, in the same shadows (the sun's, as set).
-    const render::RadianceImage& plain = without_fog(rendering_->sun().terrain_shadows);
-    const render::RadianceImage& sky_lit = without_sun();
+    const Plain& plain = without_fog(rendering_->sun().terrain_shadows);
+    const Plain& sky_lit = without_sun();
+    at_samples_.without_fog = &plain.samples;
+    at_samples_.without_sun = &sky_lit.samples;
     rendering_->apply(*renderer_);  // back to the fog for what follows
-    return render::compare_frames(with, plain, reference_, signed_error, &sky_lit);
+    return render::compare_frames(with, plain.image, reference_, signed_error, &sky_lit.image, &at_samples_);
 }
 
 void FogJudge::clear_fog()
@@ -163,19 +173,19 @@ void FogJudge::clear_fog()
     renderer_->clear_sun_medium();  // the ground fully lit: the reference's shade is applied to it
 }
 
-const render::RadianceImage& FogJudge::without_fog(bool shadows)
+const FogJudge::Plain& FogJudge::without_fog(bool shadows)
 {
-    std::optional<render::RadianceImage>& plain = plain_[shadows ? 1 : 0];
+    std::optional<Plain>& plain = plain_[shadows ? 1 : 0];
     if (!plain) {
         clear_fog();
         renderer_->draw(camera_, width_, height_);
         renderer_->draw(camera_, width_, height_);
-        plain = renderer_->read_radiance();
+        plain = Plain{renderer_->read_radiance(), renderer_->read_radiance_samples()};
     }
     return *plain;
 }
 
-const render::RadianceImage& FogJudge::without_sun()
+const FogJudge::Plain& FogJudge::without_sun()
 {
     if (!sky_lit_) {
         clear_fog();
@@ -183,7 +193,7 @@ const render::RadianceImage& FogJudge::without_sun()
         dark.intensity = 0.0;
         renderer_->set_sun(dark);
         renderer_->draw(camera_, width_, height_);
-        sky_lit_ = renderer_->read_radiance();
+        sky_lit_ = Plain{renderer_->read_radiance(), renderer_->read_radiance_samples()};
         renderer_->set_sun(rendering_->sun());
     }
     return *sky_lit_;

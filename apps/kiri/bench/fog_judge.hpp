@@ -86,20 +86,26 @@ public:
 private:
     //! The renderer without any fog, nor the fog's shade on the ground.
     void clear_fog();
-    const render::RadianceImage& without_fog(bool terrain_shadows);
+    //! A frame without fog, resolved and its samples.
+    struct Plain {
+        render::RadianceImage image;
+        render::RadianceSamples samples;
+    };
+    const Plain& without_fog(bool terrain_shadows);
     //! Without fog and without the sun: the ground's sky light (compare_frames' without_sun).
-    const render::RadianceImage& without_sun();
+    const Plain& without_sun();
 
     geometry::Pipeline pipeline_;
     render::Camera camera_;
     int width_, height_;
     geometry::ReferenceImage reference_;
+    render::SampleReference at_samples_;  //!< through the samples where pixels straddle two surfaces
     std::unique_ptr<render::GlContext> context_;
     std::unique_ptr<render::Renderer> renderer_;
     std::optional<render::SceneRendering> rendering_;
     render::Image last_image_, still_image_;
-    std::optional<render::RadianceImage> plain_[2];  //!< without fog: [terrain shadows off, on]
-    std::optional<render::RadianceImage> sky_lit_;   //!< without fog and sun
+    std::optional<Plain> plain_[2];  //!< without fog: [terrain shadows off, on]
+    std::optional<Plain> sky_lit_;   //!< without fog and sun
 };
 
 }  // namespace kiri::bench

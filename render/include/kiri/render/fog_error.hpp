@@ -6,6 +6,8 @@
 #include <cmath>
 #include <vector>
 
+#include <glm/vec2.hpp>
+
 #include "kiri/geometry/reference/reference_fog.hpp"
 #include "kiri/render/image.hpp"
 #include "kiri/render/renderer.hpp"
@@ -40,9 +42,36 @@ FogError compare_fog(const FogBuffer& gpu, const geometry::ReferenceImage& refer
 //! and in-scatter errors are not separable from a frame and stay 0). `signed_error`, when
 //! given, receives per pixel (Y - Y_ref) / Y_ref, NaN where the pixel is not judged: the error's
 //! map. \throw kiri::Error when the sizes differ.
+//!
+//! A pixel whose footprint holds two surfaces (a ridge against the fogged valley behind it) is
+//! not one ray: a multisampled frame's pixel is the mean of its samples, each of which the fog
+//! should cover as far as its own surface. With `at_samples`, the reference at those pixels is
+//! the mean over the frame's samples of each one's luminance composed over that sample of the
+//! frames without fog: the exact fog over the GPU's own samples.
+struct SampleReference;
 FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& without_fog,
                         const geometry::ReferenceImage& reference, std::vector<float>* signed_error = nullptr,
-                        const RadianceImage* without_sun = nullptr);
+                        const RadianceImage* without_sun = nullptr, const SampleReference* at_samples = nullptr);
+
+//! The pixels of `reference` whose footprint may hold more than one surface: along a row, a
+//! column or a diagonal through the pixel, the view depths of its neighbours and its own do not
+//! lie on a line (second difference above `bend` times its depth: a surface's smooth slope
+//! passes, a ridge against the valley behind it does not), or one of them is the sky and
+//! another the terrain. Row-major indices, ascending.
+std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& reference, double bend = 0.01);
+
+//! The reference through the samples of a multisampled frame's `pixels`, and those samples of
+//! the frames without fog (and without the sun).
+struct SampleReference {
+    std::vector<std::size_t> pixels;     //!< row-major indices of the frame's pixels
+    geometry::ReferenceImage reference;  //!< one row: pixel i's sample s at i * samples + s
+    const RadianceSamples* without_fog = nullptr;
+    const RadianceSamples* without_sun = nullptr;  //!< or null (compare_frames' without_sun)
+};
+
+//! The image points (geometry::ReferenceView::ray_through) of the samples of `pixels` of a
+//! frame whose samples lie at `samples`' offsets: pixel i's sample s at i * samples + s.
+std::vector<glm::dvec2> sample_points(const std::vector<std::size_t>& pixels, const RadianceSamples& samples);
 
 //! compare_frames' reference luminance at pixel k over the frame without fog of luminance
 //! y_without_fog there (and without the sun, y_without_sun; negative: not drawn).

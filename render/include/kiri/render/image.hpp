@@ -18,6 +18,15 @@ struct RadianceImage {
     std::vector<float> rgba;  //!< width * height * 4, row 0 at the top
 };
 
+//! A multisampled frame's samples before the resolve: per pixel (rows top to bottom) its
+//! `samples` samples' linear radiance in turn, and where each sample lies in its pixel.
+struct RadianceSamples {
+    int width = 0, height = 0, samples = 1;
+    std::vector<float> rgba;     //!< ((y * width + x) * samples + s) * 4
+    std::vector<float> offsets;  //!< sample s at (offsets[2 s], offsets[2 s + 1]) pixels from the
+                                 //!< centre, x right, y down (the image's rows)
+};
+
 //! Writes to a temporary file beside path, then renames it: no partial PNG is ever left.
 //! \throw kiri::IoError naming the path when it cannot be written.
 void write_png_atomic(const std::filesystem::path& path, const Image& image);

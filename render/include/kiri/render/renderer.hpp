@@ -84,6 +84,9 @@ struct FroxelStats {
     //! those that took the mean of the marched half-resolution samples around them
     //! (FroxelOptions::upsample).
     int applied_pixels = 0, marched_pixels = 0, upsampled_pixels = 0;
+    //! Pixels whose samples saw two surfaces (a ridge against the fog behind it): each side got
+    //! its own fog, the other side's from a march of its own.
+    int edge_pixels = 0;
 };
 
 //! Float pixels, rows top to bottom: the fog a frame's pixels received (froxel fog).
@@ -213,6 +216,10 @@ public:
     //! The last drawn frame's linear radiance, before the tone map (what the fog renderers are
     //! judged on against the CPU reference).
     RadianceImage read_radiance() const;
+    //! The last drawn frame's samples before the resolve (its terrain and sky, and what was
+    //! drawn multisampled: no froxel fog, no particles), linear: a judge fogs each sample of a
+    //! pixel that straddles two surfaces.
+    RadianceSamples read_radiance_samples() const;
     const FrameStats& last_stats() const;
 
     //! Where the coordinates the GPU works in are measured from (render/src/render_origin.hpp):

@@ -22,6 +22,7 @@
 //! bisection).
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/medium/fog_lighting.hpp"
@@ -51,6 +52,9 @@ struct ReferenceView {
 
     //! Unit direction of the ray through the centre of pixel (x, y).
     glm::dvec3 ray(int x, int y) const;
+    //! Unit direction of the ray through image point (x, y): pixel (i, j) spans [i, i + 1] x
+    //! [j, j + 1], row 0 at the top.
+    glm::dvec3 ray_through(double x, double y) const;
     glm::dvec3 forward() const;
 };
 
@@ -108,6 +112,12 @@ RayFog reference_ray(const FogVolume& fog, const Heightfield* terrain, const glm
 //! The reference image of `view`. Pixels run in parallel (options.threads).
 ReferenceImage render_reference_fog(const FogVolume& fog, const Heightfield* terrain, const ReferenceView& view,
                                     const FogLighting& light, const ReferenceOptions& options = {});
+
+//! The rays of `view` through image points (ReferenceView::ray_through), as an image of one row:
+//! a judge's rays through a multisampled frame's samples where a pixel straddles two surfaces.
+ReferenceImage render_reference_rays(const FogVolume& fog, const Heightfield* terrain, const ReferenceView& view,
+                                     const FogLighting& light, const std::vector<glm::dvec2>& points,
+                                     const ReferenceOptions& options = {});
 
 //! Relative luminance (Rec. 709 weights).
 double luminance(const glm::dvec3& rgb);
