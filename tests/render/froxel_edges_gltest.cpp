@@ -72,9 +72,10 @@ TEST_F(FroxelGl, APixelOnARidgeFogsEachSideAsFarAsItsOwnSurface)
             ++judged;
         }
     const double edge_mean = sum / std::max(judged, 1);
-    std::printf("    %d pixels split by the apply, %zu of the reference's with two surfaces (%d judged): mean %.4f; "
-                "whole frame %.4f (p99 %.4f) over %d pixels\n",
-                split, at_samples.pixels.size(), judged, edge_mean, e.mean_relative, e.p99_relative, e.fog_pixels);
+    std::printf(
+        "    %d pixels split by the apply, %zu of the reference's with two surfaces (%d judged): mean %.4f; "
+        "whole frame %.4f (p99 %.4f) over %d pixels\n",
+        split, at_samples.pixels.size(), judged, edge_mean, e.mean_relative, e.p99_relative, e.fog_pixels);
     EXPECT_GT(split, 100);
     EXPECT_GT(judged, 200);
     EXPECT_LT(edge_mean, 0.05);

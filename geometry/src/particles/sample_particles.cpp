@@ -1,6 +1,10 @@
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <cstdint>
+#include <functional>
 #include <random>
+#include <thread>
 
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/medium/fog_lighting.hpp"
@@ -18,6 +22,86 @@ constexpr double max_particles = 2e6, max_candidates = 2e7;
 // Below 1/64 of the full density the local spacing stops growing (4x the spacing at full
 // density): the thin rims of the fog get a few large particles, not a handful of huge ones.
 constexpr double min_relative_density = 1.0 / 64.0;
+
+// The rejection sampler's trials in chunks of `trials_per_chunk`, chunk c drawn with its own
+// generator seeded by (seed, c) and evaluated a batch of chunks at a time on every core; the
+// accepted points handed out in chunk order, so they do not depend on the number of threads.
+class RejectionChunks {
+public:
+    using Target = std::function<double(const glm::dvec3&)>;
+    RejectionChunks(const detail::ShellEnvelope& envelope, Target target, std::uint64_t seed)
+        : envelope_(envelope), target_(std::move(target)), seed_(seed)
+    {}
+    //! Appends up to `wanted` accepted points (and their q) in order, counting the trials and
+    //! hits up to the last one taken (the whole chunk when it runs out).
+    void take(std::size_t wanted, std::vector<glm::dvec3>& points, std::vector<double>& q, std::size_t& trials,
+              std::size_t& hits)
+    {
+        if (next_ >= done_.size())
+            run_batch();
+        const Chunk& c = done_[next_];
+        const std::size_t n = std::min(wanted, c.points.size() - used_);
+        points.insert(points.end(), c.points.begin() + std::ptrdiff_t(used_),
+                      c.points.begin() + std::ptrdiff_t(used_ + n));
+        q.insert(q.end(), c.q.begin() + std::ptrdiff_t(used_), c.q.begin() + std::ptrdiff_t(used_ + n));
+        hits += n;
+        const std::size_t trials_before = trials_taken_;
+        used_ += n;
+        if (used_ == c.points.size()) {
+            trials_taken_ = std::size_t(next_ + 1) * trials_per_chunk;
+            ++next_;
+            used_ = 0;
+        } else {
+            trials_taken_ = std::size_t(next_) * trials_per_chunk + c.trial_of[used_ - 1] + 1;
+        }
+        trials += trials_taken_ - trials_before;
+    }
+
+private:
+    static constexpr std::size_t trials_per_chunk = 16384;
+    struct Chunk {
+        std::vector<glm::dvec3> points;
+        std::vector<double> q;
+        std::vector<std::uint32_t> trial_of;  // each point's trial within the chunk
+    };
+    void run_batch()
+    {
+        const int threads = std::max(1, int(std::thread::hardware_concurrency()));
+        const std::size_t first = done_.size(), count = std::size_t(2 * threads);
+        done_.resize(first + count);
+        std::atomic<std::size_t> next{first};
+        const auto work = [&] {
+            for (std::size_t k = next++; k < first + count; k = next++) {
+                // splitmix64 of (seed, chunk): independent streams for neighbouring chunks.
+                std::uint64_t z = seed_ + 0x9e3779b97f4a7c15ull * (k + 1);
+                z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+                z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+                std::mt19937_64 rng(z ^ (z >> 31));
+                Chunk& c = done_[k];
+                for (std::uint32_t t = 0; t < trials_per_chunk; ++t) {
+                    const detail::ShellEnvelope::Proposal proposal = envelope_.draw(rng);
+                    const double value = target_(proposal.position);
+                    if (uniform(rng) * proposal.bound < value) {
+                        c.points.push_back(proposal.position);
+                        c.q.push_back(value);
+                        c.trial_of.push_back(t);
+                    }
+                }
+            }
+        };
+        std::vector<std::thread> pool;
+        for (int t = 1; t < threads; ++t)
+            pool.emplace_back(work);
+        work();
+        for (std::thread& t : pool)
+            t.join();
+    }
+    const detail::ShellEnvelope& envelope_;
+    Target target_;
+    std::uint64_t seed_;
+    std::vector<Chunk> done_;
+    std::size_t next_ = 0, used_ = 0, trials_taken_ = 0;
+};
 
 }  // namespace
 
@@ -42,12 +126,6 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
         return empty;
     }
 
-    // The count: given, or from the spacing at full density and a first estimate of the density
-    // integral (a pilot run of the same sampler).
-    std::mt19937_64 rng(options.seed);
-    std::size_t trials = 0, hits = 0;
-    std::vector<glm::dvec3> candidates;
-    std::vector<double> density;
     // The density the particles stand for: d(p), or d(p) share(h) above `from`.
     const auto target = [&](const glm::dvec3& p) {
         const double d = medium.density(p);
@@ -56,28 +134,27 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
         const double h = medium.height_fraction(p);
         return h > share.from ? d * std::clamp(share.share(h), 0.0, share_max) : 0.0;
     };
-    // Rejection: uniform under the envelope, kept with probability q(p) / bound. A fog too thin
-    // for the wanted candidates (a thin top band) stops at `give_up` trials, or earlier once that
-    // is plainly out of reach, and keeps what it found: a thin fog gets few particles, or none,
-    // not an error.
+    // Rejection: uniform under the envelope, kept with probability q(p) / bound, in chunks of
+    // trials that run side by side on every core, each chunk with its own generator (seeded by
+    // the seed and its index), taken in order: the same candidates on any number of threads.
+    RejectionChunks chunks(envelope, target, options.seed);
+    std::vector<glm::dvec3> candidates;
+    std::vector<double> density;
+    std::size_t trials = 0, hits = 0;
+    // A fog too thin for the wanted candidates (a thin top band) stops at `give_up` trials, or
+    // earlier once that is plainly out of reach, and keeps what it found: a thin fog gets few
+    // particles, or none, not an error.
     const auto draw = [&](std::size_t wanted) {
         const std::size_t give_up = std::max<std::size_t>(wanted, 1000) * 2000;
-        for (std::size_t t = 0; candidates.size() < wanted; ++t) {
-            if (t > give_up)
+        while (candidates.size() < wanted) {
+            if (trials > give_up ||
+                (trials >= 1000000 && double(wanted) * double(trials) > 4.0 * double(give_up) * double(hits + 1)))
                 return;
-            if (t >= 1000000 && t % 65536 == 0 &&
-                double(wanted) * double(trials) > 4.0 * double(give_up) * double(hits + 1))
-                return;
-            const detail::ShellEnvelope::Proposal proposal = envelope.draw(rng);
-            const double q = target(proposal.position);
-            ++trials;
-            if (uniform(rng) * proposal.bound < q) {
-                ++hits;
-                candidates.push_back(proposal.position);
-                density.push_back(q);
-            }
+            chunks.take(wanted - candidates.size(), candidates, density, trials, hits);
         }
     };
+    // The count: given, or from the spacing at full density and a first estimate of the density
+    // integral (a pilot run of the same sampler).
     std::size_t count = std::size_t(options.count);
     if (options.spacing > 0.0) {
         draw(20000);
