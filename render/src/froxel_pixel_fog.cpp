@@ -102,15 +102,25 @@ int FroxelPass::PixelFog::edge_count() const
     return int(h.listed);
 }
 
-void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& frame, int spacing) const
+namespace {
+
+// froxel_frame.glsl's frame: its depth on unit_frame_depth, its size and projection.
+void set_frame(const ShaderProgram& p, const FrameContext& frame)
 {
-    bind_apply(p);
-    bind_light(p, frame);  // every sampler on its own unit, used or not
     const glm::vec2 planes = depth_planes(frame);
     p.set("u_depth", unit_frame_depth);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     p.set("u_near_plane", planes.x);
     p.set("u_far_plane", planes.y);
+}
+
+}  // namespace
+
+void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& frame, int spacing) const
+{
+    bind_apply(p);
+    bind_light(p, frame);  // every sampler on its own unit, used or not
+    set_frame(p, frame);
     p.set("u_spacing", spacing);
 }
 
@@ -129,15 +139,10 @@ bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, cons
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.edge_list.get());
     // The other side of each split pixel: its colour, share and depth, listed.
     const ShaderProgram& e = edges_;
-    const glm::vec2 planes = depth_planes(frame);
-    e.set("u_depth", unit_frame_depth);
-    e.set("u_size", glm::ivec2(frame.width, frame.height));
-    e.set("u_near_plane", planes.x);
-    e.set("u_far_plane", planes.y);
+    set_frame(e, frame);
     e.set("u_ms_depth", unit_samples);
     e.set("u_ms_color", unit_background);
     e.set("u_samples", std::min(samples.count, 8));
-
     glProgramUniform2fv(e.id(), e.location("u_offsets"), 8, samples.offsets);
     e.use();
     glBindTextureUnit(unit_frame_depth, depth_texture);
