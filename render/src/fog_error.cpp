@@ -111,24 +111,19 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
                         const RadianceImage* without_sun, const SampleReference* at_samples)
 {
     const std::size_t n = std::size_t(ref.width) * std::size_t(ref.height);
-    const auto check = [](const RadianceImage* image, int width, int height) {
-        if (image &&
-            (image->width != width || image->height != height ||
-             image->rgba.size() != 4 * std::size_t(width) * std::size_t(height)))
-            throw Error("compare_frames: a frame is " + std::to_string(image->width) + "x" +
-                        std::to_string(image->height) + ", the reference " + std::to_string(width) + "x" +
-                        std::to_string(height));
+    // Every frame as large as the reference, `per_pixel` RGBA values a pixel.
+    const auto check = [&](int width, int height, std::size_t values, int per_pixel) {
+        if (width != ref.width || height != ref.height || values != 4 * n * std::size_t(per_pixel))
+            throw Error("compare_frames: a frame is " + std::to_string(width) + "x" + std::to_string(height) +
+                        ", the reference " + std::to_string(ref.width) + "x" + std::to_string(ref.height));
     };
     for (const RadianceImage* image : {&with_fog, &without_fog, without_sun})
-        check(image, ref.width, ref.height);
+        if (image)
+            check(image->width, image->height, image->rgba.size(), 1);
     if (at_samples) {
         for (const RadianceSamples* frame : {at_samples->without_fog, at_samples->without_sun})
-            if (frame &&
-                (frame->width != ref.width || frame->height != ref.height ||
-                 frame->rgba.size() != 4 * n * std::size_t(frame->samples)))
-                throw Error("compare_frames: the samples of a frame are " + std::to_string(frame->width) + "x" +
-                            std::to_string(frame->height) + ", the reference " + std::to_string(ref.width) + "x" +
-                            std::to_string(ref.height));
+            if (frame)
+                check(frame->width, frame->height, frame->rgba.size(), frame->samples);
         if (!at_samples->without_fog ||
             at_samples->reference.transmittance.size() !=
                 at_samples->pixels.size() * std::size_t(at_samples->without_fog->samples))

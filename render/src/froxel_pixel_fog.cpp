@@ -3,12 +3,12 @@
 #include "froxel_pass.hpp"
 
 #include <cstddef>
-#include <cstring>
 #include <memory>
 #include <vector>
 
 #include <glm/common.hpp>
 
+#include "flip_rows.hpp"
 #include "terrain_pass.hpp"
 
 namespace kiri::render::detail {
@@ -294,15 +294,10 @@ FogBuffer FroxelPass::read_fog(const FrameContext& frame, const TerrainPass& ter
     glBindImageTexture(1, depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
     glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
-    // Rows bottom-up in GL, top-down in the buffer.
     auto read = [&](GLuint texture, GLenum format, int channels, std::vector<float>& into) {
-        std::vector<float> bottom_up(std::size_t(frame.width) * frame.height * channels);
-        glGetTextureImage(texture, 0, format, GL_FLOAT, GLsizei(bottom_up.size() * sizeof(float)), bottom_up.data());
-        into.resize(bottom_up.size());
-        const std::size_t row = std::size_t(frame.width) * channels;
-        for (int y = 0; y < frame.height; ++y)
-            std::memcpy(&into[std::size_t(y) * row], &bottom_up[std::size_t(frame.height - 1 - y) * row],
-                        row * sizeof(float));
+        into.resize(std::size_t(frame.width) * frame.height * channels);
+        glGetTextureImage(texture, 0, format, GL_FLOAT, GLsizei(into.size() * sizeof(float)), into.data());
+        flip_rows(into, std::size_t(frame.width) * channels);
     };
     out.width = frame.width;
     out.height = frame.height;

@@ -1,13 +1,14 @@
 #include "render_targets.hpp"
 
 #include <algorithm>
-#include <cstring>
 #include <string>
 
-#include "kiri/geometry/core/error.hpp"
 #include <glm/vec2.hpp>
 
+#include "kiri/geometry/core/error.hpp"
+
 #include "depth_pass.hpp"
+#include "flip_rows.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {
@@ -113,21 +114,20 @@ void RenderTargets::resolve(float near_plane, float far_plane)
 std::vector<std::uint8_t> RenderTargets::read_rgba() const
 {
     const std::size_t row = std::size_t(width_) * 4;
-    std::vector<std::uint8_t> bottom_up(row * height_), top_down(row * height_);
+    std::vector<std::uint8_t> rgba(row * height_);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, display_.get());
     glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
-    for (int y = 0; y < height_; ++y)
-        std::memcpy(&top_down[std::size_t(y) * row], &bottom_up[std::size_t(height_ - 1 - y) * row], row);
-    return top_down;
+    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    flip_rows(rgba, row);
+    return rgba;
 }
 
 std::vector<float> RenderTargets::read_samples() const
 {
     const int n = std::max(resolve_samples_, 1);
-    std::vector<float> bottom_up(std::size_t(width_) * std::size_t(n) * std::size_t(height_) * 4);
-    if (bottom_up.empty())
-        return bottom_up;
+    std::vector<float> rgba(std::size_t(width_) * std::size_t(n) * std::size_t(height_) * 4);
+    if (rgba.empty())
+        return rgba;
     if (!copy_samples_)
         copy_samples_ = std::make_shared<ShaderProgram>(std::initializer_list<std::string_view>{"copy_samples.comp"});
     Texture side_by_side = make_texture(GL_TEXTURE_2D);
@@ -142,14 +142,9 @@ std::vector<float> RenderTargets::read_samples() const
     glDispatchCompute(GLuint((width_ + 7) / 8), GLuint((height_ + 7) / 8), 1);
     glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glGetTextureImage(side_by_side.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(bottom_up.size() * sizeof(float)),
-                      bottom_up.data());
-    std::vector<float> top_down(bottom_up.size());
-    const std::size_t row = std::size_t(width_) * std::size_t(n) * 4;
-    for (int y = 0; y < height_; ++y)
-        std::memcpy(&top_down[std::size_t(y) * row], &bottom_up[std::size_t(height_ - 1 - y) * row],
-                    row * sizeof(float));
-    return top_down;
+    glGetTextureImage(side_by_side.get(), 0, GL_RGBA, GL_FLOAT, GLsizei(rgba.size() * sizeof(float)), rgba.data());
+    flip_rows(rgba, std::size_t(width_) * std::size_t(n) * 4);
+    return rgba;
 }
 
 float RenderTargets::read_depth(int x, int y) const

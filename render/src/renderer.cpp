@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "flip_rows.hpp"
 #include "frame_context.hpp"
 #include "froxel_pass.hpp"
 #include "gl_debug.hpp"
@@ -529,12 +530,7 @@ RadianceImage Renderer::read_radiance() const
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
     glGetTextureImage(t.hdr_color(), 0, GL_RGBA, GL_FLOAT, GLsizei(image.rgba.size() * sizeof(float)),
                       image.rgba.data());
-    // GL's rows run bottom to top.
-    const std::size_t row = std::size_t(image.width) * 4;
-    for (int y = 0; y < image.height / 2; ++y)
-        std::swap_ranges(image.rgba.begin() + std::ptrdiff_t(y * row),
-                         image.rgba.begin() + std::ptrdiff_t((y + 1) * row),
-                         image.rgba.begin() + std::ptrdiff_t((image.height - 1 - y) * row));
+    detail::flip_rows(image.rgba, std::size_t(image.width) * 4);
     detail::check_gl_errors("Renderer::read_radiance");
     return image;
 }

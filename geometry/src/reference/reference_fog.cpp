@@ -67,15 +67,14 @@ ReferenceImage trace_rays(const FogVolume& fog, const Heightfield* terrain, cons
     out.depth.assign(n, std::numeric_limits<double>::infinity());
     const detail::FogMarcher marcher(fog, terrain, light, options);
     const glm::dvec3 forward = view.forward();
-    const std::size_t count = n;
     run = std::max<std::size_t>(run, 1);
-    const int runs = int((count + run - 1) / run);
+    const int runs = int((n + run - 1) / run);
     std::atomic<long long> steps{0}, knots{0};
     detail::for_rows_in_parallel(options.threads, runs, [&](auto next_run) {
         detail::MarchScratch scratch;
         long long my_steps = 0, my_knots = 0;
         for (int r = next_run(); r < runs; r = next_run())
-            for (std::size_t k = std::size_t(r) * run; k < std::min(count, std::size_t(r + 1) * run); ++k) {
+            for (std::size_t k = std::size_t(r) * run; k < std::min(n, std::size_t(r + 1) * run); ++k) {
                 const glm::dvec3 w = ray_at(k);
                 const double cos_axis = glm::dot(w, forward);
                 const double t_max = view.max_depth > 0.0 && cos_axis > 0.0 ? view.max_depth / cos_axis : 1e6;
