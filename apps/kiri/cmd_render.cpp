@@ -166,12 +166,13 @@ void run(const RenderArgs& a)
             std::fprintf(stderr,
                          "kiri render: froxel apply marched %d of %d pixels (%.1f %%), took the mean of the marched "
                          "samples around them at %d (%.1f %%), read the volume elsewhere; %d pixels (%.1f %%) saw "
-                         "two surfaces and marched the farther or nearer one's fog too\n",
+                         "different fog among their samples and marched each side's (%d of them one surface fogged "
+                         "unevenly, the others two surfaces)\n",
                          stats.froxel.marched_pixels, stats.froxel.applied_pixels,
                          100.0 * stats.froxel.marched_pixels / stats.froxel.applied_pixels,
                          stats.froxel.upsampled_pixels,
                          100.0 * stats.froxel.upsampled_pixels / stats.froxel.applied_pixels, stats.froxel.edge_pixels,
-                         100.0 * stats.froxel.edge_pixels / stats.froxel.applied_pixels);
+                         100.0 * stats.froxel.edge_pixels / stats.froxel.applied_pixels, stats.froxel.fog_split_pixels);
     }
     if (const geometry::ParticleCloud* particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();

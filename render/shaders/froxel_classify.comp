@@ -61,7 +61,7 @@ bool march(ivec2 t)
             float fog_end = end;
             deepest = max(deepest, end);
             if (u_fx_shell != 0) {
-                vec2 s = froxel_pixel_stretch(px, end, cut);
+                vec2 s = froxel_pixel_stretch(froxel_pixel_shell(px), end, cut);
                 if (s.y > s.x) {
                     ++with_fog;
                     enter = vec2(min(enter.x, s.x), max(enter.y, s.x));
@@ -122,7 +122,7 @@ bool march(ivec2 t)
         vec2 centre_uv = (vec2(centre) + 0.5) / vec2(u_raster);
         float centre_depth = view_depth(centre);
         vec4 looked = froxel_fog_at(centre_uv, centre_depth);
-        vec4 marched = froxel_marched_fog(centre, centre_uv, centre_depth);
+        vec4 marched = froxel_marched_fog(centre_uv, centre_depth, froxel_pixel_shell(centre));
         if (abs(looked.a - marched.a) > u_missed || max3(abs(looked.rgb - marched.rgb)) > u_missed * scale)
             return true;
     }

@@ -1,18 +1,58 @@
 #version 450 core
-// The froxels' apply at a pixel whose samples see two surfaces (a ridge against the fogged
-// valley behind it): the resolve averaged their colours and took the depth of one side
-// (depth_resolve.frag: the side most samples lie on, the nearer on a tie), so one march at that
-// depth would fog the other side's colour as if it lay there too, and a ridge's edge against a
-// valley's fog would alias. Here, per pixel, the samples on the other side of the jump: their
-// mean colour and their share of the samples (o_edge), their mean window depth (o_edge_depth;
-// 1: the sky), and the pixel listed (FrameMarches) for its own march at that depth. Pixels
-// of one surface get a share of 0. Two surfaces, and their split, as the resolve finds them
-// (depth_samples.glsl).
+// The froxels' apply at a pixel whose samples see different fog: the resolve averaged their
+// colours and took one depth, and one march along the pixel's centre fogs them all alike.
+// - Two surfaces (a ridge against the fogged valley behind it): the resolve took the depth of one
+//   side (depth_resolve.frag: the side most samples lie on, the nearer on a tie), so one march at
+//   that depth would fog the other side's colour as if it lay there too, and a ridge's edge
+//   against a valley's fog would alias. The split is the resolve's own (depth_samples.glsl).
+// - One surface, fogged unevenly (a thread of fog in a valley narrower than the pixel, seen from
+//   afar; the fog's top meeting a slope; the fog's side wall): the samples' estimates of the fog
+//   just before their surfaces (fog_before) split at their largest gap where it exceeds
+//   u_fog_split in transmittance. The pixel's centre then stands for neither side (the fog between
+//   them), so both sides march, each along its own samples' mean ray.
+// Per pixel: the other side's mean colour and its share of the samples (o_edge); o_edge_depth:
+// its mean window depth (1: the sky) and, split by its fog, the first side's and the offset of
+// its ray (0: the centre's fog stands for it); the ray through the other side's samples' mean
+// offset and bounds of the rays' stretch of the shell (o_edge_ray, froxel_pixels.comp's
+// u_edge_ray); the pixel listed (FrameMarches) for the other side's march, split by its fog once
+// more (y | 0x8000) for the first side's, and counted in fm_sampled. Pixels whose samples see one
+// fog get a share of 0.
 layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2DMS u_ms_depth;
 uniform sampler2DMS u_ms_color;
+uniform float u_fog_split;  // 0: split two surfaces alone
 layout(rgba16f, binding = 0) writeonly uniform image2D o_edge;
-layout(r32f, binding = 1) writeonly uniform image2D o_edge_depth;
+layout(rgba32f, binding = 1) writeonly uniform image2D o_edge_depth;
+layout(rgba32f, binding = 2) writeonly uniform image2D o_edge_ray;
+
+// The fog a ray through screen point uv crosses just before its surface at view depth `depth`:
+// the Medium's column over the surface taken as level, the ray's length under its top (returned,
+// in view depth), and what that lets through (t). Meant to tell the samples of one pixel apart,
+// not to light them: the march does that.
+float fog_before(vec2 uv, float depth, out float t)
+{
+    t = 1.0;
+    vec3 ray = fx_ray(uv);
+    vec3 p = u_fx_eye + ray * depth;
+    if (!shell_covers(p.xy))
+        return 0.0;
+    vec4 c = shell_column(p.xy);  // floor, bottom, top, coverage
+    float over = c.z > c.x ? c.z - p.z : 0.0;
+    if (!(over > 0.0) || !(c.w > 0.0))
+        return 0.0;
+    float reach = length(ray) * depth;  // the eye's distance: the ray is no longer
+    float along = min(over / max(-normalize(ray).z, 1e-3), reach);
+    t = exp(-u_md_extinction * c.w * along);
+    return along * depth / reach;
+}
+
+void list_march(uint entry)
+{
+    uint i = atomicAdd(fm_listed, 1u);
+    if (i % 64u == 0u)
+        atomicAdd(fm_dispatch.x, 1u);
+    fm_pixels[i] = entry;
+}
 
 void main()
 {
@@ -20,28 +60,78 @@ void main()
     if (px.x >= u_size.x || px.y >= u_size.y)
         return;
     float lo, hi, centre;
-    vec4 edge = vec4(0.0);
-    float other_depth = 1.0;
-    if (u_samples > 1 && ds_read(u_ms_depth, px, u_near_plane, u_far_plane, lo, hi, centre)) {
-        float split = 0.5 * (lo + hi);
-        bool resolved_near = texelFetch(u_depth, px, 0).r <= split;
+    vec4 edge = vec4(0.0), depths = vec4(1.0, 0.0, 0.0, 0.0), ray = vec4(0.0);
+    if (u_samples > 1) {
+        bool two = ds_read(u_ms_depth, px, u_near_plane, u_far_plane, lo, hi, centre);
+        bool other[8] = bool[8](false, false, false, false, false, false, false, false);
+        float under = 0.0;  // the longest stretch of a sample's ray under the fog's top (fog_before)
+        if (two) {
+            float split = 0.5 * (lo + hi);
+            bool resolved_near = texelFetch(u_depth, px, 0).r <= split;
+            for (int s = 0; s < u_samples; ++s)
+                other[s] = (ds[s] <= split) != resolved_near;
+        } else if (u_fog_split > 0.0 && u_fx_shell != 0 && hi < 1.0) {
+            float t[8];
+            float gap = 0.0, at = 0.0;
+            for (int s = 0; s < u_samples; ++s) {
+                vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
+                under = max(under, fog_before(uv, ds_view_depth(ds[s], u_near_plane, u_far_plane), t[s]));
+            }
+            // The largest gap between the samples' transmittances, in order.
+            for (int s = 0; s < u_samples; ++s) {
+                float next = 2.0;
+                for (int r = 0; r < u_samples; ++r)
+                    if (t[r] > t[s])
+                        next = min(next, t[r]);
+                if (next <= 1.0 && next - t[s] > gap) {
+                    gap = next - t[s];
+                    at = 0.5 * (t[s] + next);
+                }
+            }
+            if (gap > u_fog_split)
+                for (int s = 0; s < u_samples; ++s)
+                    other[s] = t[s] > at;
+        }
         vec3 color = vec3(0.0);
-        float count = 0.0, depth = 0.0;
+        vec2 offset = vec2(0.0), first_offset = vec2(0.0);
+        float count = 0.0, depth = 0.0, first_depth = 0.0;
         for (int s = 0; s < u_samples; ++s)
-            if ((ds[s] <= split) != resolved_near) {
+            if (other[s]) {
                 color += texelFetch(u_ms_color, px, s).rgb;
                 depth += ds[s];
+                offset += u_offsets[s];
                 count += 1.0;
+            } else {
+                first_depth += ds[s];
+                first_offset += u_offsets[s];
             }
         if (count > 0.0) {
             edge = vec4(color / count, count / float(u_samples));
-            other_depth = depth / count;
-            uint i = atomicAdd(fm_listed, 1u);
-            if (i % 64u == 0u)
-                atomicAdd(fm_dispatch.x, 1u);
-            fm_pixels[i] = uint(px.x) | (uint(px.y) << 16);
+            depths.x = depth / count;
+            // The rays' stretch of the shell: within those of the pixels around it (rasterised at
+            // their centres); under a thread of fog narrower than a pixel none may have one, so
+            // from the fog's top before the surface on (3e38: each ray's end).
+            vec2 shell = vec2(3e38, 0.0);
+            if (u_fx_shell != 0)
+                for (int y = -1; y <= 1; ++y)
+                    for (int x = -1; x <= 1; ++x) {
+                        vec2 s = froxel_pixel_shell(clamp(px + ivec2(x, y), ivec2(0), u_size - 1));
+                        if (s.y > s.x)
+                            shell = vec2(min(shell.x, s.x), max(shell.y, s.y));
+                    }
+            if (!two) {
+                float rest = float(u_samples) - count;
+                depths.yzw = vec3(first_depth, first_offset) / rest;
+                float nearest = ds_view_depth(min(depths.x, depths.y), u_near_plane, u_far_plane);
+                shell = vec2(min(shell.x, nearest - 1.5 * under), 3e38);
+                list_march(uint(px.x) | (uint(px.y | 0x8000) << 16));
+                atomicAdd(fm_sampled, 1u);
+            }
+            ray = vec4(offset / count, shell);
+            list_march(uint(px.x) | (uint(px.y) << 16));
         }
     }
     imageStore(o_edge, px, edge);
-    imageStore(o_edge_depth, px, vec4(other_depth));
+    imageStore(o_edge_depth, px, depths);
+    imageStore(o_edge_ray, px, ray);
 }

@@ -7,15 +7,17 @@ uniform float u_far_plane;
 
 vec2 frame_uv(ivec2 px) { return (vec2(px) + 0.5) / vec2(u_size); }
 
-// The view depth of pixel px's surface; 3e38 for the sky.
-float frame_depth(ivec2 px)
+// The view depth of window depth d; 3e38 for the sky.
+float frame_view_depth(float d)
 {
-    float d = texelFetch(u_depth, px, 0).r;
     if (d >= 1.0)
         return 3e38;
     float z = d * 2.0 - 1.0;
     return 2.0 * u_near_plane * u_far_plane / (u_far_plane + u_near_plane - z * (u_far_plane - u_near_plane));
 }
+
+// The view depth of pixel px's surface; 3e38 for the sky.
+float frame_depth(ivec2 px) { return frame_view_depth(texelFetch(u_depth, px, 0).r); }
 
 // The fog-aware apply's grids of samples: at `spacing` (1: every pixel, 2, 4, 8), point c is pixel
 // c spacing, or the last pixel of the frame's row or column where that is past it, so that every

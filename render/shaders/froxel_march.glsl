@@ -95,15 +95,19 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
     }
 }
 
-// The stretch [first, last] of view depths over which pixel px's ray (its surface at `end`, at
-// most the volume's far depth) is in the Medium's shell, cut where the fog turns opaque (`cut`:
-// the farthest end of the ranges of the tiles it reads, which end there: froxel_opaque.comp;
-// 0: no cut) and where the froxels' share ends (combined mode); last <= first: none. Only with
-// the shell's per-pixel depths (u_fx_shell).
-vec2 froxel_pixel_stretch(ivec2 px, float end, float cut)
+// Pixel px's ray's entry into the Medium's shell and its exit (view depths; first 3e38 and last
+// 0: none), rasterised. Only with the shell's per-pixel depths (u_fx_shell).
+vec2 froxel_pixel_shell(ivec2 px) { return vec2(texelFetch(u_fx_first, px, 0).r, texelFetch(u_fx_last, px, 0).r); }
+
+// The stretch [first, last] of view depths over which a ray (its surface at `end`, at most the
+// volume's far depth) is in the Medium's shell (`shell`: froxel_pixel_shell's, or bounds of it),
+// cut where the fog turns opaque (`cut`: the farthest end of the ranges of the tiles it reads,
+// which end there: froxel_opaque.comp; 0: no cut) and where the froxels' share ends (combined
+// mode); last <= first: none.
+vec2 froxel_pixel_stretch(vec2 shell, float end, float cut)
 {
-    float first = max(texelFetch(u_fx_first, px, 0).r, u_fx_near);
-    float last = min(texelFetch(u_fx_last, px, 0).r, end);
+    float first = max(shell.x, u_fx_near);
+    float last = min(shell.y, end);
     if (!(u_hf.x > 0.0) && cut > first)  // without height fog the tiles' ranges end where the fog turns opaque
         last = min(last, cut);
     if (u_partitioned != 0)  // combined mode: the froxels' share ends at near_end from the eye
@@ -165,10 +169,11 @@ bool froxel_resolved(ivec2 px, vec2 uv, float depth)
     return aware ? aware_reach : all_reach;
 }
 
-// The fog in front of pixel px (screen point uv) whose surface lies at view depth `depth`
-// (3e38: sky), marched along its own ray where the volume does not resolve it: over its stretch
-// of the shell (or all of it where the fog is everywhere), the height fog over the rest.
-vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
+// The fog in front of the surface at view depth `depth` (3e38: sky) seen through screen point uv
+// (a pixel's centre, or a point of it), marched along its own ray where the volume does not
+// resolve it: over its stretch of the shell (`shell`: froxel_pixel_shell(px), or bounds of the
+// ray's own; or all of the ray where the fog is everywhere), the height fog over the rest.
+vec4 froxel_marched_fog(vec2 uv, float depth, vec2 shell)
 {
     float end = min(depth, u_fx_far);
     float near = u_fx_near;
@@ -180,7 +185,7 @@ vec4 froxel_marched_fog(ivec2 px, vec2 uv, float depth)
     float first = near, last = u_fx_far, stop = end;
     int steps = u_fx_size.z;
     if (u_fx_shell != 0) {
-        vec2 stretch = froxel_pixel_stretch(px, end, froxel_pixel_cut(uv));
+        vec2 stretch = froxel_pixel_stretch(shell, end, froxel_pixel_cut(uv));
         first = stretch.x;
         last = stretch.y;
         stop = last;

@@ -68,10 +68,17 @@ double reference_luminance(const geometry::ReferenceImage& ref, std::size_t k, d
     return y_shaded * ref.transmittance[k] + geometry::luminance(ref.inscatter[k]);
 }
 
-std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& ref, double bend)
+std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& ref, double bend, double fog_bend)
 {
     std::vector<std::size_t> edges;
     const auto depth = [&](int x, int y) { return ref.depth[std::size_t(y) * ref.width + x]; };
+    const auto through = [&](int x, int y) { return ref.transmittance[std::size_t(y) * ref.width + x]; };
+    const auto inscattered = [&](int x, int y) {
+        return geometry::luminance(ref.inscatter[std::size_t(y) * ref.width + x]);
+    };
+    const std::size_t n = std::size_t(ref.width) * std::size_t(ref.height);
+    const bool fog =
+        fog_bend > 0.0 && ref.transmittance.size() == n && ref.inscatter.size() == n && ref.background.size() == n;
     const int axes[4][2] = {{1, 0}, {0, 1}, {1, 1}, {1, -1}};
     for (int y = 0; y < ref.height; ++y)
         for (int x = 0; x < ref.width; ++x) {
@@ -87,6 +94,13 @@ std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& ref, do
                 // The bend, along the axes whose both neighbours lie in the image.
                 if (has0 && has1 && !std::isinf(d) && !std::isinf(before) && !std::isinf(after))
                     edge = edge || std::abs(before - 2.0 * d + after) > bend * d;
+                // The fog's bend: its transmittance, or its light against the pixel's own.
+                if (has0 && has1 && fog) {
+                    const double t = through(x, y), s = inscattered(x, y);
+                    edge = edge || std::abs(through(x0, y0) - 2.0 * t + through(x1, y1)) > fog_bend ||
+                        std::abs(inscattered(x0, y0) - 2.0 * s + inscattered(x1, y1)) >
+                            fog_bend * geometry::luminance(ref.composed(std::size_t(y) * ref.width + x));
+                }
             }
             if (edge)
                 edges.push_back(std::size_t(y) * ref.width + x);

@@ -105,6 +105,14 @@ std::vector<std::string_view> pixel_libraries(std::string_view stage)
     return files;
 }
 
+// Those of the pass that finds the pixels whose samples see different fog (froxel_edges.comp).
+std::vector<std::string_view> edge_libraries()
+{
+    std::vector<std::string_view> files = pixel_libraries("depth_samples.glsl");
+    files.push_back("froxel_edges.comp");
+    return files;
+}
+
 }  // namespace
 
 struct FroxelPass::Volumes {
@@ -123,7 +131,7 @@ FroxelPass::FroxelPass()
       integrate_(light_libraries("froxel_integrate.comp")), classify_(march_libraries("froxel_classify.comp")),
       pixels_(pixel_libraries("froxel_pixels.comp")), upsample_(pixel_libraries("froxel_upsample.comp")),
       apply_program_({"froxel_apply.comp"}), readback_({"froxel_frame.glsl", "froxel_readback.comp"}),
-      edges_({"froxel_frame.glsl", "depth_samples.glsl", "froxel_edges.comp"})
+      edges_(edge_libraries())
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
@@ -301,11 +309,15 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
     p.set("u_edges", int(edges));
     p.set("u_edge", 1);
     p.set("u_edge_fog", 2);
+    p.set("u_edge_depth", 3);
+    p.set("u_edge_first_fog", 4);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     p.use();
     glBindTextureUnit(0, applied_.fog.get());
     glBindTextureUnit(1, applied_.edge.get());
     glBindTextureUnit(2, applied_.edge_fog.get());
+    glBindTextureUnit(3, applied_.edge_depth.get());
+    glBindTextureUnit(4, applied_.edge_first_fog.get());
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -572,10 +584,10 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
 void FroxelPass::append_timings(std::vector<PassTime>& out) const
 {
     stats_.applied_pixels = applied_pixels_;
-    stats_.marched_pixels = stats_.upsampled_pixels = stats_.edge_pixels = 0;
+    stats_.marched_pixels = stats_.upsampled_pixels = stats_.edge_pixels = stats_.fog_split_pixels = 0;
     if (applied_pixels_ > 0) {
         std::tie(stats_.marched_pixels, stats_.upsampled_pixels) = applied_.counts();
-        stats_.edge_pixels = applied_.edge_count();
+        std::tie(stats_.edge_pixels, stats_.fog_split_pixels) = applied_.edge_counts();
     }
     for (const PassTimer& timer : timers_)
         if (timer.ran())

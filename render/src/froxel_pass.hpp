@@ -114,16 +114,17 @@ private:
         Texture fog, background;
         // The points each refinement (spacings 4, 2, 1) left to march, and its counts.
         std::array<Buffer, sample_spacings.size()> lists;
-        // Pixels whose samples see two surfaces (froxel_edges.comp): the other side's colour
-        // and share, its window depth, its fog; the list of them, which march.
-        Texture edge, edge_depth, edge_fog;
+        // Pixels whose samples see two surfaces, or one fogged unevenly (froxel_edges.comp): the
+        // other side's colour and share, its window depth, its fog, its ray (offset and bounds
+        // of its stretch of the shell); the list of them, which march.
+        Texture edge, edge_depth, edge_fog, edge_first_fog, edge_ray;
         Buffer edge_list;
         bool edges_run = false;  // the last frame split its edges
         void resize(int width, int height);
         //! (pixels that marched, pixels that took their samples' mean) in the last run.
         std::pair<int, int> counts() const;
-        //! Pixels split between two surfaces in the last frame.
-        int edge_count() const;
+        //! (pixels split in the last frame, those of them split by their fog on one surface).
+        std::pair<int, int> edge_counts() const;
     };
     PixelFog applied_;  // the apply's; read_fog runs over it again, judged over its background
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,

@@ -15,7 +15,10 @@ namespace kiri::render::detail {
 namespace {
 
 // The fog's samplers stay clear of the apply's units (froxel_pass.cpp: 5..19).
-constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2, unit_sample_info = 3;
+constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2, unit_sample_info = 3, unit_edge_ray = 4;
+// A pixel of one surface splits where the fog before some of its samples lets through this much
+// more or less light than at its centre (froxel_edges.comp).
+constexpr float fog_split = 0.05f;
 
 // The list's header (froxel_frame.glsl, FrameMarches): the indirect dispatch, then the counts.
 struct MarchHeader {
@@ -59,10 +62,11 @@ void FroxelPass::PixelFog::resize(int w, int h)
     fog = make_fog_image(size);
     edge = make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(edge.get(), 1, GL_RGBA16F, w, h);
-    edge_depth = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(edge_depth.get(), 1, GL_R32F, w, h);
+    edge_depth = make_fog_image(size);
     edge_fog = make_fog_image(size);
-    for (const Texture* t : {&edge, &edge_depth}) {
+    edge_first_fog = make_fog_image(size);
+    edge_ray = make_fog_image(size);
+    for (const Texture* t : {&edge}) {
         glTextureParameteri(t->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
         glTextureParameteri(t->get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     }
@@ -93,13 +97,14 @@ std::pair<int, int> FroxelPass::PixelFog::counts() const
     return {marched, upsampled};
 }
 
-int FroxelPass::PixelFog::edge_count() const
+std::pair<int, int> FroxelPass::PixelFog::edge_counts() const
 {
     if (!edges_run || !edge_list)
-        return 0;
+        return {0, 0};
     MarchHeader h;
     glGetNamedBufferSubData(edge_list.get(), 0, sizeof h, &h);
-    return int(h.listed);
+    // A pixel split by its fog is listed twice (each side marches) and counted in `sampled`.
+    return {int(h.listed - h.sampled), int(h.sampled)};
 }
 
 namespace {
@@ -122,6 +127,8 @@ void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& 
     bind_light(p, frame);  // every sampler on its own unit, used or not
     set_frame(p, frame);
     p.set("u_spacing", spacing);
+    p.set("u_edge_ray", unit_edge_ray);
+    p.set("u_edge_rays", 0);
 }
 
 bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out)
@@ -139,7 +146,8 @@ bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, cons
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.edge_list.get());
     // The other side of each split pixel: its colour, share and depth, listed.
     const ShaderProgram& e = edges_;
-    set_frame(e, frame);
+    bind_pixel_program(e, frame, 1);
+    e.set("u_fog_split", fog_split);
     e.set("u_ms_depth", unit_samples);
     e.set("u_ms_color", unit_background);
     e.set("u_samples", std::min(samples.count, 8));
@@ -149,7 +157,8 @@ bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, cons
     glBindTextureUnit(unit_samples, samples.depth);
     glBindTextureUnit(unit_background, samples.color);
     glBindImageTexture(0, out.edge.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, out.edge_depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(1, out.edge_depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(2, out.edge_ray.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -158,9 +167,12 @@ bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, cons
     const ShaderProgram& pixels = pixels_.get(options_.height_fog.enabled());
     bind_pixel_program(pixels, frame, 1);
     pixels.set("u_stage", 1);
+    pixels.set("u_edge_rays", 1);
     pixels.use();
     glBindTextureUnit(unit_frame_depth, out.edge_depth.get());
+    glBindTextureUnit(unit_edge_ray, out.edge_ray.get());
     glBindImageTexture(0, out.edge_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(2, out.edge_first_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.edge_list.get());
     glDispatchComputeIndirect(0);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);

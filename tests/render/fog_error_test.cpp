@@ -185,4 +185,27 @@ TEST(FogError, FootprintEdgesAreWhereTheDepthBendsOrTheSkyBegins)
     }
 }
 
+TEST(FogError, FootprintEdgesAreWhereTheFogBendsOnOneSurfaceToo)
+{
+    // One plane (depth linear in x); the fog's transmittance falls linearly across it (the centre's
+    // ray stands for the pixel), but for a thread of fog at x = 5 (a pixel's worth of it: 0.3 less),
+    // and its light rises by 0.2 of the picture's over the pixels x = 2 alone.
+    kiri::geometry::ReferenceImage ref;
+    ref.width = 8;
+    ref.height = 1;
+    for (int x = 0; x < 8; ++x) {
+        ref.depth.push_back(1000.0 + 100.0 * x);
+        ref.transmittance.push_back(0.9 - 0.05 * x - (x == 5 ? 0.3 : 0.0));
+        ref.inscatter.push_back(glm::dvec3(x == 2 ? 0.3 : 0.1));
+        ref.background.push_back(glm::dvec3(1.0));
+    }
+    const std::vector<std::size_t> bends = {1, 2, 3, 4, 5, 6};
+    EXPECT_EQ(kiri::render::footprint_edges(ref), bends);
+    EXPECT_TRUE(kiri::render::footprint_edges(ref, 0.01, 0.0).empty());  // not judged: one surface
+    // A gentler bend than the bound passes: the thread 0.02 deep, the light 0.02 of the picture's.
+    ref.transmittance[5] = 0.9 - 0.05 * 5 - 0.02;
+    ref.inscatter[2] = glm::dvec3(0.12);
+    EXPECT_TRUE(kiri::render::footprint_edges(ref).empty());
+}
+
 }  // namespace

@@ -57,8 +57,12 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
 //! column or a diagonal through the pixel, the view depths of its neighbours and its own do not
 //! lie on a line (second difference above `bend` times its depth: a surface's smooth slope
 //! passes, a ridge against the valley behind it does not), or one of them is the sky and
-//! another the terrain. Row-major indices, ascending.
-std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& reference, double bend = 0.01);
+//! another the terrain; or where the fog bends so within it: the second difference of its
+//! transmittance above `fog_bend`, or that of its in-scattered luminance above `fog_bend` times
+//! the pixel's luminance (a thread of fog narrower than a pixel, the fog's top meeting a slope,
+//! its side wall; 0: not judged). Row-major indices, ascending.
+std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& reference, double bend = 0.01,
+                                         double fog_bend = 0.05);
 
 //! The reference through the samples of a multisampled frame's `pixels`, and those samples of
 //! the frames without fog (and without the sun).
