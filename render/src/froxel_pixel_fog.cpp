@@ -144,7 +144,8 @@ bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, cons
     const MarchHeader header;
     glNamedBufferSubData(out.edge_list.get(), 0, sizeof header, &header);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.edge_list.get());
-    // The other side of each split pixel: its colour, share and depth, listed.
+    // The pixels whose samples see different fog (two surfaces, or one fogged unevenly): the other
+    // side's colour and share, the sides' depths and rays, listed.
     const ShaderProgram& e = edges_;
     bind_pixel_program(e, frame, 1);
     e.set("u_fog_split", fog_split);
@@ -162,8 +163,8 @@ bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, cons
     glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
-    // Their marches at that depth: the grids' listed marches (froxel_pixels.comp's stage 1) at
-    // every pixel, over the other side's depth.
+    // Their marches: the grids' listed marches (froxel_pixels.comp's stage 1) along each side's
+    // own ray to its own depth (u_edge_rays).
     const ShaderProgram& pixels = pixels_.get(options_.height_fog.enabled());
     bind_pixel_program(pixels, frame, 1);
     pixels.set("u_stage", 1);
