@@ -10,13 +10,12 @@
 //   just before their surfaces (fog_before) split at their largest gap where it exceeds
 //   u_fog_split in transmittance. The pixel's centre then stands for neither side (the fog between
 //   them), so both sides march, each along its own samples' mean ray.
-// Per pixel: the other side's mean colour and its share of the samples (o_edge); o_edge_depth:
-// its mean window depth (1: the sky) and, split by its fog, the first side's and the offset of
-// its ray (0: the centre's fog stands for it); the ray through the other side's samples' mean
-// offset and bounds of the rays' stretch of the shell (o_edge_ray, froxel_pixels.comp's
-// u_edge_ray); the pixel listed (FrameMarches) for the other side's march, split by its fog once
-// more (y | 0x8000) for the first side's, and counted in fm_sampled. Pixels whose samples see one
-// fog get a share of 0.
+// Per pixel: the other side's mean colour and its share of the samples (o_edge; 0: one fog).
+// Per pixel split: o_edge_depth, the other side's mean window depth (1: the sky) and, split by
+// its fog, the first side's and the offset of its ray (0: the centre's fog stands for it);
+// o_edge_ray, the offset of the other side's ray and bounds of the rays' stretch of the shell
+// (froxel_pixels.comp's u_edge_ray); the pixel listed (FrameMarches) for the other side's march,
+// split by its fog once more (y | 0x8000) for the first side's, and counted in fm_sampled.
 layout(local_size_x = 8, local_size_y = 8) in;
 uniform sampler2DMS u_ms_depth;
 uniform sampler2DMS u_ms_color;
@@ -60,16 +59,16 @@ void main()
     if (px.x >= u_size.x || px.y >= u_size.y)
         return;
     float lo, hi, centre;
-    vec4 edge = vec4(0.0), depths = vec4(1.0, 0.0, 0.0, 0.0), ray = vec4(0.0);
+    vec4 edge = vec4(0.0);
     if (u_samples > 1) {
         bool two = ds_read(u_ms_depth, px, u_near_plane, u_far_plane, lo, hi, centre);
-        bool other[8] = bool[8](false, false, false, false, false, false, false, false);
+        uint other = 0u;    // the other side's samples, a bit each
         float under = 0.0;  // the longest stretch of a sample's ray under the fog's top (fog_before)
         if (two) {
             float split = 0.5 * (lo + hi);
             bool resolved_near = texelFetch(u_depth, px, 0).r <= split;
             for (int s = 0; s < u_samples; ++s)
-                other[s] = (ds[s] <= split) != resolved_near;
+                other |= (ds[s] <= split) != resolved_near ? 1u << s : 0u;
         } else if (u_fog_split > 0.0 && u_fx_shell != 0 && hi < 1.0) {
             float t[8];
             float gap = 0.0, at = 0.0;
@@ -90,24 +89,24 @@ void main()
             }
             if (gap > u_fog_split)
                 for (int s = 0; s < u_samples; ++s)
-                    other[s] = t[s] > at;
+                    other |= t[s] > at ? 1u << s : 0u;
         }
-        vec3 color = vec3(0.0);
-        vec2 offset = vec2(0.0), first_offset = vec2(0.0);
-        float count = 0.0, depth = 0.0, first_depth = 0.0;
-        for (int s = 0; s < u_samples; ++s)
-            if (other[s]) {
-                color += texelFetch(u_ms_color, px, s).rgb;
-                depth += ds[s];
-                offset += u_offsets[s];
-                count += 1.0;
-            } else {
-                first_depth += ds[s];
-                first_offset += u_offsets[s];
-            }
-        if (count > 0.0) {
+        if (other != 0u) {
+            vec3 color = vec3(0.0);
+            vec2 offset = vec2(0.0), first_offset = vec2(0.0);
+            float count = 0.0, depth = 0.0, first_depth = 0.0;
+            for (int s = 0; s < u_samples; ++s)
+                if ((other & (1u << s)) != 0u) {
+                    color += texelFetch(u_ms_color, px, s).rgb;
+                    depth += ds[s];
+                    offset += u_offsets[s];
+                    count += 1.0;
+                } else {
+                    first_depth += ds[s];
+                    first_offset += u_offsets[s];
+                }
             edge = vec4(color / count, count / float(u_samples));
-            depths.x = depth / count;
+            vec4 depths = vec4(depth / count, 0.0, 0.0, 0.0);
             // The rays' stretch of the shell: within those of the pixels around it (rasterised at
             // their centres); under a thread of fog narrower than a pixel none may have one, so
             // from the fog's top before the surface on (3e38: each ray's end).
@@ -127,11 +126,11 @@ void main()
                 list_march(uint(px.x) | (uint(px.y | 0x8000) << 16));
                 atomicAdd(fm_sampled, 1u);
             }
-            ray = vec4(offset / count, shell);
             list_march(uint(px.x) | (uint(px.y) << 16));
+            // Read only where the pixel is listed (froxel_pixels.comp) or split (froxel_apply.comp).
+            imageStore(o_edge_depth, px, depths);
+            imageStore(o_edge_ray, px, vec4(offset / count, shell));
         }
     }
     imageStore(o_edge, px, edge);
-    imageStore(o_edge_depth, px, depths);
-    imageStore(o_edge_ray, px, ray);
 }
