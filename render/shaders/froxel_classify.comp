@@ -122,7 +122,7 @@ bool march(ivec2 t)
         vec2 centre_uv = (vec2(centre) + 0.5) / vec2(u_raster);
         float centre_depth = view_depth(centre);
         vec4 looked = froxel_fog_at(centre_uv, centre_depth);
-        vec4 marched = froxel_marched_fog(centre_uv, centre_depth, froxel_pixel_shell(centre));
+        vec4 marched = froxel_marched_fog(centre_uv, centre_depth, froxel_pixel_shell(centre), true);
         if (abs(looked.a - marched.a) > u_missed || max3(abs(looked.rgb - marched.rgb)) > u_missed * scale)
             return true;
     }

@@ -4,12 +4,14 @@
 // - Two surfaces (a ridge against the fogged valley behind it): the resolve took the depth of one
 //   side (depth_resolve.frag: the side most samples lie on, the nearer on a tie), so one march at
 //   that depth would fog the other side's colour as if it lay there too, and a ridge's edge
-//   against a valley's fog would alias. The split is the resolve's own (depth_samples.glsl).
-// - One surface, fogged unevenly (a thread of fog in a valley narrower than the pixel, seen from
-//   afar; the fog's top meeting a slope; the fog's side wall): the samples' estimates of the fog
-//   just before their surfaces (fog_before) split at their largest gap where it exceeds
-//   u_fog_split in transmittance. The pixel's centre then stands for neither side (the fog between
-//   them), so both sides march, each along its own samples' mean ray.
+//   against a valley's fog would alias. The split is the resolve's own (depth_samples.glsl):
+//   the resolved side keeps the centre's fog, the other side marches along its own samples' ray.
+// - Fogged unevenly (a thread of fog in a valley narrower than the pixel, seen from afar; the
+//   fog's top meeting a slope; the fog's side wall): the samples' estimates of the fog just
+//   before their surfaces (fog_before) split at their largest gap where it exceeds u_fog_split in
+//   transmittance; on two surfaces too, where each side by the fog lies on one of them. The
+//   pixel's centre then stands for neither side (the fog between them), so both sides march,
+//   each along its own samples' ray.
 // Per pixel: the other side's mean colour and its share of the samples (o_edge; 0: one fog).
 // Per pixel split: o_edge_depth, the other side's mean window depth (1: the sky) and, split by
 // its fog, the first side's and the offset of its ray (0: the centre's fog stands for it);
@@ -69,7 +71,8 @@ void main()
             bool resolved_near = texelFetch(u_depth, px, 0).r <= split;
             for (int s = 0; s < u_samples; ++s)
                 other |= (ds[s] <= split) != resolved_near ? 1u << s : 0u;
-        } else if (u_fog_split > 0.0 && u_fx_shell != 0 && hi < 1.0) {
+        }
+        if (u_fog_split > 0.0 && u_fx_shell != 0 && hi < 1.0) {
             float t[8];
             float gap = 0.0, at = 0.0;
             for (int s = 0; s < u_samples; ++s) {
@@ -87,9 +90,32 @@ void main()
                     at = 0.5 * (t[s] + next);
                 }
             }
-            if (gap > u_fog_split)
-                for (int s = 0; s < u_samples; ++s)
-                    other |= t[s] > at ? 1u << s : 0u;
+            // Split by the fog, also where the samples see two surfaces if each side by the fog
+            // lies on one of them (no jump within it): a fogged valley floor and the slope above
+            // it may lie off one plane, and a split by the depth then fogs the slope's samples
+            // that stand with the floor's as the floor.
+            uint by_fog = 0u;
+            float near_clear = 1.0, far_clear = 0.0, near_fogged = 1.0, far_fogged = 0.0;
+            for (int s = 0; s < u_samples; ++s)
+                if (t[s] > at) {
+                    by_fog |= 1u << s;
+                    near_clear = min(near_clear, ds[s]);
+                    far_clear = max(far_clear, ds[s]);
+                } else {
+                    near_fogged = min(near_fogged, ds[s]);
+                    far_fogged = max(far_fogged, ds[s]);
+                }
+            const float jump = 1.25;
+            bool one_each = ds_view_depth(far_clear, u_near_plane, u_far_plane) <=
+                    jump * ds_view_depth(near_clear, u_near_plane, u_far_plane) &&
+                ds_view_depth(far_fogged, u_near_plane, u_far_plane) <=
+                    jump * ds_view_depth(near_fogged, u_near_plane, u_far_plane);
+            if (gap > u_fog_split && (!two || one_each)) {
+                other = by_fog;
+                two = false;
+            } else {
+                under = 0.0;
+            }
         }
         if (other != 0u) {
             vec3 color = vec3(0.0);

@@ -172,8 +172,11 @@ bool froxel_resolved(ivec2 px, vec2 uv, float depth)
 // The fog in front of the surface at view depth `depth` (3e38: sky) seen through screen point uv
 // (a pixel's centre, or a point of it), marched along its own ray where the volume does not
 // resolve it: over its stretch of the shell (`shell`: froxel_pixel_shell(px), or bounds of the
-// ray's own; or all of the ray where the fog is everywhere), the height fog over the rest.
-vec4 froxel_marched_fog(vec2 uv, float depth, vec2 shell)
+// ray's own; or all of the ray where the fog is everywhere), the height fog over the rest. With
+// `tiles_cut`, cut where the tiles the volume's lookup reads turn opaque (froxel_pixel_cut):
+// their ranges follow the frame's resolved depths, which a split pixel's other side (a valley
+// behind a ridge) lies beyond.
+vec4 froxel_marched_fog(vec2 uv, float depth, vec2 shell, bool tiles_cut)
 {
     float end = min(depth, u_fx_far);
     float near = u_fx_near;
@@ -185,7 +188,7 @@ vec4 froxel_marched_fog(vec2 uv, float depth, vec2 shell)
     float first = near, last = u_fx_far, stop = end;
     int steps = u_fx_size.z;
     if (u_fx_shell != 0) {
-        vec2 stretch = froxel_pixel_stretch(shell, end, froxel_pixel_cut(uv));
+        vec2 stretch = froxel_pixel_stretch(shell, end, tiles_cut ? froxel_pixel_cut(uv) : 0.0);
         first = stretch.x;
         last = stretch.y;
         stop = last;

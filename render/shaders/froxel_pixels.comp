@@ -56,7 +56,7 @@ void main()
         if (u_stage == 0)
             imageStore(o_info, at, frame_point_info(px, depth));
         bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
-        vec4 fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(uv, depth, shell);
+        vec4 fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(uv, depth, shell, u_edge_rays == 0);
         if (u_stage == 0 && !resolved)
             atomicAdd(group_marched, 1u);
         if (first_side)

@@ -85,10 +85,11 @@ TEST_F(FroxelGl, APixelOnARidgeFogsEachSideAsFarAsItsOwnSurface)
 {
     // Parallel valleys 400 m apart with fog 70 m deep in their floors, seen across them from
     // 2 km at 96 x 54: each ridge stands against the fogged floor of the valley behind it.
-    // Measured: over the pixels whose footprint holds two surfaces 3.4 % off the reference
-    // through their samples (the whole frame 2.3 %, p99 7.8 %; the other side marched along the
-    // pixel's centre, 3.8 %); with one fog per pixel, at the side its resolved depth lies on,
-    // 7.8 % (the whole frame 3.5 %, p99 24 %, judged then without the fog's bends).
+    // Measured: over the pixels whose footprint holds two surfaces 2.2 % off the reference
+    // through their samples (the whole frame 1.8 %, p99 6.8 %); without the split by the fog
+    // (fog_split 0: the resolved side keeps the centre's fog where a fogged floor and the slope
+    // above it lie off one plane) 3.9 % (2.4 %, p99 9.4 %); with one fog per pixel, at the side
+    // its resolved depth lies on, 7.8 % (3.5 %, p99 24 %, judged then without the fog's bends).
     Camera c;
     c.position = {-1500.0, 100.0, 1300.0};
     c.target = {0.0, 100.0, 0.0};
@@ -103,7 +104,7 @@ TEST_F(FroxelGl, APixelOnARidgeFogsEachSideAsFarAsItsOwnSurface)
         j.whole.fog_pixels);
     EXPECT_GT(j.split, 100);
     EXPECT_GT(judged, 200);
-    EXPECT_LT(edge_mean, 0.05);
+    EXPECT_LT(edge_mean, 0.035);
     EXPECT_LT(j.whole.mean_relative, 0.03);
     EXPECT_LT(j.whole.p99_relative, 0.15);
 }
@@ -113,9 +114,10 @@ TEST_F(FroxelGl, ThreadsOfFogNarrowerThanAPixelFogTheirShareOfIt)
     // The same valleys with fog in their floors alone (15 m deep, about 80 m wide), seen from
     // 5.6 km and 63 degrees up at 96 x 54, where a pixel spans about 90 m of the ground across
     // them: the threads cover parts of pixels whose samples see one surface, some in the fog and
-    // some above it. Measured: where the fog bends within one surface 3.9 % off the reference
-    // through their samples (the whole frame 6.8 %; p99 28 %, over the terrain's creases); with
-    // the centre's fog for every sample there, 11.3 % (9.0 %).
+    // some above it. Measured: where the fog bends within one surface 2.8 % off the reference
+    // through the samples (the whole frame 4.9 %; p99 25 %, rows along the valleys' floors where
+    // the apply fogs a pixel a quarter too dark, left to find); with the centre's fog for every
+    // sample there (fog_split 0) 11.3 % (9.0 %).
     Camera c;
     c.position = {-2500.0, 100.0, 5000.0};
     c.target = {0.0, 100.0, 0.0};
@@ -130,8 +132,8 @@ TEST_F(FroxelGl, ThreadsOfFogNarrowerThanAPixelFogTheirShareOfIt)
         j.whole.fog_pixels);
     EXPECT_GT(j.split, 1000);
     EXPECT_GT(judged, 100);
-    EXPECT_LT(thread_mean, 0.06);
-    EXPECT_LT(j.whole.mean_relative, 0.08);
+    EXPECT_LT(thread_mean, 0.05);
+    EXPECT_LT(j.whole.mean_relative, 0.07);
 }
 
 }  // namespace
