@@ -115,9 +115,10 @@ TEST_F(FroxelGl, ThreadsOfFogNarrowerThanAPixelFogTheirShareOfIt)
     // 5.6 km and 63 degrees up at 96 x 54, where a pixel spans about 90 m of the ground across
     // them: the threads cover parts of pixels whose samples see one surface, some in the fog and
     // some above it. Measured: where the fog bends within one surface 2.8 % off the reference
-    // through the samples (the whole frame 4.9 %; p99 25 %, rows along the valleys' floors where
-    // the apply fogs a pixel a quarter too dark, left to find); with the centre's fog for every
-    // sample there (fog_split 0) 11.3 % (9.0 %).
+    // through the samples (the whole frame 4.9 %; p99 25 %: a row along a valley's floor a quarter
+    // too dark, not its fog, which equals the reference's, but the ground in the fog's shade,
+    // one shade a pixel where the thread's shadow edge crosses it); with the centre's fog for
+    // every sample there (fog_split 0) 11.3 % (9.0 %).
     Camera c;
     c.position = {-2500.0, 100.0, 5000.0};
     c.target = {0.0, 100.0, 0.0};
