@@ -42,7 +42,7 @@ void main()
         px = frame_grid_pixel(at, u_spacing);
     if (px.x >= 0) {
         vec2 uv = frame_uv(px);
-        vec2 shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : vec2(0.0);
+        vec2 shell = vec2(0.0);
         float depth;
         if (u_edge_rays != 0) {
             vec4 ray = texelFetch(u_edge_ray, px, 0);
@@ -52,6 +52,7 @@ void main()
             shell = ray.zw;
         } else {
             depth = frame_depth(px);
+            shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : shell;
         }
         if (u_stage == 0)
             imageStore(o_info, at, frame_point_info(px, depth));

@@ -83,6 +83,10 @@ std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& ref, do
     for (int y = 0; y < ref.height; ++y)
         for (int x = 0; x < ref.width; ++x) {
             const double d = depth(x, y);
+            // The fog's bend: its transmittance, or its light against the pixel's own.
+            const double t = fog ? through(x, y) : 0.0, s = fog ? inscattered(x, y) : 0.0;
+            const double light_bend =
+                fog ? fog_bend * geometry::luminance(ref.composed(std::size_t(y) * ref.width + x)) : 0.0;
             bool edge = false;
             for (const auto& a : axes) {
                 const int x0 = x - a[0], y0 = y - a[1], x1 = x + a[0], y1 = y + a[1];
@@ -94,13 +98,9 @@ std::vector<std::size_t> footprint_edges(const geometry::ReferenceImage& ref, do
                 // The bend, along the axes whose both neighbours lie in the image.
                 if (has0 && has1 && !std::isinf(d) && !std::isinf(before) && !std::isinf(after))
                     edge = edge || std::abs(before - 2.0 * d + after) > bend * d;
-                // The fog's bend: its transmittance, or its light against the pixel's own.
-                if (has0 && has1 && fog) {
-                    const double t = through(x, y), s = inscattered(x, y);
+                if (has0 && has1 && fog)
                     edge = edge || std::abs(through(x0, y0) - 2.0 * t + through(x1, y1)) > fog_bend ||
-                        std::abs(inscattered(x0, y0) - 2.0 * s + inscattered(x1, y1)) >
-                            fog_bend * geometry::luminance(ref.composed(std::size_t(y) * ref.width + x));
-                }
+                        std::abs(inscattered(x0, y0) - 2.0 * s + inscattered(x1, y1)) > light_bend;
             }
             if (edge)
                 edges.push_back(std::size_t(y) * ref.width + x);

@@ -72,7 +72,8 @@ public:
         const float* offsets = nullptr;  //!< each sample's offset from the pixel's centre (x, y; 8)
     };
     //! The fog on the resolved frame (colour: RGBA16F, read and written); where a pixel's
-    //! samples see two surfaces, each side its own (froxel_edges.comp).
+    //! samples see different fog (two surfaces, or one fogged unevenly), each side its own
+    //! (froxel_edges.comp).
     void apply(const FrameContext& frame, GLuint color_texture, GLuint depth_texture, const FrameSamples& samples);
     //! froxel_apply.glsl's uniforms and textures on a program linking froxel_common.glsl,
     //! froxel_medium.glsl and froxel_apply.glsl (for layers and particles: froxel_fog(world)).
@@ -130,8 +131,9 @@ private:
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,
     //! judged over its colour (RGBA16F, before the fog; 0: out.background's, the last one copied).
     void run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out);
-    //! The apply's pixels whose samples see two surfaces: the other side's colour, share and
-    //! depth, and its fog (out.edge, edge_depth, edge_fog). Whether it ran.
+    //! The apply's pixels whose samples see different fog: the other side's colour and share,
+    //! the sides' depths and rays, and their fog (out.edge, edge_depth, edge_ray, edge_fog,
+    //! edge_first_fog). Whether it ran.
     bool run_edges(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out);
     //! A program of froxel_frame.glsl's pixels (the march's, the grids') bound for the frame, its
     //! grid at `spacing`, the frame's depth on the unit u_depth reads.

@@ -16,8 +16,8 @@ namespace {
 
 // The fog's samplers stay clear of the apply's units (froxel_pass.cpp: 5..19).
 constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2, unit_sample_info = 3, unit_edge_ray = 4;
-// A pixel of one surface splits where the fog before some of its samples lets through this much
-// more or less light than at its centre (froxel_edges.comp).
+// A pixel's samples split by their fog where the largest gap between what the fog before their
+// surfaces lets through exceeds this (froxel_edges.comp).
 constexpr float fog_split = 0.05f;
 
 // The list's header (froxel_frame.glsl, FrameMarches): the indirect dispatch, then the counts.
@@ -66,10 +66,8 @@ void FroxelPass::PixelFog::resize(int w, int h)
     edge_fog = make_fog_image(size);
     edge_first_fog = make_fog_image(size);
     edge_ray = make_fog_image(size);
-    for (const Texture* t : {&edge}) {
-        glTextureParameteri(t->get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(t->get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    }
+    glTextureParameteri(edge.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(edge.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     edge_list = make_buffer();
     glNamedBufferStorage(edge_list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(w) * h),
                          nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
@@ -199,14 +197,13 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glNamedBufferSubData(list.get(), 0, sizeof header, &header);
     glBindTextureUnit(unit_frame_depth, depth_texture);
     const glm::ivec2 size(frame.width, frame.height);
-    const auto bind = [&](const ShaderProgram& p, int spacing) { bind_pixel_program(p, frame, spacing); };
     // The grid at `spacing` into `image` (its points' info into `info`, 0: none) from the one at
     // twice it (`coarser`, its points' info `coarser_info`), listing into `list` the points that
     // march, then marching them.
     const auto refine = [&](int spacing, GLuint coarser, GLuint coarser_info, GLuint image, GLuint info, GLuint list) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
         const ShaderProgram& upsample = upsample_.get(haze);
-        bind(upsample, spacing);
+        bind_pixel_program(upsample, frame, spacing);
         upsample.set("u_fx_samples", unit_samples);
         upsample.set("u_fx_sample_info", unit_sample_info);
         upsample.set("u_fx_write_info", int(info != 0));
@@ -226,7 +223,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
             return;
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         const ShaderProgram& pixels = pixels_.get(haze);
-        bind(pixels, spacing);
+        bind_pixel_program(pixels, frame, spacing);
         pixels.set("u_stage", 1);
         pixels.use();
         glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -241,7 +238,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.lists[0].get());
         const ShaderProgram& pixels = pixels_.get(haze);
         const int coarsest = sample_spacings[0];
-        bind(pixels, coarsest);
+        bind_pixel_program(pixels, frame, coarsest);
         pixels.set("u_stage", 0);
         pixels.use();
         glBindImageTexture(0, out.samples[0].get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
