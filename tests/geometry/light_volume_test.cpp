@@ -294,6 +294,7 @@ TEST(LightVolume, BakeOverTerrainWithHeightFogIsDeterministicOnAnyNumberOfThread
     o.photons_per_column = 40;
     o.cell_size = 250.0;
     o.max_side = 8;
+    o.min_photons = 0;
     o.threads = 1;
     const glm::dvec3 sun = sun_towards(0.4, 2.8);
     const LightVolume one = bake_light_volume({&m, haze}, &ground, sun, o);
@@ -304,6 +305,11 @@ TEST(LightVolume, BakeOverTerrainWithHeightFogIsDeterministicOnAnyNumberOfThread
     EXPECT_LE(one.photons, 8 * 8 * 40);
     EXPECT_EQ(one.moments, three.moments);
     EXPECT_EQ(one.deposits, three.deposits);
+    // A floor on the photons in all raises every column's count by one whole factor.
+    o.min_photons = 20 * one.photons;
+    const LightVolume floored = bake_light_volume({&m, haze}, &ground, sun, o);
+    EXPECT_GE(floored.photons, 20 * one.photons);
+    EXPECT_LE(floored.photons, 21 * one.photons);
 }
 
 TEST(LightVolume, BadInputStaysFinite)

@@ -11,7 +11,7 @@
 // each GL renderer, fitted against octaves and baked, measured side by side (KIRI_LIGHT_NO_COST=1
 // skips it, KIRI_LIGHT_COST_ONLY=1 measures it alone).
 // KIRI_LIGHT_VIEWS=TEXT[,TEXT...] keeps the views whose name holds one of the texts;
-// KIRI_LIGHT_BAKE="photons per column,levels,bands,max side[,column normalised 0/1]" sets the
+// KIRI_LIGHT_BAKE="photons per column,levels,bands,max side[,column normalised 0/1[,min photons]]" sets the
 // bake's options;
 // KIRI_LIGHT_BAKED_ONLY=1 draws the baked model alone (reported in the other models' columns too:
 // a quicker loop while tuning the bake).
@@ -142,13 +142,15 @@ struct Prepared {
     std::shared_ptr<const geometry::LightVolume> volume;
 };
 
-//! The bake's options: the defaults, or KIRI_LIGHT_BAKE="photons_per_column,levels,bands,max_side[,column_normalised]".
+//! The bake's options: the defaults, or
+//! KIRI_LIGHT_BAKE="photons_per_column,levels,bands,max_side[,column_normalised[,min_photons]]".
 geometry::LightVolumeOptions bake_options()
 {
     geometry::LightVolumeOptions o;
     int normalised = 1;
     if (const char* k = std::getenv("KIRI_LIGHT_BAKE"))
-        std::sscanf(k, "%d,%d,%d,%d,%d", &o.photons_per_column, &o.levels, &o.bands, &o.max_side, &normalised);
+        std::sscanf(k, "%d,%d,%d,%d,%d,%lld", &o.photons_per_column, &o.levels, &o.bands, &o.max_side, &normalised,
+                    &o.min_photons);
     o.column_normalised = normalised != 0;
     return o;
 }

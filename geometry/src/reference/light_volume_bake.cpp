@@ -387,8 +387,15 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     // Whole columns of photons: every (x, y) cell draws its first scatterings itself.
     if (options.photons > 0)
         baker.allocate((options.photons + baker.columns() - 1) / baker.columns(), false);
-    else
-        baker.allocate(std::max(options.photons_per_column, 1), true);
+    else {
+        const long long per_column = std::max(options.photons_per_column, 1);
+        baker.allocate(per_column, true);
+        const long long first = baker.photons();
+        // Each count is rounded, so the factor that reaches the floor may fall a few short of it.
+        for (long long k = first > 0 ? (options.min_photons + first - 1) / first : 1;
+             first > 0 && baker.photons() < options.min_photons; ++k)
+            baker.allocate(per_column * k, true);
+    }
     const long long photons = baker.photons();
 
     const long long tasks = (photons + photons_per_task - 1) / photons_per_task;

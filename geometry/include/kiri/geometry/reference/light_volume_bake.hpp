@@ -33,8 +33,11 @@ struct LightVolumeOptions {
     //! (1 - exp(-tau / sin(elevation))), at least a quarter of it.
     long long photons = 0;
     int photons_per_column = 300;
+    //! With photons 0, at least this many in all (photons_per_column raised to reach it): a small
+    //! or thin fog's few cells would otherwise carry the noise of a few thousand photons.
+    long long min_photons = 200000;
     int levels = 8;  //!< cells in h between the floor and the top, [1, 64]
-    int bands = 6;   //!< spherical-harmonic bands, [1, light_volume_max_bands]
+    int bands = 8;   //!< spherical-harmonic bands, [1, light_volume_max_bands]
     //! Cells in (x, y), metres; 0: the Medium's grid spacing or the mean free path 1 / extinction,
     //! the larger, with at most max_side cells a side (fewer where the sums would pass 2^23 a thread).
     double cell_size = 0.0;
