@@ -3,7 +3,8 @@
 // multiple scattering. Per cell the spherical-harmonic moments L_lm of the light scattered at
 // least once, for a sun of unit radiance; the light it scatters towards o is
 // sum_l g^l sum_m L_lm Y_lm(o) (Funk-Hecke, exact per band). The cells follow the shell: (x, y)
-// on a regular grid, h = (z - floor) / (top - floor) of the Medium's column in nz levels.
+// on a regular grid, h = (z - floor) / (top - floor) of the Medium's column (its top raised to the
+// height fog's where that is higher: LightVolume::shell) in nz levels.
 // Stored in a 2D array texture, layer q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F,
 // linear in x and y, clamped to the edge: the CPU's trilinear between cell centres, the levels
 // blended here). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
@@ -13,6 +14,7 @@ uniform vec4 u_lv_rect;            // x0, y0, 1 / (nx dx), 1 / (ny dy)
 uniform int u_lv_levels;           // nz
 uniform int u_lv_bands;            // [1, 8]
 uniform float u_lv_column_extinction;  // > 0: the moments are over the cells' column_scale
+uniform vec4 u_lv_haze;  // the height fog the cells reach up into: extinction (0: none), base, scale height, top
 // K_l^m = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!), times sqrt(2) for m > 0, at [l 8 + m]
 // (LightVolumeTexture::bind computes them once, as geometry::real_spherical_harmonics does).
 uniform float u_lv_norms[64];
@@ -97,14 +99,24 @@ float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
     if (u_lv_on == 0 || !shell_covers(p.xy))
         return 0.0;
     vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
-    float thick = column.z - column.x;
+    // The cells' column (geometry::LightVolume::shell): the Medium's, up to the height fog's top.
+    bool haze = u_lv_haze.x > 0.0 && u_lv_haze.w > column.x;
+    float top = haze ? max(column.z, u_lv_haze.w) : column.z;
+    float thick = top - column.x;
     if (into_column)
         p.z = clamp(p.z, column.x, column.z);
-    if (!(thick > 0.0) || p.z < column.x || p.z > column.z)
+    if (!(thick > 0.0) || p.z < column.x || p.z > top)
         return 0.0;
     float h = clamp((p.z - column.x) / thick, 0.0, 1.0);
     float scale = 1.0;
-    if (u_lv_column_extinction > 0.0)
-        scale = max(1.0 - exp(-u_lv_column_extinction * clamp(column.w, 0.0, 1.0) * thick), 1e-6);
+    if (u_lv_column_extinction > 0.0) {  // LightVolume::column_scale
+        float tau = u_lv_column_extinction * clamp(column.w, 0.0, 1.0) * max(column.z - column.x, 0.0);
+        if (haze) {  // the height fog's optical depth from the floor to its top: constant under its base
+            float a = max(column.x, u_lv_haze.y);
+            tau += u_lv_haze.x * max(min(u_lv_haze.w, u_lv_haze.y) - column.x, 0.0) +
+                u_lv_haze.x * u_lv_haze.z * (exp(-(a - u_lv_haze.y) / u_lv_haze.z) - exp(-(u_lv_haze.w - u_lv_haze.y) / u_lv_haze.z));
+        }
+        scale = max(1.0 - exp(-tau), 1e-6);
+    }
     return lv_in_scattered(p.xy, h, scale, towards, g);
 }

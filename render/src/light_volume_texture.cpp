@@ -73,6 +73,10 @@ void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on, bool wi
     p.set("u_lv_levels", v.nz);
     p.set("u_lv_bands", v.bands);
     p.set("u_lv_column_extinction", float(v.column_extinction));
+    p.set("u_lv_haze",
+          v.haze.enabled()
+              ? glm::vec4(float(v.haze.extinction), float(v.haze.base), float(v.haze.scale_height), float(v.haze_top))
+              : glm::vec4(0.0f));
     glBindTextureUnit(GLuint(unit), texture_.get());
 }
 

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <numbers>
 #include <utility>
@@ -462,5 +463,53 @@ TEST(LightVolume, BakedHeightFogUnderAThinMediumAgreesWithThePathTracer)
         EXPECT_NEAR(model.inscatter.x, truth.radiance.x, 0.10 * truth.radiance.x + 3.0 * truth.std_error.x)
             << "from " << origin.z;
         EXPECT_GT(model.inscatter.x, 1.3 * once.inscatter.x);
+    }
+}
+
+TEST(LightVolume, BakedHeightFogAboveAThinMediumsTopAgreesWithThePathTracer)
+{
+    // The same height fog over a Medium only 15 m deep: nearly all of the height fog lies above
+    // the Medium's top. The bake followed its photons only within the Medium's box and the cells
+    // held the Medium's shell alone, so the model drew the height fog's single scattering there
+    // and nothing more (looking down into it 0.024 against the path tracer's 0.133, level through
+    // it 0.083 against 0.402). The photons go up to the height fog's top now, and the cells'
+    // columns with them (LightVolume::shell).
+    const Heightfield ground =
+        kiri::test::make_heightfield(11, 11, 400.0, -2000.0, -2000.0, [](double, double) { return 0.0; });
+    const Medium m = slab(0.0, 15.0, 0.002, 0.99, 0.8, 2000.0);
+    HeightFog haze;
+    haze.extinction = 0.03;
+    haze.base = 30.0;
+    haze.scale_height = 25.0;
+    haze.albedo = 0.99;
+    haze.anisotropy = 0.6;
+    FogLighting light;
+    light.sun_direction = sun_towards(30.0 * std::numbers::pi / 180.0, 0.7);
+    light.sun_radiance = glm::dvec3(1.0);
+    light.sky = false;
+    light.multiple_scattering = MultipleScattering::baked;
+    light.light_volume = std::make_shared<const LightVolume>(
+        bake_light_volume({&m, haze}, &ground, light.sun_direction, small_bake(40000)));
+    ASSERT_FALSE(light.light_volume->empty());
+    EXPECT_DOUBLE_EQ(light.light_volume->haze_top, 30.0 + 8.0 * 25.0);
+    EXPECT_DOUBLE_EQ(light.light_volume->shell(m.column(0.0, 0.0)).top, 230.0);
+    ReferenceOptions ro;
+    ro.shade_terrain = false;
+    PathTracerOptions po;
+    po.samples = 3000;
+    po.sky = PathSky::none;
+    po.ground = PathGround::black;
+    const std::pair<glm::dvec3, glm::dvec3> rays[] = {{{0.0, 0.0, 400.0}, glm::normalize(glm::dvec3(0.2, 0.1, -1.0))},
+                                                      {{0.0, 0.0, 40.0}, glm::normalize(glm::dvec3(1.0, -0.3, 0.0))}};
+    for (const auto& [origin, dir] : rays) {
+        const RayFog model = reference_ray({&m, haze}, &ground, origin, dir, 1e6, light, ro);
+        const PathEstimate truth = path_traced_ray({&m, haze}, &ground, origin, dir, 1e6, light, po, 5);
+        FogLighting single = light;
+        single.multiple_scattering = MultipleScattering::none;
+        const RayFog once = reference_ray({&m, haze}, &ground, origin, dir, 1e6, single, ro);
+        std::printf("    from %.0f m: baked %.5f (single scattering %.5f), path traced %.5f +- %.5f\n", origin.z,
+                    model.inscatter.x, once.inscatter.x, truth.radiance.x, truth.std_error.x);
+        EXPECT_NEAR(model.inscatter.x, truth.radiance.x, 0.10 * truth.radiance.x + 3.0 * truth.std_error.x)
+            << "from " << origin.z;
     }
 }

@@ -115,6 +115,40 @@ TEST_F(FroxelGl, BakedMultipleScatteringIsTheReferencesLight)
     EXPECT_GT(without.mean_relative, 0.05);
 }
 
+TEST_F(FroxelGl, BakedLightOfAHeightFogAboveTheMediumsTopIsTheReferences)
+{
+    // A height fog reaching 320 m (8 scale heights of 40 m) over a Medium 20 m deep, seen from
+    // inside it: the froxels light the height fog above the Medium's top from the volume's cells,
+    // which reach up to the height fog's top (geometry::LightVolume::shell), as the reference
+    // does. Before, that light was missing from both (the bake followed no photon above the
+    // Medium's box).
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = baked_slab(0.0, 20.0, 0.002, 2000.0);
+    g::FroxelOptions o = small(24, 14);
+    o.height_fog.extinction = 0.01;
+    o.height_fog.base = 0.0;
+    o.height_fog.scale_height = 40.0;
+    o.height_fog.albedo = 0.99;
+    o.height_fog.anisotropy = 0.6;
+    const SunLight light = sun();
+    g::LightVolumeOptions bake;
+    bake.photons_per_column = 200;
+    bake.levels = 6;
+    bake.max_side = 12;
+    const auto volume = std::make_shared<const g::LightVolume>(
+        g::bake_light_volume({&fog, o.height_fog}, &ground.heightfield(), glm::normalize(light.direction), bake));
+    ASSERT_FALSE(volume->empty());
+    ASSERT_DOUBLE_EQ(volume->haze_top, 320.0);
+    Camera c;
+    c.position = {0.0, -1500.0, 100.0};
+    c.target = {300.0, 0.0, 110.0};
+    const Compared with = compare(ground, &fog, o, c, 96, 54, light, 0.0, HUGE_VAL, volume);
+    std::printf("    baked height fog above the Medium: mean %.4f over %d fog pixels\n", with.error.mean_relative,
+                with.error.fog_pixels);
+    EXPECT_GT(with.error.fog_pixels, 96 * 54 / 2);
+    EXPECT_LT(with.error.mean_relative, 0.03);
+}
+
 TEST_F(FroxelGl, HeightFog)
 {
     const g::Terrain ground = flat_ground();

@@ -73,11 +73,20 @@ double shell_height(const MediumColumn& column, double z)
     return std::clamp((z - column.floor) / thick, 0.0, 1.0);
 }
 
+MediumColumn LightVolume::shell(MediumColumn c) const
+{
+    if (haze.enabled() && haze_top > c.floor && haze_top > c.top)
+        c.top = haze_top;
+    return c;
+}
+
 double LightVolume::column_scale(const MediumColumn& column) const
 {
     if (!(column_extinction > 0.0) || !std::isfinite(column_extinction))
         return 1.0;
-    const double tau = column_extinction * std::clamp(column.coverage, 0.0, 1.0) * (column.top - column.floor);
+    double tau = column_extinction * std::clamp(column.coverage, 0.0, 1.0) * std::max(column.top - column.floor, 0.0);
+    if (haze.enabled() && haze_top > column.floor)
+        tau += haze.optical_depth({0.0, 0.0, column.floor}, {0.0, 0.0, 1.0}, 0.0, haze_top - column.floor);
     return std::isfinite(tau) ? std::max(-std::expm1(-std::max(tau, 0.0)), 1e-6) : 1.0;
 }
 

@@ -1,6 +1,7 @@
 #include "kiri/geometry/reference/light_volume_bake.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -90,6 +91,10 @@ public:
         : tracer_(tracer), medium_(medium), sun_(sun), v_(volume), o_(o), nc_(volume.bands * volume.bands)
     {
         box_ = medium.bounds();
+        // The height fog above the Medium's highest top scatters light too: its photons are
+        // followed, and its first scatterings drawn, up to its top.
+        if (v_.haze.enabled())
+            box_.max.z = std::max(box_.max.z, v_.haze_top);
         step_ = 0.5 * std::min(v_.dx, v_.dy);
         columns_ = (long long)v_.nx * v_.ny;
     }
@@ -311,7 +316,7 @@ private:
         long long count = 0;
         // The step's level height from the last point's column (the shell's thickness changes
         // little over a step): one column lookup per point.
-        MediumColumn c = medium_.column(o.x, o.y);
+        MediumColumn c = v_.shell(medium_.column(o.x, o.y));
         for (double t = 0.0; t < length;) {
             const double level = (c.top - c.floor) / v_.nz;
             double dt = std::min(max_step, 2.0 * step_);
@@ -321,7 +326,7 @@ private:
             const double seg = std::min(dt, length - t);
             const glm::dvec3 p = o + w * (t + rng.uniform() * seg);
             t += seg;
-            c = medium_.column(p.x, p.y);
+            c = v_.shell(medium_.column(p.x, p.y));
             const double h = shell_height(c, p.z);
             if (h < 0.0)
                 continue;
@@ -375,6 +380,13 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     v.y0 = g.y0;
     v.dx = width / v.nx;
     v.dy = height / v.ny;
+    if (fog.height_fog.enabled()) {
+        // Its extent covers the terrain, under which the Medium lies.
+        v.haze = fog.height_fog;
+        v.haze.min = glm::dvec2(-std::numeric_limits<double>::infinity());
+        v.haze.max = glm::dvec2(std::numeric_limits<double>::infinity());
+        v.haze_top = v.haze.base + 8.0 * v.haze.scale_height;
+    }
     const int nc = v.bands * v.bands;
     const std::size_t cells = std::size_t(v.nx) * v.ny * v.nz;
 
@@ -430,7 +442,8 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
                 for (int a = 0; a < raster; ++a) {
                     const MediumColumn c =
                         medium->column(v.x0 + (i + (a + 0.5) / raster) * v.dx, v.y0 + (j + (b + 0.5) / raster) * v.dy);
-                    const double thick = std::max(c.top - c.floor, 0.0);
+                    const MediumColumn cells = v.shell(c);
+                    const double thick = std::max(cells.top - cells.floor, 0.0);
                     sum += thick;
                     scaled += thick * v.column_scale(c);
                 }

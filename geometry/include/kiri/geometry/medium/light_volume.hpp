@@ -15,7 +15,8 @@
 //!
 //! (the convolution is exact; the truncation at `bands` bands is the approximation). The cells
 //! follow the shell: (x, y) on a regular grid, h = (z - floor) / (top - floor) in `levels`
-//! equal levels, so a thin layer and a deep lake get the same number of levels.
+//! equal levels, so a thin layer and a deep lake get the same number of levels (the top raised to
+//! the height fog's where that is higher: shell()).
 //!
 //! A cell can hold two bodies of fog that see very different diffuse light: a thick valley lake
 //! and a thin thread of fog across a ridge. The light a column of fog scatters grows with its
@@ -31,6 +32,7 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/medium/medium.hpp"
+#include "kiri/geometry/volume/height_fog.hpp"
 
 namespace kiri::geometry {
 
@@ -56,6 +58,12 @@ struct LightVolume {
     //! multiplied by column_scale at the lookup point; 0: they are the diffuse light itself. The
     //! Medium's extinction times its mean profile (1 + top_density) / 2, 1/m.
     double column_extinction = 0.0;
+    //! The height fog the sunlight also scatters in (extinction 0: none). Its light lies above the
+    //! Medium's top too (a dense haze in the valleys over a thin blanket) and where the Medium has
+    //! none, so the cells' columns reach up to haze_top wherever it is above their floor (shell),
+    //! and its vertical optical depth counts in column_scale.
+    HeightFog haze;
+    double haze_top = 0.0;  //!< the height fog's top: its base plus 8 scale heights (e^-8 of it above)
     // What the bake cost.
     long long photons = 0;
     long long deposits = 0;
@@ -65,9 +73,13 @@ struct LightVolume {
     {
         return nx < 1 || ny < 1 || nz < 1 || bands < 1 || bands > light_volume_max_bands || moments.empty();
     }
-    //! 1 - exp(-column_extinction coverage (top - floor)) of the column at the lookup point, at
-    //! least 1e-6; 1 when column_extinction is 0.
-    double column_scale(const MediumColumn& column) const;
+    //! The column of the cells at a point from the Medium's there: its top raised to haze_top
+    //! where the height fog reaches above it (and above the floor).
+    MediumColumn shell(MediumColumn medium_column) const;
+    //! 1 - exp(-tau_c) of the Medium's column at the lookup point, tau_c = column_extinction
+    //! coverage (top - floor) plus the height fog's optical depth from the floor up to the shell's
+    //! top; at least 1e-6; 1 when column_extinction is 0.
+    double column_scale(const MediumColumn& medium_column) const;
     //! The moments at (x, y, h), trilinear between cell centres (clamped to the outer cells' centres),
     //! times `scale` (column_scale of the point's column), into out (bands^2 values); zeros when empty.
     void moments_at(double x, double y, double h, double* out, double scale = 1.0) const;
