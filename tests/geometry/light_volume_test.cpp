@@ -423,15 +423,18 @@ TEST(LightVolume, AThinLayerBesideAThickBodyInOneCellGetsItsOwnLight)
     }
 }
 
-TEST(LightVolume, BakedHeightFogUnderAThinMediumAgreesWithThePathTracer)
+namespace {
+
+// A height fog (sigma 0.03 up to its base at 30 m, falling off over 25 m above) in or over a thin
+// Medium (sigma 0.002) `top` metres deep over a flat black ground, the sun 30 degrees up: single
+// scattering plus the baked volume against every order path traced, looking down into it from
+// 400 m and level through it from `level_z`; each within 10 % (plus 3 standard errors) and at
+// least 1.3 times the single scattering. Returns the light volume.
+std::shared_ptr<const LightVolume> expect_baked_height_fog_agrees(double top, double level_z)
 {
-    // A height fog (sigma 0.03 up to its base at 30 m, falling off over 25 m above) inside a thin
-    // Medium 200 m deep (sigma 0.002): most of the light scatters first in the height fog, whose
-    // first scatterings the bake draws along the sun in closed form. Single scattering plus the
-    // baked volume against every order path traced, looking down into it and across it.
     const Heightfield ground =
         kiri::test::make_heightfield(11, 11, 400.0, -2000.0, -2000.0, [](double, double) { return 0.0; });
-    const Medium m = slab(0.0, 200.0, 0.002, 0.99, 0.8, 2000.0);
+    const Medium m = slab(0.0, top, 0.002, 0.99, 0.8, 2000.0);
     HeightFog haze;
     haze.extinction = 0.03;
     haze.base = 30.0;
@@ -445,25 +448,40 @@ TEST(LightVolume, BakedHeightFogUnderAThinMediumAgreesWithThePathTracer)
     light.multiple_scattering = MultipleScattering::baked;
     light.light_volume = std::make_shared<const LightVolume>(
         bake_light_volume({&m, haze}, &ground, light.sun_direction, small_bake(40000)));
-    ASSERT_FALSE(light.light_volume->empty());
+    EXPECT_FALSE(light.light_volume->empty());
     ReferenceOptions ro;
     ro.shade_terrain = false;
     PathTracerOptions po;
     po.samples = 3000;
     po.sky = PathSky::none;
     po.ground = PathGround::black;
-    const std::pair<glm::dvec3, glm::dvec3> rays[] = {{{0.0, 0.0, 400.0}, glm::normalize(glm::dvec3(0.2, 0.1, -1.0))},
-                                                      {{0.0, 0.0, 20.0}, glm::normalize(glm::dvec3(1.0, -0.3, 0.0))}};
+    const std::pair<glm::dvec3, glm::dvec3> rays[] = {
+        {{0.0, 0.0, 400.0}, glm::normalize(glm::dvec3(0.2, 0.1, -1.0))},
+        {{0.0, 0.0, level_z}, glm::normalize(glm::dvec3(1.0, -0.3, 0.0))}};
     for (const auto& [origin, dir] : rays) {
         const RayFog model = reference_ray({&m, haze}, &ground, origin, dir, 1e6, light, ro);
         FogLighting single = light;
         single.multiple_scattering = MultipleScattering::none;
         const RayFog once = reference_ray({&m, haze}, &ground, origin, dir, 1e6, single, ro);
         const PathEstimate truth = path_traced_ray({&m, haze}, &ground, origin, dir, 1e6, light, po, 5);
+        std::printf(
+            "    Medium %.0f m deep, from %.0f m: baked %.5f (single scattering %.5f), path traced %.5f +- "
+            "%.5f\n",
+            top, origin.z, model.inscatter.x, once.inscatter.x, truth.radiance.x, truth.std_error.x);
         EXPECT_NEAR(model.inscatter.x, truth.radiance.x, 0.10 * truth.radiance.x + 3.0 * truth.std_error.x)
             << "from " << origin.z;
         EXPECT_GT(model.inscatter.x, 1.3 * once.inscatter.x);
     }
+    return light.light_volume;
+}
+
+}  // namespace
+
+TEST(LightVolume, BakedHeightFogUnderAThinMediumAgreesWithThePathTracer)
+{
+    // Inside a Medium 200 m deep: most of the light scatters first in the height fog, whose first
+    // scatterings the bake draws along the sun in closed form.
+    expect_baked_height_fog_agrees(200.0, 20.0);
 }
 
 TEST(LightVolume, BakedHeightFogAboveAThinMediumsTopAgreesWithThePathTracer)
@@ -474,42 +492,7 @@ TEST(LightVolume, BakedHeightFogAboveAThinMediumsTopAgreesWithThePathTracer)
     // and nothing more (looking down into it 0.024 against the path tracer's 0.133, level through
     // it 0.083 against 0.402). The photons go up to the height fog's top now, and the cells'
     // columns with them (LightVolume::shell).
-    const Heightfield ground =
-        kiri::test::make_heightfield(11, 11, 400.0, -2000.0, -2000.0, [](double, double) { return 0.0; });
-    const Medium m = slab(0.0, 15.0, 0.002, 0.99, 0.8, 2000.0);
-    HeightFog haze;
-    haze.extinction = 0.03;
-    haze.base = 30.0;
-    haze.scale_height = 25.0;
-    haze.albedo = 0.99;
-    haze.anisotropy = 0.6;
-    FogLighting light;
-    light.sun_direction = sun_towards(30.0 * std::numbers::pi / 180.0, 0.7);
-    light.sun_radiance = glm::dvec3(1.0);
-    light.sky = false;
-    light.multiple_scattering = MultipleScattering::baked;
-    light.light_volume = std::make_shared<const LightVolume>(
-        bake_light_volume({&m, haze}, &ground, light.sun_direction, small_bake(40000)));
-    ASSERT_FALSE(light.light_volume->empty());
-    EXPECT_DOUBLE_EQ(light.light_volume->haze_top, 30.0 + 8.0 * 25.0);
-    EXPECT_DOUBLE_EQ(light.light_volume->shell(m.column(0.0, 0.0)).top, 230.0);
-    ReferenceOptions ro;
-    ro.shade_terrain = false;
-    PathTracerOptions po;
-    po.samples = 3000;
-    po.sky = PathSky::none;
-    po.ground = PathGround::black;
-    const std::pair<glm::dvec3, glm::dvec3> rays[] = {{{0.0, 0.0, 400.0}, glm::normalize(glm::dvec3(0.2, 0.1, -1.0))},
-                                                      {{0.0, 0.0, 40.0}, glm::normalize(glm::dvec3(1.0, -0.3, 0.0))}};
-    for (const auto& [origin, dir] : rays) {
-        const RayFog model = reference_ray({&m, haze}, &ground, origin, dir, 1e6, light, ro);
-        const PathEstimate truth = path_traced_ray({&m, haze}, &ground, origin, dir, 1e6, light, po, 5);
-        FogLighting single = light;
-        single.multiple_scattering = MultipleScattering::none;
-        const RayFog once = reference_ray({&m, haze}, &ground, origin, dir, 1e6, single, ro);
-        std::printf("    from %.0f m: baked %.5f (single scattering %.5f), path traced %.5f +- %.5f\n", origin.z,
-                    model.inscatter.x, once.inscatter.x, truth.radiance.x, truth.std_error.x);
-        EXPECT_NEAR(model.inscatter.x, truth.radiance.x, 0.10 * truth.radiance.x + 3.0 * truth.std_error.x)
-            << "from " << origin.z;
-    }
+    const auto volume = expect_baked_height_fog_agrees(15.0, 40.0);
+    EXPECT_DOUBLE_EQ(volume->haze_top, 30.0 + 8.0 * 25.0);
+    EXPECT_DOUBLE_EQ(volume->shell(slab(0.0, 15.0, 0.002, 0.99, 0.8, 2000.0).column(0.0, 0.0)).top, 230.0);
 }

@@ -78,6 +78,18 @@ g::Medium baked_slab(double bottom, double top, double sigma, double half)
     return g::Medium(plain.grid(), o, plain.detail());
 }
 
+// A quick bake of the fog and height fog over the ground under the sun (12 cells a side, 6 levels).
+std::shared_ptr<const g::LightVolume> small_bake(const g::Medium& fog, const g::HeightFog& haze,
+                                                 const g::Terrain& ground, const SunLight& light)
+{
+    g::LightVolumeOptions bake;
+    bake.photons_per_column = 200;
+    bake.levels = 6;
+    bake.max_side = 12;
+    return std::make_shared<const g::LightVolume>(
+        g::bake_light_volume({&fog, haze}, &ground.heightfield(), glm::normalize(light.direction), bake));
+}
+
 TEST_F(FroxelGl, BakedMultipleScatteringIsTheReferencesLight)
 {
     // A slab 300 m thick (optical thickness 1.5, albedo 0.99, g 0.8) seen from inside, lit by
@@ -87,12 +99,7 @@ TEST_F(FroxelGl, BakedMultipleScatteringIsTheReferencesLight)
     const g::Terrain ground = flat_ground();
     const g::Medium fog = baked_slab(0.0, 300.0, 0.005, 2000.0);
     const SunLight light = sun();
-    g::LightVolumeOptions bake;
-    bake.photons_per_column = 200;
-    bake.levels = 6;
-    bake.max_side = 12;
-    const auto volume = std::make_shared<const g::LightVolume>(
-        g::bake_light_volume({&fog, {}}, &ground.heightfield(), glm::normalize(light.direction), bake));
+    const auto volume = small_bake(fog, {}, ground, light);
     ASSERT_FALSE(volume->empty());
     Camera c;
     c.position = {0.0, -1500.0, 150.0};
@@ -131,12 +138,7 @@ TEST_F(FroxelGl, BakedLightOfAHeightFogAboveTheMediumsTopIsTheReferences)
     o.height_fog.albedo = 0.99;
     o.height_fog.anisotropy = 0.6;
     const SunLight light = sun();
-    g::LightVolumeOptions bake;
-    bake.photons_per_column = 200;
-    bake.levels = 6;
-    bake.max_side = 12;
-    const auto volume = std::make_shared<const g::LightVolume>(
-        g::bake_light_volume({&fog, o.height_fog}, &ground.heightfield(), glm::normalize(light.direction), bake));
+    const auto volume = small_bake(fog, o.height_fog, ground, light);
     ASSERT_FALSE(volume->empty());
     ASSERT_DOUBLE_EQ(volume->haze_top, 320.0);
     Camera c;
