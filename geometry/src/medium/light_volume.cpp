@@ -75,7 +75,7 @@ double shell_height(const MediumColumn& column, double z)
 
 MediumColumn LightVolume::shell(MediumColumn c) const
 {
-    if (haze.enabled() && haze_top > c.floor && haze_top > c.top)
+    if (haze_extinction > 0.0 && haze_top > c.floor && haze_top > c.top)
         c.top = haze_top;
     return c;
 }
@@ -85,8 +85,15 @@ double LightVolume::column_scale(const MediumColumn& column) const
     if (!(column_extinction > 0.0) || !std::isfinite(column_extinction))
         return 1.0;
     double tau = column_extinction * std::clamp(column.coverage, 0.0, 1.0) * std::max(column.top - column.floor, 0.0);
-    if (haze.enabled() && haze_top > column.floor)
-        tau += haze.optical_depth({0.0, 0.0, column.floor}, {0.0, 0.0, 1.0}, 0.0, haze_top - column.floor);
+    if (haze_extinction > 0.0 && haze_top > column.floor && haze_scale_height > 0.0) {
+        // The height fog's optical depth from the floor up to its top: constant under its base,
+        // exponential above (HeightFog::optical_depth along a vertical, in closed form).
+        const double above = std::max(column.floor, haze_base);
+        tau += haze_extinction * std::max(std::min(haze_top, haze_base) - column.floor, 0.0) +
+            haze_extinction * haze_scale_height *
+                (std::exp(-(above - haze_base) / haze_scale_height) -
+                 std::exp(-(haze_top - haze_base) / haze_scale_height));
+    }
     return std::isfinite(tau) ? std::max(-std::expm1(-std::max(tau, 0.0)), 1e-6) : 1.0;
 }
 

@@ -1,7 +1,6 @@
 #include "kiri/geometry/reference/light_volume_bake.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <array>
 #include <atomic>
 #include <chrono>
@@ -93,7 +92,7 @@ public:
         box_ = medium.bounds();
         // The height fog above the Medium's highest top scatters light too: its photons are
         // followed, and its first scatterings drawn, up to its top.
-        if (v_.haze.enabled())
+        if (v_.haze_extinction > 0.0)
             box_.max.z = std::max(box_.max.z, v_.haze_top);
         step_ = 0.5 * std::min(v_.dx, v_.dy);
         columns_ = (long long)v_.nx * v_.ny;
@@ -380,12 +379,11 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     v.y0 = g.y0;
     v.dx = width / v.nx;
     v.dy = height / v.ny;
-    if (fog.height_fog.enabled()) {
-        // Its extent covers the terrain, under which the Medium lies.
-        v.haze = fog.height_fog;
-        v.haze.min = glm::dvec2(-std::numeric_limits<double>::infinity());
-        v.haze.max = glm::dvec2(std::numeric_limits<double>::infinity());
-        v.haze_top = v.haze.base + 8.0 * v.haze.scale_height;
+    if (fog.height_fog.enabled()) {  // its extent covers the terrain, under which the Medium lies
+        v.haze_extinction = fog.height_fog.extinction;
+        v.haze_base = fog.height_fog.base;
+        v.haze_scale_height = fog.height_fog.scale_height;
+        v.haze_top = v.haze_base + 8.0 * v.haze_scale_height;
     }
     const int nc = v.bands * v.bands;
     const std::size_t cells = std::size_t(v.nx) * v.ny * v.nz;

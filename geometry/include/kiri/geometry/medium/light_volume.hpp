@@ -32,7 +32,6 @@
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/medium/medium.hpp"
-#include "kiri/geometry/volume/height_fog.hpp"
 
 namespace kiri::geometry {
 
@@ -58,11 +57,12 @@ struct LightVolume {
     //! multiplied by column_scale at the lookup point; 0: they are the diffuse light itself. The
     //! Medium's extinction times its mean profile (1 + top_density) / 2, 1/m.
     double column_extinction = 0.0;
-    //! The height fog the sunlight also scatters in (extinction 0: none). Its light lies above the
-    //! Medium's top too (a dense haze in the valleys over a thin blanket) and where the Medium has
-    //! none, so the cells' columns reach up to haze_top wherever it is above their floor (shell),
-    //! and its vertical optical depth counts in column_scale.
-    HeightFog haze;
+    //! The height fog the sunlight also scatters in (volume/height_fog.hpp: haze_extinction up to
+    //! haze_base, falling off over haze_scale_height above; extinction 0: none). Its light lies
+    //! above the Medium's top too (a dense haze in the valleys over a thin blanket) and where the
+    //! Medium has none, so the cells' columns reach up to haze_top wherever it is above their floor
+    //! (shell), and its vertical optical depth counts in column_scale.
+    double haze_extinction = 0.0, haze_base = 0.0, haze_scale_height = 1.0;
     double haze_top = 0.0;  //!< the height fog's top: its base plus 8 scale heights (e^-8 of it above)
     // What the bake cost.
     long long photons = 0;
