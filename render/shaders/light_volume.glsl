@@ -5,8 +5,7 @@
 // sum_l g^l sum_m L_lm Y_lm(o) (Funk-Hecke, exact per band). The cells follow the shell: (x, y)
 // on a regular grid, h = (z - floor) / (top - floor) of the Medium's column (its top raised to the
 // height fog's where that is higher: LightVolume::shell) in nz levels.
-// Stored in a 2D array texture, layer q nz + k holding moments 4q .. 4q + 3 of level k in the
-// order the lookup makes the harmonics (LightVolumeTexture::set) (RGBA32F,
+// Stored in a 2D array texture, layer q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F,
 // linear in x and y, clamped to the edge: the CPU's trilinear between cell centres, the levels
 // blended here). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
 uniform int u_lv_on;
@@ -22,31 +21,18 @@ uniform float u_lv_norms[64];
 
 const int lv_max_bands = 8;
 
-// The light scattered at least once towards `towards` by fog of anisotropy g at (x, y) and
-// shell height h, per unit sun radiance, times `scale` (geometry::LightVolume::in_scattered):
-// >= 0, 0 without a volume or outside the shell (h < 0). sum_l g^l sum_m L_lm Y_lm(towards), the
-// real orthonormal harmonics by the recurrences of geometry::real_spherical_harmonics (no
-// Condon-Shortley phase; sin^m(theta) (cos, sin)(m phi) as (u.x + i u.y)^m), each times its
-// moment as the recurrence makes it: the texture holds the moments in that order
-// (LightVolumeTexture::set), four to a texel, so no array of weights is kept (indexed arrays
-// cost a software rasteriser's shaders a memory round trip per element).
-float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
+// g^l Y_lm(d) at [l (l + 1) + m] for l < bands (geometry::LightVolume::phase_weights): the real
+// orthonormal harmonics by the recurrences of geometry::real_spherical_harmonics (no
+// Condon-Shortley phase; sin^m(theta) (cos, sin)(m phi) as (u.x + i u.y)^m).
+void lv_phase_weights(vec3 d, float g, int bands, out float w[lv_max_bands * lv_max_bands])
 {
-    if (u_lv_on == 0 || !(h >= 0.0) || !(scale > 0.0))
-        return 0.0;
-    int bands = clamp(u_lv_bands, 1, lv_max_bands);
-    vec2 st = (xy - u_lv_rect.xy) * u_lv_rect.zw;
-    float kz = clamp(clamp(h, 0.0, 1.0) * float(u_lv_levels) - 0.5, 0.0, float(u_lv_levels - 1));
-    int k0 = int(floor(kz));
-    int k1 = min(k0 + 1, u_lv_levels - 1);
-    float fz = kz - float(k0);
-    float len = length(towards);
-    vec3 u = len > 0.0 ? towards / len : vec3(0.0, 0.0, 1.0);
+    for (int q = 0; q < lv_max_bands * lv_max_bands; ++q)
+        w[q] = 0.0;
+    float len = length(d);
+    vec3 u = len > 0.0 ? d / len : vec3(0.0, 0.0, 1.0);
     float x = clamp(u.z, -1.0, 1.0);
     float lobe = clamp(g, -0.999, 0.999);
-    float pmm = 1.0, re = 1.0, im = 0.0, sum = 0.0;
-    int n = 0;  // the moment's place in the texture's order
-    vec4 group = vec4(0.0);
+    float pmm = 1.0, re = 1.0, im = 0.0;
     for (int m = 0; m < bands; ++m) {
         if (m > 0)
             pmm *= 2.0 * float(m) - 1.0;
@@ -66,20 +52,40 @@ float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
                 p1 = p;
             }
             float a = u_lv_norms[l * lv_max_bands + m] * p * gl;
-            for (int c = 0; c < (m == 0 ? 1 : 2); ++c, ++n) {  // Y_l^m, then Y_l^-m
-                if ((n & 3) == 0) {
-                    int q = n >> 2;
-                    vec4 lo = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k0)), 0.0);
-                    vec4 hi = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k1)), 0.0);
-                    group = mix(lo, hi, fz);
-                }
-                sum += (m == 0 ? a : a * (c == 0 ? re : im)) * group[n & 3];
+            if (m == 0) {
+                w[l * (l + 1)] = a;
+            } else {
+                w[l * (l + 1) + m] = a * re;
+                w[l * (l + 1) - m] = a * im;
             }
             gl *= lobe;
         }
         float r = re * u.x - im * u.y;
         im = re * u.y + im * u.x;
         re = r;
+    }
+}
+
+// The light scattered at least once towards `towards` by fog of anisotropy g at (x, y) and
+// shell height h, per unit sun radiance, times `scale` (geometry::LightVolume::in_scattered):
+// >= 0, 0 without a volume or outside the shell (h < 0).
+float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
+{
+    if (u_lv_on == 0 || !(h >= 0.0) || !(scale > 0.0))
+        return 0.0;
+    int bands = clamp(u_lv_bands, 1, lv_max_bands);
+    float w[lv_max_bands * lv_max_bands];
+    lv_phase_weights(towards, g, bands, w);
+    vec2 st = (xy - u_lv_rect.xy) * u_lv_rect.zw;
+    float kz = clamp(clamp(h, 0.0, 1.0) * float(u_lv_levels) - 0.5, 0.0, float(u_lv_levels - 1));
+    int k0 = int(floor(kz));
+    int k1 = min(k0 + 1, u_lv_levels - 1);
+    float fz = kz - float(k0);
+    float sum = 0.0;
+    for (int q = 0; 4 * q < bands * bands; ++q) {
+        vec4 a = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k0)), 0.0);
+        vec4 b = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k1)), 0.0);
+        sum += dot(mix(a, b, fz), vec4(w[4 * q], w[4 * q + 1], w[4 * q + 2], w[4 * q + 3]));
     }
     return max(sum * scale, 0.0);
 }

@@ -20,26 +20,16 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
         return;
     const geometry::LightVolume& v = *volume_;
     const int moments = v.bands * v.bands, groups = (moments + 3) / 4;
-    // The moments in the order the lookup's recurrence makes the harmonics (light_volume.glsl):
-    // m = 0, 1, ... and within each m, l = m, m + 1, ..., the pair (l, m), (l, -m) for m > 0; so
-    // the shader reads them in turn, four to a texel, and keeps no array of weights.
-    std::vector<int> order;
-    for (int m = 0; m < v.bands; ++m)
-        for (int l = m; l < v.bands; ++l) {
-            order.push_back(l * (l + 1) + m);
-            if (m > 0)
-                order.push_back(l * (l + 1) - m);
-        }
-    // Layer q nz + k: moments order[4q .. 4q + 3] of level k, rows of cells (i, j); the last
-    // group's unused channels 0.
+    // Layer q nz + k: moments 4q .. 4q + 3 of level k, rows of cells (i, j); the last group's
+    // unused channels 0.
     std::vector<float> texels(std::size_t(groups) * v.nz * v.ny * v.nx * 4, 0.0f);
     for (int k = 0; k < v.nz; ++k)
         for (int j = 0; j < v.ny; ++j)
             for (int i = 0; i < v.nx; ++i) {
                 const double* m = &v.moments[((std::size_t(k) * v.ny + j) * v.nx + i) * moments];
-                for (int n = 0; n < moments; ++n) {
-                    const std::size_t layer = std::size_t(n / 4) * v.nz + k;
-                    texels[((layer * v.ny + j) * v.nx + i) * 4 + n % 4] = float(m[order[std::size_t(n)]]);
+                for (int q = 0; q < moments; ++q) {
+                    const std::size_t layer = std::size_t(q / 4) * v.nz + k;
+                    texels[((layer * v.ny + j) * v.nx + i) * 4 + q % 4] = float(m[q]);
                 }
             }
     texture_ = make_texture(GL_TEXTURE_2D_ARRAY);
