@@ -79,8 +79,8 @@ vec3 height_fog_light_with(vec3 p, vec3 eye, float visible, float medium_tau)
 // The height fog along the segment [a, b] (in it, `tau` of its optical depth): its in-scattered
 // radiance per unit of opacity as the eye at a's side sees it, each of n pieces' light weighted
 // by the light the pieces in front of it let through. The pieces split the part of the segment
-// below 8 scale heights over the base (the height fog's top for the slices too: FroxelPass's
-// haze_top_scale_heights), where all but e^-8 of the haze is (a step of a march
+// below 8 scale heights over the base (geometry::HeightFog::top, the slices' top for it too),
+// where all but e^-8 of the haze is (a step of a march
 // from afar is a kilometre long, its haze in its last hundred metres), and share the terrain's
 // visibility of the sun and the Medium's optical depth towards it, taken at that part's middle.
 vec3 height_fog_segment_light(vec3 a, vec3 b, vec3 eye, float tau)

@@ -22,9 +22,6 @@ constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_histor
 constexpr int unit_first = 5, unit_last = 6;
 constexpr int unit_sun = 16;  // 16, 17, 18
 constexpr int unit_light_volume = 19;
-// The height fog's top for the slices (froxel_tiles.comp): e^-8 of its density at the base is left
-// above it, the cap froxel_light.glsl lights the height fog under.
-constexpr double haze_top_scale_heights = 8.0;
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
 // cycle's first two samples at once. The volume's J lights the pixels it resolves and the fog in
 // front of the layers and the particles; the pixels that march light their own points
@@ -400,8 +397,7 @@ void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
     use_shell_for_resolution();
     // The depths each tile's slices span.
     tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
-                        v_->tiles[current_].get(),
-                        o.height_fog.base + haze_top_scale_heights * o.height_fog.scale_height);
+                        v_->tiles[current_].get(), o.height_fog.top());
     if (mode_ == FroxelTileBounds::Mode::shell) {  // ranges end where the fog turns opaque
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         bind_layout(opaque_);

@@ -383,7 +383,7 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
         v.haze_extinction = fog.height_fog.extinction;
         v.haze_base = fog.height_fog.base;
         v.haze_scale_height = fog.height_fog.scale_height;
-        v.haze_top = v.haze_base + 8.0 * v.haze_scale_height;
+        v.haze_top = fog.height_fog.top();
     }
     const int nc = v.bands * v.bands;
     const std::size_t cells = std::size_t(v.nx) * v.ny * v.nz;

@@ -63,7 +63,7 @@ struct LightVolume {
     //! Medium has none, so the cells' columns reach up to haze_top wherever it is above their floor
     //! (shell), and its vertical optical depth counts in column_scale.
     double haze_extinction = 0.0, haze_base = 0.0, haze_scale_height = 1.0;
-    double haze_top = 0.0;  //!< the height fog's top: its base plus 8 scale heights (e^-8 of it above)
+    double haze_top = 0.0;  //!< the height fog's top (HeightFog::top)
     // What the bake cost.
     long long photons = 0;
     long long deposits = 0;

@@ -26,6 +26,9 @@ struct HeightFog {
     glm::dvec2 max{std::numeric_limits<double>::infinity()};
 
     bool enabled() const { return extinction > 0.0; }
+    //! Its top: the base plus 8 scale heights, above which e^-8 of the base's density is left (the
+    //! froxels' slices and the baked light's cells reach up to it; froxel_light.glsl lights under it).
+    double top() const { return base + 8.0 * scale_height; }
     //! sigma_t (1/m) at altitude z, inside the extent.
     double sigma(double z) const;
     //! sigma_t (1/m) at p: 0 outside the extent.
