@@ -11,8 +11,8 @@
 // each GL renderer, fitted against octaves and baked, measured side by side (KIRI_LIGHT_NO_COST=1
 // skips it, KIRI_LIGHT_COST_ONLY=1 measures it alone).
 // KIRI_LIGHT_VIEWS=TEXT[,TEXT...] keeps the views whose name holds one of the texts;
-// KIRI_LIGHT_BAKE="photons per column,levels,bands,max side[,column normalised 0/1[,min photons]]" sets the
-// bake's options;
+// KIRI_LIGHT_BAKE="photons per column,levels,bands,max side[,column normalised 0/1[,min photons[,seed]]]"
+// sets the bake's options;
 // KIRI_LIGHT_BAKED_ONLY=1 draws the baked model alone (reported in the other models' columns too:
 // a quicker loop while tuning the bake).
 //
@@ -143,15 +143,18 @@ struct Prepared {
 };
 
 //! The bake's options: the defaults, or
-//! KIRI_LIGHT_BAKE="photons_per_column,levels,bands,max_side[,column_normalised[,min_photons]]".
+//! KIRI_LIGHT_BAKE="photons_per_column,levels,bands,max_side[,column_normalised[,min_photons[,seed]]]"
+//! (another seed: the bake's noise, view by view).
 geometry::LightVolumeOptions bake_options()
 {
     geometry::LightVolumeOptions o;
     int normalised = 1;
+    unsigned long long seed = o.seed;
     if (const char* k = std::getenv("KIRI_LIGHT_BAKE"))
-        std::sscanf(k, "%d,%d,%d,%d,%d,%lld", &o.photons_per_column, &o.levels, &o.bands, &o.max_side, &normalised,
-                    &o.min_photons);
+        std::sscanf(k, "%d,%d,%d,%d,%d,%lld,%llu", &o.photons_per_column, &o.levels, &o.bands, &o.max_side, &normalised,
+                    &o.min_photons, &seed);
     o.column_normalised = normalised != 0;
+    o.seed = seed;
     return o;
 }
 

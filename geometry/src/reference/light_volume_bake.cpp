@@ -25,8 +25,11 @@ constexpr long long photons_per_task = 1024;
 // Fixed point of the sums: a deposit of a full-weight photon over the longest step is 2^30 quanta.
 constexpr double quanta = 1073741824.0;
 constexpr long long max_cells = 1 << 23;
-// The share of a shell's first scatterings drawn uniformly in h (the rest rise towards the top).
-constexpr double uniform_share = 0.3;
+// The share of a sunlight ray's first scatterings drawn uniformly along it (the rest as its march
+// of the fog's density says).
+constexpr double uniform_share = 0.05;
+// The most steps of that march.
+constexpr int max_march_steps = 64;
 
 // The exit distance of o + t w (w unit) from the box, or -1 when the ray misses it.
 double box_exit(const Bounds3& b, const glm::dvec3& o, const glm::dvec3& w)
@@ -67,16 +70,24 @@ double shifted(double x, double shift)
     return y - std::floor(y);
 }
 
+// A patch of a face of the box the sun shines on, where a group of photons enter:
+// corner + a du + b dv, a and b in [0, 1).
+struct EntryPatch {
+    glm::dvec3 corner{0.0}, du{0.0}, dv{0.0};
+    double projected = 0.0;  // its area seen from the sun
+};
+
 // Where the sun's light first scatters: the density of first collisions is pi sigma_t(p) T_sun(p)
-// per unit volume (a sun of unit radiance, irradiance pi), so instead of tracing photons in from
-// the box's faces (those that cross a thin fog without scattering add nothing) each photon starts
-// at a first scattering drawn inside the fog, weighted by that density over the density it was
-// drawn from: unbiased, and every photon scatters. Photon k of an (x, y) cell's n sits at the k-th
-// point of a Hammersley set ([Hammersley64]) shifted at random per cell (each point uniform over
-// the cell, the n together stratified), its height from a mixture: in the Medium's shell, h with a
-// density rising towards the top as the sun's light does over the column's optical depth, and a
-// uniform part that keeps every height possible; in the height fog, its own first collisions along
-// the sun (exact in z for a fog that depends on z alone: T = exp(-tau_up(z) / sin(elevation))).
+// per unit volume (a sun of unit radiance, irradiance pi). Each photon starts at a first scattering
+// drawn along a ray of sunlight: the ray enters the box through a patch of a face the sun shines on
+// (an (x, y) cell of its top, or a strip of a side face beside the cells of the box's edge), at a
+// point of a Hammersley set ([Hammersley64]) shifted at random per patch, and the collision is drawn
+// along it in proportion to sigma_t e^(-tau) of a short deterministic march of the fog's density,
+// mixed with a little of the uniform (so that no fog the march stepped over is left out). The
+// photon carries pi sigma_t T_sun at its point, both exact (T_sun the path tracer's), over the
+// density it was drawn from: unbiased, every photon scatters, and the sunlight entering through a
+// lit wall is drawn there in proportion to what the wall takes in, where drawing in columns put
+// a few photons of large weight into a wall's skin a mean free path deep.
 struct FirstScattering {
     glm::dvec3 p{0.0};
     double u_cos = 0.0, u_phi = 0.0;  // the stratified uniforms of the first scattered direction
@@ -96,47 +107,78 @@ public:
             box_.max.z = std::max(box_.max.z, v_.haze_top);
         step_ = 0.5 * std::min(v_.dx, v_.dy);
         columns_ = (long long)v_.nx * v_.ny;
+        make_patches();
     }
 
     long long columns() const { return columns_; }
     long long photons() const { return first_.empty() ? 0 : first_.back(); }
     double quantum() const { return quantum_; }
-    // Photons per (x, y) cell: `per_column` each, or, with `by_thickness`, per_column times the
-    // share of the sunlight the column is expected to scatter (1 - exp(-tau / sin(elevation)),
-    // tau its vertical optical depth), at least a quarter of it: a thin fog's photons cost as
-    // much as a thick one's, and it scatters less light, so it needs fewer for the same noise. The
-    // weights divide by each cell's own count, so the allocation changes the noise, not the mean.
-    void allocate(long long per_column, bool by_thickness)
+    // The patches where photons enter: the top of each (x, y) cell, then the strips of the side
+    // faces the sun shines on beside the edge's cells; and the share of the sunlight each one's
+    // rays scatter, 1 - e^(-tau) along them (a raster of rays, each marched).
+    void make_patches()
+    {
+        patches_.clear();
+        const double z0 = box_.min.z, depth = box_.max.z - box_.min.z;
+        for (long long cell = 0; cell < columns_; ++cell) {
+            EntryPatch e;
+            e.corner = {v_.x0 + double(cell % v_.nx) * v_.dx, v_.y0 + double(cell / v_.nx) * v_.dy, box_.max.z};
+            e.du = {v_.dx, 0.0, 0.0};
+            e.dv = {0.0, v_.dy, 0.0};
+            e.projected = v_.dx * v_.dy * sun_.z;
+            patches_.push_back(e);
+        }
+        if (depth > 0.0 && sun_.x != 0.0)
+            for (int j = 0; j < v_.ny; ++j) {
+                EntryPatch e;
+                e.corner = {sun_.x < 0.0 ? box_.min.x : box_.max.x, v_.y0 + j * v_.dy, z0};
+                e.du = {0.0, v_.dy, 0.0};
+                e.dv = {0.0, 0.0, depth};
+                e.projected = v_.dy * depth * std::abs(sun_.x);
+                patches_.push_back(e);
+            }
+        if (depth > 0.0 && sun_.y != 0.0)
+            for (int i = 0; i < v_.nx; ++i) {
+                EntryPatch e;
+                e.corner = {v_.x0 + i * v_.dx, sun_.y < 0.0 ? box_.min.y : box_.max.y, z0};
+                e.du = {v_.dx, 0.0, 0.0};
+                e.dv = {0.0, 0.0, depth};
+                e.projected = v_.dx * depth * std::abs(sun_.y);
+                patches_.push_back(e);
+            }
+        shares_.assign(patches_.size(), 0.0);
+        constexpr int raster = 2;
+        std::array<double, max_march_steps + 1> tau{};
+        for (std::size_t g = 0; g < patches_.size(); ++g) {
+            const EntryPatch& e = patches_[g];
+            for (int b = 0; b < raster; ++b)
+                for (int a = 0; a < raster; ++a) {
+                    const glm::dvec3 entry = e.corner + e.du * ((a + 0.5) / raster) + e.dv * ((b + 0.5) / raster);
+                    const int steps = march(entry, ray_length(entry), max_march_steps / 2, tau);
+                    shares_[g] += -std::expm1(-tau[std::size_t(steps)]) / (raster * raster);
+                }
+        }
+    }
+
+    // Photons per patch: `per_column` for each (x, y) cell's top and as many per area seen from
+    // the sun on the sides, or, with `by_share`, that times the share of the sunlight the patch's
+    // rays scatter, at least a quarter of it (a sixteenth where its rays met no fog): a thin fog's
+    // photons cost as much as a thick one's, and it scatters less light, so it needs fewer for the
+    // same noise. The weights divide by each patch's own count, so the allocation changes the
+    // noise, not the mean.
+    void allocate(long long per_column, bool by_share)
     {
         per_column = std::max<long long>(per_column, 1);
-        counts_.assign(std::size_t(columns_), per_column);
-        if (by_thickness) {
-            const HeightFog& haze = tracer_.haze();
-            const glm::dvec3 up(0.0, 0.0, 1.0);
-            const double mean_profile = 0.5 * (1.0 + medium_.options().top_density);
-            constexpr int raster = 4;
-            for (long long cell = 0; cell < columns_; ++cell) {
-                double share = 0.0;
-                for (int b = 0; b < raster; ++b)
-                    for (int a = 0; a < raster; ++a) {
-                        const double x = v_.x0 + (double(cell % v_.nx) + (a + 0.5) / raster) * v_.dx;
-                        const double y = v_.y0 + (double(cell / v_.nx) + (b + 0.5) / raster) * v_.dy;
-                        const MediumColumn c = medium_.column(x, y);
-                        double tau =
-                            medium_.max_extinction() * std::max(c.top - c.floor, 0.0) * c.coverage * mean_profile;
-                        if (tracer_.has_haze()) {
-                            const double za = ground_under(x, y);
-                            tau += haze.optical_depth({x, y, za}, up, 0.0, std::max(box_.max.z - za, 0.0));
-                        }
-                        share += -std::expm1(-tau / sun_.z) / (raster * raster);
-                    }
-                counts_[std::size_t(cell)] =
-                    std::max((per_column + 3) / 4, (long long)std::llround(double(per_column) * share));
-            }
+        const double top_area = v_.dx * v_.dy * sun_.z;
+        counts_.assign(patches_.size(), 1);
+        for (std::size_t g = 0; g < patches_.size(); ++g) {
+            const double full = double(per_column) * patches_[g].projected / top_area;
+            const double share = by_share ? std::max(shares_[g], shares_[g] > 0.0 ? 0.25 : 0.0625) : 1.0;
+            counts_[g] = std::max<long long>(1, std::llround(full * share));
         }
-        first_.assign(std::size_t(columns_) + 1, 0);
-        for (long long cell = 0; cell < columns_; ++cell)
-            first_[std::size_t(cell) + 1] = first_[std::size_t(cell)] + counts_[std::size_t(cell)];
+        first_.assign(counts_.size() + 1, 0);
+        for (std::size_t g = 0; g < counts_.size(); ++g)
+            first_[g + 1] = first_[g] + counts_[g];
         // A deposit of 2^30 quanta over the longest step: a photon of the fullest cell drawn
         // uniformly over the box's height.
         const double sigma = medium_.max_extinction() + (tracer_.has_haze() ? tracer_.haze().extinction : 0.0);
@@ -210,89 +252,90 @@ private:
     int nc_;
     Bounds3 box_;
     long long columns_ = 1;
-    std::vector<long long> counts_, first_;  // photons per cell, and the first photon of each
+    std::vector<EntryPatch> patches_;
+    std::vector<double> shares_;             // of the sunlight each patch's rays scatter
+    std::vector<long long> counts_, first_;  // photons per patch, and the first photon of each
     double step_ = 1.0, quantum_ = 1.0;
 
-    // The height of the ground under (x, y) within the box (its floor where there is none).
-    double ground_under(double x, double y) const
+    // The length of the sunlight ray entry - t sun in the box, up to the ground.
+    double ray_length(const glm::dvec3& entry) const
     {
-        const detail::HeightfieldRay* ground = tracer_.terrain();
-        const double depth = box_.max.z - box_.min.z;
-        if (ground && depth > 0.0)
-            if (const auto hit = ground->first_hit({x, y, box_.max.z}, {0.0, 0.0, -1.0}, 0.0, depth))
-                return box_.max.z - *hit;
-        return box_.min.z;
+        const glm::dvec3 d = -sun_;
+        double length = box_exit(box_, entry, d);
+        if (const detail::HeightfieldRay* ground = tracer_.terrain(); ground && length > 0.0)
+            if (const auto hit = ground->first_hit(entry, d, 0.0, length))
+                length = *hit;
+        return length > 0.0 && std::isfinite(length) ? length : 0.0;
+    }
+
+    // The optical depth along that ray at the ends of equal steps (each step's extinction at its
+    // middle, one and a half steps a mean free path of the densest fog, at most max_steps) into tau;
+    // returns the steps.
+    int march(const glm::dvec3& entry, double length, int max_steps, std::array<double, max_march_steps + 1>& tau) const
+    {
+        const double sigma_max = medium_.max_extinction() + (tracer_.has_haze() ? tracer_.haze().extinction : 0.0);
+        const int steps = std::clamp(int(std::ceil(length * sigma_max * 1.5)), 1, max_steps);
+        const double dt = length / steps;
+        tau[0] = 0.0;
+        for (int i = 0; i < steps; ++i)
+            tau[std::size_t(i) + 1] = tau[std::size_t(i)] + extinction(entry - sun_ * ((i + 0.5) * dt)) * dt;
+        return steps;
+    }
+
+    // The fog's extinction at p, both media.
+    double extinction(const glm::dvec3& p) const
+    {
+        return (tracer_.medium() ? medium_.extinction(p) : 0.0) + (tracer_.has_haze() ? tracer_.haze().sigma(p) : 0.0);
     }
 
     FirstScattering first_scattering(long long index, detail::Random& rng) const
     {
         FirstScattering f;
-        const long long cell = std::upper_bound(first_.begin(), first_.end(), index) - first_.begin() - 1;
-        const long long k = index - first_[std::size_t(cell)], n = counts_[std::size_t(cell)];
-        detail::Random shift(o_.seed ^ 0xA5A5A5A5A5A5A5A5ull, std::uint64_t(cell));
+        const long long group = std::upper_bound(first_.begin(), first_.end(), index) - first_.begin() - 1;
+        const long long k = index - first_[std::size_t(group)], n = counts_[std::size_t(group)];
+        const EntryPatch& patch = patches_[std::size_t(group)];
+        detail::Random shift(o_.seed ^ 0xA5A5A5A5A5A5A5A5ull, std::uint64_t(group));
         const double sx = shift.uniform(), sy = shift.uniform(), sz = shift.uniform(), sc = shift.uniform(),
                      sp = shift.uniform();
-        // The height and the first scattered direction stratified too (bases 3, 5, 7: [Halton60]).
-        const double uz = shifted(radical_inverse(std::uint64_t(k), 3), sz);
+        // The distance along the ray and the first scattered direction stratified too (bases 3, 5,
+        // 7: [Halton60]).
+        const double ut = shifted(radical_inverse(std::uint64_t(k), 3), sz);
         f.u_cos = shifted(radical_inverse(std::uint64_t(k), 5), sc);
         f.u_phi = shifted(radical_inverse(std::uint64_t(k), 7), sp);
         const double a = (double(k) + 0.5) / double(n) + sx, b = radical_inverse(std::uint64_t(k)) + sy;
-        const double x = v_.x0 + (double(cell % v_.nx) + (a - std::floor(a))) * v_.dx;
-        const double y = v_.y0 + (double(cell / v_.nx) + (b - std::floor(b))) * v_.dy;
-        const double s = sun_.z;
-        // The Medium's part: the shell of this column.
-        const MediumColumn c = medium_.column(x, y);
-        const double thick = c.top - c.floor;
-        const bool shell = tracer_.medium() && thick > 0.0 && c.coverage > 0.0;
-        const double mean_profile = 0.5 * (1.0 + medium_.options().top_density);
-        const double slope = shell ? std::min(medium_.max_extinction() * thick * mean_profile / s, 30.0) : 0.0;
-        const double rise = -std::expm1(-slope);    // 1 - exp(-slope)
-        const auto shell_density = [&](double h) {  // per unit h
-            return uniform_share +
-                (1.0 - uniform_share) * (slope > 1e-9 ? slope * std::exp(slope * (h - 1.0)) / rise : 1.0);
-        };
-        // The height fog's part: its first collisions along the sun between the box's floor and top.
-        const HeightFog& haze = tracer_.haze();
-        const double zb = box_.max.z;
-        const double za = tracer_.has_haze() ? ground_under(x, y) : box_.min.z;
-        const glm::dvec3 up(0.0, 0.0, 1.0);
-        double ta = 0.0, tb = 0.0;  // T_haze at za and zb
-        if (tracer_.has_haze() && zb > za) {
-            ta = std::exp(-haze.optical_depth({x, y, za}, up, 0.0, inf) / s);
-            tb = std::exp(-haze.optical_depth({x, y, zb}, up, 0.0, inf) / s);
-        }
-        const double haze_mass = tb - ta, shell_mass = shell ? -std::expm1(-slope / mean_profile) : 0.0;
-        if (!(haze_mass > 0.0) && !shell)
+        const glm::dvec3 entry = patch.corner + patch.du * (a - std::floor(a)) + patch.dv * (b - std::floor(b));
+        const glm::dvec3 d = -sun_;
+        const double length = ray_length(entry);
+        if (!(length > 0.0))
             return f;
-        const double p_haze = !(haze_mass > 0.0) ? 0.0
-            : !shell                             ? 1.0
-                                                 : std::clamp(haze_mass / (haze_mass + shell_mass), 0.1, 0.9);
-        double z = 0.0;
-        if (uz < p_haze) {
-            const double target = -s * std::log(ta + uz / p_haze * haze_mass);
-            const double below_top =
-                haze.free_path({x, y, zb}, -up, 0.0, zb - za, target - haze.optical_depth({x, y, zb}, up, 0.0, inf));
-            z = std::isfinite(below_top) ? zb - below_top : za;
-        } else {
-            const double u = (uz - p_haze) / (1.0 - p_haze);  // uniform in [0, 1) again
-            double h = u / uniform_share;
-            if (u >= uniform_share && slope > 1e-9)
-                h = 1.0 + std::log1p(-(1.0 - (u - uniform_share) / (1.0 - uniform_share)) * rise) / slope;
-            else if (u >= uniform_share)
-                h = (u - uniform_share) / (1.0 - uniform_share);
-            z = c.floor + std::clamp(h, 0.0, 1.0) * thick;
+        std::array<double, max_march_steps + 1> tau;
+        const int steps = march(entry, length, max_march_steps, tau);
+        const double dt = length / steps;
+        const double total = tau[std::size_t(steps)];
+        const double absorbed = -std::expm1(-total);  // 1 - e^(-total)
+        const double share = absorbed > 1e-12 ? uniform_share : 1.0;
+        double t = 0.0;
+        if (ut < share)
+            t = ut / share * length;
+        else {
+            const double target = -std::log1p(-(ut - share) / (1.0 - share) * absorbed);
+            const int i = int(std::upper_bound(tau.begin(), tau.begin() + steps + 1, target) - tau.begin()) - 1;
+            const int s = std::clamp(i, 0, steps - 1);
+            const double rate = (tau[std::size_t(s) + 1] - tau[std::size_t(s)]) / dt;
+            t = std::clamp(s * dt + (rate > 0.0 ? (target - tau[std::size_t(s)]) / rate : 0.0), 0.0, length);
         }
-        // The mixture's density at z, per unit volume (x, y uniform over the cell).
-        double density = 0.0;
-        if (shell && z >= c.floor && z <= c.top)
-            density += (1.0 - p_haze) * shell_density((z - c.floor) / thick) / thick;
-        if (p_haze > 0.0 && z >= za && z <= zb)
-            density +=
-                p_haze * haze.sigma(z) / s * std::exp(-haze.optical_depth({x, y, z}, up, 0.0, inf) / s) / haze_mass;
-        density /= v_.dx * v_.dy;
-        f.p = {x, y, z};
-        const double sigma =
-            (tracer_.medium() ? medium_.extinction(f.p) : 0.0) + (tracer_.has_haze() ? haze.sigma(f.p) : 0.0);
+        // The mixture's density at t along the ray, then per unit volume (the entry uniform over
+        // the patch, each ray carrying its area seen from the sun).
+        double along = share / length;
+        if (share < 1.0) {
+            const int s = std::clamp(int(t / dt), 0, steps - 1);
+            const double rate = (tau[std::size_t(s) + 1] - tau[std::size_t(s)]) / dt;
+            const double tau_t = tau[std::size_t(s)] + rate * (t - s * dt);
+            along += (1.0 - share) * rate * std::exp(-tau_t) / absorbed;
+        }
+        const double density = along / patch.projected;
+        f.p = entry + d * t;
+        const double sigma = extinction(f.p);
         if (!(sigma > 0.0) || !(density > 0.0))
             return f;
         const double transmittance = tracer_.sun_transmittance(f.p, rng);

@@ -9,8 +9,10 @@
 //! Photons start where the sun's light first scatters, drawn inside the fog (the Medium's shell
 //! and the height fog within the Medium's box) and weighted by the density of first collisions,
 //! pi sigma_t T_sun (a sun of unit radiance, irradiance pi; the terrain hides, the fog dims), over
-//! the density they were drawn from; each (x, y) cell draws its own, stratified, as many as the
-//! share of the sunlight its column scatters asks for. From there they scatter in the Medium and
+//! the density they were drawn from: along rays of sunlight entering the box through the top of
+//! each (x, y) cell and through the strips of the side faces the sun shines on, each patch's rays
+//! stratified, as many as the share of the sunlight they scatter asks for, the point along a ray
+//! drawn as a march of the fog's density along it says. From there they scatter in the Medium and
 //! in the height fog (each with its albedo and g) until they are absorbed by the ground (black:
 //! the lighting model's ground reflects nothing into the fog either), leave the box, or lose
 //! Russian roulette. The single
@@ -28,9 +30,11 @@
 namespace kiri::geometry {
 
 struct LightVolumeOptions {
-    //! Photons traced, as many in every (x, y) cell (rounded up to whole columns); 0:
-    //! photons_per_column per cell times the share of the sunlight its column scatters
-    //! (1 - exp(-tau / sin(elevation))), at least a quarter of it.
+    //! Photons traced, as many entering through the top of every (x, y) cell, and through the
+    //! side faces as many per area seen from the sun (rounded up to whole columns); 0:
+    //! photons_per_column per cell (and per such area on the sides) times the share of the
+    //! sunlight its rays scatter (1 - exp(-tau) along them), at least a quarter of it (a sixteenth
+    //! where they meet no fog).
     long long photons = 0;
     int photons_per_column = 300;
     //! With photons 0, at least this many in all (photons_per_column raised to reach it): a small
