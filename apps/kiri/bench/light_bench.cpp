@@ -211,6 +211,13 @@ LightError light_error(const std::vector<double>& a, const std::vector<double>& 
     return e;
 }
 
+//! KIRI_LIGHT_SPLIT=1: the baked model's light scattered more than once (it less the model
+//! `none`, single scattering, which the reference draws exactly) over the path tracer's (it less
+//! the same), printed for the view and written per 4x4 block to OUT/light/VIEW.blocks.txt
+//! (column, row, path tracer, single scattering, baked): where the baked volume's light misses.
+void split_single_scattering(const Context& c, const Prepared& p, const std::vector<double>& baked, int width,
+                             int height);
+
 Prepared prepare_view(const Context& c, const LightView& v, int width, int height, int samples)
 {
     const fs::path dir = c.out_dir() / "light";
@@ -271,6 +278,33 @@ geometry::ReferenceImage model_image(const Prepared& p, geometry::MultipleScatte
     return geometry::render_reference_fog({p.products.medium.get(), p.froxel.height_fog},
                                           &p.products.terrain->heightfield(), coarse ? p.coarse_view : p.reference_view,
                                           light, ro);
+}
+
+void split_single_scattering(const Context& c, const Prepared& p, const std::vector<double>& baked, int width,
+                             int height)
+{
+    const std::vector<double> single = luminances(model_image(p, geometry::MultipleScattering::none));
+    constexpr int n = 4;
+    const int bw = width / n, bh = height / n;
+    std::vector<double> bp(std::size_t(bw) * bh, 0.0), bs(bp.size(), 0.0), bb(bp.size(), 0.0);
+    for (int y = 0; y < bh * n; ++y)
+        for (int x = 0; x < bw * n; ++x) {
+            const std::size_t b = std::size_t(y / n) * bw + x / n, k = std::size_t(y) * width + x;
+            bp[b] += p.truth[k];
+            bs[b] += single[k];
+            bb[b] += baked[k];
+        }
+    double path = 0.0, once = 0.0, model = 0.0;
+    std::ofstream f(c.out_dir() / "light" / (p.view.name + ".blocks.txt"));
+    for (std::size_t b = 0; b < bp.size(); ++b) {
+        path += bp[b];
+        once += bs[b];
+        model += bb[b];
+        f << b % bw << ' ' << b / bw << ' ' << bp[b] << ' ' << bs[b] << ' ' << bb[b] << '\n';
+    }
+    std::printf("  %-34s single scattering %.3f of the path tracer's light; more than once: baked / path %.3f\n",
+                p.view.name.c_str(), path > 0.0 ? once / path : 0.0,
+                path > once ? (model - once) / (path - once) : 0.0);
 }
 
 // Nelder-Mead over MultipleScatteringFit's constants on the views fitted on: the sum over the
@@ -534,6 +568,8 @@ void light(Context& c)
                       p.view.name.c_str(), eb.ratio, 100 * eb.block, 100 * eb.signed_block, p.volume->seconds, ef.ratio,
                       100 * ef.block, 100 * ef.signed_block, eo.ratio, 100 * eo.block, p.view.fitted_on ? "yes" : "");
         md << line;
+        if (std::getenv("KIRI_LIGHT_SPLIT"))
+            split_single_scattering(c, p, luminances(baked), width, height);
         render::write_png_atomic(c.out_dir() / "light" / (p.view.name + ".png"),
                                  side_by_side({tone_mapped_path(p.path), render::tone_mapped(baked),
                                                render::tone_mapped(fitted), render::tone_mapped(octaves)}));
