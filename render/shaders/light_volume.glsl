@@ -4,7 +4,8 @@
 // least once, for a sun of unit radiance; the light it scatters towards o is
 // sum_l g^l sum_m L_lm Y_lm(o) (Funk-Hecke, exact per band). The cells follow the shell: (x, y)
 // on a regular grid, h = (z - floor) / (top - floor) of the Medium's column (its top raised to the
-// height fog's where that is higher: LightVolume::shell) in nz levels.
+// height fog's where that is higher, its floor lowered to the ground where the height fog lies
+// under it: LightVolume::shell) in nz levels.
 // Stored in a 2D array texture, layer q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F,
 // linear in x and y, clamped to the edge: the CPU's trilinear between cell centres, the levels
 // blended here). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
@@ -15,6 +16,10 @@ uniform int u_lv_levels;           // nz
 uniform int u_lv_bands;            // [1, 8]
 uniform float u_lv_column_extinction;  // > 0: the moments are over the cells' column_scale
 uniform vec4 u_lv_haze;  // the height fog the cells reach up into: extinction (0: none), base, scale height, top
+// The cells' floors where the height fog lies under the Medium's floor (LightVolume::floors):
+// u_lv_floors_n samples spanning the cells' rectangle (texel (a, b) is sample (a, b)); (0, 0): none.
+uniform sampler2D u_lv_floors;
+uniform ivec2 u_lv_floors_n;
 // K_l^m = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!), times sqrt(2) for m > 0, at [l 8 + m]
 // (LightVolumeTexture::bind computes them once, as geometry::real_spherical_harmonics does).
 uniform float u_lv_norms[64];
@@ -90,6 +95,21 @@ float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
     return max(sum * scale, 0.0);
 }
 
+// LightVolume::floor_at: bilinear between the floors' samples (fetched, not filtered: the CPU's
+// weights exactly); 1e30 without them.
+float lv_floor_at(vec2 xy)
+{
+    if (u_lv_floors_n.x < 2 || u_lv_floors_n.y < 2)
+        return 1e30;
+    vec2 n = vec2(u_lv_floors_n - 1);
+    vec2 g = clamp((xy - u_lv_rect.xy) * u_lv_rect.zw * n, vec2(0.0), n);
+    ivec2 i = min(ivec2(g), u_lv_floors_n - 2);
+    vec2 f = g - vec2(i);
+    float a = texelFetch(u_lv_floors, i, 0).r, b = texelFetch(u_lv_floors, i + ivec2(1, 0), 0).r;
+    float c = texelFetch(u_lv_floors, i + ivec2(0, 1), 0).r, d = texelFetch(u_lv_floors, i + ivec2(1, 1), 0).r;
+    return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
 // The same at a point of the fog: h and column_scale from the Medium's column there
 // (geometry::shell_height, LightVolume::column_scale); 0 outside the Medium's grid, and outside
 // its column unless `into_column` (a layer's surface stands for the slab of fog under it and
@@ -99,15 +119,17 @@ float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
     if (u_lv_on == 0 || !shell_covers(p.xy))
         return 0.0;
     vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
-    // The cells' column (geometry::LightVolume::shell): the Medium's, up to the height fog's top.
+    // The cells' column (geometry::LightVolume::shell): the Medium's, down to the floors' grid
+    // and up to the height fog's top.
+    float floor_c = u_lv_haze.x > 0.0 ? min(column.x, lv_floor_at(p.xy)) : column.x;
     bool haze = u_lv_haze.x > 0.0 && u_lv_haze.w > column.x;
-    float top = haze ? max(column.z, u_lv_haze.w) : column.z;
-    float thick = top - column.x;
+    float top = u_lv_haze.x > 0.0 && u_lv_haze.w > floor_c ? max(column.z, u_lv_haze.w) : column.z;
+    float thick = top - floor_c;
     if (into_column)
         p.z = clamp(p.z, column.x, column.z);
-    if (!(thick > 0.0) || p.z < column.x || p.z > top)
+    if (!(thick > 0.0) || p.z < floor_c || p.z > top)
         return 0.0;
-    float h = clamp((p.z - column.x) / thick, 0.0, 1.0);
+    float h = clamp((p.z - floor_c) / thick, 0.0, 1.0);
     float scale = 1.0;
     if (u_lv_column_extinction > 0.0) {  // LightVolume::column_scale
         float tau = u_lv_column_extinction * clamp(column.w, 0.0, 1.0) * max(column.z - column.x, 0.0);

@@ -20,8 +20,8 @@ namespace {
 constexpr int unit_tiles = 8, unit_volume = 9, unit_medium = 11;  // 11, 12
 constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
 constexpr int unit_first = 5, unit_last = 6;
-constexpr int unit_sun = 16;  // 16, 17, 18
-constexpr int unit_light_volume = 19;
+constexpr int unit_sun = 16;           // 16, 17, 18
+constexpr int unit_light_volume = 19;  // and 21: the cells' floors (LightVolumeTexture::bind)
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
 // cycle's first two samples at once. The volume's J lights the pixels it resolves and the fog in
 // front of the layers and the particles; the pixels that march light their own points

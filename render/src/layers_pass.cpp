@@ -32,7 +32,8 @@ struct LayersPassVertex {
 constexpr int layers_unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.comp
 // The baked light's Medium grid and moments in layers.frag, apart from the atlas (0), the
 // heights (1), the noise (2), the shadow map and the froxel apply's units (5 .. 19).
-constexpr int layers_unit_baked_moments = 20;  // and 21: the Medium's grid (LightVolumeTexture::bind)
+constexpr int layers_unit_baked_moments =
+    20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
 // Steps of the sun's march where a base vertex lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
 // Levels of tau_sun along the column above each base vertex (linear between them).

@@ -16,6 +16,7 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
         return;
     volume_ = std::move(volume);
     texture_ = {};
+    floors_ = {};
     if (!volume_)
         return;
     const geometry::LightVolume& v = *volume_;
@@ -40,6 +41,15 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
     glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    if (v.floor_nx >= 2 && v.floor_ny >= 2 && v.floors.size() == std::size_t(v.floor_nx) * v.floor_ny) {
+        const std::vector<float> floors(v.floors.begin(), v.floors.end());
+        floors_ = make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(floors_.get(), 1, GL_R32F, v.floor_nx, v.floor_ny);
+        glTextureSubImage2D(floors_.get(), 0, 0, 0, v.floor_nx, v.floor_ny, GL_RED, GL_FLOAT, floors.data());
+        // Fetched texel by texel (lv_floor_at interpolates as LightVolume::floor_at does).
+        glTextureParameteri(floors_.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(floors_.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    }
 }
 
 void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on, bool with_grid) const
@@ -47,6 +57,8 @@ void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on, bool wi
     on = on && ready() && (!with_grid || grid_.medium() != nullptr);
     p.set("u_lv_on", int(on));
     p.set("u_lv_moments", unit);
+    p.set("u_lv_floors", unit + 2);
+    p.set("u_lv_floors_n", on && floors_ ? glm::ivec2(volume_->floor_nx, volume_->floor_ny) : glm::ivec2(0));
     if (with_grid)
         p.set("u_md_grid", unit + 1);
     if (!on)
@@ -78,6 +90,8 @@ void LightVolumeTexture::bind(const ShaderProgram& p, int unit, bool on, bool wi
               ? glm::vec4(float(v.haze_extinction), float(v.haze_base), float(v.haze_scale_height), float(v.haze_top))
               : glm::vec4(0.0f));
     glBindTextureUnit(GLuint(unit), texture_.get());
+    if (floors_)
+        glBindTextureUnit(GLuint(unit + 2), floors_.get());
 }
 
 std::vector<float> LightVolumeTexture::probe(const std::vector<Probe>& points) const

@@ -1,8 +1,8 @@
 #pragma once
 // The baked light-transport volume (kiri/geometry/medium/light_volume.hpp) on the GPU, for the
 // lighting model's `baked` multiple scattering in the renderers (light_volume.glsl): its moments
-// in a 2D array texture of RGBA32F, layer q nz + k holding moments 4q .. 4q + 3 of level k,
-// uploaded when the volume changes. Without a volume the lookups give 0 (single scattering).
+// in a 2D array texture of RGBA32F, layer q nz + k holding moments 4q .. 4q + 3 of level k, and
+// the cells' floors under a height fog in a 2D texture, uploaded when the volume changes. Without a volume the lookups give 0 (single scattering).
 #include <memory>
 #include <vector>
 
@@ -25,7 +25,8 @@ public:
     const geometry::LightVolume* volume() const { return volume_.get(); }
     //! Sets light_volume.glsl's uniforms on a program and binds the moments to `unit`, and
     //! medium_shell.glsl's (the Medium's grid) to `unit + 1` when `with_grid` (a program that
-    //! has the Medium's grid bound already, the froxels', says false); u_lv_on 0 without a
+    //! has the Medium's grid bound already, the froxels', says false), the cells' floors
+    //! (LightVolume::floors) to `unit + 2`; u_lv_on 0 without a
     //! volume, without the grid asked for, or when not `on`. The samplers get their units either way: samplers of different
     //! types may not share one, used or not.
     void bind(const ShaderProgram& program, int unit, bool on = true, bool with_grid = true) const;
@@ -43,6 +44,7 @@ public:
 private:
     std::shared_ptr<const geometry::LightVolume> volume_;
     Texture texture_;
+    Texture floors_;  // R32F, floor_nx x floor_ny; none without floors
     FroxelMedium grid_;
     mutable std::unique_ptr<ShaderProgram> probe_;
 };

@@ -14,7 +14,7 @@ namespace kiri::render::detail {
 namespace {
 // The baked light's Medium grid and moments, apart from every other sampler of the billboards'
 // programs (the froxel apply's among them).
-constexpr int unit_baked_moments = 20;  // and 21: the Medium's grid (LightVolumeTexture::bind)
+constexpr int unit_baked_moments = 20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
 }  // namespace
 
 ParticlesPass::ParticlesPass()

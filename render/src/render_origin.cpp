@@ -79,9 +79,14 @@ geometry::ParticleCloud moved(const geometry::ParticleCloud& cloud, const glm::d
 
 geometry::LightVolume moved(const geometry::LightVolume& volume, const glm::dvec3& origin)
 {
-    geometry::LightVolume v = volume;  // its heights are relative to the shell's columns
+    geometry::LightVolume v = volume;  // its levels are relative to the shell's columns
     v.x0 -= origin.x;
     v.y0 -= origin.y;
+    // The height fog's and the cells' floors are heights.
+    v.haze_base -= origin.z;
+    v.haze_top -= origin.z;
+    for (double& z : v.floors)
+        z -= origin.z;
     return v;
 }
 

@@ -151,6 +151,34 @@ TEST_F(FroxelGl, BakedLightOfAHeightFogAboveTheMediumsTopIsTheReferences)
     EXPECT_LT(with.error.mean_relative, 0.03);
 }
 
+TEST_F(FroxelGl, BakedLightOfAHeightFogUnderALiftedMediumsFloorIsTheReferences)
+{
+    // A blanket from 120 to 160 m over a height fog that fills the ground's first 60 m, seen
+    // from inside the height fog: the volume's cells reach down to the ground under the
+    // Medium's floor (geometry::LightVolume::floors, read by lv_floor_at), as the reference's do.
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = baked_slab(120.0, 160.0, 0.004, 2000.0);
+    g::FroxelOptions o = small(24, 14);
+    o.height_fog.extinction = 0.01;
+    o.height_fog.base = 60.0;
+    o.height_fog.scale_height = 20.0;
+    o.height_fog.albedo = 0.99;
+    o.height_fog.anisotropy = 0.6;
+    const SunLight light = sun();
+    const auto volume = small_bake(fog, o.height_fog, ground, light);
+    ASSERT_FALSE(volume->empty());
+    ASSERT_FALSE(volume->floors.empty());
+    ASSERT_DOUBLE_EQ(volume->floor_at(0.0, 0.0), 0.0);
+    Camera c;
+    c.position = {0.0, -1500.0, 30.0};
+    c.target = {300.0, 0.0, 40.0};
+    const Compared with = compare(ground, &fog, o, c, 96, 54, light, 0.0, HUGE_VAL, volume);
+    std::printf("    baked height fog under the Medium: mean %.4f over %d fog pixels\n", with.error.mean_relative,
+                with.error.fog_pixels);
+    EXPECT_GT(with.error.fog_pixels, 96 * 54 / 2);
+    EXPECT_LT(with.error.mean_relative, 0.03);
+}
+
 TEST_F(FroxelGl, HeightFog)
 {
     const g::Terrain ground = flat_ground();

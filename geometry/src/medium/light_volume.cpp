@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace kiri::geometry {
@@ -73,9 +74,30 @@ double shell_height(const MediumColumn& column, double z)
     return std::clamp((z - column.floor) / thick, 0.0, 1.0);
 }
 
-MediumColumn LightVolume::shell(MediumColumn c) const
+double LightVolume::floor_at(double x, double y) const
 {
-    if (haze_extinction > 0.0 && haze_top > c.floor && haze_top > c.top)
+    if (floor_nx < 2 || floor_ny < 2 || floors.size() != std::size_t(floor_nx) * floor_ny || !std::isfinite(x) ||
+        !std::isfinite(y))
+        return std::numeric_limits<double>::infinity();
+    const auto axis = [](double v, int n, int& i0, double& f) {
+        const double g = std::clamp(v * (n - 1), 0.0, double(n - 1));
+        i0 = std::min(int(g), n - 2);
+        f = g - i0;
+    };
+    int i, j;
+    double fx, fy;
+    axis((x - x0) / (nx * dx), floor_nx, i, fx);
+    axis((y - y0) / (ny * dy), floor_ny, j, fy);
+    const double* f = &floors[std::size_t(j) * floor_nx + i];
+    return (1.0 - fy) * ((1.0 - fx) * f[0] + fx * f[1]) + fy * ((1.0 - fx) * f[floor_nx] + fx * f[floor_nx + 1]);
+}
+
+MediumColumn LightVolume::shell(MediumColumn c, double x, double y) const
+{
+    if (!(haze_extinction > 0.0))
+        return c;
+    c.floor = std::min(c.floor, floor_at(x, y));
+    if (haze_top > c.floor && haze_top > c.top)
         c.top = haze_top;
     return c;
 }

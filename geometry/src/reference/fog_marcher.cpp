@@ -380,7 +380,7 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
         if (volume) {  // inside the shell; not hidden by the terrain's shadow
             const glm::dvec3 p = o + w * st.t;
             const MediumColumn column = fog_.medium->column(p.x, p.y);
-            const double h = shell_height(volume->shell(column), p.z), scale = volume->column_scale(column);
+            const double h = shell_height(volume->shell(column, p.x, p.y), p.z), scale = volume->column_scale(column);
             if (h >= 0.0)
                 source += light_.sun_radiance *
                     (albedo_m * st.sigma_medium * volume->in_scattered(p.x, p.y, h, weights_m, scale) +

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <vector>
@@ -103,8 +104,12 @@ public:
         box_ = medium.bounds();
         // The height fog above the Medium's highest top scatters light too: its photons are
         // followed, and its first scatterings drawn, up to its top.
-        if (v_.haze_extinction > 0.0)
+        if (v_.haze_extinction > 0.0) {
             box_.max.z = std::max(box_.max.z, v_.haze_top);
+            // And down to the ground where it lies under the Medium's floor.
+            for (const double f : v_.floors)
+                box_.min.z = std::min(box_.min.z, f);
+        }
         step_ = 0.5 * std::min(v_.dx, v_.dy);
         columns_ = (long long)v_.nx * v_.ny;
         make_patches();
@@ -358,7 +363,7 @@ private:
         long long count = 0;
         // The step's level height from the last point's column (the shell's thickness changes
         // little over a step): one column lookup per point.
-        MediumColumn c = v_.shell(medium_.column(o.x, o.y));
+        MediumColumn c = v_.shell(medium_.column(o.x, o.y), o.x, o.y);
         for (double t = 0.0; t < length;) {
             const double level = (c.top - c.floor) / v_.nz;
             double dt = std::min(max_step, 2.0 * step_);
@@ -368,7 +373,7 @@ private:
             const double seg = std::min(dt, length - t);
             const glm::dvec3 p = o + w * (t + rng.uniform() * seg);
             t += seg;
-            c = v_.shell(medium_.column(p.x, p.y));
+            c = v_.shell(medium_.column(p.x, p.y), p.x, p.y);
             const double h = shell_height(c, p.z);
             if (h < 0.0)
                 continue;
@@ -387,6 +392,42 @@ private:
         return count;
     }
 };
+
+// The cells' floors where the height fog lies under the Medium's floor (LightVolume::floors):
+// four samples a cell, each the lower of the Medium's floor there and the lowest of the DEM's
+// samples within a floor sample's spacing of it (the ground between samples is no lower: its
+// triangles span them), where that ground is under the height fog's top.
+void lower_floors_to_the_ground(LightVolume& v, const Medium& medium, const Heightfield& hf)
+{
+    constexpr int per_cell = 4;
+    v.floor_nx = per_cell * v.nx + 1;
+    v.floor_ny = per_cell * v.ny + 1;
+    v.floors.assign(std::size_t(v.floor_nx) * v.floor_ny, 0.0);
+    const double sx = v.nx * v.dx / (v.floor_nx - 1), sy = v.ny * v.dy / (v.floor_ny - 1);
+    bool lowered = false;
+    for (int b = 0; b < v.floor_ny; ++b)
+        for (int a = 0; a < v.floor_nx; ++a) {
+            const double x = v.x0 + a * sx, y = v.y0 + b * sy;
+            double floor = medium.column(x, y).floor;
+            const int i0 = std::clamp(int(std::floor((x - sx - hf.x0) / hf.dx)), 0, hf.nx - 1),
+                      i1 = std::clamp(int(std::ceil((x + sx - hf.x0) / hf.dx)), 0, hf.nx - 1),
+                      j0 = std::clamp(int(std::floor((y - sy - hf.y0) / hf.dy)), 0, hf.ny - 1),
+                      j1 = std::clamp(int(std::ceil((y + sy - hf.y0) / hf.dy)), 0, hf.ny - 1);
+            double ground = std::numeric_limits<double>::infinity();
+            for (int j = j0; j <= j1; ++j)
+                for (int i = i0; i <= i1; ++i)
+                    ground = std::min(ground, hf.at(i, j));
+            if (ground < v.haze_top && ground < floor) {
+                floor = ground;
+                lowered = true;
+            }
+            v.floors[std::size_t(b) * v.floor_nx + a] = floor;
+        }
+    if (!lowered) {  // the Medium's floor everywhere: no grid needed
+        v.floor_nx = v.floor_ny = 0;
+        v.floors.clear();
+    }
+}
 
 }  // namespace
 
@@ -427,6 +468,8 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
         v.haze_base = fog.height_fog.base;
         v.haze_scale_height = fog.height_fog.scale_height;
         v.haze_top = fog.height_fog.top();
+        if (terrain)
+            lower_floors_to_the_ground(v, *medium, *terrain);
     }
     const int nc = v.bands * v.bands;
     const std::size_t cells = std::size_t(v.nx) * v.ny * v.nz;
@@ -481,9 +524,9 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
             double sum = 0.0, scaled = 0.0;
             for (int b = 0; b < raster; ++b)
                 for (int a = 0; a < raster; ++a) {
-                    const MediumColumn c =
-                        medium->column(v.x0 + (i + (a + 0.5) / raster) * v.dx, v.y0 + (j + (b + 0.5) / raster) * v.dy);
-                    const MediumColumn cells = v.shell(c);
+                    const double x = v.x0 + (i + (a + 0.5) / raster) * v.dx, y = v.y0 + (j + (b + 0.5) / raster) * v.dy;
+                    const MediumColumn c = medium->column(x, y);
+                    const MediumColumn cells = v.shell(c, x, y);
                     const double thick = std::max(cells.top - cells.floor, 0.0);
                     sum += thick;
                     scaled += thick * v.column_scale(c);

@@ -16,7 +16,8 @@
 //! (the convolution is exact; the truncation at `bands` bands is the approximation). The cells
 //! follow the shell: (x, y) on a regular grid, h = (z - floor) / (top - floor) in `levels`
 //! equal levels, so a thin layer and a deep lake get the same number of levels (the top raised to
-//! the height fog's where that is higher: shell()).
+//! the height fog's where that is higher, the floor lowered to the ground where the height fog
+//! lies under the Medium's: shell()).
 //!
 //! A cell can hold two bodies of fog that see very different diffuse light: a thick valley lake
 //! and a thin thread of fog across a ridge. The light a column of fog scatters grows with its
@@ -64,6 +65,13 @@ struct LightVolume {
     //! (shell), and its vertical optical depth counts in column_scale.
     double haze_extinction = 0.0, haze_base = 0.0, haze_scale_height = 1.0;
     double haze_top = 0.0;  //!< the height fog's top (HeightFog::top)
+    //! Where the height fog lies under the Medium's floor (a blanket over a valley's haze), the
+    //! cells' columns reach down to the ground: their floor on a grid of floor_nx x floor_ny
+    //! samples spanning the cells' rectangle, bilinear between them, each the lower of the
+    //! Medium's floor there and the lowest ground around it (the Medium's floor where the ground
+    //! is above haze_top); empty: the Medium's floor.
+    int floor_nx = 0, floor_ny = 0;
+    std::vector<double> floors;
     // What the bake cost.
     long long photons = 0;
     long long deposits = 0;
@@ -73,12 +81,16 @@ struct LightVolume {
     {
         return nx < 1 || ny < 1 || nz < 1 || bands < 1 || bands > light_volume_max_bands || moments.empty();
     }
-    //! The column of the cells at a point from the Medium's there: its top raised to haze_top
-    //! where the height fog reaches above it (and above the floor).
-    MediumColumn shell(MediumColumn medium_column) const;
+    //! The cells' floor at (x, y) from the floors' grid; +inf without one.
+    double floor_at(double x, double y) const;
+    //! The column of the cells at (x, y) from the Medium's there: its floor lowered to floor_at,
+    //! its top raised to haze_top where the height fog reaches above it (and above the floor).
+    MediumColumn shell(MediumColumn medium_column, double x, double y) const;
     //! 1 - exp(-tau_c) of the Medium's column at the lookup point, tau_c = column_extinction
-    //! coverage (top - floor) plus the height fog's optical depth from the floor up to the shell's
-    //! top; at least 1e-6; 1 when column_extinction is 0.
+    //! coverage (top - floor) plus the height fog's optical depth from the Medium's floor up to
+    //! the shell's top (the height fog under the floor left out: counted, it took the default
+    //! scene's view from above from 0.99 to 0.95 of the path tracer's brightness); at least 1e-6;
+    //! 1 when column_extinction is 0.
     double column_scale(const MediumColumn& medium_column) const;
     //! The moments at (x, y, h), trilinear between cell centres (clamped to the outer cells' centres),
     //! times `scale` (column_scale of the point's column), into out (bands^2 values); zeros when empty.
