@@ -122,7 +122,7 @@ float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
     // The cells' column (geometry::LightVolume::shell): the Medium's, down to the floors' grid
     // and up to the height fog's top.
     float floor_c = u_lv_haze.x > 0.0 ? min(column.x, lv_floor_at(p.xy)) : column.x;
-    bool haze = u_lv_haze.x > 0.0 && u_lv_haze.w > column.x;
+    bool haze_above_floor = u_lv_haze.x > 0.0 && u_lv_haze.w > column.x;  // the Medium's floor: column_scale
     float top = u_lv_haze.x > 0.0 && u_lv_haze.w > floor_c ? max(column.z, u_lv_haze.w) : column.z;
     float thick = top - floor_c;
     if (into_column)
@@ -133,7 +133,7 @@ float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
     float scale = 1.0;
     if (u_lv_column_extinction > 0.0) {  // LightVolume::column_scale
         float tau = u_lv_column_extinction * clamp(column.w, 0.0, 1.0) * max(column.z - column.x, 0.0);
-        if (haze) {  // the height fog's optical depth from the floor to its top: constant under its base
+        if (haze_above_floor) {  // the height fog's optical depth from the floor to its top: constant under its base
             float a = max(column.x, u_lv_haze.y);
             tau += u_lv_haze.x * max(min(u_lv_haze.w, u_lv_haze.y) - column.x, 0.0) +
                 u_lv_haze.x * u_lv_haze.z * (exp(-(a - u_lv_haze.y) / u_lv_haze.z) - exp(-(u_lv_haze.w - u_lv_haze.y) / u_lv_haze.z));

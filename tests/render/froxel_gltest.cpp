@@ -12,7 +12,6 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/core/error.hpp"
-#include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "render/froxel_fixture.hpp"
 
 namespace {
@@ -65,129 +64,6 @@ TEST_F(FroxelGl, AReducedResolutionKeepsThePixelsPerTile)
     r.set_froxel_resolution(1.0);
     r.render(c, 96, 54);
     EXPECT_EQ(r.last_stats().froxel.size, glm::ivec3(24, 14, o.slices));
-}
-
-// The slab of slab() lit by the model `baked`: its multiple scattering from a light volume.
-g::Medium baked_slab(double bottom, double top, double sigma, double half)
-{
-    const g::Medium plain = slab(bottom, top, sigma, half);
-    g::MediumOptions o = plain.options();
-    o.multiple_scattering = g::MultipleScattering::baked;
-    o.albedo = 0.99;
-    o.anisotropy = 0.8;
-    return g::Medium(plain.grid(), o, plain.detail());
-}
-
-// A quick bake of the fog and height fog over the ground under the sun (12 cells a side, 6 levels).
-std::shared_ptr<const g::LightVolume> small_bake(const g::Medium& fog, const g::HeightFog& haze,
-                                                 const g::Terrain& ground, const SunLight& light)
-{
-    g::LightVolumeOptions bake;
-    bake.photons_per_column = 200;
-    bake.levels = 6;
-    bake.max_side = 12;
-    return std::make_shared<const g::LightVolume>(
-        g::bake_light_volume({&fog, haze}, &ground.heightfield(), glm::normalize(light.direction), bake));
-}
-
-TEST_F(FroxelGl, BakedMultipleScatteringIsTheReferencesLight)
-{
-    // A slab 300 m thick (optical thickness 1.5, albedo 0.99, g 0.8) seen from inside, lit by
-    // the baked volume in both the froxels and the CPU reference: the froxels read the same
-    // moments (light_volume.glsl) and agree as they do in single scattering. Without the volume
-    // the froxels draw single scattering, far from the baked reference: the volume is read.
-    const g::Terrain ground = flat_ground();
-    const g::Medium fog = baked_slab(0.0, 300.0, 0.005, 2000.0);
-    const SunLight light = sun();
-    const auto volume = small_bake(fog, {}, ground, light);
-    ASSERT_FALSE(volume->empty());
-    Camera c;
-    c.position = {0.0, -1500.0, 150.0};
-    c.target = {300.0, 0.0, 120.0};
-    const g::FroxelOptions o = small(24, 14);
-    const Compared with = compare(ground, &fog, o, c, 96, 54, light, 0.0, HUGE_VAL, volume);
-    EXPECT_GT(with.error.fog_pixels, 96 * 54 / 2);
-    EXPECT_LT(with.error.mean_relative, 0.03);
-    // The same froxels without the volume against the same reference.
-    Renderer single;
-    single.set_terrain(ground);
-    SunLight shadowed = light;
-    shadowed.terrain_shadows = o.terrain_shadows;
-    single.set_sun(shadowed);
-    single.set_froxel_fog(&fog, o);
-    single.render(c, 96, 54);
-    const kiri::render::FogError without = kiri::render::compare_fog(single.read_froxel_fog(), with.reference);
-    std::printf("    without the volume: mean %.4f\n", without.mean_relative);
-    EXPECT_GT(without.mean_relative, 4.0 * with.error.mean_relative);
-    EXPECT_GT(without.mean_relative, 0.05);
-}
-
-// A height fog (extinction 0.01, albedo 0.99, g 0.6) of the given base and scale height in the
-// froxels' options over a baked slab from bottom to top (sigma 1/m), and their light volume baked
-// over the ground.
-struct BakedHaze {
-    g::Medium fog;
-    g::FroxelOptions options;
-    std::shared_ptr<const g::LightVolume> volume;
-};
-
-BakedHaze baked_haze(const g::FroxelOptions& options, double bottom, double top, double sigma, double base,
-                     double scale_height, const g::Terrain& ground, const SunLight& light)
-{
-    BakedHaze h{baked_slab(bottom, top, sigma, 2000.0), options, nullptr};
-    h.options.height_fog.extinction = 0.01;
-    h.options.height_fog.base = base;
-    h.options.height_fog.scale_height = scale_height;
-    h.options.height_fog.albedo = 0.99;
-    h.options.height_fog.anisotropy = 0.6;
-    h.volume = small_bake(h.fog, h.options.height_fog, ground, light);
-    EXPECT_FALSE(h.volume->empty());
-    return h;
-}
-
-// The froxels from inside such a height fog are the baked reference's within 3 % over most pixels.
-void expect_the_references(const Compared& with, const char* where)
-{
-    std::printf("    baked height fog %s: mean %.4f over %d fog pixels\n", where, with.error.mean_relative,
-                with.error.fog_pixels);
-    EXPECT_GT(with.error.fog_pixels, 96 * 54 / 2);
-    EXPECT_LT(with.error.mean_relative, 0.03);
-}
-
-TEST_F(FroxelGl, BakedLightOfAHeightFogAboveTheMediumsTopIsTheReferences)
-{
-    // A height fog reaching 320 m (8 scale heights of 40 m) over a Medium 20 m deep, seen from
-    // inside it: the froxels light the height fog above the Medium's top from the volume's cells,
-    // which reach up to the height fog's top (geometry::LightVolume::shell), as the reference
-    // does. Before, that light was missing from both (the bake followed no photon above the
-    // Medium's box).
-    const g::Terrain ground = flat_ground();
-    const SunLight light = sun();
-    const BakedHaze h = baked_haze(small(24, 14), 0.0, 20.0, 0.002, 0.0, 40.0, ground, light);
-    ASSERT_DOUBLE_EQ(h.volume->haze_top, 320.0);
-    Camera c;
-    c.position = {0.0, -1500.0, 100.0};
-    c.target = {300.0, 0.0, 110.0};
-    expect_the_references(compare(ground, &h.fog, h.options, c, 96, 54, light, 0.0, HUGE_VAL, h.volume),
-                          "above the Medium");
-}
-
-TEST_F(FroxelGl, BakedLightOfAHeightFogUnderALiftedMediumsFloorIsTheReferences)
-{
-    // A blanket from 120 to 160 m over a height fog that fills the ground's first 60 m, seen
-    // from inside the height fog: the volume's cells reach down to the ground under the
-    // Medium's floor (geometry::LightVolume::floors, read by lv_floor_at), as the reference's do
-    // (54 % off it with the GLSL reading no floors).
-    const g::Terrain ground = flat_ground();
-    const SunLight light = sun();
-    const BakedHaze h = baked_haze(small(24, 14), 120.0, 160.0, 0.004, 60.0, 20.0, ground, light);
-    ASSERT_FALSE(h.volume->floors.empty());
-    ASSERT_DOUBLE_EQ(h.volume->floor_at(0.0, 0.0), 0.0);
-    Camera c;
-    c.position = {0.0, -1500.0, 30.0};
-    c.target = {300.0, 0.0, 40.0};
-    expect_the_references(compare(ground, &h.fog, h.options, c, 96, 54, light, 0.0, HUGE_VAL, h.volume),
-                          "under the Medium");
 }
 
 TEST_F(FroxelGl, HeightFog)

@@ -92,7 +92,7 @@ struct EntryPatch {
 struct FirstScattering {
     glm::dvec3 p{0.0};
     double u_cos = 0.0, u_phi = 0.0;  // the stratified uniforms of the first scattered direction
-    double weight = 0.0;              // pi sigma_t T / (the density p was drawn from), per photon of the cell
+    double weight = 0.0;              // pi sigma_t T / (the density p was drawn from), per photon of the patch
 };
 
 class Baker {
