@@ -165,6 +165,29 @@ TEST_F(SunVolumeGl, RollingTopWithDetailAgreesWithTheIntegral)
     }
 }
 
+// A uniform slab 100 m thick over the whole grid, the sun low behind its west edge: the grid's
+// edge is a wall of fog, and the sun's path from a point near it leaves through the wall
+// (tau = sigma x its length to the wall) or over it (sigma (top - z) / sin(elevation)). Where the
+// path grazes the wall's top, tau kinks between the volume's columns: read there, their linear
+// blend took up to sigma h / (4 cos(elevation)) off it (h the columns' spacing).
+TEST_F(SunVolumeGl, PathsThatGrazeTheGridsEdgeWallKeepTheirKink)
+{
+    const g::Medium slab = shell(41, 50.0, -1000.0, [](double, double) { return 100.0; });
+    for (double elevation : {10.0, 30.0, 60.0}) {
+        const glm::dvec3 sun = sun_at(elevation, 200.0);
+        std::vector<glm::vec3> points;
+        for (double x = -999.0; x <= -400.0; x += 7.3)
+            for (double y = -600.0; y <= 600.0; y += 97.0)
+                for (double z = 0.5; z < 100.0; z += 6.1)
+                    points.emplace_back(float(x), float(y), float(z));
+        const Errors e = compare(slab, sun, points);
+        std::printf("    the grid's edge, sun %.0f deg: %zu points, relative error mean %.4f, max %.4f\n", elevation,
+                    points.size(), e.mean, e.max);
+        EXPECT_LT(e.mean, 0.002);
+        EXPECT_LT(e.max, 0.02);
+    }
+}
+
 // A static view reuses the volume: new cameras do not rebuild it; the sun, the Medium and its
 // time do, once each.
 TEST_F(SunVolumeGl, RebuiltOnlyWhenTheSunOrTheFogChanges)
