@@ -28,14 +28,17 @@ layout(rgba32f, binding = 2) writeonly uniform image2D o_edge_ray;
 
 // The fog a ray through screen point uv crosses just before its surface at view depth `depth`:
 // the Medium's column over the surface taken as level, the ray's length under its top (returned,
-// in view depth), and what that lets through (t). Meant to tell the samples of one pixel apart,
-// not to light them: the march does that.
+// in view depth), and what that and the height fog let through (t). Meant to tell the samples of
+// one pixel apart, not to light them: the march does that. The height fog's is its closed form
+// from the eye to the surface: a surface seen at a slant through its extent's wall (the DEM's
+// edge) lies in haze on one side of the wall and in none on the other, within one pixel.
 float fog_before(vec2 uv, float depth, out float t)
 {
-    t = 1.0;
     vec3 ray = fx_ray(uv);
     vec3 p = u_fx_eye + ray * depth;
-    if (!shell_covers(p.xy))
+    float haze = height_fog_segment(u_fx_eye, p);
+    t = exp(-haze);
+    if (u_fx_shell == 0 || !shell_covers(p.xy))
         return 0.0;
     vec4 c = shell_column(p.xy);  // floor, bottom, top, coverage
     float over = c.z > c.x ? c.z - p.z : 0.0;
@@ -43,7 +46,7 @@ float fog_before(vec2 uv, float depth, out float t)
         return 0.0;
     float reach = length(ray) * depth;  // the eye's distance: the ray is no longer
     float along = min(over / max(-normalize(ray).z, 1e-3), reach);
-    t = exp(-u_md_extinction * c.w * along);
+    t = exp(-u_md_extinction * c.w * along - haze);
     return along * depth / reach;
 }
 
@@ -72,7 +75,7 @@ void main()
             for (int s = 0; s < u_samples; ++s)
                 other |= (ds[s] <= split) != resolved_near ? 1u << s : 0u;
         }
-        if (u_fog_split > 0.0 && u_fx_shell != 0 && hi < 1.0) {
+        if (u_fog_split > 0.0 && (u_fx_shell != 0 || u_hf.x > 0.0) && hi < 1.0) {
             float t[8];
             float gap = 0.0, at = 0.0;
             for (int s = 0; s < u_samples; ++s) {
