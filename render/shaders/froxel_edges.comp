@@ -27,27 +27,46 @@ layout(rgba32f, binding = 1) writeonly uniform image2D o_edge_depth;
 layout(rgba32f, binding = 2) writeonly uniform image2D o_edge_ray;
 
 // The fog a ray through screen point uv crosses just before its surface at view depth `depth`:
-// the Medium's column over the surface taken as level, the ray's length under its top (returned,
-// in view depth), and what that and the height fog let through (t). Meant to tell the samples of
-// one pixel apart, not to light them: the march does that. The height fog's is its closed form
-// from the eye to the surface: a surface seen at a slant through its extent's wall (the DEM's
-// edge) lies in haze on one side of the wall and in none on the other, within one pixel.
+// the Medium's column where the ray, followed back from the surface, is over the grid (at the
+// surface, or where it crossed the grid's edge on its way to a surface beyond) taken as level,
+// the ray's length under its top within the grid (returned with the stretch beyond the grid, in
+// view depth), and what that and the height fog let through (t). Meant to tell the samples of one
+// pixel apart, not to light them: the march does that. The grid's edge is a wall of fog: a
+// sample on the ground beyond it saw the wall's fog, one just inside it only the wall's depth,
+// not all the fog over its own column. The height fog's is its closed form from the eye to the
+// surface: a surface seen at a slant through its extent's wall (the DEM's edge) lies in haze on
+// one side of the wall and in none on the other, within one pixel.
 float fog_before(vec2 uv, float depth, out float t)
 {
     vec3 ray = fx_ray(uv);
     vec3 p = u_fx_eye + ray * depth;
     float haze = height_fog_segment(u_fx_eye, p);
     t = exp(-haze);
-    if (u_fx_shell == 0 || !shell_covers(p.xy))
-        return 0.0;
-    vec4 c = shell_column(p.xy);  // floor, bottom, top, coverage
-    float over = c.z > c.x ? c.z - p.z : 0.0;
-    if (!(over > 0.0) || !(c.w > 0.0))
+    if (u_fx_shell == 0)
         return 0.0;
     float reach = length(ray) * depth;  // the eye's distance: the ray is no longer
-    float along = min(over / max(-normalize(ray).z, 1e-3), reach);
+    vec3 back = -normalize(ray);        // from the surface towards the eye
+    float enter = 0.0, leave = reach;   // its stretch over the grid
+    for (int axis = 0; axis < 2; ++axis) {
+        if (abs(back[axis]) < 1e-8) {
+            if (p[axis] < u_md_origin[axis] || p[axis] > u_md_last[axis])
+                return 0.0;
+            continue;
+        }
+        float a = (u_md_origin[axis] - p[axis]) / back[axis], b = (u_md_last[axis] - p[axis]) / back[axis];
+        enter = max(enter, min(a, b));
+        leave = min(leave, max(a, b));
+    }
+    if (!(leave > enter))
+        return 0.0;
+    vec3 q = p + back * enter;
+    vec4 c = shell_column(q.xy);  // floor, bottom, top, coverage
+    float over = c.z > c.x ? c.z - q.z : 0.0;
+    if (!(over > 0.0) || !(c.w > 0.0))
+        return 0.0;
+    float along = min(over / max(back.z, 1e-3), leave - enter);
     t = exp(-u_md_extinction * c.w * along - haze);
-    return along * depth / reach;
+    return (enter + along) * depth / reach;
 }
 
 void list_march(uint entry)
