@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <tuple>
 #include <vector>
 
 #include "render/froxel_fixture.hpp"
@@ -137,17 +138,31 @@ TEST_F(FroxelGl, ThreadsOfFogNarrowerThanAPixelFogTheirShareOfIt)
     EXPECT_LT(j.whole.mean_relative, 0.07);
 }
 
-TEST_F(FroxelGl, AHeightFogsEdgeSeenAtASlantFogsEachSide)
+// A wall of fog at x = 0 over a plain (the west side fogged) seen across it from 2.7 km and 21
+// degrees down at 96 x 54, where a pixel along the wall's foot holds ground on both sides of it
+// within one surface: judged where the fog bends within one surface.
+Judged across_a_wall(const g::Medium& fog, const g::FroxelOptions& o, double* wall_mean, int* judged)
 {
-    // A dense height fog (visibility 130 m, 25 m scale height) over the ground west of x = 0 only
-    // (its extent's wall: where a DEM ends, the scene's haze does), seen across the wall from 2.7 km
-    // and 21 degrees down at 96 x 54: a pixel along the wall's foot holds ground in the haze and
-    // ground beside it, within one surface. Measured: where the fog bends within one surface 2.6 %
-    // off the reference through the samples (p99 of the frame 7.0 %); with the height fog left out
-    // of the samples' estimates of the fog before them (such pixels not split) 4.3 % (10.1 %).
     Camera c;
     c.position = {1500.0, -1800.0, 1000.0};
     c.target = {-100.0, 200.0, 0.0};
+    const Judged j = judge(flat_ground(3000.0), fog, o, c, 96, 54);
+    std::tie(*wall_mean, *judged) = j.mean_over(j.fog_edges);
+    std::printf(
+        "    %d pixels split by the apply; %zu of the reference's where the fog bends within one surface (%d "
+        "judged): mean %.4f; whole frame %.4f (p99 %.4f) over %d pixels\n",
+        j.split, j.fog_edges.size(), *judged, *wall_mean, j.whole.mean_relative, j.whole.p99_relative,
+        j.whole.fog_pixels);
+    return j;
+}
+
+TEST_F(FroxelGl, AHeightFogsEdgeSeenAtASlantFogsEachSide)
+{
+    // A dense height fog (visibility 130 m, 25 m scale height) over the ground west of x = 0 only
+    // (its extent's wall: where a DEM ends, the scene's haze does): ground in the haze and ground
+    // beside it within a pixel. Measured: where the fog bends within one surface 2.6 % off the
+    // reference through the samples (p99 of the frame 7.0 %); with the height fog left out of the
+    // samples' estimates of the fog before them (such pixels not split) 4.3 % (10.1 %).
     g::FroxelOptions o = small(24, 14, 32);
     o.far = 0.0;
     o.height_fog.extinction = 0.03;
@@ -155,13 +170,9 @@ TEST_F(FroxelGl, AHeightFogsEdgeSeenAtASlantFogsEachSide)
     o.height_fog.scale_height = 25.0;
     o.height_fog.min = {-3000.0, -3000.0};
     o.height_fog.max = {0.0, 3000.0};
-    const Judged j = judge(flat_ground(3000.0), slab(0.0, 30.0, 0.002, 3000.0), o, c, 96, 54);
-    const auto [wall_mean, judged] = j.mean_over(j.fog_edges);
-    std::printf(
-        "    %d pixels split by the apply; %zu of the reference's where the fog bends within one surface (%d "
-        "judged): mean %.4f; whole frame %.4f (p99 %.4f) over %d pixels\n",
-        j.split, j.fog_edges.size(), judged, wall_mean, j.whole.mean_relative, j.whole.p99_relative,
-        j.whole.fog_pixels);
+    double wall_mean = 0.0;
+    int judged = 0;
+    const Judged j = across_a_wall(slab(0.0, 30.0, 0.002, 3000.0), o, &wall_mean, &judged);
     EXPECT_GT(judged, 300);
     EXPECT_LT(wall_mean, 0.033);
     EXPECT_LT(j.whole.p99_relative, 0.09);
@@ -169,16 +180,11 @@ TEST_F(FroxelGl, AHeightFogsEdgeSeenAtASlantFogsEachSide)
 
 TEST_F(FroxelGl, AFogsWallAtTheGridsEdgeSeenAtASlantFogsEachSide)
 {
-    // A slab 60 m deep over the west half of a plain (the Medium's grid ends at x = 0, as a derived
-    // fog ends at its DEM's edge: a wall of fog), seen across the wall from 2.7 km and 21 degrees
-    // down at 96 x 54: a pixel at the wall's foot holds ground beyond the grid, seen through the
-    // wall, and ground inside it under the fog. Measured: where the fog bends within one surface
-    // 1.9 % off the reference through the samples, the whole frame 0.65 % (p99 9.2 %); with the
-    // samples' estimates taking the fog over their own column (none beyond the grid, all of it
-    // inside) 2.7 % (1.3 %, p99 22 %).
-    Camera c;
-    c.position = {1500.0, -1800.0, 1000.0};
-    c.target = {-100.0, 200.0, 0.0};
+    // A slab 60 m deep whose Medium's grid ends at x = 0 (as a derived fog ends at its DEM's edge):
+    // ground beyond the grid, seen through the wall, and ground inside it under the fog within a
+    // pixel. Measured: where the fog bends within one surface 1.9 % off the reference through the
+    // samples, the whole frame 0.65 % (p99 9.2 %); with the samples' estimates taking the fog over
+    // their own column (none beyond the grid, all of it inside) 2.7 % (1.3 %, p99 22 %).
     g::FroxelOptions o = small(24, 14, 32);
     o.far = 0.0;
     g::MediumGrid grid;
@@ -191,14 +197,10 @@ TEST_F(FroxelGl, AFogsWallAtTheGridsEdgeSeenAtASlantFogsEachSide)
     grid.top.assign(9, 60.0);
     grid.coverage.assign(9, 1.0);
     const g::Medium uniform = slab(-10.0, 60.0, 0.01, 3000.0);
-    const g::Medium half(std::move(grid), uniform.options(), uniform.detail());
-    const Judged j = judge(flat_ground(3000.0), half, o, c, 96, 54);
-    const auto [wall_mean, judged] = j.mean_over(j.fog_edges);
-    std::printf(
-        "    %d pixels split by the apply; %zu of the reference's where the fog bends within one surface (%d "
-        "judged): mean %.4f; whole frame %.4f (p99 %.4f) over %d pixels\n",
-        j.split, j.fog_edges.size(), judged, wall_mean, j.whole.mean_relative, j.whole.p99_relative,
-        j.whole.fog_pixels);
+    double wall_mean = 0.0;
+    int judged = 0;
+    const Judged j =
+        across_a_wall(g::Medium(std::move(grid), uniform.options(), uniform.detail()), o, &wall_mean, &judged);
     EXPECT_GT(judged, 200);
     EXPECT_LT(wall_mean, 0.023);
     EXPECT_LT(j.whole.mean_relative, 0.01);
