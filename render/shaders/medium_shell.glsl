@@ -69,10 +69,12 @@ vec2 shell_column_xy(ivec2 ij, ivec2 columns)
 // varies linearly with the level between a column's floor and top, such as the optical depth
 // under a flat top, blends exactly between columns whose floors differ. Outside the grid: the
 // nearest columns.
-float shell_lookup(sampler3D volume, vec3 p)
+vec4 shell_lookup_all(sampler3D volume, vec3 p)
 {
     vec3 size = vec3(textureSize(volume, 0));
     vec2 f = clamp(shell_fraction(p.xy), 0.0, 1.0);
     float w = shell_level(p.z, shell_column(p.xy));
-    return textureLod(volume, (vec3(f, w) * (size - 1.0) + 0.5) / size, 0.0).r;
+    return textureLod(volume, (vec3(f, w) * (size - 1.0) + 0.5) / size, 0.0);
 }
+
+float shell_lookup(sampler3D volume, vec3 p) { return shell_lookup_all(volume, p).r; }

@@ -33,7 +33,7 @@ glm::vec3 sun_march_direction(glm::vec3 d)
 
 SunVolume::SunVolume()
     : fill_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
-             "froxel_medium.glsl", "sun_march.glsl", "sun_volume.comp"})
+             "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "sun_volume.comp"})
 {}
 
 void SunVolume::set(const geometry::Medium* medium, const geometry::HeightFog& haze)
@@ -75,7 +75,7 @@ bool SunVolume::update(const glm::vec3& sun)
     const glm::ivec3 size(columns(g.nx, resolution_), columns(g.ny, resolution_), std::max(resolution_.levels, 2));
     if (size != size_ || !volume_) {
         volume_ = make_texture(GL_TEXTURE_3D);
-        glTextureStorage3D(volume_.get(), 1, GL_R32F, size.x, size.y, size.z);
+        glTextureStorage3D(volume_.get(), 1, GL_RG32F, size.x, size.y, size.z);
         glTextureParameteri(volume_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(volume_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
         for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
@@ -89,7 +89,7 @@ bool SunVolume::update(const glm::vec3& sun)
     fill_.set("u_sun_direction", sun_direction);
     fill_.set("u_steps", std::max(resolution_.steps, 1));
     fill_.use();
-    glBindImageTexture(0, volume_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    glBindImageTexture(0, volume_.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RG32F);
     glDispatchCompute(GLuint((size.x + 7) / 8), GLuint((size.y + 7) / 8), GLuint(size.z));
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     built_ = key;
