@@ -47,17 +47,7 @@ float fog_before(vec2 uv, float depth, out float t)
     float reach = length(ray) * depth;  // the eye's distance: the ray is no longer
     vec3 back = -normalize(ray);        // from the surface towards the eye
     float enter = 0.0, leave = reach;   // its stretch over the grid
-    for (int axis = 0; axis < 2; ++axis) {
-        if (abs(back[axis]) < 1e-8) {
-            if (p[axis] < u_md_origin[axis] || p[axis] > u_md_last[axis])
-                return 0.0;
-            continue;
-        }
-        float a = (u_md_origin[axis] - p[axis]) / back[axis], b = (u_md_last[axis] - p[axis]) / back[axis];
-        enter = max(enter, min(a, b));
-        leave = min(leave, max(a, b));
-    }
-    if (!(leave > enter))
+    if (!line_over_rect(p, back, u_md_origin, u_md_last, enter, leave))
         return 0.0;
     vec3 q = p + back * enter;
     vec4 c = shell_column(q.xy);  // floor, bottom, top, coverage

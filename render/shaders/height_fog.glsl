@@ -3,6 +3,24 @@
 uniform vec4 u_hf;         // extinction, base, scale height, 0
 uniform vec4 u_hf_extent;  // its horizontal extent: min x, min y, max x, max y
 
+// The part of the line o + t d with t in [t0, t1] (narrowed in place) that lies over the
+// rectangle [lo, hi] in x and y; false where none does. The height fog's extent and the Medium's
+// grid (froxel_edges.comp) clip rays so.
+bool line_over_rect(vec3 o, vec3 d, vec2 lo, vec2 hi, inout float t0, inout float t1)
+{
+    for (int axis = 0; axis < 2; ++axis) {
+        if (abs(d[axis]) < 1e-20) {
+            if (o[axis] < lo[axis] || o[axis] > hi[axis])
+                return false;
+            continue;
+        }
+        float s0 = (lo[axis] - o[axis]) / d[axis], s1 = (hi[axis] - o[axis]) / d[axis];
+        t0 = max(t0, min(s0, s1));
+        t1 = min(t1, max(s0, s1));
+    }
+    return t1 > t0;
+}
+
 float height_fog_profile(float z)
 {
     return z <= u_hf.y ? u_hf.x : u_hf.x * exp(-(z - u_hf.y) / u_hf.z);
@@ -23,18 +41,7 @@ float height_fog_segment(vec3 a, vec3 b)
         return 0.0;
     vec3 d = b - a;
     float u0 = 0.0, u1 = 1.0;
-    for (int axis = 0; axis < 2; ++axis) {
-        float lo = axis == 0 ? u_hf_extent.x : u_hf_extent.y, hi = axis == 0 ? u_hf_extent.z : u_hf_extent.w;
-        if (abs(d[axis]) < 1e-20) {
-            if (a[axis] < lo || a[axis] > hi)
-                return 0.0;
-            continue;
-        }
-        float s0 = (lo - a[axis]) / d[axis], s1 = (hi - a[axis]) / d[axis];
-        u0 = max(u0, min(s0, s1));
-        u1 = min(u1, max(s0, s1));
-    }
-    if (!(u1 > u0))
+    if (!line_over_rect(a, d, u_hf_extent.xy, u_hf_extent.zw, u0, u1))
         return 0.0;
     float z0 = a.z + d.z * u0, z1 = a.z + d.z * u1, length_m = length(d) * (u1 - u0);
     float lo = min(z0, z1), hi = max(z0, z1);
