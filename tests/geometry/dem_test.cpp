@@ -1,8 +1,8 @@
-// DEM loading: the bundled Jacksboro GeoTIFF, small rasters of each format written here (by
-// GDAL or by hand) with known values, and every bad-raster case kiri refuses.
+// DEM loading: the bundled Jacksboro GeoTIFF and small rasters of each format written here (by
+// GDAL or by hand) with known values (the bad rasters kiri refuses: dem_refusal_test.cpp).
 #include <gtest/gtest.h>
 
-#include "temp_path.hpp"
+#include "dem_fixture.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -20,6 +20,9 @@
 
 namespace fs = std::filesystem;
 using namespace kiri::geometry;
+using kiri::test::Dem;
+using kiri::test::expect_refused;
+using kiri::test::grid_values;
 
 namespace {
 
@@ -34,102 +37,6 @@ double series_m_per_deg_lon(double phi_deg)
 {
     const double p = phi_deg * M_PI / 180.0;
     return 111412.84 * std::cos(p) - 93.5 * std::cos(3 * p) + 0.118 * std::cos(5 * p);
-}
-
-class Dem : public ::testing::Test {
-protected:
-    fs::path dir;
-    void SetUp() override
-    {
-        GDALAllRegister();
-        const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-        dir = kiri::test::temp_path("dem_test_" + std::string(info->name()));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    void TearDown() override { fs::remove_all(dir); }
-
-    // Writes a one-band raster; values in source order (row 0 first). epsg 0: no CRS.
-    fs::path write(const std::string& name, const char* driver, int w, int h, GDALDataType type,
-                   const std::vector<double>& values, const double* gt, int epsg, const double* nodata = nullptr,
-                   std::vector<std::string> options = {})
-    {
-        const fs::path path = dir / name;
-        std::vector<char*> opts;
-        for (auto& o : options)
-            opts.push_back(o.data());
-        opts.push_back(nullptr);
-        if (values.empty()) {
-            // No values: created in place (a MEM copy of a huge raster would be allocated).
-            GDALDataset* out = GetGDALDriverManager()->GetDriverByName(driver)->Create(path.string().c_str(), w, h, 1,
-                                                                                       type, opts.data());
-            EXPECT_NE(out, nullptr) << "GDAL could not write " << path;
-            if (gt)
-                out->SetGeoTransform(const_cast<double*>(gt));
-            GDALClose(out);
-            return path;
-        }
-        GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
-        GDALDataset* ds = mem->Create("", w, h, 1, type, nullptr);
-        if (gt)
-            ds->SetGeoTransform(const_cast<double*>(gt));
-        if (epsg) {
-            OGRSpatialReference srs;
-            srs.importFromEPSG(epsg);
-            srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-            ds->SetSpatialRef(&srs);
-        }
-        GDALRasterBand* band = ds->GetRasterBand(1);
-        if (nodata)
-            band->SetNoDataValue(*nodata);
-        EXPECT_EQ(
-            band->RasterIO(GF_Write, 0, 0, w, h, const_cast<double*>(values.data()), w, h, GDT_Float64, 0, 0, nullptr),
-            CE_None);
-        GDALDataset* out = GetGDALDriverManager()->GetDriverByName(driver)->CreateCopy(path.string().c_str(), ds, FALSE,
-                                                                                       opts.data(), nullptr, nullptr);
-        EXPECT_NE(out, nullptr) << "GDAL could not write " << path;
-        GDALClose(out);
-        GDALClose(ds);
-        return path;
-    }
-
-    fs::path write_text(const std::string& name, const std::string& text)
-    {
-        const fs::path path = dir / name;
-        std::ofstream(path, std::ios::binary) << text;
-        return path;
-    }
-};
-
-std::vector<double> grid_values(int w, int h, const std::function<double(int, int)>& f)
-{
-    std::vector<double> v;
-    for (int row = 0; row < h; ++row)
-        for (int col = 0; col < w; ++col)
-            v.push_back(f(col, row));
-    return v;
-}
-
-// Runs fn, expects an exception of type E whose what() names the file and whose field is
-// the given one, and that GDAL printed nothing on stderr.
-template <class E>
-void expect_refused(const std::function<void()>& fn, const fs::path& file, const std::string& field,
-                    const std::string& reason_part = "")
-{
-    ::testing::internal::CaptureStderr();
-    try {
-        fn();
-        ::testing::internal::GetCapturedStderr();
-        ADD_FAILURE() << "no exception for " << file;
-    } catch (const E& e) {
-        const std::string printed = ::testing::internal::GetCapturedStderr();
-        EXPECT_EQ(printed, "") << "GDAL printed on stderr";
-        EXPECT_EQ(e.file(), file.string());
-        EXPECT_EQ(e.field(), field) << e.what();
-        EXPECT_NE(std::string(e.what()).find(file.string()), std::string::npos) << e.what();
-        EXPECT_NE(std::string(e.what()).find(reason_part), std::string::npos) << e.what();
-        EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "one line: " << e.what();
-    }
 }
 
 }  // namespace
@@ -514,104 +421,4 @@ TEST_F(Dem, ResampleKeepsTheExtentAndReproducesAPlane)
             EXPECT_NEAR(r.at(i, j), 1.0 + 0.25 * r.x_of(i) - 0.5 * r.y_of(j), 1e-12);
     EXPECT_THROW(resample(src, 1, 10), kiri::InputError);
     EXPECT_THROW(resample(src, 100000, 100000), kiri::LimitError);
-}
-
-// --- Bad input: each refused with one line naming the file and the property. ---
-
-TEST_F(Dem, MissingFile)
-{
-    const fs::path path = dir / "nowhere.tif";
-    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "file", "no such file");
-    expect_refused<kiri::InputError>([&] { dem_info(path); }, path, "file", "no such file");
-}
-
-TEST_F(Dem, NotARaster)
-{
-    const auto path = write_text("notes.tif", "These are field notes, not a GeoTIFF.\n");
-    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "format", "not a raster");
-}
-
-TEST_F(Dem, ZeroByteFile)
-{
-    const auto path = write_text("empty.tif", "");
-    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "size", "0 bytes");
-}
-
-TEST_F(Dem, TruncatedTiff)
-{
-    const int w = 64, h = 64;
-    const double gt[6] = {0.0, 1.0, 0.0, 64.0, 0.0, -1.0};
-    const auto full =
-        write("full.tif", "GTiff", w, h, GDT_Float32, grid_values(w, h, [](int c, int r) { return c * r; }), gt, 32616);
-    ASSERT_EQ(load_dem(full).nx, w);  // whole, it loads
-    std::ifstream in(full, std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const auto cut = write_text("cut.tif", bytes.substr(0, bytes.size() / 2));
-    // GDAL writes the directory first, so the file opens and the read fails.
-    expect_refused<kiri::InputError>([&] { load_dem(cut); }, cut, "data", "truncated");
-}
-
-TEST_F(Dem, AllNodata)
-{
-    const double gt[6] = {0.0, 1.0, 0.0, 4.0, 0.0, -1.0};
-    const double nd = -32768.0;
-    const auto path = write("void.tif", "GTiff", 4, 4, GDT_Int16, std::vector<double>(16, nd), gt, 32616, &nd);
-    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "nodata", "every cell");
-}
-
-TEST_F(Dem, AbsurdDimensionsAreRefusedBeforeAllocating)
-{
-    // 200000 x 200000 cells (40 G): sparse, so a few kB on disk; loading would need ~630 GiB.
-    const double gt[6] = {0.0, 1.0, 0.0, 200000.0, 0.0, -1.0};
-    const auto path = write("huge.tif", "GTiff", 200000, 200000, GDT_Byte, {}, gt, 32616, nullptr,
-                            {"SPARSE_OK=TRUE", "TILED=YES", "BLOCKXSIZE=4096", "BLOCKYSIZE=4096"});
-    ASSERT_LT(fs::file_size(path), 100000u);
-    expect_refused<kiri::LimitError>([&] { load_dem(path); }, path, "size", "MiB");
-    expect_refused<kiri::LimitError>([&] { dem_info(path); }, path, "size", "max_cells");
-    // The limit is the option: a small raster above a small limit is refused too.
-    const auto small = write("small.tif", "GTiff", 10, 10, GDT_Byte, std::vector<double>(100, 1.0), gt, 32616);
-    DemOptions opt;
-    opt.max_cells = 99;
-    expect_refused<kiri::LimitError>([&] { load_dem(small, opt); }, small, "size", "100 cells");
-    opt.max_cells = 100;
-    EXPECT_EQ(load_dem(small, opt).size(), 100u);
-}
-
-TEST_F(Dem, RotatedGeotransformIsRefused)
-{
-    const double gt[6] = {0.0, 1.0, 0.2, 4.0, 0.1, -1.0};
-    const auto path = write("rotated.tif", "GTiff", 4, 4, GDT_Byte, std::vector<double>(16, 1.0), gt, 32616);
-    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "geotransform", "rotated");
-}
-
-TEST_F(Dem, TruncatedCompressedJacksboro)
-{
-    // The real, deflate-compressed file cut at 60 %: the directory survives, the strips do not.
-    std::ifstream in(fs::path(KIRI_DATA_DIR) / "terrains" / "jacksboro_fault_dem.tif", std::ios::binary);
-    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    const auto cut = write_text("jacksboro_cut.tif", bytes.substr(0, bytes.size() * 6 / 10));
-    expect_refused<kiri::InputError>([&] { load_dem(cut); }, cut, "data", "GDAL:");
-}
-
-TEST_F(Dem, CorruptCompressedStrips)
-{
-    // Deflate strips overwritten with garbage in the middle of the file.
-    const int w = 64, h = 64;
-    const double gt[6] = {0.0, 1.0, 0.0, 64.0, 0.0, -1.0};
-    const auto path = write("deflate.tif", "GTiff", w, h, GDT_Float32,
-                            grid_values(w, h, [](int c, int r) { return std::sin(c * 0.3) * r; }), gt, 32616, nullptr,
-                            {"COMPRESS=DEFLATE", "BLOCKYSIZE=8"});
-    std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(std::streamoff(fs::file_size(path) / 2));
-    const std::string junk(2000, '\x5a');
-    f.write(junk.data(), std::streamsize(junk.size()));
-    f.close();
-    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "data", "corrupt");
-}
-
-TEST_F(Dem, ZeroSizeGridHeader)
-{
-    // An ASCII grid whose header declares no columns.
-    const auto path = write_text("zero.asc", "ncols 0\nnrows 3\nxllcorner 0\nyllcorner 0\ncellsize 1\n");
-    expect_refused<kiri::InputError>([&] { load_dem(path); }, path, "format", "not a raster");
 }
