@@ -14,6 +14,7 @@ flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
+uniform vec4 u_fog_xy;  // the (x, y) rectangle that holds the fog, relative to u_centre
 flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale)
 in vec4 v_fog;
 flat in float v_baked;
@@ -48,10 +49,23 @@ void main()
         discard;
     float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy * u_depth_scale), 0).r) /
                   max(dot(ray, u_camera_forward), 1e-6);
-    float share = footprint_ray_share(x, v_footprint_radius, -along, scene - along);
+    // The part of the ray that lies in the fog: in front of the terrain and over the rectangle
+    // that holds the fog (the Medium's grid: a particle at its edge would blur the fog's wall).
+    float t0 = 0.0, t1 = scene;
+    vec2 eye = (u_eye - u_centre).xy;
+    for (int axis = 0; axis < 2; ++axis) {
+        float lo = u_fog_xy[axis] - eye[axis], hi = u_fog_xy[axis + 2] - eye[axis];
+        if (abs(ray[axis]) > 1e-6) {
+            float a = lo / ray[axis], b = hi / ray[axis];
+            t0 = max(t0, min(a, b));
+            t1 = min(t1, max(a, b));
+        } else if (lo > 0.0 || hi < 0.0)
+            discard;
+    }
+    float share = footprint_ray_share(x, v_footprint_radius, t0 - along, t1 - along);
     float alpha = 1.0 - exp(-v_optics.y * footprint_profile(x) * share);
     // Lit where the ray's visible part passes nearest the centre.
-    float t = clamp(along, 0.0, scene);
+    float t = clamp(along, t0, max(t0, t1));
     if (u_soft_edge > 0.0)  // a softer meeting with the terrain than the particle's own, if asked
         alpha *= clamp((scene - t) / u_soft_edge, 0.0, 1.0);
     if (alpha < 1e-5)

@@ -224,6 +224,12 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         LightVolumeTexture{}.bind(p, unit_baked_moments, false);
     set_grid_uniforms(p, g, cloud_->forward_scattering, buffer_.particle_centre());
     p.set("u_centre", glm::vec3(buffer_.particle_centre()));
+    {
+        const glm::dvec2 c(buffer_.particle_centre());
+        const auto bound = [](double v) { return float(std::clamp(v, -1e30, 1e30)); };
+        const glm::dvec2 lo = cloud_->fog_xy_min - c, hi = cloud_->fog_xy_max - c;
+        p.set("u_fog_xy", glm::vec4(bound(lo.x), bound(lo.y), bound(hi.x), bound(hi.y)));
+    }
     p.set("u_view_projection", frame.view_projection);
     p.set("u_camera_right", glm::vec3(inverse_view[0]));
     p.set("u_camera_up", glm::vec3(inverse_view[1]));

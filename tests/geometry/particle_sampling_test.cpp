@@ -1,11 +1,13 @@
 // Sampling particles in a Medium (particles.hpp): deterministic, inside the fog and above its
-// floor, density-weighted, blue noise, carrying the Medium's extinction; options and PLY export.
+// floor (the fog's rectangle given), density-weighted, blue noise, carrying the Medium's
+// extinction; options and PLY export.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <cstring>
 #include <random>
 
@@ -85,6 +87,10 @@ TEST(ParticleSampling, InsideTheFogAboveItsFloor)
         EXPECT_LE(p.position.z, 300.0);
         EXPECT_GT(m.density(p.position), 0.0);
     }
+    // The fog's rectangle, where the renderers clip every footprint: the grid's, 0..500 m.
+    EXPECT_EQ(c.fog_xy_min, glm::dvec2(0.0, 0.0));
+    EXPECT_EQ(c.fog_xy_max, glm::dvec2(500.0, 500.0));
+    EXPECT_EQ(ParticleCloud{}.fog_xy_min.x, -std::numeric_limits<double>::infinity());
 }
 
 TEST(ParticleSampling, DensityWeighted)

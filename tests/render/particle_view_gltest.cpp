@@ -1,7 +1,8 @@
 // What a billboard hides along each ray (particles.vert / particles.frag): the part of the
 // particle's column between the eye and the terrain (footprint_ray_share), read back from the
 // frame's linear radiance against the closed form, for a particle around the eye (its centre
-// behind the eye: the whole screen), one cut by the ground and one farther off (a disc).
+// behind the eye: the whole screen), one cut by the ground, one farther off (a disc) and one
+// astride the edge of the rectangle that holds the fog.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,8 +31,9 @@ struct Agreement {
 // One black particle (albedo 0: it only hides what lies behind it) over flat ground. The frame's
 // radiance with it over the radiance without it is the transmittance T of each pixel's ray; the
 // closed form is exp(-tau f(rho / r) share), the share of the column between the eye and the
-// ground the ray meets there (pick).
-Agreement transmittance_agreement(const glm::dvec3& centre, double radius, double tau)
+// ground the ray meets there (pick), and over the fog's rectangle [xy_min, xy_max].
+Agreement transmittance_agreement(const glm::dvec3& centre, double radius, double tau,
+                                  glm::dvec2 xy_min = glm::dvec2(-1e300), glm::dvec2 xy_max = glm::dvec2(1e300))
 {
     const g::Terrain flat = kiri::test::gaussian_hill(33, 100.0, 0.0);
     kiri::render::Camera cam;
@@ -53,6 +55,8 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
     g::ParticleCloud cloud;
     cloud.scattering_octaves = 1;
     cloud.particles.push_back({centre, radius, tau, 0.0});
+    cloud.fog_xy_min = xy_min;
+    cloud.fog_xy_max = xy_max;
     kiri::render::Renderer r;
     r.set_terrain(flat, 1.0, false);
     r.set_sun(sun);
@@ -70,11 +74,18 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
                 continue;
             const glm::dvec3 ray = view.ray(x, y);
             const std::optional<glm::dvec3> ground = r.pick(x, y);
-            const double end = ground ? glm::length(*ground - cam.position) : 1e9;
+            double start = 0.0, end = ground ? glm::length(*ground - cam.position) : 1e9;
+            for (int axis = 0; axis < 2; ++axis)
+                if (ray[axis] != 0.0) {
+                    const double a = (xy_min[axis] - cam.position[axis]) / ray[axis];
+                    const double b = (xy_max[axis] - cam.position[axis]) / ray[axis];
+                    start = std::max(start, std::min(a, b));
+                    end = std::min(end, std::max(a, b));
+                }
             const glm::dvec3 to_centre = centre - cam.position;
             const double along = glm::dot(to_centre, ray);
             const double rho = std::sqrt(std::max(glm::dot(to_centre, to_centre) - along * along, 0.0));
-            const double share = g::footprint_ray_share(rho / radius, radius, -along, end - along);
+            const double share = g::footprint_ray_share(rho / radius, radius, start - along, end - along);
             const double expected = std::exp(-tau * g::footprint_profile(rho / radius) * share);
             const double measured = double(seen.rgba[i]) / double(behind.rgba[i]);
             sum += std::abs(measured - expected);
@@ -117,6 +128,19 @@ TEST_F(ParticleViewGl, AFarParticleCoversItsWholeConeOfRays)
     // pass the radius from the centre.
     const Agreement a = transmittance_agreement({40.0, 400.0, 60.0}, 120.0, 2.0);
     EXPECT_GT(a.hidden, 0.05);
+    EXPECT_LT(a.mean, 0.001) << a.worst;
+    EXPECT_LT(a.worst, 0.01);
+}
+
+TEST_F(ParticleViewGl, AParticleAstrideTheFogsEdgeHidesNothingBeyondIt)
+{
+    // The fog ends at x = 20 m (the Medium's grid, a wall of fog), and the particle's centre lies
+    // on that wall, seen at a slant: the rays take only the part of its column over the fog's
+    // side, and what lies beyond the wall is not blurred by it.
+    const Agreement a = transmittance_agreement({20.0, 200.0, 40.0}, 70.0, 3.0, {-1e4, -1e4}, {20.0, 1e4});
+    const Agreement whole = transmittance_agreement({20.0, 200.0, 40.0}, 70.0, 3.0);
+    EXPECT_GT(a.hidden, 0.05);
+    EXPECT_LT(a.hidden, 0.8 * whole.hidden);
     EXPECT_LT(a.mean, 0.001) << a.worst;
     EXPECT_LT(a.worst, 0.01);
 }

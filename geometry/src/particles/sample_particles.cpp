@@ -173,6 +173,9 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     cloud.anisotropy = medium.options().anisotropy;
     cloud.scattering_octaves = shader_octaves(medium.options());
     cloud.forward_scattering = options.forward_scattering;
+    const MediumGrid& grid = medium.grid();
+    cloud.fog_xy_min = {grid.x0, grid.y0};
+    cloud.fog_xy_max = {grid.x0 + (grid.nx - 1) * grid.dx, grid.y0 + (grid.ny - 1) * grid.dy};
     cloud.candidate_count = candidates.size();
     cloud.trial_count = trials;
     if (candidates.empty())

@@ -7,9 +7,11 @@
 //! the Medium's extinction, so they draw the same fog as the layers and the froxels.
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "kiri/geometry/core/fields.hpp"
@@ -169,6 +171,10 @@ struct ParticleCloud {
     //! beam (Harris's forward-scattering term), in [0, 1].
     double forward_scattering = 0.2;
     double anisotropy = 0.8;  //!< Henyey-Greenstein g towards the eye (the Medium's)
+    //! The (x, y) rectangle that holds the fog (the Medium's grid): no footprint reaches beyond
+    //! it, so the fog's wall at a grid's edge stays sharp. Infinite: no such bound.
+    glm::dvec2 fog_xy_min{-std::numeric_limits<double>::infinity()},
+        fog_xy_max{std::numeric_limits<double>::infinity()};
     //! The Medium's multiple scattering as the shaders take it (shader_octaves, fog_lighting.hpp):
     //! 0 the fitted model, n >= 1 n octaves.
     int scattering_octaves = 0;
