@@ -15,6 +15,7 @@ in vec2 v_uv;
 in float v_alpha;
 in float v_exponent;
 in float v_spacing;
+in float v_slab;
 in float v_height;
 in vec3 v_normal;
 in float v_tau_sun;
@@ -104,7 +105,7 @@ void main()
         // the sun still sees all of it.
         float density = v_alpha * tex.a * detail * ground * share;
         float cos_view = max(abs(dot(normalize(v_normal), view)), 0.02);
-        a = 1.0 - exp(-u_extinction * density * v_spacing / cos_view);
+        a = 1.0 - exp(-u_extinction * density * v_spacing * v_slab / cos_view);
         float sun_up = u_sun_direction.z > 0.0 ? terrain_visibility(v_world, u_ts_bias) : 0.0;
         float tau_sun;
         if (v_tau_sun >= 0.0) {

@@ -29,7 +29,8 @@ out vec3 v_world;
 out vec2 v_uv;
 out float v_alpha;
 out float v_exponent;
-out float v_spacing;        // r (m): the slab this layer stands for
+out float v_spacing;        // r (m): the spacing of the layers here
+out float v_slab;           // the share of r that this layer's slab of fog spans (layer_slab_share)
 out float v_height;         // h = i / n in [0, 1]: where in the fog's thickness
 out vec3 v_normal;
 // The fog's optical depth towards the sun at the vertex (sun_volume.glsl: the Medium along the
@@ -56,6 +57,16 @@ float layer_tau_sun(float above_base)
 }
 flat out int v_layer;
 
+// geometry::layer_slab_share: the stack as the trapezoid rule over the fog's thickness, with nodes
+// at the layers 0..m (m = floor(n)) and the top at n, the partial layer m + 1 standing in for it
+// (its fade-in, n - m, is in v_alpha).
+float layer_slab_share(float n, int i)
+{
+    float m = floor(n), part = n - m, k = float(i);
+    return (k >= 1.0 && k <= m ? 0.5 : 0.0) + (k <= m - 1.0 ? 0.5 : 0.0) + (k == m ? 0.5 * part : 0.0) +
+           (k == m + 1.0 ? 0.5 : 0.0);
+}
+
 void main()
 {
     int instance = gl_InstanceID + u_first_instance;
@@ -68,6 +79,7 @@ void main()
         v_alpha = i == 0 ? 1.0 : 0.0;
         v_exponent = 1.0;
         v_spacing = u_thickness;
+        v_slab = 1.0;
         v_height = 0.0;
         v_normal = a_normal;
         v_tau_sun = layer_tau_sun(0.0);
@@ -94,6 +106,7 @@ void main()
         v_alpha *= exp2(-u_time / u_half_life * (1.0 + min(fi / n, 1.0)));
     v_exponent = r / r0;
     v_spacing = r;
+    v_slab = layer_slab_share(n, i);
     v_normal = a_normal;
     float scale = 1.0 + fi * u_rate * sin_theta;
     vec2 xy = u_centre + scale * (p.xy - u_centre);

@@ -54,8 +54,10 @@ LayerColumn column_at(const LayerOptions& o, double L) { return layer_column(o, 
 double stack_depth(const LayerOptions& o, const LayerColumn& c)
 {
     double depth = 0.0;
-    for (int i = 0; i <= int(std::ceil(c.count)) + 1; ++i)
-        depth += layer_vertex(o, c, i, {0, 0, 0}, {0, 0}).alpha * c.spacing;
+    for (int i = 0; i <= int(std::ceil(c.count)) + 1; ++i) {
+        const LayerVertex v = layer_vertex(o, c, i, {0, 0, 0}, {0, 0});
+        depth += v.alpha * c.spacing * v.slab;
+    }
     return depth;
 }
 
@@ -160,32 +162,29 @@ TEST(LayerFormulas, AddedLayersSatisfyThePrintedInequality)
 
 TEST(LayerFormulas, StackDepthConvergesToTheSlab)
 {
-    // Beer-Lambert: a straight-down ray through the stack sees transmittance exp(-sigma_t sum a_i r)
-    // under the medium shading. The slab it stands for has density 1 - 0.9 z / T0, optical depth
-    // sigma_t integral_0^T0 (1 - 0.9 z / T0) dz = 0.55 sigma_t T0. The stack is the trapezoid
-    // sum of that integral plus half a spacing at each end: 0.55 (T0 + r) when the count is
-    // whole, continuous in between (the top layer fades in), and the slab's in the limit r -> 0.
+    // Beer-Lambert: a straight-down ray through the stack sees transmittance
+    // exp(-sigma_t sum a_i r w_i) under the medium shading (w_i: layer_slab_share). The slab it
+    // stands for has density 1 - 0.9 z / T0, optical depth sigma_t integral_0^T0 (1 - 0.9 z / T0) dz
+    // = 0.55 sigma_t T0. The stack is the trapezoid rule of that integral, with the fading top
+    // layer as the node at T0 (its density is the top's, h = 1): exact for the linear profile at
+    // every count, whole or not. One slab of r per layer (before 2026-12-02) gave 0.55 (T0 + r).
     LayerOptions o = options_15();
     const double T0 = o.thickness, slab = 0.55 * T0;
-    for (double L : {1e6, 2000.0, 1000.0, 500.0, 250.0}) {  // whole counts 15, 15, 30, 60, 120
+    for (double L = 3000.0; L >= 0.0; L -= 0.5) {  // counts 15 to 120, whole and between
         const LayerColumn c = column_at(o, L);
-        EXPECT_NEAR(stack_depth(o, c), 0.55 * (T0 + c.spacing), 1e-10) << L;
+        EXPECT_NEAR(stack_depth(o, c), slab, 1e-10 * slab) << L << ", " << c.count << " layers";
     }
-    double previous = stack_depth(o, column_at(o, 3000.0));
-    for (double L = 3000.0; L > 0.0; L -= 0.5) {
-        const LayerColumn c = column_at(o, L);
-        const double depth = stack_depth(o, c);
-        EXPECT_GE(depth, slab - 1e-10) << L;
-        // Between whole counts n = k + f the fading top layer adds 0.45 f (1 - f) r / n more, at
-        // most r / (9 n) at f = 1/2.
-        EXPECT_LE(depth, 0.55 * (T0 + c.spacing) + 0.1125 * c.spacing / c.count + 1e-10) << L;
-        // No pop: half a metre of eye movement changes the depth by about 0.55 x 0.5 / 200 m; a layer
-        // popping in would add 0.1 r (half a metre at r = 5 m).
-        EXPECT_LT(std::abs(depth - previous), 0.01) << L;
-        previous = depth;
-    }
-    // Closest: within 1 / max_count of the slab.
-    EXPECT_NEAR(stack_depth(o, column_at(o, 0.0)) / slab, 1.0 + 1.0 / o.max_count, 1e-12);
+    // The shares themselves: half at the base, one between, and the top's half split between the
+    // last whole layer and the fading one (faded in by n - m).
+    EXPECT_EQ(layer_slab_share(15.0, 0), 0.5);
+    EXPECT_EQ(layer_slab_share(15.0, 7), 1.0);
+    EXPECT_EQ(layer_slab_share(15.0, 15), 0.5);
+    EXPECT_EQ(layer_slab_share(15.25, 15), 0.625);
+    EXPECT_EQ(layer_slab_share(15.25, 16), 0.5);
+    EXPECT_EQ(layer_slab_share(0.5, 0), 0.25);  // thinner than one spacing: the base and the top
+    EXPECT_EQ(layer_slab_share(0.5, 1), 0.5);
+    EXPECT_EQ(layer_slab_share(15.0, 17), 0.0);
+    EXPECT_EQ(layer_slab_share(0.0, 0), 0.0);
 
     // The source shading: layer alpha 1 - (1 - o a_i)^(r / r0). Its optical depth
     // -sum (r / r0) ln(1 - o a_i) tends to (1 / r0) integral_0^T0 -ln(1 - o (1 - 0.9 z / T0)) dz,

@@ -43,7 +43,7 @@ std::vector<BaseVertex> base_vertices()
 // What layers.vert writes per vertex and instance.
 struct Captured {
     float world[3];
-    float alpha, exponent, spacing, height;
+    float alpha, exponent, spacing, height, slab;
 };
 
 // Every layer 0..max_count of every vertex as layers.vert computes it.
@@ -51,8 +51,8 @@ std::vector<Captured> gpu_stack(const g::LayerOptions& o, const std::vector<Base
                                 const glm::dvec3& eye)
 {
     ShaderProgram program({"medium_shell.glsl", "light_volume.glsl", "layers.vert"});
-    const char* varyings[] = {"v_world", "v_alpha", "v_exponent", "v_spacing", "v_height"};
-    glTransformFeedbackVaryings(program.id(), 5, varyings, GL_INTERLEAVED_ATTRIBS);
+    const char* varyings[] = {"v_world", "v_alpha", "v_exponent", "v_spacing", "v_height", "v_slab"};
+    glTransformFeedbackVaryings(program.id(), 6, varyings, GL_INTERLEAVED_ATTRIBS);
     glLinkProgram(program.id());  // the varyings take effect at link time
     GLint linked = 0;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
@@ -134,6 +134,10 @@ double compare_stacks(const g::LayerOptions& o, const glm::dvec3& eye, const std
             expect_close(c.alpha, cpu.alpha * g::layer_dissipation(o, int(k), column.count), 1.0, what + " alpha");
             expect_close(c.exponent, cpu.exponent, 1.0, what + " exponent r/r0");
             expect_close(c.spacing, column.spacing, 1.0, what + " spacing r");
+            // The slab's optical depth goes as alpha x share; the product is continuous in n where
+            // the share alone steps (at a layer that fades in from 0).
+            expect_close(c.alpha * c.slab, cpu.alpha * g::layer_dissipation(o, int(k), column.count) * cpu.slab, 1.0,
+                         what + " slab share");
             if (::testing::Test::HasFailure())
                 return most;  // one vertex's story is enough
         }

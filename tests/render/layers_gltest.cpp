@@ -120,7 +120,7 @@ TEST_F(LayersGl, FogCoversTheLowGroundNotTheSummit)
 }
 
 // Seen straight down over flat fog, the medium-shaded stack is a pile of slabs: layer i has
-// alpha 1 - exp(-sigma rho_i r) and source J_i = geometry::fog_source(sun through the fog
+// alpha 1 - exp(-sigma rho_i r w_i) (w_i its slab's share of r, layer_slab_share) and source J_i = geometry::fog_source(sun through the fog
 // above it), composited over the ground: L = J_i alpha_i + (1 - alpha_i) L, bottom to top.
 // With the reference stack (narrowing and enlargement off) and with the view-dependent one the
 // eye 350 m above the base sees ([Thesis] (2.8)-(2.10) as docs/layers.md reads them): spacing
@@ -171,7 +171,7 @@ TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
                 }
                 const double n = T0 / r, hi = std::min(double(i), n) / n;
                 const double rho = std::clamp(n + 1.0 - i, 0.0, 1.0) * (1.0 - 0.9 * hi);
-                const double alpha = 1.0 - std::exp(-sigma * rho * r / std::abs(view.z));
+                const double alpha = 1.0 - std::exp(-sigma * rho * r * g::layer_slab_share(n, i) / std::abs(view.z));
                 const double tau_sun = sigma * T0 * ((1.0 - hi) - 0.45 * (1.0 - hi * hi)) / s.z;
                 const glm::dvec3 j = g::fog_source(light, o.optics, glm::dot(view, s), tau_sun);
                 expected = j * alpha + (1.0 - alpha) * expected;

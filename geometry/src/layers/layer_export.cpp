@@ -113,9 +113,9 @@ void close_out(std::ofstream& out, const std::filesystem::path& path)
 
 double exported_alpha(const LayerVertex& v, const LayerOptions& options)
 {
-    if (options.shading == LayerShading::medium) {  // the slab seen from above: sigma_t density r
+    if (options.shading == LayerShading::medium) {  // the slab seen from above: sigma_t density r share
         const double r = options.count > 0 ? v.exponent * options.thickness / options.count : options.thickness;
-        return 1.0 - std::exp(-options.optics.extinction * v.alpha * r);
+        return 1.0 - std::exp(-options.optics.extinction * v.alpha * r * v.slab);
     }
     return 1.0 - std::pow(std::max(1.0 - v.alpha * options.opacity, 0.0), v.exponent);
 }

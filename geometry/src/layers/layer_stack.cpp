@@ -52,6 +52,15 @@ LayerColumn layer_column(const LayerOptions& o, const glm::dvec3& eye, const glm
     return c;
 }
 
+double layer_slab_share(double n, int i)
+{
+    if (!(n > 0.0) || i < 0)
+        return 0.0;
+    const double m = std::floor(n), part = n - m, k = double(i);
+    return (k >= 1.0 && k <= m ? 0.5 : 0.0) + (k <= m - 1.0 ? 0.5 : 0.0) + (k == m ? 0.5 * part : 0.0) +
+        (k == m + 1.0 ? 0.5 : 0.0);
+}
+
 LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, const glm::dvec3& point,
                          const glm::dvec2& centre)
 {
@@ -68,6 +77,7 @@ LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, con
         (o.shading == LayerShading::medium ? 1.0 - (1.0 - o.optics.top_density) * std::min(double(i), n) / n
                                            : layer_alpha(std::min(double(i), n), n));
     v.exponent = c.spacing / (o.thickness / o.count);
+    v.slab = layer_slab_share(n, i);
     const double scale = layer_scale(i, c.sin_theta, o.enlargement_rate);
     const glm::dvec2 xy = centre + scale * (glm::dvec2(point) - centre);
     v.position = {xy.x, xy.y, point.z + i * c.spacing};

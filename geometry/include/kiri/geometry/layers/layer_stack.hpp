@@ -149,8 +149,16 @@ struct LayerVertex {
     glm::dvec3 position{0.0};  //!< after offset (z) and enlargement (x, y about the centre)
     double alpha = 0.0;        //!< w_i a_i: (2.7) with the recomputed count, faded in as layers are added
     double exponent = 1.0;     //!< r / r0: the opacity correction 1 - (1 - alpha opacity t)^exponent
+    double slab = 1.0;         //!< medium shading: the share of r its slab of fog spans (layer_slab_share)
 };
 
+//! Medium shading: the share of the spacing r that layer i's slab of fog spans in a stack of
+//! n = T0 / r layers (real-valued), before its fade-in (LayerVertex::alpha). The stack is the
+//! trapezoid rule over the thickness, with nodes at layers 0..m (m = floor(n)) and the top at n,
+//! the partial layer m + 1 standing in for it: 1/2 for the base, 1 between, 1/2 + (n - m) / 2 for
+//! layer m and 1/2 for layer m + 1 (faded in by n - m), so the slabs add up to n r = T0 and a
+//! linear profile's optical depth is exact. One slab of r per layer held T0 + r.
+double layer_slab_share(double n, int i);
 //! Per-vertex quantities of the stack at base point p (normal n) for an eye.
 struct LayerColumn {
     double spacing = 0.0;    //!< r: narrowed (2.8), never below T0 / max_count
