@@ -8,8 +8,9 @@
 //   (sun_volume.glsl), in the terrain's shadow from the sun (terrain_shadow.glsl: the froxels'
 //   and the reference's).
 // Combined mode (fog_partition.glsl): the medium shading draws only the layers' share.
-// Both: world-space detail noise drifting with the wind and a soft fade where the layer meets
-// the ground. Output is premultiplied linear radiance.
+// Both: world-space detail noise drifting with the wind; where the layer meets the ground, the
+// part of its slab above the ground (medium) or a soft fade (source). Output is premultiplied
+// linear radiance.
 in vec3 v_world;
 in vec2 v_uv;
 in float v_alpha;
@@ -76,6 +77,17 @@ vec3 fog_source(float cos_theta, float tau_sun, float visibility)
     return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient);
 }
 
+// geometry::layer_slab_over_ground: of the layer's slab (share of r), the share above the ground.
+float layer_slab_over_ground(float share, int i, float spacing, float clearance)
+{
+    if (!(clearance >= 0.0) || !(spacing > 0.0))
+        return 0.0;
+    if (clearance >= spacing || i == 0)  // the base has no fog under it
+        return share;
+    float lower = min(share, 0.5);  // the slab's half under the layer
+    return clearance / spacing + (share - lower);
+}
+
 void main()
 {
     // Both shadings' opacity is a product of v_alpha, the atlas's alpha and the ground fade:
@@ -89,6 +101,10 @@ void main()
     h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
     float clearance = v_world.z - texture(u_heights, h_uv).r;
     float ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
+    // The medium shading: the part of this layer's slab above the ground, down to the ground where
+    // the layer under it lies below the ground (hidden by the terrain), as a share of the slab.
+    if (u_medium != 0 && clearance >= 0.0)
+        ground = layer_slab_over_ground(v_slab, v_layer, v_spacing, clearance) / max(v_slab, 1e-6);
     // Combined mode: the medium shading draws only the layers' share (none near the eye).
     float share = u_medium != 0 ? layers_share(length(v_world - u_eye), v_height) : 1.0;
     if (tex.a <= 0.0 || ground <= 0.0 || share <= 0.0)

@@ -208,6 +208,30 @@ TEST(LayerFormulas, StackDepthConvergesToTheSlab)
     EXPECT_GT(ends, 5e-3 * closed);  // the end terms matter at this tolerance
 }
 
+TEST(LayerFormulas, AStackTheGroundCutsHoldsTheFogFromTheGroundUp)
+{
+    // Medium shading over ground at height g inside the stack: the layers below it are hidden by
+    // the terrain, the first above it reaches down to it, so an even fog's optical depth over the
+    // column is that of T0 - g, for any g and count; a lifted base (g below it) keeps all of T0.
+    LayerOptions o = options_15();
+    o.optics.top_density = 1.0;  // even density: the layers' alpha is their fade-in alone
+    const double T0 = o.thickness;
+    for (double L : {1e6, 1000.0, 333.0})
+        for (double g = -20.0; g <= T0; g += 3.7) {
+            const LayerColumn c = column_at(o, L);
+            double held = 0.0;
+            for (int i = 0; i <= int(std::ceil(c.count)) + 1; ++i) {
+                const LayerVertex v = layer_vertex(o, c, i, {0, 0, 0}, {0, 0});
+                held += v.alpha * c.spacing * layer_slab_over_ground(v.slab, i, c.spacing, v.position.z - g);
+            }
+            EXPECT_NEAR(held, T0 - std::max(g, 0.0), 1e-9 * T0) << "ground " << g << ", " << c.count << " layers";
+        }
+    EXPECT_EQ(layer_slab_over_ground(1.0, 3, 10.0, -0.1), 0.0);  // below the ground: hidden
+    EXPECT_EQ(layer_slab_over_ground(1.0, 3, 10.0, 10.0), 1.0);  // the layer under it shows
+    EXPECT_EQ(layer_slab_over_ground(1.0, 3, 10.0, 4.0), 0.9);   // from the ground to its top half
+    EXPECT_EQ(layer_slab_over_ground(0.5, 0, 10.0, 0.0), 0.5);   // the base on the ground
+}
+
 TEST(LayerFormulas, HandOversAreContinuous)
 {
     // Where narrowing begins (L0) and where the spacing reaches its floor (200 T0 / max_count),

@@ -61,6 +61,16 @@ double layer_slab_share(double n, int i)
         (k == m + 1.0 ? 0.5 : 0.0);
 }
 
+double layer_slab_over_ground(double share, int i, double spacing, double clearance)
+{
+    if (!(clearance >= 0.0) || !(spacing > 0.0))
+        return 0.0;
+    if (clearance >= spacing || i == 0)  // the base has no fog under it
+        return share;
+    const double lower = std::min(share, 0.5);  // the slab's half under the layer
+    return clearance / spacing + (share - lower);
+}
+
 LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, const glm::dvec3& point,
                          const glm::dvec2& centre)
 {

@@ -127,7 +127,8 @@ void visit_fields(O& o, V&& v)
       {.key = "ground_fade",
        .unit = "m",
        .range = at_least(0),
-       .doc = "of the DEM, over which a layer fades into the ground",
+       .doc = "`source` shading: of the DEM, over which a layer fades into the ground (`medium`: each "
+              "layer holds the part of its slab above the ground)",
        .widget = closed(0, 200)});
     v(o.resolution,
       {.key = "resolution",
@@ -159,6 +160,12 @@ struct LayerVertex {
 //! layer m and 1/2 for layer m + 1 (faded in by n - m), so the slabs add up to n r = T0 and a
 //! linear profile's optical depth is exact. One slab of r per layer held T0 + r.
 double layer_slab_share(double n, int i);
+//! Medium shading where the ground cuts the stack: the share of the spacing r (m) that layer i's
+//! slab (its layer_slab_share w) holds above the ground, the layer `clearance` metres over it.
+//! The slab reaches down to the ground when the layer under it lies below the ground (hidden by
+//! the terrain: clearance < r), so the layers over a column hold its fog from the ground up
+//! (exactly, for an even density); 0 below the ground.
+double layer_slab_over_ground(double share, int i, double spacing, double clearance);
 //! Per-vertex quantities of the stack at base point p (normal n) for an eye.
 struct LayerColumn {
     double spacing = 0.0;    //!< r: narrowed (2.8), never below T0 / max_count
