@@ -14,7 +14,6 @@ flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
-uniform vec4 u_fog_xy;  // the (x, y) rectangle that holds the fog, relative to u_centre
 flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale)
 in vec4 v_fog;
 flat in float v_baked;
@@ -28,6 +27,7 @@ uniform float u_soft_edge;       // metres
 uniform vec3 u_eye;
 uniform vec3 u_camera_forward;
 uniform vec3 u_centre;  // the cloud's centre
+uniform vec4 u_fog_xy;  // the (x, y) rectangle that holds the fog (min, max), relative to u_centre
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
 out vec4 o_color;
