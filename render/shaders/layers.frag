@@ -120,7 +120,10 @@ void main()
         // In combined mode the layers draw only their share of the fog (fog_partition.glsl);
         // the sun still sees all of it.
         float density = v_alpha * tex.a * detail * ground * share;
-        float cos_view = max(abs(dot(normalize(v_normal), view)), 0.02);
+        // The slab seen along the view, at the layer's own slant: the narrowing tilts the layers
+        // near the eye away from the base (docs/layers.md), so the drawn triangle's normal.
+        vec3 surface = cross(dFdx(v_world), dFdy(v_world));
+        float cos_view = max(abs(dot(dot(surface, surface) > 0.0 ? normalize(surface) : normalize(v_normal), view)), 0.02);
         a = 1.0 - exp(-u_extinction * density * v_spacing * v_slab / cos_view);
         float sun_up = u_sun_direction.z > 0.0 ? terrain_visibility(v_world, u_ts_bias) : 0.0;
         float tau_sun;

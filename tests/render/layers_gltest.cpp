@@ -328,3 +328,45 @@ TEST_F(LayersGl, CombinedLayersWithNoShareInReachDrawNothing)
 }
 
 }  // namespace
+
+TEST_F(LayersGl, ARayFromInsideCrossesEachLayerAtItsOwnSlant)
+{
+    // The eye in the stack, 90 m over its base, looking 20 degrees down at the ground: near the eye
+    // the narrowing (2.8) spaces the layers by r = r0 L / L0, so layer i rises with the distance
+    // from the eye, tilted by up to i r0 / L0 (0.4 here) from the base. A layer's optical depth along
+    // the ray is its slab over the cosine between the ray and the layer's own surface. Black fog
+    // (albedo 0, no sky light) only hides the ground: the frame over the bare one is the
+    // transmittance, against the continuous slab's exp(-sigma integral of the profile / sin 20).
+    const int w = 32, h = 32;
+    const glm::dvec2 xy(380.0, 380.0);
+    const double ground_z = hill()->height(xy.x, xy.y), base_z = 50.0, T0 = 100.0, eye_z = 140.0;
+    const double slant = 20.0 * std::acos(-1.0) / 180.0;
+    Camera cam;
+    cam.position = {xy.x, xy.y - (eye_z - ground_z) / std::tan(slant), eye_z};
+    cam.target = {xy.x, xy.y, ground_z};
+    cam.fov_y_deg = 10.0;
+    kiri::render::SunLight sun;
+    sun.ambient = glm::dvec3(0.0);
+    Renderer renderer;
+    renderer.set_terrain(*hill());
+    renderer.set_sun(sun);
+    renderer.render(cam, w, h);
+    const kiri::render::RadianceImage bare = renderer.read_radiance();
+    g::LayerOptions o = options(-100.0);
+    o.shading = g::LayerShading::medium;
+    o.optics.extinction = 0.01;
+    o.optics.albedo = 0.0;
+    o.enlargement = false;
+    const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
+    renderer.set_layers(base, o);
+    renderer.render(cam, w, h);
+    const kiri::render::RadianceImage fog = renderer.read_radiance();
+    // From the eye down to the base: the profile 1 - 0.9 (z - base) / T0 integrated over z.
+    const auto integral = [&](double z) { return z - 0.45 * z * z / T0; };
+    const double expected =
+        std::exp(-o.optics.extinction * (integral(eye_z - base_z) - integral(0.0)) / std::sin(slant));
+    const std::size_t centre = (std::size_t(h / 2) * w + w / 2) * 4 + 1;  // green
+    const double measured = double(fog.rgba[centre]) / double(bare.rgba[centre]);
+    std::printf("    transmittance %.4f, the slab's %.4f\n", measured, expected);
+    EXPECT_NEAR(measured / expected, 1.0, 0.03);
+}
