@@ -4,8 +4,8 @@ uniform vec4 u_hf;         // extinction, base, scale height, 0
 uniform vec4 u_hf_extent;  // its horizontal extent: min x, min y, max x, max y
 
 // The part of the line o + t d with t in [t0, t1] (narrowed in place) that lies over the
-// rectangle [lo, hi] in x and y; false where none does. The height fog's extent and the Medium's
-// grid (froxel_edges.comp) clip rays so.
+// rectangle [lo, hi] in x and y; false where none does. The height fog's extent, the Medium's
+// grid (froxel_edges.comp) and the particles' fog rectangle (particles.frag) clip rays so.
 bool line_over_rect(vec3 o, vec3 d, vec2 lo, vec2 hi, inout float t0, inout float t1)
 {
     for (int axis = 0; axis < 2; ++axis) {

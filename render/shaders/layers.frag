@@ -100,11 +100,13 @@ void main()
     vec2 h_uv = (v_world.xy - u_height_rect.xy) * u_height_rect.zw;
     h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
     float clearance = v_world.z - texture(u_heights, h_uv).r;
-    float ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
     // The medium shading: the part of this layer's slab above the ground, down to the ground where
     // the layer under it lies below the ground (hidden by the terrain), as a share of the slab.
-    if (u_medium != 0 && clearance >= 0.0)
+    float ground;
+    if (u_medium != 0)
         ground = layer_slab_over_ground(v_slab, v_layer, v_spacing, clearance) / max(v_slab, 1e-6);
+    else
+        ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
     // Combined mode: the medium shading draws only the layers' share (none near the eye).
     float share = u_medium != 0 ? layers_share(length(v_world - u_eye), v_height) : 1.0;
     if (tex.a <= 0.0 || ground <= 0.0 || share <= 0.0)

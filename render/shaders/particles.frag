@@ -52,16 +52,7 @@ void main()
     // The part of the ray that lies in the fog: in front of the terrain and over the rectangle
     // that holds the fog (the Medium's grid: a particle at its edge would blur the fog's wall).
     float t0 = 0.0, t1 = scene;
-    vec2 eye = (u_eye - u_centre).xy;
-    for (int axis = 0; axis < 2; ++axis) {
-        float lo = u_fog_xy[axis] - eye[axis], hi = u_fog_xy[axis + 2] - eye[axis];
-        if (abs(ray[axis]) > 1e-6) {
-            float a = lo / ray[axis], b = hi / ray[axis];
-            t0 = max(t0, min(a, b));
-            t1 = min(t1, max(a, b));
-        } else if (lo > 0.0 || hi < 0.0)
-            discard;
-    }
+    line_over_rect(u_eye - u_centre, ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
     float share = footprint_ray_share(x, v_footprint_radius, t0 - along, t1 - along);
     float alpha = 1.0 - exp(-v_optics.y * footprint_profile(x) * share);
     // Lit where the ray's visible part passes nearest the centre.

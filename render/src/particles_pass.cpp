@@ -19,7 +19,8 @@ constexpr int unit_baked_moments = 20;  // and 21, 22: the Medium's grid, the ce
 
 ParticlesPass::ParticlesPass()
     : program_({"particle_footprint.glsl", "fog_lighting.glsl", "particle_light.glsl", "terrain_shadow.glsl",
-                "froxel_fog_none.glsl", "medium_shell.glsl", "light_volume.glsl", "particles.vert", "particles.frag"}),
+                "froxel_fog_none.glsl", "medium_shell.glsl", "height_fog.glsl", "light_volume.glsl", "particles.vert",
+                "particles.frag"}),
       composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
