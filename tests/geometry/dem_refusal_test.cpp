@@ -79,6 +79,26 @@ TEST_F(Dem, AbsurdDimensionsAreRefusedBeforeAllocating)
     EXPECT_EQ(load_dem(small, opt).size(), 100u);
 }
 
+TEST_F(Dem, ABlockLargerThanTheLimitIsRefusedBeforeDecoding)
+{
+    // 64 x 64 cells in one sparse 16384 x 16384 tile (a few kB on disk): GDAL would allocate and
+    // fill the tile's 2 GiB to read the first cell (the DEM fuzzer's out-of-memory finding).
+    const double gt[6] = {0.0, 1.0, 0.0, 64.0, 0.0, -1.0};
+    const auto path = write("tile.tif", "GTiff", 64, 64, GDT_Float64, {}, gt, 32616, nullptr,
+                            {"SPARSE_OK=TRUE", "TILED=YES", "BLOCKXSIZE=16384", "BLOCKYSIZE=16384"});
+    ASSERT_LT(fs::file_size(path), 100000u);
+    expect_refused<kiri::LimitError>([&] { load_dem(path); }, path, "block size", "2048 MiB");
+    expect_refused<kiri::LimitError>([&] { dem_info(path); }, path, "block size", "max_cells");
+    // The limit is the option's: 16 x 16 cells in 32 x 32 tiles load up to a block of it.
+    const auto small = write("small_tiles.tif", "GTiff", 16, 16, GDT_Byte, std::vector<double>(256, 1.0), gt, 32616,
+                             nullptr, {"TILED=YES", "BLOCKXSIZE=32", "BLOCKYSIZE=32"});
+    DemOptions opt;
+    opt.max_cells = 1023;
+    expect_refused<kiri::LimitError>([&] { load_dem(small, opt); }, small, "block size", "32 x 32 cells");
+    opt.max_cells = 1024;
+    EXPECT_EQ(load_dem(small, opt).size(), 256u);
+}
+
 TEST_F(Dem, RotatedGeotransformIsRefused)
 {
     const double gt[6] = {0.0, 1.0, 0.2, 4.0, 0.1, -1.0};

@@ -259,6 +259,23 @@ void check_limit(const Raster& r, const DemOptions& options)
                       r.width, r.height, cells, mib, options.max_cells);
         throw LimitError(r.file, "size", reason);
     }
+    // GDAL decodes a whole block (tile or strip) at a time, with every band's samples where they
+    // are interleaved by pixel: a raster of a few cells may declare a block of gigabytes, which
+    // a corrupt or hostile file then makes GDAL allocate and fill.
+    int bx = 0, by = 0;
+    r.band->GetBlockSize(&bx, &by);
+    const char* interleave = r.ds->GetMetadataItem("INTERLEAVE", "IMAGE_STRUCTURE");
+    const double samples = interleave && EQUAL(interleave, "PIXEL") ? r.ds->GetRasterCount() : 1.0;
+    const double block_cells = double(bx) * double(by) * samples;
+    if (block_cells > double(options.max_cells)) {
+        const double mib = block_cells * GDALGetDataTypeSizeBytes(r.band->GetRasterDataType()) / (1024.0 * 1024.0);
+        char reason[256];
+        std::snprintf(reason, sizeof reason,
+                      "one block (tile or strip) of %d x %d cells x %.0f bands would need %.0f MiB to decode; the "
+                      "limit is %zu cells (DemOptions::max_cells)",
+                      bx, by, samples, mib, options.max_cells);
+        throw LimitError(r.file, "block size", reason);
+    }
 }
 
 // Raw band values in source order (row 0 first) and the validity mask in local order.
