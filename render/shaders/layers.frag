@@ -47,6 +47,7 @@ uniform float u_top_loss;        // 1 - top_density
 uniform float u_thickness;       // T0 (m)
 uniform int u_octaves;           // multiple-scattering octaves (geometry::fog_source)
 uniform float u_lv_per_fragment; // metres from the eye within which the baked light is per fragment
+uniform int u_md_extent;         // 1: the Medium's grid is bound (medium_shell.glsl), its coverage is where the fog is
 out vec4 o_color;
 
 const float pi = 3.14159265358979;
@@ -96,7 +97,18 @@ void main()
     // (faded in only near the eye, drawn for the whole stack), the atlas's border, the ground.
     if (v_alpha <= 0.0)
         discard;
-    vec4 tex = texture(u_atlas, v_uv);
+    // Where the fog is, and how much of it (its border fade, in alpha): the medium shading draws the
+    // Medium's own, its coverage and the wall at its grid's edge, as the reference and the froxels
+    // see it; the atlas's border mask follows the base's patches, which reach past it (a fill's or
+    // a lake's footprint is the fog's cells, not the patches), and the enlargement (2.10) carries
+    // the layers further. The source shading, and the medium's without a Medium, take the atlas.
+    vec4 tex;
+    if (u_medium != 0 && u_md_extent != 0)
+        tex = vec4(1.0, 1.0, 1.0, shell_covers(v_world.xy) ? shell_column(v_world.xy).w : 0.0);
+    else
+        tex = texture(u_atlas, v_uv);
+    if (tex.a <= 0.0)
+        discard;
     vec2 h_uv = (v_world.xy - u_height_rect.xy) * u_height_rect.zw;
     h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
     float clearance = v_world.z - texture(u_heights, h_uv).r;

@@ -338,6 +338,9 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
         light_volume_->bind(p, layers_unit_baked_moments, baked);
     else
         LightVolumeTexture{}.bind(p, layers_unit_baked_moments, false);
+    // The Medium's coverage, where the medium shading's fog is (after the baked light's binding of
+    // the same grid on the same unit).
+    p.set("u_md_extent", int(medium && sun_ && sun_->bind_grid(p, layers_unit_baked_moments + 1)));
     p.set("u_extinction", float(o.optics.extinction));
     p.set("u_albedo", float(o.optics.albedo));
     p.set("u_octaves", geometry::shader_octaves(o.optics));

@@ -370,3 +370,70 @@ TEST_F(LayersGl, ARayFromInsideCrossesEachLayerAtItsOwnSlant)
     std::printf("    transmittance %.4f, the slab's %.4f\n", measured, expected);
     EXPECT_NEAR(measured / expected, 1.0, 0.03);
 }
+
+// With a Medium, the medium shading draws the Medium's fog where the Medium has it: its coverage
+// (the border fade) and the wall at its grid's edge, as the reference and the froxels see it, not
+// the atlas's border mask, which follows the base's patches (they reach past a fill's or a lake's
+// cells, and past the grid). A Medium over the east half of the lake (x >= 100 m), at coverage
+// 1/2: black fog seen straight down lets through the pile's transmittance with half the density
+// there, and the whole frame west of the grid.
+TEST_F(LayersGl, TheMediumShadingDrawsTheMediumsExtent)
+{
+    const int w = 32, h = 32;
+    kiri::render::SunLight sun;
+    sun.ambient = glm::dvec3(0.0);
+    g::LayerOptions o = medium_options();
+    o.optics.albedo = 0.0;
+    o.optics.extinction = 0.02;
+    o.narrowing = o.enlargement = false;
+    const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
+    g::MediumGrid grid;
+    grid.nx = 31;
+    grid.ny = 61;
+    grid.dx = grid.dy = 20.0;
+    grid.x0 = 100.0;
+    grid.y0 = -600.0;
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) {
+            const double ground = hill()->height(grid.x0 + i * grid.dx, grid.y0 + j * grid.dy);
+            grid.bottom.push_back(50.0);
+            grid.top.push_back(150.0);
+            grid.floor.push_back(std::max(50.0, ground));
+            grid.coverage.push_back(0.5);
+        }
+    g::MediumOptions mo;
+    mo.extinction = o.optics.extinction;
+    mo.albedo = 0.0;
+    mo.top_density = o.optics.top_density;
+    g::MediumDetail detail;
+    detail.detail = 0.0;
+    const g::Medium medium(grid, mo, detail);
+    // Transmittance straight down at (x, 380): the frame with fog over the bare one (green).
+    const auto transmittance = [&](double x, bool with_medium) {
+        Camera down;
+        down.position = {x, 379.0, 400.0};
+        down.target = {x, 380.0, 0.0};
+        down.fov_y_deg = 10.0;
+        Renderer renderer;
+        renderer.set_terrain(*hill());
+        renderer.set_sun(sun);
+        if (with_medium)  // the ground in the Medium's shadow in both frames
+            renderer.set_sun_medium(&medium, {});
+        renderer.render(down, w, h);
+        const kiri::render::RadianceImage bare = renderer.read_radiance();
+        renderer.set_layers(base, o);
+        renderer.render(down, w, h);
+        const kiri::render::RadianceImage fog = renderer.read_radiance();
+        const std::size_t centre = (std::size_t(h / 2) * w + w / 2) * 4 + 1;
+        return double(fog.rgba[centre]) / double(bare.rgba[centre]);
+    };
+    const double atlas_east = transmittance(380.0, false), atlas_west = transmittance(-380.0, false);
+    const double east = transmittance(380.0, true), west = transmittance(-380.0, true);
+    std::printf("    without the Medium east %.4f west %.4f; with it east %.4f west %.4f\n", atlas_east, atlas_west,
+                east, west);
+    // The atlas alone: the lake's whole stack (30 m of ground under it) on both sides.
+    ASSERT_LT(atlas_east, 0.5);
+    ASSERT_NEAR(atlas_west, atlas_east, 0.02);
+    EXPECT_NEAR(std::log(east) / std::log(atlas_east), 0.5, 0.01);  // half the density: half the depth
+    EXPECT_NEAR(west, 1.0, 1e-3);                                   // beyond the Medium's grid: no fog
+}
