@@ -13,7 +13,7 @@ void set_layer_stack_uniforms(const ShaderProgram& p, const geometry::LayerOptio
     p.set("u_divisor", float(o.spacing_divisor));
     p.set("u_rate", float(o.enlargement_rate));
     p.set("u_narrowing", int(o.narrowing));
-    p.set("u_enlargement", int(o.enlargement));
+    p.set("u_enlargement", int(geometry::layers_enlarge(o)));
     p.set("u_top", top);
     p.set("u_bottom_first", int(bottom_first));
     p.set("u_time", float(o.optics.time));

@@ -69,7 +69,8 @@ TEST(LayerExport, TheCompactGlbHoldsEveryLayerOfTheStack)
     options.count = 6;
     options.thickness = 200.0;
     options.max_count = 40;
-    options.enlargement_rate = 0.02;  // (2.10) visibly on: a shear from the centre
+    options.enlargement_rate = 0.02;         // (2.10) visibly on: a shear from the centre
+    options.shading = LayerShading::source;  // the shading the enlargement is drawn in
     const LayerBase base = make_layer_base(surface, tessellation, options);
     const glm::dvec3 eye(-1500.0, -1800.0, 1500.0);  // near: narrowing (2.8) and added layers (2.9)
     const std::vector<LayerMesh> layers = build_layers(base, options, eye);

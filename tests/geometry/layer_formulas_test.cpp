@@ -241,6 +241,7 @@ TEST(LayerFormulas, EnlargementLimitsAndSymmetry)
 {
     // (2.10) about the centre c: layer k's vertex at x moves to c + (1 + k sin(theta) / 1000)(x - c).
     LayerOptions o = options_15();
+    o.shading = LayerShading::source;  // the shading the enlargement is drawn in (layers_enlarge)
     const glm::dvec2 centre{200, 100};
     const glm::dvec3 p{1200, -400, 0}, mirrored{2 * centre.x - p.x, 2 * centre.y - p.y, 0}, n{0, 0, 1};
     const double d = glm::length(glm::dvec2(p) - centre);

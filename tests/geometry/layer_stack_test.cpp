@@ -126,6 +126,7 @@ TEST(LayerColumn, ZeroAndOneLayer)
 TEST(LayerColumn, EnlargementAboutTheCentre)
 {
     LayerOptions o = options_15();
+    o.shading = LayerShading::source;  // the shading the enlargement is drawn in (layers_enlarge)
     const glm::dvec3 p{1000, -500, 0}, n{0, 0, 1};
     const glm::dvec2 centre{200, 100};
     // Straight above (theta = pi/2): P_k = 1 + k / 1000.
@@ -139,6 +140,11 @@ TEST(LayerColumn, EnlargementAboutTheCentre)
     const LayerColumn side = layer_column(o, p + glm::dvec3(3000, 0, 0), p, n);
     EXPECT_EQ(layer_vertex(o, side, 10, p, centre).position.x, p.x);
     o.enlargement = false;
+    EXPECT_EQ(layer_vertex(o, layer_column(o, p + glm::dvec3(0, 0, 3000), p, n), 10, p, centre).position.x, p.x);
+    // The medium shading stands for the Medium's fog where it lies: never enlarged.
+    o.enlargement = true;
+    o.shading = LayerShading::medium;
+    EXPECT_FALSE(layers_enlarge(o));
     EXPECT_EQ(layer_vertex(o, layer_column(o, p + glm::dvec3(0, 0, 3000), p, n), 10, p, centre).position.x, p.x);
 }
 

@@ -153,7 +153,8 @@ g::LayerOptions every_rule_on()
     o.thickness = 200.0;  // r0 = 13.3 m, L0 = 200 r0 = 2667 m
     o.narrowing = true;
     o.enlargement = true;
-    o.enlargement_rate = 0.008;  // near the most the range allows: upper layers visibly enlarged
+    o.enlargement_rate = 0.008;           // near the most the range allows: upper layers visibly enlarged
+    o.shading = g::LayerShading::source;  // the shading the enlargement is drawn in (layers_enlarge)
     o.max_count = 120;
     return o;
 }
@@ -185,13 +186,13 @@ TEST_F(LayerStackGpu, EyeOnAVertexIsFinite)
     EXPECT_NEAR(compare_stacks(o, {500.0, 500.0, 300.0 + 0.05 * 500.0 - 0.03 * 500.0}, "on a vertex"), 120.0, 1e-9);
 }
 
-TEST_F(LayerStackGpu, SourceShadingAndDissipationAsTheCpu)
+TEST_F(LayerStackGpu, MediumShadingAndDissipationAsTheCpu)
 {
     g::LayerOptions o = every_rule_on();
-    o.shading = g::LayerShading::source;  // (2.7)'s 1 - 0.9 i / l
+    o.shading = g::LayerShading::medium;  // the profile 1 - (1 - top_density) h, and not enlarged
     o.optics.time = 1800.0;
     o.optics.dissipation_half_life = 3600.0;
-    compare_stacks(o, {-400.0, 700.0, 1200.0}, "source shading, dissipating");
+    compare_stacks(o, {-400.0, 700.0, 1200.0}, "medium shading, dissipating");
 }
 
 TEST_F(LayerStackGpu, RulesOffGiveEvenlySpacedUnscaledLayers)

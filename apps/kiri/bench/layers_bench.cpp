@@ -36,8 +36,10 @@ void layers_figures(Context& c, LayerBenchScene& s)
         shot(fog, s.side_near(), "layers_side_fixed_spacing.png");
         fog.layers.narrowing = true;
         shot(fog, s.side_near(), "layers_side_narrowed.png");
-        // The source's case: a texture whose outline is sharp, seen from above.
+        // The source's case: a texture whose outline is sharp, seen from above, in the source's
+        // shading (the medium shading leaves the enlargement out: layers_enlarge).
         LayerFog sharp = s.fog(8, 15, 0.06);
+        sharp.layers.shading = geometry::LayerShading::source;
         sharp.layers.enlargement = false;
         shot(sharp, s.top(), "layers_top_no_scale.png");
         sharp.layers.enlargement = true;

@@ -31,6 +31,8 @@ void validate_layer_options(const LayerOptions& o, const std::string& label)
     validate_medium_options(o.optics, label);
 }
 
+bool layers_enlarge(const LayerOptions& o) { return o.enlargement && o.shading == LayerShading::source; }
+
 LayerColumn layer_column(const LayerOptions& o, const glm::dvec3& eye, const glm::dvec3& point,
                          const glm::dvec3& normal)
 {
@@ -48,7 +50,7 @@ LayerColumn layer_column(const LayerOptions& o, const glm::dvec3& eye, const glm
     r = std::max(r, o.thickness / o.max_count);
     c.spacing = r;
     c.count = o.thickness / r;
-    c.sin_theta = o.enlargement ? std::sin(elevation_angle(eye, point, normal)) : 0.0;
+    c.sin_theta = layers_enlarge(o) ? std::sin(elevation_angle(eye, point, normal)) : 0.0;
     return c;
 }
 

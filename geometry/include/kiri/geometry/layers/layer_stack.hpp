@@ -111,7 +111,10 @@ void visit_fields(O& o, V&& v)
        .widget = closed(20, 2000),
        .log_widget = true});
     v(o.narrowing, {.key = "narrowing", .doc = "(2.8) + (2.9): the spacing narrows and layers are added near the eye"});
-    v(o.enlargement, {.key = "enlargement", .doc = "(2.10): upper layers are enlarged"});
+    v(o.enlargement,
+      {.key = "enlargement",
+       .doc = "(2.10): upper layers are enlarged, in the source shading (the medium shading draws the Medium's fog "
+              "where it lies)"});
     v(o.enlargement_rate,
       {.key = "enlargement_rate",
        .range = closed(0, {1.0 / std::max(o.max_count, o.count), "1 / max_count"}),
@@ -166,6 +169,10 @@ double layer_slab_share(double n, int i);
 //! the terrain: clearance < r), so the layers over a column hold its fog from the ground up
 //! (exactly, for an even density); 0 below the ground.
 double layer_slab_over_ground(double share, int i, double spacing, double clearance);
+//! Whether the stack is enlarged (2.10): in the source shading. The medium shading stands for the
+//! Medium's fog, which the enlargement would carry off its extent and off the light taken at the
+//! base's columns (docs/layers.md).
+bool layers_enlarge(const LayerOptions& options);
 //! Per-vertex quantities of the stack at base point p (normal n) for an eye.
 struct LayerColumn {
     double spacing = 0.0;    //!< r: narrowed (2.8), never below T0 / max_count
