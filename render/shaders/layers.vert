@@ -1,6 +1,7 @@
 #version 450 core
 // The layer stack ([Thesis] 2.2.3) drawn as instances of the base tessellation: instance k is
-// layer i (bottom first or top first). Mirrors geometry::layer_column / layer_vertex
+// layer i (those over the eye top first, then those under it bottom first). Mirrors
+// geometry::layer_column / layer_vertex
 // (geometry/src/layers/layer_stack.cpp): per-vertex spacing narrowed near the eye (2.8),
 // real-valued count keeping the thickness (2.9) with the partial top layer faded in, alpha
 // (2.7), enlargement about the centre (2.10).
@@ -20,7 +21,7 @@ uniform int u_narrowing;
 uniform int u_enlargement;
 uniform int u_top;           // layers above the base drawn this frame
 uniform int u_first_instance; // this draw's first instance of the stack (a stack in two draws)
-uniform int u_bottom_first;
+uniform int u_under;         // layers under the eye (geometry::layers_under_eye): drawn last, bottom first
 uniform float u_time;
 uniform float u_half_life;   // 0: no dissipation
 uniform float u_top_loss;    // 0.9 of (2.7); 1 - top_density of the medium
@@ -70,7 +71,9 @@ float layer_slab_share(float n, int i)
 void main()
 {
     int instance = gl_InstanceID + u_first_instance;
-    int i = u_bottom_first != 0 ? instance : u_top - instance;
+    // The layers over the eye top first, then those under it bottom first: far to near along a ray.
+    int over = u_top + 1 - u_under;
+    int i = instance < over ? u_top - instance : instance - over;
     vec3 p = a_position;
     v_uv = a_uv;
     v_layer = i;

@@ -3,7 +3,7 @@
 namespace kiri::render::detail {
 
 void set_layer_stack_uniforms(const ShaderProgram& p, const geometry::LayerOptions& o, const glm::dvec2& centre,
-                              const glm::vec3& eye, int top, bool bottom_first)
+                              const glm::vec3& eye, int top, int under)
 {
     p.set("u_eye", eye);
     p.set("u_centre", glm::vec2(centre));
@@ -15,7 +15,7 @@ void set_layer_stack_uniforms(const ShaderProgram& p, const geometry::LayerOptio
     p.set("u_narrowing", int(o.narrowing));
     p.set("u_enlargement", int(geometry::layers_enlarge(o)));
     p.set("u_top", top);
-    p.set("u_bottom_first", int(bottom_first));
+    p.set("u_under", under);
     p.set("u_time", float(o.optics.time));
     p.set("u_half_life", float(o.optics.dissipation_half_life));
     // (2.7)'s 0.9, or the medium's profile 1 - (1 - top_density) h (layer_vertex).

@@ -9,8 +9,10 @@
 
 namespace kiri::render::detail {
 
-//! Instances 0..top draw layers 0..top (bottom first) or top..0.
+//! Instances 0..top draw layers top..under (the layers over the eye, top first), then
+//! 0..under - 1 (those under it, bottom first); `under` as geometry::layers_under_eye gives it:
+//! top + 1 draws them all bottom first, 0 all top first.
 void set_layer_stack_uniforms(const ShaderProgram& program, const geometry::LayerOptions& options,
-                              const glm::dvec2& centre, const glm::vec3& eye, int top, bool bottom_first);
+                              const glm::dvec2& centre, const glm::vec3& eye, int top, int under);
 
 }  // namespace kiri::render::detail

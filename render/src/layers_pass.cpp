@@ -306,9 +306,9 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
     last_triangles_ = int(drawn_triangles().size() / 3);
-    const bool bottom_first = eye.z >= 0.5 * (base_->min.z + base_->max.z);
+    const int under = geometry::layers_under_eye(*base_, options_, eye, top);
     p.set("u_view_projection", frame.view_projection);
-    set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, bottom_first);
+    set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, under);
     p.set("u_atlas", 0);
     p.set("u_heights", 1);
     p.set("u_noise", 2);
@@ -359,8 +359,10 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     glBindVertexArray(vao_.get());
     // Away from the eye a column holds layers 0..count (layer_column: the spacing narrows, and
     // the count grows past l0, only within L0 = divisor r0 of the eye); the layers above are
-    // drawn for the triangles with a vertex nearer than that alone. The same fragments in the
-    // same order (bottom first or top first): those skipped had zero opacity.
+    // drawn for the triangles with a vertex nearer than that alone. The instances run over the
+    // layers over the eye from the top down, then over those under it from the bottom up
+    // (layers.vert); each run is cut where its layers change from every triangle to the near
+    // ones: the same fragments in the same order, those skipped had zero opacity.
     const int everywhere = std::min(top, o.count);
     const double reach = o.spacing_divisor * o.thickness / std::max(o.count, 1);
     auto draw = [&](int first_instance, int instances, bool near) {
@@ -372,20 +374,16 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
         glVertexArrayElementBuffer(vao_.get(), near ? near_indices_.get() : all);
         glDrawElementsInstanced(GL_TRIANGLES, near ? near_count_ : all_count, GL_UNSIGNED_INT, nullptr, instances);
     };
-    if (top > everywhere && o.narrowing) {
+    const bool near_layers = top > everywhere && o.narrowing;
+    const int e = near_layers ? everywhere : top;  // layers 0..e: every triangle
+    if (near_layers)
         update_near(eye, reach);
-        const int above = top - everywhere;
-        if (bottom_first) {
-            draw(0, everywhere + 1, false);
-            draw(everywhere + 1, above, true);
-        } else {
-            draw(0, above, true);
-            draw(above, everywhere + 1, false);
-        }
-        glVertexArrayElementBuffer(vao_.get(), indices_.get());
-    } else {
-        draw(0, top + 1, false);
-    }
+    const int over = top + 1 - under;
+    draw(0, top - std::max(under, e + 1) + 1, true);                    // over the eye, near: top..e + 1
+    draw(top - std::min(e, top), std::min(e, top) - under + 1, false);  // over the eye: e..under
+    draw(over, std::min(under - 1, e) + 1, false);                      // under the eye: 0..e
+    draw(over + e + 1, under - 1 - e, true);                            // under the eye, near: e + 1..under - 1
+    glVertexArrayElementBuffer(vao_.get(), indices_.get());
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, 0);

@@ -57,7 +57,7 @@ std::vector<Captured> gpu_stack(const g::LayerOptions& o, const std::vector<Base
     GLint linked = 0;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
     EXPECT_EQ(linked, GL_TRUE);
-    set_layer_stack_uniforms(program, o, centre, glm::vec3(eye), o.max_count, true);
+    set_layer_stack_uniforms(program, o, centre, glm::vec3(eye), o.max_count, o.max_count + 1);  // instance i: layer i
     program.set("u_view_projection", glm::mat4(1.0f));
 
     std::vector<float> vertices;  // position, normal, atlas uv: the layers pass's layout

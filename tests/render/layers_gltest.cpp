@@ -430,3 +430,60 @@ TEST_F(LayersGl, TheMediumShadingDrawsTheMediumsExtent)
     EXPECT_NEAR(std::log(east) / std::log(atlas_east), 0.5, 0.01);  // half the density: half the depth
     EXPECT_NEAR(west, 1.0, 1e-3);                                   // beyond the Medium's grid: no fog
 }
+
+// An eye inside the stack looking up crosses the layers over it from the lowest: far to near is
+// top first for them, and bottom first for those under the eye (layers_under_eye). Flat layers
+// (no narrowing) seen 35 degrees up from 25 m over the base: the frame is the pile of slabs over
+// the eye composited near to far, each lit through the slab above it, over the sky behind.
+TEST_F(LayersGl, AnEyeInsideTheStackSeesTheLayersOverItFarToNear)
+{
+    const int w = 32, h = 32;
+    const double base_z = 50.0, T0 = 100.0, eye_z = 75.0, sigma = 0.03;
+    const double slant = 35.0 * std::acos(-1.0) / 180.0;
+    const glm::dvec2 from(380.0, 380.0), out = glm::normalize(from);  // away from the hill
+    Camera up;
+    up.position = {from.x, from.y, eye_z};
+    up.target = up.position + glm::dvec3(out * std::cos(slant), std::sin(slant));
+    up.fov_y_deg = 6.0;
+    // The ground under the layers the ray crosses lies under the base: no layer is cut.
+    for (double d = 0.0; d <= (base_z + T0 - eye_z) / std::tan(slant); d += 10.0)
+        ASSERT_LT(hill()->height(from.x + d * out.x, from.y + d * out.y), base_z) << d;
+    kiri::render::SunLight sun;
+    Renderer renderer;
+    renderer.set_terrain(*hill());
+    renderer.set_sun(sun);
+    renderer.render(up, w, h);
+    const kiri::render::RadianceImage bare = renderer.read_radiance();
+    g::LayerOptions o = options(-100.0);
+    o.shading = g::LayerShading::medium;
+    o.optics.extinction = sigma;
+    o.narrowing = o.enlargement = false;
+    const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
+    renderer.set_layers(base, o);
+    renderer.render(up, w, h);
+    const kiri::render::RadianceImage fog = renderer.read_radiance();
+    ASSERT_EQ(g::layers_under_eye(base, o, up.position, 10), 3);  // layers 0, 1 and 2 lie under the eye
+    const glm::dvec3 s = glm::normalize(sun.direction);
+    const glm::dvec3 view(out * std::cos(slant), std::sin(slant));
+    const g::FogLight light{sun.color * sun.intensity, sun.ambient, s.z};
+    const std::size_t centre = (std::size_t(h / 2) * w + w / 2) * 4;
+    glm::dvec3 near_to_far(0.0), far_to_near(0.0), through(1.0);
+    // Near to far: layers 3 (80 m) .. 10 (150 m), each behind those before it.
+    for (int i = 3; i <= 10; ++i) {
+        const double hi = i / 10.0, rho = 1.0 - 0.9 * hi;
+        const double alpha = 1.0 - std::exp(-sigma * rho * 10.0 * g::layer_slab_share(10.0, i) / std::sin(slant));
+        const double tau_sun = sigma * T0 * ((1.0 - hi) - 0.45 * (1.0 - hi * hi)) / s.z;
+        const glm::dvec3 j = g::fog_source(light, o.optics, glm::dot(view, s), tau_sun);
+        near_to_far += through * j * alpha;
+        through *= 1.0 - alpha;
+        far_to_near = j * alpha + (1.0 - alpha) * far_to_near;  // the wrong order, for the message
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double sky = bare.rgba[centre + std::size_t(c)];
+        const double expected = near_to_far[c] + through[c] * sky, wrong = far_to_near[c] + through[c] * sky;
+        const double got = fog.rgba[centre + std::size_t(c)];
+        std::printf("    channel %d: got %.4f, near to far %.4f, far to near %.4f\n", c, got, expected, wrong);
+        EXPECT_NEAR(got / expected, 1.0, 0.01) << "channel " << c;
+        ASSERT_GT(std::abs(wrong / expected - 1.0), 0.03) << "the order shows";
+    }
+}

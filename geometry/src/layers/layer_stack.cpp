@@ -164,11 +164,9 @@ LayerBase make_layer_base(const BaseSurface& surface, const Tessellation& tessel
     return base;
 }
 
-int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)
+namespace {
+std::size_t nearest_vertex(const LayerBase& base, const glm::dvec3& eye)
 {
-    if (options.count == 0 || base.position.empty())
-        return 0;
-    // A column's count only grows as the eye comes closer: the nearest vertex decides.
     std::size_t nearest = 0;
     double best = INFINITY;
     for (std::size_t i = 0; i < base.position.size(); ++i) {
@@ -179,8 +177,34 @@ int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm
             nearest = i;
         }
     }
+    return nearest;
+}
+}  // namespace
+
+int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)
+{
+    if (options.count == 0 || base.position.empty())
+        return 0;
+    // A column's count only grows as the eye comes closer: the nearest vertex decides.
+    const std::size_t nearest = nearest_vertex(base, eye);
     const double most = layer_column(options, eye, base.position[nearest], base.normal[nearest]).count;
     return std::clamp(int(std::ceil(most - 1e-9)), options.count, options.max_count);
+}
+
+int layers_under_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye, int top)
+{
+    if (base.position.empty() || !std::isfinite(eye.z))
+        return 0;
+    const std::size_t nearest = nearest_vertex(base, eye);
+    const double above = eye.z - base.position[nearest].z;
+    if (!(above >= 0.0))
+        return 0;
+    if (options.count == 0)
+        return top + 1;
+    const double r = layer_column(options, eye, base.position[nearest], base.normal[nearest]).spacing;
+    if (!(r > 0.0))
+        return top + 1;
+    return int(std::clamp(std::floor(above / r) + 1.0, 0.0, double(top + 1)));
 }
 
 std::vector<LayerMesh> build_layers(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)

@@ -209,6 +209,12 @@ void validate_layer_options(const LayerOptions& options, const std::string& labe
 //! base's vertices (the top partial layer is faded in), at most options.max_count.
 int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye);
 
+//! How many of layers 0..top lie under the eye in the column nearest to it: 0 with the eye under
+//! the base, top + 1 over the whole stack. A ray that climbs crosses the layers over the eye from
+//! the lowest, one that descends those under it from the highest, so the pass draws the layers
+//! over the eye top first and those under it bottom first: each far to near along its rays.
+int layers_under_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye, int top);
+
 //! One layer as a mesh: the base's triangles with LayerVertex data.
 struct LayerMesh {
     int index = 0;  //!< 0 = base
