@@ -365,24 +365,41 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     // ones: the same fragments in the same order, those skipped had zero opacity.
     const int everywhere = std::min(top, o.count);
     const double reach = o.spacing_divisor * o.thickness / std::max(o.count, 1);
-    auto draw = [&](int first_instance, int instances, bool near) {
-        if (instances <= 0)
+    auto draw = [&](int first_instance, int instances, GLuint indices, GLsizei count) {
+        if (instances <= 0 || count <= 0)
             return;
         p.set("u_first_instance", first_instance);
-        const GLuint all = lod_active_ ? lod_indices_.get() : indices_.get();
-        const GLsizei all_count = lod_active_ ? lod_count_ : index_count_;
-        glVertexArrayElementBuffer(vao_.get(), near ? near_indices_.get() : all);
-        glDrawElementsInstanced(GL_TRIANGLES, near ? near_count_ : all_count, GL_UNSIGNED_INT, nullptr, instances);
+        glVertexArrayElementBuffer(vao_.get(), indices);
+        glDrawElementsInstanced(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr, instances);
     };
-    const bool near_layers = top > everywhere && o.narrowing;
-    const int e = near_layers ? everywhere : top;  // layers 0..e: every triangle
-    if (near_layers)
-        update_near(eye, reach);
-    const int over = top + 1 - under;
-    draw(0, top - std::max(under, e + 1) + 1, true);                    // over the eye, near: top..e + 1
-    draw(top - std::min(e, top), std::min(e, top) - under + 1, false);  // over the eye: e..under
-    draw(over, std::min(under - 1, e) + 1, false);                      // under the eye: 0..e
-    draw(over + e + 1, under - 1 - e, true);                            // under the eye, near: e + 1..under - 1
+    // Layers 0..top in the order `order` (layers.vert's u_under): those over the eye's layer top
+    // down, then those under it bottom up; layers 0..e of the triangles `all`, the rest of `near`.
+    const auto run = [&](int order, int e, GLuint all, GLsizei all_count, GLuint near, GLsizei near_count) {
+        p.set("u_under", order);
+        const int over = top + 1 - order;
+        draw(0, top - std::max(order, e + 1) + 1, near, near_count);                 // over: top..e + 1
+        draw(top - std::min(e, top), std::min(e, top) - order + 1, all, all_count);  // over: e..order
+        draw(over, std::min(order - 1, e) + 1, all, all_count);                      // under: 0..e
+        draw(over + e + 1, order - 1 - e, near, near_count);                         // under: e + 1..order - 1
+    };
+    const GLuint all = lod_active_ ? lod_indices_.get() : indices_.get();
+    const GLsizei all_count = lod_active_ ? lod_count_ : index_count_;
+    if (!o.narrowing) {
+        run(under, top, all, all_count, all, all_count);
+    } else {
+        // The narrowing spaces the layers by r0 L / L0 within L0 of the eye, down to its floor
+        // T0 / max_count within L0 count / max_count: there the layers are flat, and a ray from
+        // the eye meets those over it from the lowest (top first) and those under it from the
+        // highest (bottom first). Further out each layer is a cone rising away from the eye, which
+        // every ray from an eye over the base meets from the highest down (bottom first), and from
+        // one under the base from the lowest up. The flat triangles are nearer along every ray
+        // from the eye: the cones are drawn first, then the flat part.
+        const double flat = reach * double(std::max(o.count, 1)) / double(std::max(o.max_count, 1));
+        update_near(eye, reach, flat);
+        const int e = top > everywhere ? everywhere : top;
+        run(under > 0 ? top + 1 : 0, e, all_rest_.get(), all_rest_count_, near_rest_.get(), near_rest_count_);
+        run(under, top, flat_indices_.get(), flat_count_, flat_indices_.get(), flat_count_);
+    }
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
@@ -441,29 +458,46 @@ bool LayersPass::update_sun_columns(const FrameContext& frame)
     return true;
 }
 
-void LayersPass::update_near(const glm::dvec3& eye, double reach)
+void LayersPass::update_near(const glm::dvec3& eye, double reach, double flat)
 {
-    if (eye == near_eye_ && reach == near_reach_ && near_indices_)
+    const std::vector<std::uint32_t>& all = drawn_triangles();
+    if (eye == near_eye_ && reach == near_reach_ && flat == near_flat_ && near_indices_ && near_source_ == all.data() &&
+        near_triangles_ == all.size())
         return;
     // 1 % more than L0: float and double agree about the columns at its edge.
-    const double reach2 = (1.01 * reach) * (1.01 * reach);
-    std::vector<char> near(base_->position.size());
+    const double reach2 = (1.01 * reach) * (1.01 * reach), flat2 = flat * flat;
+    std::vector<char> near(base_->position.size()), flat_at(base_->position.size());
     for (std::size_t v = 0; v < near.size(); ++v) {
         const glm::dvec3 d = base_->position[v] - eye;
         near[v] = glm::dot(d, d) < reach2;
+        flat_at[v] = glm::dot(d, d) < flat2;
     }
-    std::vector<std::uint32_t> indices;
-    const std::vector<std::uint32_t>& all = drawn_triangles();
-    for (std::size_t t = 0; t + 2 < all.size(); t += 3)
-        if (near[all[t]] || near[all[t + 1]] || near[all[t + 2]])
-            indices.insert(indices.end(), {all[t], all[t + 1], all[t + 2]});
-    near_indices_ = make_buffer();
-    glNamedBufferStorage(near_indices_.get(),
-                         GLsizeiptr(std::max<std::size_t>(indices.size(), 1) * sizeof(std::uint32_t)),
-                         indices.empty() ? nullptr : indices.data(), 0);
-    near_count_ = GLsizei(indices.size());
+    std::vector<std::uint32_t> near_list, flat_list, near_rest, all_rest;
+    for (std::size_t t = 0; t + 2 < all.size(); t += 3) {
+        const std::uint32_t a = all[t], b = all[t + 1], c = all[t + 2];
+        const bool is_flat = flat_at[a] || flat_at[b] || flat_at[c];
+        const bool is_near = is_flat || near[a] || near[b] || near[c];
+        if (is_near)
+            near_list.insert(near_list.end(), {a, b, c});
+        (is_flat ? flat_list : all_rest).insert((is_flat ? flat_list : all_rest).end(), {a, b, c});
+        if (is_near && !is_flat)
+            near_rest.insert(near_rest.end(), {a, b, c});
+    }
+    const auto upload = [](Buffer& buffer, GLsizei& count, const std::vector<std::uint32_t>& indices) {
+        buffer = make_buffer();
+        glNamedBufferStorage(buffer.get(), GLsizeiptr(std::max<std::size_t>(indices.size(), 1) * sizeof(std::uint32_t)),
+                             indices.empty() ? nullptr : indices.data(), 0);
+        count = GLsizei(indices.size());
+    };
+    upload(near_indices_, near_count_, near_list);
+    upload(flat_indices_, flat_count_, flat_list);
+    upload(near_rest_, near_rest_count_, near_rest);
+    upload(all_rest_, all_rest_count_, all_rest);
     near_eye_ = eye;
     near_reach_ = reach;
+    near_flat_ = flat;
+    near_source_ = all.data();
+    near_triangles_ = all.size();
 }
 
 }  // namespace kiri::render::detail
