@@ -398,7 +398,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
         update_near(eye, reach, flat);
         const int e = top > everywhere ? everywhere : top;
         run(under > 0 ? top + 1 : 0, e, all_rest_.get(), all_rest_count_, near_rest_.get(), near_rest_count_);
-        run(under, top, flat_indices_.get(), flat_count_, flat_indices_.get(), flat_count_);
+        run(under, top, flat_.get(), flat_count_, flat_.get(), flat_count_);
     }
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
     glDisable(GL_BLEND);
@@ -460,10 +460,9 @@ bool LayersPass::update_sun_columns(const FrameContext& frame)
 
 void LayersPass::update_near(const glm::dvec3& eye, double reach, double flat)
 {
-    const std::vector<std::uint32_t>& all = drawn_triangles();
-    if (eye == near_eye_ && reach == near_reach_ && flat == near_flat_ && near_indices_ && near_source_ == all.data() &&
-        near_triangles_ == all.size())
+    if (eye == near_eye_ && reach == near_reach_ && flat == near_flat_ && all_rest_)
         return;
+    const std::vector<std::uint32_t>& all = drawn_triangles();
     // 1 % more than L0: float and double agree about the columns at its edge.
     const double reach2 = (1.01 * reach) * (1.01 * reach), flat2 = flat * flat;
     std::vector<char> near(base_->position.size()), flat_at(base_->position.size());
@@ -472,15 +471,15 @@ void LayersPass::update_near(const glm::dvec3& eye, double reach, double flat)
         near[v] = glm::dot(d, d) < reach2;
         flat_at[v] = glm::dot(d, d) < flat2;
     }
-    std::vector<std::uint32_t> near_list, flat_list, near_rest, all_rest;
+    std::vector<std::uint32_t> flat_list, near_rest, all_rest;
     for (std::size_t t = 0; t + 2 < all.size(); t += 3) {
         const std::uint32_t a = all[t], b = all[t + 1], c = all[t + 2];
-        const bool is_flat = flat_at[a] || flat_at[b] || flat_at[c];
-        const bool is_near = is_flat || near[a] || near[b] || near[c];
-        if (is_near)
-            near_list.insert(near_list.end(), {a, b, c});
-        (is_flat ? flat_list : all_rest).insert((is_flat ? flat_list : all_rest).end(), {a, b, c});
-        if (is_near && !is_flat)
+        if (flat_at[a] || flat_at[b] || flat_at[c]) {
+            flat_list.insert(flat_list.end(), {a, b, c});
+            continue;
+        }
+        all_rest.insert(all_rest.end(), {a, b, c});
+        if (near[a] || near[b] || near[c])
             near_rest.insert(near_rest.end(), {a, b, c});
     }
     const auto upload = [](Buffer& buffer, GLsizei& count, const std::vector<std::uint32_t>& indices) {
@@ -489,15 +488,12 @@ void LayersPass::update_near(const glm::dvec3& eye, double reach, double flat)
                              indices.empty() ? nullptr : indices.data(), 0);
         count = GLsizei(indices.size());
     };
-    upload(near_indices_, near_count_, near_list);
-    upload(flat_indices_, flat_count_, flat_list);
+    upload(flat_, flat_count_, flat_list);
     upload(near_rest_, near_rest_count_, near_rest);
     upload(all_rest_, all_rest_count_, all_rest);
     near_eye_ = eye;
     near_reach_ = reach;
     near_flat_ = flat;
-    near_source_ = all.data();
-    near_triangles_ = all.size();
 }
 
 }  // namespace kiri::render::detail

@@ -110,15 +110,13 @@ private:
     Buffer vertices_, indices_;
     // The layers above `count` fade in only where the eye narrows the spacing ([Thesis] (2.8)):
     // they are drawn for the triangles near it alone (near_eye_ of the eye it was built for).
-    // Of those, the triangles where the narrowing has reached its floor (within `flat` of the eye,
-    // the layers flat there) are drawn apart, last: flat_indices_, and the rest of the near and of
-    // all triangles without them (near_rest_, all_rest_).
-    Buffer near_indices_, flat_indices_, near_rest_, all_rest_;
-    GLsizei near_count_ = 0, flat_count_ = 0, near_rest_count_ = 0, all_rest_count_ = 0;
+    // The triangles where the narrowing has reached its floor (within `flat` of the eye, the
+    // layers flat there) are drawn apart, last (flat_); near_rest_ and all_rest_ are the near
+    // triangles and all of them without those.
+    Buffer flat_, near_rest_, all_rest_;
+    GLsizei flat_count_ = 0, near_rest_count_ = 0, all_rest_count_ = 0;
     glm::dvec3 near_eye_{HUGE_VAL};
     double near_reach_ = -1.0, near_flat_ = -1.0;
-    std::size_t near_triangles_ = 0;
-    const void* near_source_ = nullptr;
     void update_near(const glm::dvec3& eye, double reach, double flat);
     // The level of detail for the last eye (layer_lod.hpp): its triangles replace the base's.
     std::vector<int> lod_levels_;
