@@ -111,9 +111,9 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
     ASSERT_GT(c.top - c.bottom, 100.0);
 
     // Inside the fog the eye is nearer the base than the spacing's floor distance, so the column
-    // below it has the floor spacing T0 / max_count. Layer k's copy of p sits at p.z + k r,
-    // pushed out from the centre by the enlargement (2.10), which depends on where the eye is:
-    // the eye on it is the fixed point of eye = layer_vertex(column(eye)).
+    // below it has the floor spacing T0 / max_count. Layer k's copy of p sits at p.z + k r (and
+    // in the source shading pushed out from the centre by the enlargement (2.10), which depends
+    // on where the eye is): the eye on it is the fixed point of eye = layer_vertex(column(eye)).
     const g::LayerOptions& layers = fog.layers;
     const double floor_distance = layers.spacing_divisor * layers.thickness / layers.max_count;
     const int on_layer = int(std::round(0.5 * (c.top - c.bottom) / (layers.thickness / layers.max_count)));
@@ -212,8 +212,12 @@ TEST_F(Descent, ThroughTheCloudWithoutPopsOrHollowness)
         for (std::size_t i = 0; i < w.frames.size(); ++i) {
             const Window::Frame& f = w.frames[i];
             EXPECT_TRUE(f.finite) << w.where << " at " << f.z;
-            // The fog never vanishes: the reference sees it in most of the frame, and so does kiri.
-            EXPECT_GT(f.fog_pixels, width * height / 5) << w.where << " at " << f.z;
+            // The fog never vanishes: the reference sees it in most of the frame, and so does kiri;
+            // from its base and under it, looking down, only in its shade on the ground (measured 62 of the
+            // 576 pixels at least, since the path stands over its base vertex: the medium shading's
+            // layers are not enlarged, layers_enlarge).
+            EXPECT_GT(f.fog_pixels, f.z <= c.bottom ? width * height / 20 : width * height / 5)
+                << w.where << " at " << f.z;
             // Every frame, inside the cloud included (no hollow look), is close to the reference:
             // measured at most 0.081 (at the fog's top), 0.044 on a layer, 0.012 at the base.
             EXPECT_LT(f.error, 0.12) << w.where << " at " << f.z;
