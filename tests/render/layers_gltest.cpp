@@ -90,6 +90,17 @@ protected:
         c.fov_y_deg = 30.0;
         return c;
     }
+    // An eye 25 m over the stack's base (at 75 m) at (380, 380), looking out from the hill and up.
+    static Camera climbing(double degrees, double fov)
+    {
+        const double a = degrees * std::acos(-1.0) / 180.0;
+        const glm::dvec2 out = glm::normalize(glm::dvec2(380.0, 380.0));
+        Camera c;
+        c.position = {380.0, 380.0, 75.0};
+        c.target = c.position + glm::dvec3(out * std::cos(a), std::sin(a));
+        c.fov_y_deg = fov;
+        return c;
+    }
     static const std::uint8_t* pixel(const Image& image, const glm::dvec2& p)
     {
         return &image.rgba[(std::size_t(p.y) * image.width + std::size_t(p.x)) * 4];
@@ -439,15 +450,12 @@ TEST_F(LayersGl, AnEyeInsideTheStackSeesTheLayersOverItFarToNear)
 {
     const int w = 32, h = 32;
     const double base_z = 50.0, T0 = 100.0, eye_z = 75.0, sigma = 0.03;
-    const double slant = 35.0 * std::acos(-1.0) / 180.0;
-    const glm::dvec2 from(380.0, 380.0), out = glm::normalize(from);  // away from the hill
-    Camera up;
-    up.position = {from.x, from.y, eye_z};
-    up.target = up.position + glm::dvec3(out * std::cos(slant), std::sin(slant));
-    up.fov_y_deg = 6.0;
+    const Camera up = climbing(35.0, 6.0);
+    const glm::dvec3 view = glm::normalize(up.target - up.position);
+    ASSERT_EQ(up.position.z, eye_z);
     // The ground under the layers the ray crosses lies under the base: no layer is cut.
-    for (double d = 0.0; d <= (base_z + T0 - eye_z) / std::tan(slant); d += 10.0)
-        ASSERT_LT(hill()->height(from.x + d * out.x, from.y + d * out.y), base_z) << d;
+    for (double t = 0.0; t <= (base_z + T0 - eye_z) / view.z; t += 10.0)
+        ASSERT_LT(hill()->height(up.position.x + t * view.x, up.position.y + t * view.y), base_z) << t;
     kiri::render::SunLight sun;
     Renderer renderer;
     renderer.set_terrain(*hill());
@@ -464,14 +472,13 @@ TEST_F(LayersGl, AnEyeInsideTheStackSeesTheLayersOverItFarToNear)
     const kiri::render::RadianceImage fog = renderer.read_radiance();
     ASSERT_EQ(g::layers_under_eye(base, o, up.position, 10), 3);  // layers 0, 1 and 2 lie under the eye
     const glm::dvec3 s = glm::normalize(sun.direction);
-    const glm::dvec3 view(out * std::cos(slant), std::sin(slant));
     const g::FogLight light{sun.color * sun.intensity, sun.ambient, s.z};
     const std::size_t centre = (std::size_t(h / 2) * w + w / 2) * 4;
     glm::dvec3 near_to_far(0.0), far_to_near(0.0), through(1.0);
     // Near to far: layers 3 (80 m) .. 10 (150 m), each behind those before it.
     for (int i = 3; i <= 10; ++i) {
         const double hi = i / 10.0, rho = 1.0 - 0.9 * hi;
-        const double alpha = 1.0 - std::exp(-sigma * rho * 10.0 * g::layer_slab_share(10.0, i) / std::sin(slant));
+        const double alpha = 1.0 - std::exp(-sigma * rho * 10.0 * g::layer_slab_share(10.0, i) / view.z);
         const double tau_sun = sigma * T0 * ((1.0 - hi) - 0.45 * (1.0 - hi * hi)) / s.z;
         const glm::dvec3 j = g::fog_source(light, o.optics, glm::dot(view, s), tau_sun);
         near_to_far += through * j * alpha;
@@ -498,13 +505,9 @@ TEST_F(LayersGl, AClimbingRayFromInsideCrossesTheNarrowedStackFarToNear)
 {
     const int w = 32, h = 32;
     const double base_z = 50.0, T0 = 100.0, eye_z = 75.0, sigma = 0.02;
-    const double slant = 25.0 * std::acos(-1.0) / 180.0;
-    const glm::dvec2 from(380.0, 380.0), out = glm::normalize(from);
-    Camera up;
-    up.position = {from.x, from.y, eye_z};
-    const glm::dvec3 view(out * std::cos(slant), std::sin(slant));
-    up.target = up.position + view;
-    up.fov_y_deg = 4.0;
+    const Camera up = climbing(25.0, 4.0);
+    const glm::dvec3 view = glm::normalize(up.target - up.position);
+    ASSERT_EQ(up.position.z, eye_z);
     kiri::render::SunLight sun;
     Renderer renderer;
     renderer.set_terrain(*hill());
@@ -533,7 +536,7 @@ TEST_F(LayersGl, AClimbingRayFromInsideCrossesTheNarrowedStackFarToNear)
         double alpha;
     };
     std::vector<Crossing> crossings;
-    const double t_end = (base_z + T0 + 5.0 - eye_z) / std::sin(slant), dt = 0.25;
+    const double t_end = (base_z + T0 + 5.0 - eye_z) / view.z, dt = 0.25;
     for (int i = 0; i <= top; ++i) {
         const auto f = [&](double t) {
             const glm::dvec3 p = up.position + t * view;
