@@ -121,7 +121,7 @@ void main()
         ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
     // Combined mode: the medium shading draws only the layers' share (none near the eye).
     float share = u_medium != 0 ? layers_share(length(v_world - u_eye), v_height) : 1.0;
-    if (tex.a <= 0.0 || ground <= 0.0 || share <= 0.0)
+    if (ground <= 0.0 || share <= 0.0)
         discard;
     float detail = 1.0;
     if (u_detail > 0.0)

@@ -386,6 +386,10 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     const GLsizei all_count = lod_active_ ? lod_count_ : index_count_;
     if (!o.narrowing) {
         run(under, top, all, all_count, all, all_count);
+    } else if (top == everywhere) {
+        // No column within L0 of the eye (the count grows only there), so none within the flat
+        // radius either: every layer is far, drawn as the cones below, without sorting triangles.
+        run(under > 0 ? top + 1 : 0, top, all, all_count, all, all_count);
     } else {
         // The narrowing spaces the layers by r0 L / L0 within L0 of the eye, down to its floor
         // T0 / max_count within L0 count / max_count: there the layers are flat, and a ray from
@@ -396,8 +400,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
         // from the eye: the cones are drawn first, then the flat part.
         const double flat = reach * double(std::max(o.count, 1)) / double(std::max(o.max_count, 1));
         update_near(eye, reach, flat);
-        const int e = top > everywhere ? everywhere : top;
-        run(under > 0 ? top + 1 : 0, e, all_rest_.get(), all_rest_count_, near_rest_.get(), near_rest_count_);
+        run(under > 0 ? top + 1 : 0, everywhere, all_rest_.get(), all_rest_count_, near_rest_.get(), near_rest_count_);
         run(under, top, flat_.get(), flat_count_, flat_.get(), flat_count_);
     }
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
