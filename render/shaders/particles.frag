@@ -14,6 +14,7 @@ flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
+flat in float v_seen_tau;  // tau with the particle's mass in the ground added (particles.vert)
 flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale)
 in vec4 v_fog;
 flat in float v_baked;
@@ -54,7 +55,7 @@ void main()
     float t0 = 0.0, t1 = scene;
     line_over_rect(u_eye - u_centre, ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
     float share = footprint_ray_share(x, v_footprint_radius, t0 - along, t1 - along);
-    float alpha = 1.0 - exp(-v_optics.y * footprint_profile(x) * share);
+    float alpha = 1.0 - exp(-v_seen_tau * footprint_profile(x) * share);
     // Lit where the ray's visible part passes nearest the centre.
     float t = clamp(along, t0, max(t0, t1));
     if (u_soft_edge > 0.0)  // a softer meeting with the terrain than the particle's own, if asked

@@ -22,6 +22,7 @@ flat out vec4 v_grid_visible;  // the particle's record (particle_light.glsl)
 flat out ivec4 v_window;
 flat out uint v_table;
 flat out vec3 v_optics;  // radius, tau, albedo
+flat out float v_seen_tau;  // tau as the billboard draws it: with the part in the ground added
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
 flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
 uniform vec3 u_eye;
@@ -71,6 +72,7 @@ void main()
     v_window = particle_lights[id].window;
     v_table = particle_lights[id].offset.x;
     v_optics = vec3(p.w, particles[id].optics.xy);
+    v_seen_tau = particles[id].optics.x * particles[id].optics.z;
     v_fog = froxel_fog(corner_world);
     // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
     // may stand out of the Medium's shell, where the volume holds nothing.

@@ -9,6 +9,11 @@
 
 namespace kiri::render::detail {
 
+double seen_gain(const geometry::Particle& p)
+{
+    return 1.0 / std::clamp(std::isnan(p.above_ground) ? 1.0 : p.above_ground, min_above_ground, 1.0);
+}
+
 GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
 {
     GpuParticles out;
@@ -44,7 +49,7 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
         const glm::dvec3 q = p.position - out.centre;
         const double tau = std::isfinite(p.optical_depth) ? p.optical_depth : 1e30;
         out.particles[slot] = {{float(q.x), float(q.y), float(q.z), float(p.radius)},
-                               {float(tau), float(p.albedo), 0.0f, 0.0f}};
+                               {float(tau), float(p.albedo), float(seen_gain(p)), 0.0f}};
         out.index[slot] = std::uint32_t(k);
     }
     return out;
@@ -112,6 +117,7 @@ std::uint64_t hash_particles(const geometry::ParticleCloud& cloud)
         mix(p.radius);
         mix(p.optical_depth);
         mix(p.albedo);
+        mix(p.above_ground);
     }
     return h;
 }

@@ -30,6 +30,12 @@ struct GpuParticles {
     double strongest_log_gain_sum = 0.0;  //!< sum of min(tau, 16): bounds every column's |sum of log G|
 };
 GpuParticles gpu_particles(const geometry::ParticleCloud& cloud);
+//! The share of a particle's mass above the ground that its billboard draws the whole of: below
+//! it the visible remnant of a buried particle would turn into a dense speck.
+constexpr double min_above_ground = 0.25;
+//! What a billboard multiplies tau by: 1 / above_ground (clamped to [min_above_ground, 1]), so
+//! the part of the particle no ray sees in the ground adds to the part it sees.
+double seen_gain(const geometry::Particle& p);
 //! The fixed-point scale (units per 1.0 of |log G|) of the packed deposit, two columns to a
 //! 32-bit word: the largest for which no voxel's sum of rounded magnitudes can pass 65535 (per
 //! slice, the particles whose shadow can start there, each adding at most min(tau, 16) and half a

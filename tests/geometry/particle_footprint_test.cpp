@@ -132,3 +132,55 @@ TEST(ParticleFootprint, ForwardFractionIsHenyeyGreensteinOverTheCone)
     // The whole sphere holds all of it, whatever g.
     EXPECT_NEAR(forward_scattering_fraction(0.8, 4.0 * std::numbers::pi), 1.0, 1e-12);
 }
+
+TEST(ParticleFootprint, ShareAboveTheGroundIsTheBallsMassOverIt)
+{
+    // Over a flat ground z0 r from the centre, by horizontal slices (an independent route: the
+    // columns of footprint_share_above cut vertically): the slice at z holds
+    // 2 pi (s^2 (exp(-z^2 / 2 s^2) - e0) - e0 (1 - z^2) / 2).
+    const double s = footprint_sigma, e0 = std::exp(-1.0 / (2.0 * s * s));
+    const auto slice = [&](double z) {
+        return 2.0 * std::numbers::pi * (s * s * (std::exp(-z * z / (2.0 * s * s)) - e0) - 0.5 * e0 * (1.0 - z * z));
+    };
+    const auto above = [&](double z0) {  // Simpson's rule from z0 to 1 over -1 to 1
+        const auto integral = [&](double a, double b) {
+            const int n = 4000;
+            double sum = 0.0;
+            for (int k = 0; k <= n; ++k)
+                sum += (k == 0 || k == n ? 1.0 : k % 2 ? 4.0 : 2.0) * slice(a + (b - a) * k / n);
+            return sum * (b - a) / (3.0 * n);
+        };
+        return integral(z0, 1.0) / integral(-1.0, 1.0);
+    };
+    const glm::dvec3 centre(100.0, -40.0, 250.0);
+    const double r = 80.0;
+    for (double z0 : {-0.9, -0.5, -0.2, 0.0, 0.3, 0.7}) {
+        const double share = footprint_share_above(centre, r, [&](double, double) { return centre.z + z0 * r; });
+        EXPECT_NEAR(share, above(z0), 2e-3) << z0;
+    }
+    EXPECT_NEAR(above(0.0), 0.5, 1e-12);
+    // Wholly above or below.
+    EXPECT_EQ(footprint_share_above(centre, r, [&](double, double) { return centre.z - r; }), 1.0);
+    EXPECT_EQ(footprint_share_above(centre, r, [&](double, double) { return centre.z + r; }), 0.0);
+    // Any plane through the centre, and a cliff through it, halve the ball: the ground's relief
+    // within the disc counts, not only its height under the centre.
+    for (double slope : {0.3, 1.0, 5.0})
+        EXPECT_NEAR(footprint_share_above(
+                        centre, r,
+                        [&](double x, double y) { return centre.z + slope * ((x - centre.x) + 0.5 * (y - centre.y)); }),
+                    0.5, 1e-12)
+            << slope;
+    const double cliff = footprint_share_above(
+        centre, r, [&](double x, double y) { return (x - centre.x) + 0.37 * (y - centre.y) < 0.0 ? 1e9 : -1e9; });
+    EXPECT_NEAR(cliff, 0.5, 1e-12);
+    // A narrow valley 0.4 r wide through the centre, its walls above the particle: most of the
+    // ball lies in the walls (the height under the centre alone would say none).
+    const double valley = footprint_share_above(
+        centre, r, [&](double x, double) { return std::abs(x - centre.x) < 0.2 * r ? centre.z - r : centre.z + r; });
+    EXPECT_GT(valley, 0.3);
+    EXPECT_LT(valley, 0.6);
+    // Nothing known: no ground (NaN heights), and no particle to speak of.
+    EXPECT_EQ(footprint_share_above(centre, r, [](double, double) { return std::nan(""); }), 1.0);
+    EXPECT_EQ(footprint_share_above(centre, 0.0, [&](double, double) { return centre.z + r; }), 1.0);
+    EXPECT_EQ(footprint_share_above({std::nan(""), 0.0, 0.0}, r, [](double, double) { return 0.0; }), 1.0);
+}

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <concepts>
 #include <filesystem>
 
@@ -11,6 +12,7 @@
 
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/medium/fog_partition.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/scene/pipeline.hpp"
 
@@ -185,6 +187,34 @@ TEST(Pipeline, FogPlacedByTheTerrainPlacesOnceAndFillsTheMediumFromItsColumns)
     EXPECT_GT(higher.placed->figures.volume_m3, first.placed->figures.volume_m3);
     EXPECT_NEAR(higher.layers.thickness, first.layers.thickness + 40.0 * s.terrain.exaggeration, 1e-6);
     expect_same_fog(higher, author_scene(s, with_medium));
+}
+
+TEST(Pipeline, ParticlesKnowTheShareOfTheirMassAboveTheGround)
+{
+    // A valley fog, its particles smaller than it is thick: those at its floor reach into the
+    // ground. Each knows the share of its mass above it, where the fog is as thick as the
+    // particle's radius (set_above_ground), the rest of it hidden in the ground.
+    Pipeline p;
+    Scene s = load_scene(fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_fill.json");
+    s.particles.count = 2000;
+    s.particles.radius_min = s.particles.radius_max = 40.0;
+    const PipelineProducts products = p.run(s, with_particles);
+    ASSERT_TRUE(products.particles && products.medium && products.terrain);
+    int buried = 0, spilt = 0;
+    for (const Particle& q : products.particles->particles) {
+        const double above = footprint_share_above(q.position, q.radius, [&](double x, double y) {
+            const MediumColumn c = products.medium->column(x, y);
+            return c.coverage > 0.0 && c.top - c.floor >= q.radius ? products.terrain->height(x, y) : std::nan("");
+        });
+        EXPECT_EQ(q.above_ground, above);
+        buried += above < 0.95;
+        // Over thin fog (a shore) a particle reaching into the ground keeps its mass as it is.
+        spilt += above == 1.0 && footprint_share_above(q.position, q.radius, [&](double x, double y) {
+                                     return products.terrain->height(x, y);
+                                 }) < 0.95;
+    }
+    EXPECT_GT(buried, 250);
+    EXPECT_GT(spilt, 3);
 }
 
 TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)

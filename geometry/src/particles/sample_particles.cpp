@@ -5,6 +5,7 @@
 #include <functional>
 #include <random>
 #include <thread>
+#include <vector>
 
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/medium/fog_lighting.hpp"
@@ -211,6 +212,30 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
         cloud.particles.push_back(p);
     }
     return cloud;
+}
+
+void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::function<double(double, double)>& ground)
+{
+    // 96 columns a particle (about 0.1 s for 20,000 on one core): a slice of the particles on
+    // every core; each particle's share depends on it alone.
+    const auto run = [&](std::size_t first, std::size_t end) {
+        for (std::size_t k = first; k < end; ++k) {
+            Particle& p = cloud.particles[k];
+            p.above_ground = footprint_share_above(p.position, p.radius, [&](double x, double y) {
+                const MediumColumn c = medium.column(x, y);
+                return c.coverage > 0.0 && c.top - c.floor >= p.radius ? ground(x, y) : std::nan("");
+            });
+        }
+    };
+    const std::size_t n = cloud.particles.size();
+    const std::size_t threads =
+        std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, std::max<std::size_t>(n / 1000, 1));
+    std::vector<std::thread> pool;
+    for (std::size_t t = 1; t < threads; ++t)
+        pool.emplace_back(run, n * t / threads, n * (t + 1) / threads);
+    run(0, n / threads);
+    for (std::thread& t : pool)
+        t.join();
 }
 
 HeightShare particle_height_share(const FogPartition& partition)

@@ -48,18 +48,17 @@ LightInput light_input(const Scene& scene, std::uint64_t medium, std::uint64_t t
     return in;
 }
 
-std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const ParticlesInput& in,
-                                                     const std::string& label)
+std::shared_ptr<const ParticleCloud> build_particles(const Medium& medium, const Terrain& terrain,
+                                                     const ParticlesInput& in, const std::string& label)
 {
-    if (in.set == ParticleSet::top_band) {
-        // The particles stand for their share of the Medium only: its top band.
-        if (!(in.partition.particle_share > 0.0))
-            return nullptr;
-        const FogPartition partition = in.partition;
-        return std::make_shared<const ParticleCloud>(
-            sample_particles(medium, in.options, label, particle_height_share(partition)));
-    }
-    return std::make_shared<const ParticleCloud>(sample_particles(medium, in.options, label));
+    // The particles stand for their share of the Medium only (its top band in combined mode).
+    if (in.set == ParticleSet::top_band && !(in.partition.particle_share > 0.0))
+        return nullptr;
+    ParticleCloud cloud = in.set == ParticleSet::top_band
+        ? sample_particles(medium, in.options, label, particle_height_share(in.partition))
+        : sample_particles(medium, in.options, label);
+    set_above_ground(cloud, medium, [&terrain](double x, double y) { return terrain.height(x, y); });
+    return std::make_shared<const ParticleCloud>(std::move(cloud));
 }
 
 }  // namespace
@@ -255,7 +254,7 @@ const PipelineProducts& Pipeline::run(const Scene& given_scene, const PipelineTa
                  particles_input(c.medium.version, target.particles, scene.particles, scene.combined),
                  [&](const ParticlesInput& in) {
                      c.particles.product.reset();
-                     c.particles.product = build_particles(*c.medium.product, in, label);
+                     c.particles.product = build_particles(*c.medium.product, terrain, in, label);
                  });
         }
         if (reaches(Stage::light) && target.light && baked(scene)) {

@@ -16,6 +16,9 @@
 //! G <= 1 for every tau (a particle never adds light) and gives an opaque particle G = a c.
 //! log G is clamped at min_log_gain, so an opaque black particle gives a finite value, never -inf.
 #include <cmath>
+#include <functional>
+
+#include <glm/vec3.hpp>
 
 namespace kiri::geometry {
 
@@ -43,5 +46,12 @@ double footprint_transmittance(double rho, double radius, double optical_depth);
 //! u0 and u1: metres along the ray from its point nearest the centre. 1 for the whole chord,
 //! 0 for x >= 1 or u1 <= u0. (GLSL twin: particle_footprint.glsl.)
 double footprint_ray_share(double x, double radius, double u0, double u1);
+//! The share of the particle's mass that lies above the ground z = ground(x, y): 1 for a
+//! particle wholly above it, 1/2 for one centred on a plane, 0 for one buried. Each vertical
+//! column through the ball is split in closed form at the ground's height there; the columns
+//! are summed over the disc by a polar quadrature of 96 points (the ground's relief within the
+//! disc counts, not only the height under the centre). NaN heights count as no ground.
+double footprint_share_above(const glm::dvec3& centre, double radius,
+                             const std::function<double(double, double)>& ground);
 
 }  // namespace kiri::geometry

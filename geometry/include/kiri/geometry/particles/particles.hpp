@@ -25,6 +25,10 @@ struct Particle {
     double radius = 1.0;         //!< metres: the footprint is zero beyond it
     double optical_depth = 0.5;  //!< tau_k: optical depth of the ray through the centre (may be +inf: opaque)
     double albedo = 0.99;        //!< a_k in [0, 1]
+    //! The share of its mass above the terrain (footprint_share_above): the rest lies in the
+    //! ground, where no ray sees it, so a billboard draws its visible part with tau_k / this
+    //! (docs/particles.md, "The mass in the ground"). 1: wholly above, or no terrain known.
+    double above_ground = 1.0;
 };
 
 //! How the attenuation buffer's voxel grid is oriented (light_grid.hpp). Its columns always run
@@ -217,6 +221,14 @@ struct HeightShare {
 };
 ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {},
                                const HeightShare& share = {});
+//! Each particle's share of its mass above the ground (Particle::above_ground,
+//! footprint_share_above): the terrain z = ground(x, y) where it lies under a column of the
+//! Medium's fog at least as thick as the particle's radius. There the ground cuts a fog that the
+//! particle stands for the bottom of, and the mass it hides is the fog's own. Elsewhere (a thread
+//! of fog in a valley narrower or shallower than the particle, the bare ridges beside it) the
+//! particle spills out of the fog whether its ball reaches into the ground or not, and a billboard
+//! that drew the hidden part over the rest would draw more fog where there is none.
+void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::function<double(double, double)>& ground);
 //! Combined rendering's share for the particles (fog_partition.hpp): zero up to the top band,
 //! rising to particle_share at the top.
 HeightShare particle_height_share(const FogPartition& partition);
