@@ -48,17 +48,10 @@ float medium_density(vec3 p)
 float medium_sigma(vec3 p) { return u_md_extinction * medium_density(p); }
 
 // The part the froxels draw (fog_partition.glsl): all of it, or in combined mode their share
-// by the distance from the eye and the height in the shell.
-float froxel_share_of(vec3 p, float d, float h)
+// by the distance from the eye, the height in the shell and the fog's thickness there.
+float froxel_share_of(vec3 p, float d, float h, float thickness)
 {
-    return d > 0.0 ? u_md_extinction * d * froxels_share(distance(p, u_fx_eye), h) : 0.0;
-}
-
-float froxel_sigma(vec3 p)
-{
-    float h;
-    float d = medium_density_at(p, h);
-    return froxel_share_of(p, d, h);
+    return d > 0.0 ? u_md_extinction * d * froxels_share(distance(p, u_fx_eye), h, thickness) : 0.0;
 }
 
 // The same, in the column c over p (shell_column; u_md_on and shell_covers checked).
@@ -66,7 +59,14 @@ float froxel_sigma_in(vec3 p, vec4 c)
 {
     float h;
     float d = medium_density_in(p, c, h);
-    return froxel_share_of(p, d, h);
+    return froxel_share_of(p, d, h, c.z - c.x);
+}
+
+float froxel_sigma(vec3 p)
+{
+    if (u_md_on == 0 || !shell_covers(p.xy))
+        return 0.0;
+    return froxel_sigma_in(p, shell_column(p.xy));
 }
 
 // Henyey-Greenstein, g clamped strictly inside (-1, 1) like geometry::henyey_greenstein.

@@ -103,10 +103,14 @@ void main()
     // a lake's footprint is the fog's cells, not the patches), and the enlargement (2.10) carries
     // the layers further. The source shading, and the medium's without a Medium, take the atlas.
     vec4 tex;
-    if (u_medium != 0 && u_md_extent != 0)
-        tex = vec4(1.0, 1.0, 1.0, shell_covers(v_world.xy) ? shell_column(v_world.xy).w : 0.0);
-    else
+    float thickness = 1e30;  // the fog's, for combined mode's particle share (fog_partition.glsl)
+    if (u_medium != 0 && u_md_extent != 0) {
+        vec4 column = shell_covers(v_world.xy) ? shell_column(v_world.xy) : vec4(0.0);
+        tex = vec4(1.0, 1.0, 1.0, column.w);
+        thickness = column.z - column.x;
+    } else {
         tex = texture(u_atlas, v_uv);
+    }
     if (tex.a <= 0.0)
         discard;
     vec2 h_uv = (v_world.xy - u_height_rect.xy) * u_height_rect.zw;
@@ -120,7 +124,7 @@ void main()
     else
         ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
     // Combined mode: the medium shading draws only the layers' share (none near the eye).
-    float share = u_medium != 0 ? layers_share(length(v_world - u_eye), v_height) : 1.0;
+    float share = u_medium != 0 ? layers_share(length(v_world - u_eye), v_height, thickness) : 1.0;
     if (ground <= 0.0 || share <= 0.0)
         discard;
     float detail = 1.0;

@@ -25,6 +25,9 @@ struct FrameContext {
     //! Combined mode: each fog renderer draws its share of the Medium (fog_partition.hpp).
     bool partitioned = false;
     glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band
+    //! The fog's thickness (metres) where the particles' share starts and where it is whole
+    //! (geometry::particle_depth_share); (0, 0): every thickness.
+    glm::vec2 partition_depth{0.0f};
 };
 
 //! The near and far planes of the frame's projection (x, y): what a depth-buffer value is turned
@@ -41,6 +44,7 @@ void set_partition_uniforms(const Program& program, const FrameContext& frame)
 {
     program.set("u_partitioned", int(frame.partitioned));
     program.set("u_partition", frame.partition);
+    program.set("u_partition_depth", frame.partition_depth);
 }
 
 //! Builds the frame's context; near and far planes are fitted to the scene's bounds so that

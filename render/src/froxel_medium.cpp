@@ -81,6 +81,7 @@ void FroxelMedium::bind(const ShaderProgram& p, const geometry::HeightFog& haze,
     p.set("u_md_on", int(on));
     p.set("u_partitioned", int(partitioned_));
     p.set("u_partition", partition_);
+    p.set("u_partition_depth", partition_depth_);
     if (!on)
         return;
     const geometry::MediumOptions& o = medium_->options();

@@ -26,10 +26,11 @@ public:
     const geometry::Medium* medium() const { return uploaded_ ? medium_ : nullptr; }
     //! Combined mode: the froxels draw their share of the Medium (fog_partition.glsl), set
     //! with the other uniforms by bind().
-    void set_partition(bool partitioned, const glm::vec4& partition)
+    void set_partition(bool partitioned, const glm::vec4& partition, const glm::vec2& depth)
     {
         partitioned_ = partitioned;
         partition_ = partition;
+        partition_depth_ = depth;
     }
 
 private:
@@ -38,6 +39,7 @@ private:
     const void* uploaded_ = nullptr;
     bool partitioned_ = false;
     glm::vec4 partition_{0.0f};
+    glm::vec2 partition_depth_{0.0f};
 };
 
 }  // namespace kiri::render::detail

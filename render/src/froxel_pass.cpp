@@ -222,7 +222,7 @@ void FroxelPass::prepare(const FrameContext& frame, const ShadowMapPass* shadow)
     stats_.updated = false;
     stats_.converged = false;
     applied_pixels_ = 0;
-    medium_gpu_.set_partition(frame.partitioned, frame.partition);
+    medium_gpu_.set_partition(frame.partitioned, frame.partition, frame.partition_depth);
     visible_ = enabled_ && visible(frame);
     stats_.visible = visible_;
     if (!visible_) {  // off-screen: no pass runs, no history survives

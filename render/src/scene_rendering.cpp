@@ -244,7 +244,10 @@ void SceneRendering::apply(Renderer& renderer) const
     std::optional<geometry::FogPartition> partition;
     if (mode_ == FogMode::combined) {
         partition = scene_.combined;
-        if (!particles())
+        const geometry::ParticleCloud* cloud = particles();
+        if (cloud && !cloud->particles.empty())
+            partition->particle_radius = cloud->share_radius;  // the depth counted as the sampler did
+        else
             partition->particle_share = 0.0;  // no particles drawn: nobody else may leave their share out
     }
     renderer.set_fog_partition(partition);

@@ -172,7 +172,7 @@ TEST(ParticleDistribution, TheTopBandFollowsItsDensity)
     ASSERT_EQ(c.particles.size(), std::size_t(n));
     const Histograms got = histograms(positions(c), h0);
 
-    const auto along_h = [&](double h) { return (1.0 - 0.9 * h) * particle_share(partition, h); };
+    const auto along_h = [&](double h) { return (1.0 - 0.9 * h) * particle_share(partition, h, 1e30); };
     const Histogram ex = expected(thickness_at, 0.0, side, n), ey = expected(coverage_at, 0.0, side, n),
                     eh = expected(along_h, h0, 1.0, n);
     EXPECT_LT(chi_square(got.x, ex), chi_square_bound);

@@ -270,7 +270,9 @@ TEST(ParticleSampling, AWeightSamplesAShareOfTheMedium)
     FogPartition partition;
     partition.particle_share = 1.0;
     partition.particle_band = 0.5;
+    partition.particle_depth = 0.0;  // every thickness (below: the depth)
     const ParticleCloud c = sample_particles(m, options(3000), "", particle_height_share(partition));
+    EXPECT_EQ(c.share_radius, 0.0);
     double expected = 0.0;
     const int n = 100000;
     for (int i = 0; i < n; ++i) {  // midpoint rule
@@ -285,6 +287,68 @@ TEST(ParticleSampling, AWeightSamplesAShareOfTheMedium)
     for (const Particle& p : c.particles)
         carried += p.optical_depth * footprint_area() * p.radius * p.radius;
     EXPECT_NEAR(carried, 0.03 * c.density_integral, 1e-9 * carried);
+}
+
+TEST(ParticleSampling, TheShareKeepsToFogThickForTheParticles)
+{
+    // A fog 400 m thick for x < -125 m, 40 m for x > 125 m (linear between): with the depth rule
+    // the band's particles lie only where the fog is thick for them. The radius the depth counts
+    // in is the particles' at full density without the rule, radius_scale cbrt(integral / count),
+    // the integral of d share(h) over the Medium by the midpoint rule here.
+    MediumGrid g;
+    g.nx = 9;
+    g.ny = 3;
+    g.x0 = g.y0 = -500.0;
+    g.dx = 125.0;
+    g.dy = 500.0;
+    for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+            const double x = g.x0 + i * g.dx;
+            g.bottom.push_back(100.0);
+            g.floor.push_back(100.0);
+            g.top.push_back(x < -100.0 ? 500.0 : x > 100.0 ? 140.0 : 320.0);
+            g.coverage.push_back(1.0);
+        }
+    MediumOptions o;
+    o.extinction = 0.02;
+    MediumDetail d;
+    d.detail = 0.0;
+    const Medium m(std::move(g), o, d);
+    FogPartition partition;
+    partition.particle_share = 1.0;
+    partition.particle_band = 0.5;
+    partition.particle_depth = 12.0;
+    const int count = 3000;
+    const ParticleCloud c = sample_particles(m, options(count), "", particle_height_share(partition));
+    ASSERT_GT(c.particles.size(), 1000u);
+
+    const int n = 200;
+    const auto integral = [&](const FogPartition* depth) {
+        double sum = 0.0;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j)
+                for (int k = 0; k < n; ++k) {
+                    const glm::dvec3 p(-500.0 + 1000.0 * (i + 0.5) / n, -500.0 + 1000.0 * (j + 0.5) / n,
+                                       100.0 + 400.0 * (k + 0.5) / n);
+                    const double h = m.height_fraction(p);
+                    const MediumColumn col = m.column(p.x, p.y);
+                    sum += m.density(p) * smoother_step(0.5, 1.0, h) *
+                        (depth ? particle_depth_share(*depth, col.top - col.floor) : 1.0);
+                }
+        return sum * 1000.0 * 1000.0 * 400.0 / (double(n) * n * n);
+    };
+    const double r0 = 1.5 * std::cbrt(integral(nullptr) / count);
+    EXPECT_NEAR(c.share_radius, r0, 0.02 * r0);
+    // Thick (400 m) is over 12 radii, thin (40 m) under 4: the rule cuts between.
+    ASSERT_GT(400.0, 12.0 * c.share_radius);
+    ASSERT_LT(40.0, 4.0 * c.share_radius);
+    FogPartition rule = partition;
+    rule.particle_radius = c.share_radius;
+    EXPECT_NEAR(c.density_integral, integral(&rule), 0.03 * integral(&rule));
+    for (const Particle& p : c.particles) {
+        const MediumColumn col = m.column(p.position.x, p.position.y);
+        EXPECT_GT(particle_depth_share(rule, col.top - col.floor), 0.0) << p.position.x;
+    }
 }
 
 TEST(ParticleSampling, AThinFogGetsFewParticlesNotAnError)

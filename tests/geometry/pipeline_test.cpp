@@ -255,12 +255,15 @@ TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)
     EXPECT_EQ(again.particles, more.particles);
 
     // Combined: the particles stand for the top band's share of the medium; a zero share gives none.
+    // (The blanket is thinner than 4 of these particles' radii: no depth rule, or none at all.)
+    s.combined.particle_depth = 0.0;
     const PipelineProducts shared = p.run(s, {Stage::particles, ParticleSet::top_band});
     EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 1, 1, 1, 3, 0, 0}));
     ASSERT_TRUE(shared.particles);
     const Medium& m = *shared.medium;
     const ParticleCloud top = sample_particles(m, s.particles, {}, particle_height_share(s.combined));
     ASSERT_EQ(top.particles.size(), shared.particles->particles.size());
+    ASSERT_GT(top.particles.size(), 77u);
     EXPECT_EQ(top.particles[77].position, shared.particles->particles[77].position);
     EXPECT_NE(top.particles[77].position, more.particles->particles[77].position);
     s.combined.particle_share = 0.0;

@@ -93,11 +93,11 @@ TEST(Quality, TheFroxelsDrawEveryDistanceUnlessAHandOverIsGiven)
     const Scene none = parse("");
     EXPECT_EQ(none.combined.near_start, fog_partition_everywhere);
     EXPECT_EQ(none.combined.near_end, fog_partition_everywhere);
-    EXPECT_EQ(fog_shares(none.combined, 5e4, 0.0).froxels, 1.0);  // 50 km off: still theirs
+    EXPECT_EQ(fog_shares(none.combined, 5e4, 0.0, 100.0).froxels, 1.0);  // 50 km off: still theirs
     const Scene end = parse(R"(, "combined": {"near_end": 1600})");
     EXPECT_EQ(end.combined.near_start, 400.0);
     EXPECT_EQ(end.combined.near_end, 1600.0);
-    EXPECT_EQ(fog_shares(end.combined, 2000.0, 0.0).layers, 1.0);
+    EXPECT_EQ(fog_shares(end.combined, 2000.0, 0.0, 100.0).layers, 1.0);
     const Scene start = parse(R"(, "combined": {"near_start": 300})");
     EXPECT_EQ(start.combined.near_start, 300.0);
     EXPECT_EQ(start.combined.near_end, 1200.0);

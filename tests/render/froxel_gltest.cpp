@@ -4,14 +4,17 @@
 // and what it must: rerun when any option changes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
+#include <optional>
 #include <utility>
 
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/fog_partition.hpp"
 #include "render/froxel_fixture.hpp"
 
 namespace {
@@ -479,3 +482,56 @@ TEST_F(FroxelGl, AnisotropyIsClampedToWithinOneThousandthOfOne)
 }
 
 }  // namespace
+
+TEST_F(FroxelGl, CombinedFroxelsLeaveTheParticlesOnlyFogThickForThem)
+{
+    // Combined mode with the particles' band the whole shell (share 1, band 1): the froxels draw
+    // 1 - s(h) w(t) of a 300 m slab, w the particles' share by the fog's thickness t
+    // (particle_depth 8 radii: none below 8 r / 3, all from 8 r). The particles' radius sets
+    // where: r = 200 m leaves them nothing (the froxels draw the whole slab), r = 37.5 m all of
+    // their band (the froxels draw int (1 - s) = half of it, s the quintic step, symmetric), and
+    // r = 56.25 m half of it (300 m is midway through the step), so the optical depth the froxels
+    // draw is the mean of the two. Read from each pixel's transmittance, looking down.
+    const g::Terrain ground = flat_ground();
+    const g::Medium fog = slab(0.0, 300.0, 0.003);
+    Camera c;
+    c.position = {0.0, -400.0, 1500.0};
+    c.target = {0.0, 0.0, 0.0};
+    c.fov_y_deg = 30.0;
+    const g::FroxelOptions o = small(24, 14);
+    Renderer r;
+    r.set_terrain(ground);
+    r.set_sun(sun());
+    r.set_froxel_fog(&fog, o);
+    const auto optical_depths = [&](std::optional<double> radius) {
+        std::optional<g::FogPartition> p;
+        if (radius) {
+            p.emplace();
+            p->particle_share = 1.0;
+            p->particle_band = 1.0;
+            p->particle_depth = 8.0;
+            p->particle_radius = *radius;
+        }
+        r.set_fog_partition(p);
+        r.render(c, 48, 27);
+        const kiri::render::FogBuffer f = r.read_froxel_fog();
+        std::vector<double> tau;
+        for (std::size_t k = 0; k + 3 < f.rgba.size(); k += 4)
+            tau.push_back(-std::log(std::max(double(f.rgba[k + 3]), 1e-30)));
+        return tau;
+    };
+    const std::vector<double> whole = optical_depths(std::nullopt), none = optical_depths(200.0),
+                              all = optical_depths(37.5), half = optical_depths(56.25);
+    ASSERT_EQ(whole.size(), std::size_t(48 * 27));
+    double mean_whole = 0.0, mean_all = 0.0, off_none = 0.0, off_half = 0.0;
+    for (std::size_t k = 0; k < whole.size(); ++k) {
+        mean_whole += whole[k] / double(whole.size());
+        mean_all += all[k] / double(whole.size());
+        off_none = std::max(off_none, std::abs(none[k] - whole[k]));
+        off_half = std::max(off_half, std::abs(half[k] - 0.5 * (none[k] + all[k])));
+    }
+    EXPECT_GT(mean_whole, 0.5);  // the slab's 0.9 over the view's slant
+    EXPECT_NEAR(mean_all / mean_whole, 0.5, 0.03);
+    EXPECT_LT(off_none, 1e-5);
+    EXPECT_LT(off_half, 1e-3 * mean_whole);
+}

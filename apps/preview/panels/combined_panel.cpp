@@ -1,6 +1,7 @@
 // Combined rendering (the scene's "combined" section, docs/combined.md): which renderer draws
 // the fog at each distance and height, and the quality presets that set every renderer's
-// budget at once. Applied on the next frame; a new particle share resamples the particles.
+// budget at once. Applied on the next frame; a new particle share or depth resamples the
+// particles.
 #include <imgui.h>
 
 #include "kiri/geometry/medium/fog_partition.hpp"
@@ -73,6 +74,7 @@ bool combined_panel(geometry::Scene& scene)
     }
     changed |= edit("particle share", o, o.particle_share, "%.2f");
     changed |= edit("particle band", o, o.particle_band, "%.2f");
+    changed |= edit("particle depth (radii)", o, o.particle_depth, "%.1f");
     if (o.near_end < o.near_start)  // the sliders move one at a time: keep the hand-over ordered
         o.near_end = o.near_start;
     return changed;

@@ -20,18 +20,27 @@ double far_share(const FogPartition& p, double distance)
     return smoother_step(p.near_start, p.near_end, std::isfinite(distance) ? distance : p.near_end);
 }
 
-double particle_share(const FogPartition& p, double h)
+double particle_depth_share(const FogPartition& p, double thickness)
+{
+    const double full = p.particle_depth * p.particle_radius;
+    if (!(full > 0.0) || !std::isfinite(full))
+        return 1.0;
+    return smoother_step(full / 3.0, full, std::isnan(thickness) ? 0.0 : thickness);
+}
+
+double particle_share(const FogPartition& p, double h, double thickness)
 {
     if (!(p.particle_share > 0.0))
         return 0.0;
     const double band_start = 1.0 - p.particle_band;
-    return p.particle_share * smoother_step(band_start, 1.0, std::isfinite(h) ? h : 0.0);
+    return p.particle_share * smoother_step(band_start, 1.0, std::isfinite(h) ? h : 0.0) *
+        particle_depth_share(p, thickness);
 }
 
-FogShares fog_shares(const FogPartition& p, double distance, double h)
+FogShares fog_shares(const FogPartition& p, double distance, double h, double thickness)
 {
     FogShares s;
-    s.particles = particle_share(p, h);
+    s.particles = particle_share(p, h, thickness);
     const double far = far_share(p, distance);
     s.layers = (1.0 - s.particles) * far;
     s.froxels = (1.0 - s.particles) * (1.0 - far);

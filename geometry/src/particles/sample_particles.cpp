@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <random>
 #include <thread>
 #include <vector>
@@ -104,6 +105,30 @@ private:
     std::size_t next_ = 0, used_ = 0, trials_taken_ = 0;
 };
 
+// The radius of the particles at full density were they drawn from `target` (the share's
+// depth is counted in it): radius_min, or radius_scale times the spacing at full density, given
+// or from a pilot of 4096 points drawn by the sampler (about 1.5 % in the integral, 0.5 % in the
+// radius). 0 when the pilot finds no fog.
+double share_radius(const detail::ShellEnvelope& envelope, RejectionChunks::Target target,
+                    const ParticleOptions& options)
+{
+    if (options.radius_min > 0.0)
+        return options.radius_min;
+    if (options.spacing > 0.0)
+        return options.radius_scale * options.spacing;
+    RejectionChunks pilot(envelope, std::move(target), options.seed ^ 0x9e3779b97f4a7c15ull);
+    std::vector<glm::dvec3> points;
+    std::vector<double> q;
+    std::size_t trials = 0, hits = 0;
+    constexpr std::size_t wanted = 4096, give_up = 8000000;
+    while (points.size() < wanted && trials < give_up)
+        pilot.take(wanted - points.size(), points, q, trials, hits);
+    if (hits == 0 || options.count <= 0)
+        return 0.0;
+    const double integral = envelope.volume() * double(hits) / double(trials);
+    return options.radius_scale * std::cbrt(integral / double(options.count));
+}
+
 }  // namespace
 
 void validate_particle_options(const ParticleOptions& o, const std::string& label)
@@ -119,21 +144,43 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
 {
     validate_particle_options(options, label);
     const double share_max = share.share ? std::clamp(share.max, 0.0, 1.0) : 1.0;
-    const detail::ShellEnvelope envelope(medium, share.share ? share.from : 0.0, share_max);
-    if (envelope.empty()) {
+    const double from = share.share ? share.from : 0.0;
+    const detail::ShellEnvelope band_envelope(medium, from, share_max);
+    const auto no_particles = [&] {
         ParticleCloud empty;  // no fog to sample: no particles, the other renderers draw nothing either
         empty.anisotropy = medium.options().anisotropy;
         empty.scattering_octaves = shader_octaves(medium.options());
         return empty;
-    }
+    };
+    if (band_envelope.empty())
+        return no_particles();
 
-    // The density the particles stand for: d(p), or d(p) share(h) above `from`.
-    const auto target = [&](const glm::dvec3& p) {
+    // The density the particles stand for: d(p), or d(p) share(h) above `from`, and with a depth
+    // times the share by the fog's thickness there (under an envelope that knows it: where most
+    // of the band lies in thin fog, most trials would fall there).
+    const auto banded = [&](const glm::dvec3& p) {
         const double d = medium.density(p);
         if (!share.share || !(d > 0.0))
             return d;
         const double h = medium.height_fraction(p);
-        return h > share.from ? d * std::clamp(share.share(h), 0.0, share_max) : 0.0;
+        return h > from ? d * std::clamp(share.share(h), 0.0, share_max) : 0.0;
+    };
+    FogPartition depth_rule;
+    depth_rule.particle_depth = share.share ? std::max(share.depth, 0.0) : 0.0;
+    if (depth_rule.particle_depth > 0.0)
+        depth_rule.particle_radius = share_radius(band_envelope, banded, options);
+    const bool by_depth = depth_rule.particle_radius > 0.0;
+    const auto depth_share = [&](double thickness) { return particle_depth_share(depth_rule, thickness); };
+    const detail::ShellEnvelope envelope =
+        by_depth ? detail::ShellEnvelope(medium, from, share_max, depth_share) : band_envelope;
+    if (envelope.empty())
+        return no_particles();
+    const auto target = [&](const glm::dvec3& p) {
+        const double q = banded(p);
+        if (!(q > 0.0) || !by_depth)
+            return q;
+        const MediumColumn c = medium.column(p.x, p.y);
+        return q * depth_share(c.top - c.floor);
     };
     // Rejection: uniform under the envelope, kept with probability q(p) / bound, in chunks of
     // trials that run side by side on every core, each chunk with its own generator (seeded by
@@ -174,6 +221,7 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     cloud.anisotropy = medium.options().anisotropy;
     cloud.scattering_octaves = shader_octaves(medium.options());
     cloud.forward_scattering = options.forward_scattering;
+    cloud.share_radius = depth_rule.particle_radius;
     const MediumGrid& grid = medium.grid();
     cloud.fog_xy_min = {grid.x0, grid.y0};
     cloud.fog_xy_max = {grid.x0 + (grid.nx - 1) * grid.dx, grid.y0 + (grid.ny - 1) * grid.dy};
@@ -240,8 +288,9 @@ void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::fun
 
 HeightShare particle_height_share(const FogPartition& partition)
 {
-    return {[partition](double h) { return particle_share(partition, h); }, 1.0 - partition.particle_band,
-            partition.particle_share};
+    // The band by height; the depth by the fog's thickness, in the radius the sampler finds.
+    return {[partition](double h) { return particle_share(partition, h, std::numeric_limits<double>::infinity()); },
+            1.0 - partition.particle_band, partition.particle_share, partition.particle_depth};
 }
 
 }  // namespace kiri::geometry

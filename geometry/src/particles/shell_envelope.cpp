@@ -5,7 +5,8 @@
 
 namespace kiri::geometry::detail {
 
-ShellEnvelope::ShellEnvelope(const Medium& medium, double from, double share_max)
+ShellEnvelope::ShellEnvelope(const Medium& medium, double from, double share_max,
+                             const std::function<double(double)>& by_thickness)
 {
     const MediumGrid& g = medium.grid();
     if (!(share_max > 0.0) || g.nx < 2 || g.ny < 2)
@@ -21,16 +22,18 @@ ShellEnvelope::ShellEnvelope(const Medium& medium, double from, double share_max
         for (int i = 0; i + 1 < g.nx; ++i) {
             const std::size_t corner[4] = {std::size_t(j) * g.nx + i, std::size_t(j) * g.nx + i + 1,
                                            std::size_t(j + 1) * g.nx + i, std::size_t(j + 1) * g.nx + i + 1};
-            double coverage = 0.0, floor_low = HUGE_VAL, band_low = HUGE_VAL, top = -HUGE_VAL;
+            double coverage = 0.0, floor_low = HUGE_VAL, band_low = HUGE_VAL, top = -HUGE_VAL, thickest = -HUGE_VAL;
             for (std::size_t k : corner) {
                 coverage = std::max(coverage, g.coverage[k]);
+                thickest = std::max(thickest, g.top[k] - g.floor[k]);
                 floor_low = std::min(floor_low, g.floor[k]);
                 band_low = std::min(band_low, g.bottom[k] + from * (g.top[k] - g.bottom[k]));
                 top = std::max(top, g.top[k]);
             }
             // No point of the cell lies below its lowest floor or its band's lowest bottom.
             const double z_low = std::max(floor_low, band_low);
-            const double bound = std::min(coverage, 1.0) * profile * share_max;
+            const double bound =
+                std::min(coverage, 1.0) * profile * share_max * (by_thickness ? by_thickness(thickest) : 1.0);
             const double height = top - z_low;
             if (!(bound > 0.0) || !(height > 0.0) || !std::isfinite(height))
                 continue;

@@ -7,6 +7,7 @@
 // the density there. A point drawn uniformly under it and kept with probability q(p) / bound is
 // distributed as q exactly (rejection sampling needs only q <= bound wherever q > 0).
 #include <cstddef>
+#include <functional>
 #include <random>
 #include <vector>
 
@@ -21,8 +22,11 @@ public:
     //! The envelope of d(p) share(h) for a share that is zero at height fractions h <= `from` and
     //! at most `share_max` above (d, h: medium.hpp). Bilinear grids take their extremes over a cell
     //! at its corners, so the cell's corners bound its floor, band and top; the profile falls
-    //! with h, the noise and the dissipation are at most 1.
-    ShellEnvelope(const Medium& medium, double from, double share_max);
+    //! with h, the noise and the dissipation are at most 1. With `by_thickness`, a factor of the
+    //! fog's thickness (top - floor) that never falls as it grows, the share is times it there:
+    //! the thickness is bilinear over a cell too, so the factor at its thickest corner bounds it.
+    ShellEnvelope(const Medium& medium, double from, double share_max,
+                  const std::function<double(double)>& by_thickness = {});
 
     bool empty() const { return cells_.empty(); }
     //! The envelope's integral (m^3 of relative density): trials x this / hits estimates q's.

@@ -10,7 +10,7 @@
 //! the Medium's exactly (the shares multiply: exp(-a) exp(-b) = exp(-(a + b))). The froxels
 //! draw the near share (the inside of the cloud, where the layers would look hollow), the
 //! layers the far share (cheap at a distance), the particles the top band of the shell
-//! (billowy tops). The distance weights are smooth (a quintic step over [near_start,
+//! (billowy tops) where the fog is thick enough for them. The distance weights are smooth (a quintic step over [near_start,
 //! near_end]), so no seam shows where one renderer hands over to the next.
 //!
 //! By default the froxels draw every distance (near_start = near_end = fog_partition_everywhere):
@@ -34,6 +34,11 @@ struct FogPartition {
     double near_end = fog_partition_everywhere;
     double particle_share = 0.5;
     double particle_band = 0.35;
+    //! The fog's thickness, in the particles' radii, from which they take their whole share.
+    double particle_depth = 8.0;
+    //! Not a key: the particles' radius (metres) the depth is counted in, the one their sampler
+    //! counted it in (ParticleCloud::share_radius); 0: none known, the particles share every depth.
+    double particle_radius = 0.0;
     bool operator==(const FogPartition&) const = default;
 };
 
@@ -61,6 +66,13 @@ void visit_fields(O& o, V&& v)
        .doc = "the particles' share at the shell's top; 0: no particles"});
     v(o.particle_band,
       {.key = "particle_band", .range = left_open(0, 1), .doc = "the top fraction of the shell the particles share"});
+    v(o.particle_depth,
+      {.key = "particle_depth",
+       .unit = "radii",
+       .range = closed(0, 1000),
+       .doc = "the fog's thickness, in the particles' radii, from which they take their whole share (none below a "
+              "third of it); 0: every thickness",
+       .widget = closed(0, 30)});
 }
 
 //! Quintic smooth step of x from a to b (0 below, 1 above; C2): a == b gives a step at a.
@@ -68,15 +80,20 @@ double smoother_step(double a, double b, double x);
 
 //! The layers' share of the non-particle fog at view distance d: 0 near, 1 far.
 double far_share(const FogPartition& p, double distance);
-//! The particles' share at height fraction h in [0, 1] of the shell: 0 below the band, rising
-//! to particle_share at the top.
-double particle_share(const FogPartition& p, double h);
+//! The particles' share by the fog's thickness t (metres, top - floor of its column): 0 where
+//! the fog is thinner than a third of particle_depth radii, rising to 1 at particle_depth radii
+//! (a quintic step); 1 everywhere with particle_depth or particle_radius 0. A particle larger
+//! than its fog spills above its top and into the ground (docs/combined.md).
+double particle_depth_share(const FogPartition& p, double thickness);
+//! The particles' share at height fraction h in [0, 1] of the shell, in fog `thickness` metres
+//! thick: 0 below the band, rising to particle_share at the top, times particle_depth_share.
+double particle_share(const FogPartition& p, double h, double thickness);
 
 //! What each renderer draws at one point (sums to 1).
 struct FogShares {
     double froxels = 0.0, layers = 0.0, particles = 0.0;
 };
-FogShares fog_shares(const FogPartition& p, double distance, double h);
+FogShares fog_shares(const FogPartition& p, double distance, double h, double thickness);
 
 //! \throw InputError(label, "/combined/<key>", reason) for values outside their ranges.
 void validate_fog_partition(const FogPartition& p, const std::string& label = {});

@@ -186,6 +186,9 @@ struct ParticleCloud {
     //! spacing at full density, the number of candidates drawn and the trials that found them.
     double density_integral = 0.0, spacing = 0.0;
     std::size_t candidate_count = 0, trial_count = 0;
+    //! With a HeightShare's depth: the radius (metres) the depth was counted in, which the other
+    //! renderers count it in too (FogPartition::particle_radius); 0 without.
+    double share_radius = 0.0;
 };
 
 //! Harris's read-back solid angle (0.09 sr, [SkyWorks]): the forward cone whose scattered light
@@ -218,6 +221,10 @@ struct HeightShare {
     std::function<double(double h)> share;
     double from = 0.0;
     double max = 1.0;
+    //! > 0: the share times particle_depth_share (fog_partition.hpp) of the fog's thickness at
+    //! the point, `depth` counted in the radius the particles would have at full density without
+    //! that factor (a pilot of the sampler finds it: ParticleCloud::share_radius).
+    double depth = 0.0;
 };
 ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {},
                                const HeightShare& share = {});
