@@ -75,7 +75,8 @@ float footprint_log_gain(float rho, float radius, float tau, float albedo, float
 // centre and radius; optical depth and albedo.
 struct GpuParticle {
     vec4 position_radius;
-    vec4 optics;  // tau, albedo, the billboard's gain on tau (particle_gpu.hpp's seen_gain), 0
+    vec4 optics;  // tau, albedo, the billboard's gain on tau (particle_gpu.hpp's seen_gain), the
+                  // fog's floor where it floats above the ground, relative to the centre (or -1e30)
 };
 
 // The attenuation buffer's grid (light_grid.hpp) in voxel units.

@@ -15,6 +15,7 @@ flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
 flat in float v_seen_tau;  // tau with the particle's mass in the ground added (particles.vert)
+flat in float v_floor;     // the fog's floor under it, relative to u_centre; below -1e29: none
 flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale)
 in vec4 v_fog;
 flat in float v_baked;
@@ -54,6 +55,17 @@ void main()
     // that holds the fog (the Medium's grid: a particle at its edge would blur the fog's wall).
     float t0 = 0.0, t1 = scene;
     line_over_rect(u_eye - u_centre, ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
+    // And above the fog's floor where the fog floats over the ground (a blanket's bottom): seen
+    // from under the blanket, a particle's ball below it would veil the clear air.
+    if (v_floor > -1e29) {
+        float above = u_eye.z - u_centre.z - v_floor;  // the eye over the floor's plane
+        if (ray.z > 0.0)
+            t0 = max(t0, -above / ray.z);
+        else if (ray.z < 0.0)
+            t1 = min(t1, -above / ray.z);
+        else if (above < 0.0)
+            t1 = t0;
+    }
     float share = footprint_ray_share(x, v_footprint_radius, t0 - along, t1 - along);
     float alpha = 1.0 - exp(-v_seen_tau * footprint_profile(x) * share);
     // Lit where the ray's visible part passes nearest the centre.

@@ -23,6 +23,7 @@ flat out ivec4 v_window;
 flat out uint v_table;
 flat out vec3 v_optics;  // radius, tau, albedo
 flat out float v_seen_tau;  // tau as the billboard draws it: with the part in the ground added
+flat out float v_floor;     // the fog's floor under it (relative to u_centre), below -1e29: none
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
 flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
 uniform vec3 u_eye;
@@ -73,6 +74,7 @@ void main()
     v_table = particle_lights[id].offset.x;
     v_optics = vec3(p.w, particles[id].optics.xy);
     v_seen_tau = particles[id].optics.x * particles[id].optics.z;
+    v_floor = particles[id].optics.w;
     v_fog = froxel_fog(corner_world);
     // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
     // may stand out of the Medium's shell, where the volume holds nothing.

@@ -49,7 +49,8 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
         const glm::dvec3 q = p.position - out.centre;
         const double tau = std::isfinite(p.optical_depth) ? p.optical_depth : 1e30;
         out.particles[slot] = {{float(q.x), float(q.y), float(q.z), float(p.radius)},
-                               {float(tau), float(p.albedo), float(seen_gain(p)), 0.0f}};
+                               {float(tau), float(p.albedo), float(seen_gain(p)),
+                                float(std::isfinite(p.floor) ? p.floor - out.centre.z : -no_floor)}};
         out.index[slot] = std::uint32_t(k);
     }
     return out;
@@ -118,6 +119,7 @@ std::uint64_t hash_particles(const geometry::ParticleCloud& cloud)
         mix(p.optical_depth);
         mix(p.albedo);
         mix(p.above_ground);
+        mix(p.floor);
     }
     return h;
 }

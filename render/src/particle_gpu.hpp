@@ -17,8 +17,10 @@ namespace kiri::render::detail {
 //! cloud's centre (float keeps millimetres over 100 km).
 struct GpuParticle {
     float position_radius[4];  // x, y, z - centre, radius (m)
-    float optics[4];           // tau (opaque: 1e30), albedo, 0, 0
+    float optics[4];           // tau (opaque: 1e30), albedo, seen_gain, the floor's z - centre (or -no_floor)
 };
+//! The GPU's "no floor" (particles.frag takes a floor below -1e29 as none).
+constexpr float no_floor = 1e30f;
 static_assert(sizeof(GpuParticle) == 32);
 
 //! The particles sorted into 64 buckets of radius (counting sort, O(N)): the lanes of the

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <concepts>
 #include <filesystem>
+#include <limits>
 
 #include <glm/geometric.hpp>
 
@@ -200,13 +201,16 @@ TEST(Pipeline, ParticlesKnowTheShareOfTheirMassAboveTheGround)
     s.particles.radius_min = s.particles.radius_max = 40.0;
     const PipelineProducts products = p.run(s, with_particles);
     ASSERT_TRUE(products.particles && products.medium && products.terrain);
-    int buried = 0, spilt = 0;
+    int buried = 0, spilt = 0, on_ground = 0;
     for (const Particle& q : products.particles->particles) {
         const double above = footprint_share_above(q.position, q.radius, [&](double x, double y) {
             const MediumColumn c = products.medium->column(x, y);
-            return c.coverage > 0.0 && c.top - c.floor >= q.radius ? products.terrain->height(x, y) : std::nan("");
+            const double cut =
+                std::max(c.top - c.floor >= q.radius ? products.terrain->height(x, y) : -HUGE_VAL, q.floor);
+            return c.coverage > 0.0 && std::isfinite(cut) ? cut : std::nan("");
         });
         EXPECT_EQ(q.above_ground, above);
+        on_ground += q.floor == -std::numeric_limits<double>::infinity();  // a fill lies on the ground
         buried += above < 0.95;
         // Over thin fog (a shore) a particle reaching into the ground keeps its mass as it is.
         spilt += above == 1.0 && footprint_share_above(q.position, q.radius, [&](double x, double y) {
@@ -215,6 +219,27 @@ TEST(Pipeline, ParticlesKnowTheShareOfTheirMassAboveTheGround)
     }
     EXPECT_GT(buried, 250);
     EXPECT_GT(spilt, 3);
+    EXPECT_GT(on_ground, 0.99 * double(products.particles->particles.size()));
+
+    // A blanket floats over the ground: its particles know its lowest floor over their disc (no
+    // fog lies below it there), and their share above that plane.
+    Scene blanket = small_scene();
+    blanket.particles.count = 3000;
+    blanket.particles.radius_min = blanket.particles.radius_max = 60.0;
+    const PipelineProducts b = p.run(blanket, with_particles);
+    ASSERT_TRUE(b.particles && b.medium && b.terrain);
+    int floating = 0, cut = 0;
+    for (const Particle& q : b.particles->particles) {
+        const MediumColumn under = b.medium->column(q.position.x, q.position.y);
+        if (!std::isfinite(q.floor))
+            continue;
+        ++floating;
+        EXPECT_LE(q.floor, under.floor);
+        EXPECT_GT(q.floor, b.terrain->height(q.position.x, q.position.y) + 0.2 * q.radius);
+        cut += q.above_ground < 0.95;
+    }
+    EXPECT_GT(floating, 1000);
+    EXPECT_GT(cut, 100);
 }
 
 TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)

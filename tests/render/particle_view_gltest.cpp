@@ -2,7 +2,7 @@
 // particle's column between the eye and the terrain (footprint_ray_share), read back from the
 // frame's linear radiance against the closed form, for a particle around the eye (its centre
 // behind the eye: the whole screen), one cut by the ground, one farther off (a disc) and one
-// astride the edge of the rectangle that holds the fog.
+// astride the edge of the rectangle that holds the fog, one under a blanket's floor.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -34,12 +34,13 @@ struct Agreement {
 // ground the ray meets there (pick), and over the fog's rectangle [xy_min, xy_max].
 Agreement transmittance_agreement(const glm::dvec3& centre, double radius, double tau,
                                   glm::dvec2 xy_min = glm::dvec2(-1e300), glm::dvec2 xy_max = glm::dvec2(1e300),
-                                  double above_ground = 1.0)
+                                  double above_ground = 1.0, double floor = -1e300,
+                                  glm::dvec3 target = glm::dvec3(0.0, 200.0, 0.0))
 {
     const g::Terrain flat = kiri::test::gaussian_hill(33, 100.0, 0.0);
     kiri::render::Camera cam;
     cam.position = {0.0, 0.0, 30.0};
-    cam.target = {0.0, 200.0, 0.0};
+    cam.target = target;
     cam.fov_y_deg = 60.0;
     const int w = 64, h = 48;
     kiri::render::SunLight sun;
@@ -55,7 +56,7 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
 
     g::ParticleCloud cloud;
     cloud.scattering_octaves = 1;
-    cloud.particles.push_back({centre, radius, tau, 0.0, above_ground});
+    cloud.particles.push_back({centre, radius, tau, 0.0, above_ground, floor});
     cloud.fog_xy_min = xy_min;
     cloud.fog_xy_max = xy_max;
     kiri::render::Renderer r;
@@ -83,6 +84,13 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
                     start = std::max(start, std::min(a, b));
                     end = std::min(end, std::max(a, b));
                 }
+            // Above the fog's floor: z(t) >= floor.
+            if (ray.z > 0.0)
+                start = std::max(start, (floor - cam.position.z) / ray.z);
+            else if (ray.z < 0.0)
+                end = std::min(end, (floor - cam.position.z) / ray.z);
+            else if (cam.position.z < floor)
+                end = start;
             const glm::dvec3 to_centre = centre - cam.position;
             const double along = glm::dot(to_centre, ray);
             const double rho = std::sqrt(std::max(glm::dot(to_centre, to_centre) - along * along, 0.0));
@@ -137,6 +145,23 @@ TEST_F(ParticleViewGl, AParticleHalfUnderTheGroundDrawsItsBuriedMassInThePartAbo
     EXPECT_GT(a.hidden, 1.5 * drawn_as_before.hidden);
     EXPECT_LT(a.mean, 0.001) << a.worst;
     EXPECT_LT(a.worst, 0.01);
+}
+
+TEST_F(ParticleViewGl, AParticleAtABlanketsBottomShowsNothingBelowIt)
+{
+    // A blanket's bottom 60 m over the ground, the eye under it at 30 m looking up at a particle
+    // 30 m above the floor (radius 70 m: its ball reaches 40 m below the floor). The rays see only
+    // the part over the floor; the part below it would veil the clear air under the blanket.
+    const glm::dvec3 centre(0.0, 200.0, 90.0), up(0.0, 200.0, 120.0);
+    const Agreement cut =
+        transmittance_agreement(centre, 70.0, 2.0, glm::dvec2(-1e300), glm::dvec2(1e300), 1.0, 60.0, up);
+    EXPECT_GT(cut.hidden, 0.05);
+    EXPECT_LT(cut.mean, 0.001) << cut.worst;
+    EXPECT_LT(cut.worst, 0.01);
+    // The whole ball hides more: the floor is what cut it.
+    const Agreement whole =
+        transmittance_agreement(centre, 70.0, 2.0, glm::dvec2(-1e300), glm::dvec2(1e300), 1.0, -1e300, up);
+    EXPECT_GT(whole.hidden, 1.1 * cut.hidden);
 }
 
 TEST_F(ParticleViewGl, AFarParticleCoversItsWholeConeOfRays)

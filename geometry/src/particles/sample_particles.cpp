@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <thread>
 #include <vector>
@@ -262,6 +263,28 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     return cloud;
 }
 
+namespace {
+
+// The lowest floor of the Medium's fog over a particle's disc (its centre and two rings of 16):
+// no fog lies below it there, wherever a blanket's bottom slopes within the disc; +inf over no fog.
+double lowest_floor(const Medium& medium, const Particle& p)
+{
+    const MediumColumn under = medium.column(p.position.x, p.position.y);
+    double lowest = under.coverage > 0.0 ? under.floor : std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 16; ++a) {
+        const double phi = 2.0 * std::numbers::pi * a / 16.0;
+        for (double x : {0.5, 1.0}) {
+            const MediumColumn c =
+                medium.column(p.position.x + x * p.radius * std::cos(phi), p.position.y + x * p.radius * std::sin(phi));
+            if (c.coverage > 0.0)
+                lowest = std::min(lowest, c.floor);
+        }
+    }
+    return lowest;
+}
+
+}  // namespace
+
 void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::function<double(double, double)>& ground)
 {
     // 96 columns a particle (about 0.1 s for 20,000 on one core): a slice of the particles on
@@ -269,9 +292,22 @@ void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::fun
     const auto run = [&](std::size_t first, std::size_t end) {
         for (std::size_t k = first; k < end; ++k) {
             Particle& p = cloud.particles[k];
+            // A floor a fifth of the radius or more over the ground is the fog's own (a blanket's
+            // bottom): the billboard cuts the ball at its plane, as the terrain cuts it where the
+            // fog lies on the ground (there the floor is the ground's grid, a little off the
+            // terrain between its samples, and a plane through it would cut the slopes).
+            const double lowest = lowest_floor(medium, p);
+            p.floor = std::isfinite(lowest) && lowest > ground(p.position.x, p.position.y) + 0.2 * p.radius
+                ? lowest
+                : -std::numeric_limits<double>::infinity();
             p.above_ground = footprint_share_above(p.position, p.radius, [&](double x, double y) {
+                // What the billboard cuts over the fog's columns: the floor's plane, and the
+                // terrain where the fog is as thick as the particle's radius.
                 const MediumColumn c = medium.column(x, y);
-                return c.coverage > 0.0 && c.top - c.floor >= p.radius ? ground(x, y) : std::nan("");
+                if (!(c.coverage > 0.0))
+                    return std::nan("");
+                const double cut = std::max(c.top - c.floor >= p.radius ? ground(x, y) : -HUGE_VAL, p.floor);
+                return std::isfinite(cut) ? cut : std::nan("");
             });
         }
     };

@@ -29,6 +29,11 @@ struct Particle {
     //! ground, where no ray sees it, so a billboard draws its visible part with tau_k / this
     //! (docs/particles.md, "The mass in the ground"). 1: wholly above, or no terrain known.
     double above_ground = 1.0;
+    //! Where the fog floats above the ground under the particle (a blanket's bottom), its lowest
+    //! floor over the particle's disc, metres: no fog lies below it there, so a billboard draws
+    //! only the part of the ball above that plane (the terrain cuts the ball itself). -inf: the
+    //! fog lies on the ground there.
+    double floor = -std::numeric_limits<double>::infinity();
 };
 
 //! How the attenuation buffer's voxel grid is oriented (light_grid.hpp). Its columns always run
@@ -229,8 +234,9 @@ struct HeightShare {
 ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& options, const std::string& label = {},
                                const HeightShare& share = {});
 //! Each particle's share of its mass above the ground (Particle::above_ground,
-//! footprint_share_above): the terrain z = ground(x, y) where it lies under a column of the
-//! Medium's fog at least as thick as the particle's radius. There the ground cuts a fog that the
+//! footprint_share_above) over the Medium's columns of fog: the plane of Particle::floor where the
+//! fog floats above the ground (a blanket's bottom, which the billboard cuts), and the terrain
+//! z = ground(x, y) where the fog is at least as thick as the particle's radius. There the ground cuts a fog that the
 //! particle stands for the bottom of, and the mass it hides is the fog's own. Elsewhere (a thread
 //! of fog in a valley narrower or shallower than the particle, the bare ridges beside it) the
 //! particle spills out of the fog whether its ball reaches into the ground or not, and a billboard
