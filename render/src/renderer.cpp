@@ -374,9 +374,8 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
         frame.partitioned = true;
         frame.partition = glm::vec4(r.partition->near_start, r.partition->near_end, r.partition->particle_share,
                                     r.partition->particle_band);
-        const double full = r.partition->particle_depth * r.partition->particle_radius;
-        if (full > 0.0 && std::isfinite(full))
-            frame.partition_depth = glm::vec2(full / 3.0, full);
+        const geometry::ParticleDepthRange depth = geometry::particle_depth_range(*r.partition);
+        frame.partition_depth = glm::vec2(depth.start, depth.full);
     }
     const detail::ShadowMapPass* shadow = r.update_shadow_map(frame);
     const detail::SunVolume* sun_volume = r.update_sun_volume(frame, fog);

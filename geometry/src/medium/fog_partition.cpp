@@ -20,12 +20,20 @@ double far_share(const FogPartition& p, double distance)
     return smoother_step(p.near_start, p.near_end, std::isfinite(distance) ? distance : p.near_end);
 }
 
-double particle_depth_share(const FogPartition& p, double thickness)
+ParticleDepthRange particle_depth_range(const FogPartition& p)
 {
     const double full = p.particle_depth * p.particle_radius;
     if (!(full > 0.0) || !std::isfinite(full))
+        return {};
+    return {full / 3.0, full};
+}
+
+double particle_depth_share(const FogPartition& p, double thickness)
+{
+    const ParticleDepthRange range = particle_depth_range(p);
+    if (!(range.full > 0.0))
         return 1.0;
-    return smoother_step(full / 3.0, full, std::isnan(thickness) ? 0.0 : thickness);
+    return smoother_step(range.start, range.full, std::isnan(thickness) ? 0.0 : thickness);
 }
 
 double particle_share(const FogPartition& p, double h, double thickness)

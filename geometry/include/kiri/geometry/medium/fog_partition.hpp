@@ -10,8 +10,9 @@
 //! the Medium's exactly (the shares multiply: exp(-a) exp(-b) = exp(-(a + b))). The froxels
 //! draw the near share (the inside of the cloud, where the layers would look hollow), the
 //! layers the far share (cheap at a distance), the particles the top band of the shell
-//! (billowy tops) where the fog is thick enough for them. The distance weights are smooth (a quintic step over [near_start,
-//! near_end]), so no seam shows where one renderer hands over to the next.
+//! (billowy tops) where the fog is thick enough for them. The distance weights are smooth (a
+//! quintic step over [near_start, near_end]), so no seam shows where one renderer hands over to
+//! the next.
 //!
 //! By default the froxels draw every distance (near_start = near_end = fog_partition_everywhere):
 //! since they light the height fog at its own points and follow it with their slices they are
@@ -85,6 +86,13 @@ double far_share(const FogPartition& p, double distance);
 //! (a quintic step); 1 everywhere with particle_depth or particle_radius 0. A particle larger
 //! than its fog spills above its top and into the ground (docs/combined.md).
 double particle_depth_share(const FogPartition& p, double thickness);
+//! The fog's thickness (metres) where that step starts and where it is whole: particle_depth / 3
+//! and particle_depth radii; {0, 0} with particle_depth or particle_radius 0 (every thickness).
+//! The GPU's twin takes these two (fog_partition.glsl's u_partition_depth).
+struct ParticleDepthRange {
+    double start = 0.0, full = 0.0;
+};
+ParticleDepthRange particle_depth_range(const FogPartition& p);
 //! The particles' share at height fraction h in [0, 1] of the shell, in fog `thickness` metres
 //! thick: 0 below the band, rising to particle_share at the top, times particle_depth_share.
 double particle_share(const FogPartition& p, double h, double thickness);

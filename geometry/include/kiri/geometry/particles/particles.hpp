@@ -236,11 +236,12 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
 //! Each particle's share of its mass above the ground (Particle::above_ground,
 //! footprint_share_above) over the Medium's columns of fog: the plane of Particle::floor where the
 //! fog floats above the ground (a blanket's bottom, which the billboard cuts), and the terrain
-//! z = ground(x, y) where the fog is at least as thick as the particle's radius. There the ground cuts a fog that the
-//! particle stands for the bottom of, and the mass it hides is the fog's own. Elsewhere (a thread
-//! of fog in a valley narrower or shallower than the particle, the bare ridges beside it) the
-//! particle spills out of the fog whether its ball reaches into the ground or not, and a billboard
-//! that drew the hidden part over the rest would draw more fog where there is none.
+//! z = ground(x, y) where the fog is at least as thick as the particle's radius. There the ground
+//! cuts a fog that the particle stands for the bottom of, and the mass it hides is the fog's own.
+//! Elsewhere (a thread of fog in a valley narrower or shallower than the particle, the bare
+//! ridges beside it) the particle spills out of the fog whether its ball reaches into the ground
+//! or not, and a billboard that drew the hidden part over the rest would draw more fog where
+//! there is none.
 void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::function<double(double, double)>& ground);
 //! Combined rendering's share for the particles (fog_partition.hpp): zero up to the top band,
 //! rising to particle_share at the top.
