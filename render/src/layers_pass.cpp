@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -208,11 +209,22 @@ void LayersPass::ensure_low(int width, int height)
     low_height_ = height;
 }
 
-bool LayersPass::draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth)
+// The setting is chosen for the frames users look at (1280 x 720 and up), where a reduced texel
+// is a small angle of the view. On a small frame the same scale blurs the fog's edges and its
+// threads over a wide angle (a 160 x 90 frame at 0.5: a texel a 45th of the view's height) and
+// saves a few thousand fragments: there the target keeps min_reduced_texels.
+double LayersPass::reduced_scale(double scale, int width, int height)
+{
+    const double pixels = double(std::max(width, 1)) * double(std::max(height, 1));
+    return std::clamp(std::max(scale, std::sqrt(min_reduced_texels / pixels)), 0.0, 1.0);
+}
+
+bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigned resolved_fbo, unsigned resolved_depth)
 {
     bool uploaded = false;
     if (!ready(frame, uploaded))
         return uploaded;
+    const double scale = reduced_scale(setting, frame.width, frame.height);
     const int w = std::max(1, int(std::ceil(frame.width * scale))),
               h = std::max(1, int(std::ceil(frame.height * scale)));
     ensure_low(w, h);

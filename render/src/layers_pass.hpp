@@ -54,9 +54,15 @@ public:
     bool visible(const FrameContext& frame) const;
     //! Draws into the bound framebuffer. Returns true when it had to upload the ground first.
     bool draw(const FrameContext& frame);
-    //! Draws at `scale` of the frame's resolution into its own target, depth-tested against
-    //! the resolved frame's depth, then composites into `resolved_fbo` with depth-aware
-    //! upsampling (a quarter of the fragments at scale 0.5). Returns true on an upload.
+    //! The fewest texels the reduced target has (320 x 180): a smaller frame draws its layers at
+    //! a larger scale, up to its own resolution.
+    static constexpr double min_reduced_texels = 320.0 * 180.0;
+    //! The scale `draw_reduced` draws a width x height frame at for the setting `scale`.
+    static double reduced_scale(double scale, int width, int height);
+    //! Draws at reduced_scale(scale, ...) of the frame's resolution into its own target,
+    //! depth-tested against the resolved frame's depth, then composites into `resolved_fbo`
+    //! with depth-aware upsampling (a quarter of the fragments at scale 0.5). Returns true on
+    //! an upload.
     bool draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth);
 
     //! The froxel fog each layer reads at its own depth (nullptr: none; drawn after its apply)

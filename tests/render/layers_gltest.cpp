@@ -247,7 +247,10 @@ TEST_F(LayersGl, LevelOfDetailCoarsensFarPatchesAndKeepsThePicture)
         Camera camera;
         double lod;
     };
-    View far{{}, 16.0}, low{{}, 64.0};  // the default; and cells of 64 pixels, to see levels mix
+    // A frame this small draws its layers at full resolution (the reduced target's floor): cells
+    // of 32 pixels there are the default's 16 at half resolution; and cells of 64, to see levels
+    // mix.
+    View far{{}, 32.0}, low{{}, 64.0};
     far.camera.position = {0.0, -20000.0, 5000.0};
     far.camera.target = {0.0, 0.0, 100.0};
     far.camera.fov_y_deg = 12.0;

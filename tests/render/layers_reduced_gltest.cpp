@@ -50,9 +50,15 @@ std::vector<double> row_means(const Image& image)
 
 class LayersReducedGl : public kiri::test::GlTest {};
 
-TEST_F(LayersReducedGl, ThinFogOverAPlainAtAGrazingAngleHasNoStripes)
+// A thin sheet of fog over the plain: the layers' base and options (the renderer keeps
+// references to both).
+struct Sheet {
+    g::LayerOptions options;
+    g::LayerBase base;
+};
+
+Sheet sheet(const g::Terrain& t)
 {
-    const g::Terrain t = plain();
     g::FogSpec spec;  // a sheet of fog 20 m thick over the whole plain
     spec.footprint = g::rectangle_footprint({-30000, -30000}, {30000, 30000});
     spec.patch_size = 2000.0;
@@ -71,14 +77,26 @@ TEST_F(LayersReducedGl, ThinFogOverAPlainAtAGrazingAngleHasNoStripes)
     o.optics.extinction = 0.03;
     o.optics.detail = 0.0;
     o.ground_fade = 5.0;
-    const g::LayerBase base = g::make_layer_base(surface, tessellation, o);
+    return {o, g::make_layer_base(surface, tessellation, o)};
+}
+
+Camera overview()
+{
     Camera c;  // 97 km away, looking down 32 degrees (a derived overview of a 60 km tile)
     c.position = {-39000.0, -79000.0, 51000.0};
     c.target = {0.0, 0.0, 0.0};
     c.fov_y_deg = 45.0;
+    return c;
+}
+
+TEST_F(LayersReducedGl, ThinFogOverAPlainAtAGrazingAngleHasNoStripes)
+{
+    const g::Terrain t = plain();
+    const Sheet fog = sheet(t);
     Renderer r;
     r.set_terrain(t);
-    r.set_layers(base, o);
+    r.set_layers(fog.base, fog.options);
+    const Camera c = overview();
     const int w = 640, h = 360;
     r.set_layer_resolution(1.0);
     const std::vector<double> full = row_means(r.render(c, w, h));
@@ -104,6 +122,27 @@ TEST_F(LayersReducedGl, ThinFogOverAPlainAtAGrazingAngleHasNoStripes)
                 sum / rows);
     EXPECT_LT(jump_reduced, 0.3);
     EXPECT_LT(std::abs(sum / rows), 1.5);
+}
+
+// The reduced target keeps 320 x 180 texels: a frame of that size or smaller draws its layers at
+// its own resolution whatever the setting (the same picture as at 1.0), a larger one at the
+// setting's scale, never finer than the frame.
+TEST_F(LayersReducedGl, ASmallFrameKeepsTheReducedTargetsFloor)
+{
+    const g::Terrain t = plain();
+    const Sheet fog = sheet(t);
+    Renderer r;
+    r.set_terrain(t);
+    r.set_layers(fog.base, fog.options);
+    const Camera c = overview();
+    const auto frame = [&](double scale, int w, int h) {
+        r.set_layer_resolution(scale);
+        return r.render(c, w, h).rgba;
+    };
+    // (Compared as whole pictures: EXPECT_EQ would print every byte.)
+    EXPECT_TRUE(frame(0.5, 160, 90) == frame(1.0, 160, 90));
+    EXPECT_TRUE(frame(0.25, 320, 180) == frame(1.0, 320, 180));
+    EXPECT_FALSE(frame(0.5, 480, 270) == frame(1.0, 480, 270));  // 320 x 180 of 480 x 270: reduced
 }
 
 }  // namespace

@@ -137,7 +137,8 @@ void visit_fields(O& o, V&& v)
       {.key = "resolution",
        .range = closed(0.125, 1),
        .doc = "of the target the layers are drawn into, relative to the frame (1: full resolution, "
-              "multisampled with the terrain; below 1: reduced, upsampled by depth)"});
+              "multisampled with the terrain; below 1: reduced, upsampled by depth, the target keeping "
+              "320 x 180 texels at least)"});
     v(o.lod,
       {.key = "lod",
        .unit = "px",
