@@ -24,11 +24,14 @@ geometry::Scene SceneJson::parse(const nlohmann::json& varied) const
     return geometry::parse_scene(varied.dump(), file.string(), file.parent_path());
 }
 
-FogJudge::FogJudge(const geometry::Scene& base, const std::string& camera, int width, int height)
+FogJudge::FogJudge(const geometry::Scene& given, const std::string& camera, int width, int height)
     : width_(width), height_(height)
 {
     // Up to the light stage: the Medium, and its light volume where its model is `baked`.
-    const geometry::PipelineProducts& fog = pipeline_.run(base, {geometry::Stage::light, geometry::ParticleSet::none});
+    const geometry::PipelineProducts& fog = pipeline_.run(given, {geometry::Stage::light, geometry::ParticleSet::none});
+    // The scene as kiri render sees it: the keys a DEM's scene leaves out (the sun, the Medium's
+    // extinction, ...) derived from its terrain.
+    const geometry::Scene& base = *fog.scene;
     const geometry::Terrain& terrain = *fog.terrain;
     const geometry::Bounds3 b = terrain.bounds();
     camera_ = render::to_camera(base.camera(camera, b.min, b.max));
@@ -60,8 +63,10 @@ FogJudge::~FogJudge() = default;
 
 void FogJudge::prepare(const geometry::Scene& scene, render::FogMode mode)
 {
-    rendering_.emplace(scene, pipeline_.run(scene, render::pipeline_target(mode, scene)), mode);
-    renderer_->set_terrain(*rendering_->products().terrain, 1.0, scene.terrain.surround);  // uploads when it changed
+    const geometry::PipelineProducts& products = pipeline_.run(scene, render::pipeline_target(mode, scene));
+    const geometry::Scene& derived = *products.scene;  // as the judge's reference and kiri render see it
+    rendering_.emplace(derived, products, mode);
+    renderer_->set_terrain(*products.terrain, 1.0, derived.terrain.surround);  // uploads when it changed
     rendering_->apply(*renderer_);
 }
 

@@ -50,7 +50,8 @@ struct FrameCost {
 class FogJudge {
 public:
     //! The reference of `base`'s fog (its Medium, and its froxel height fog when the scene has
-    //! one) seen from `camera` at width x height. Timed: reference_seconds().
+    //! one) seen from `camera` at width x height. Timed: reference_seconds(). The keys `base`
+    //! leaves out are derived from its terrain, here and in prepare(), as kiri render does.
     FogJudge(const geometry::Scene& base, const std::string& camera, int width, int height);
     ~FogJudge();
     double reference_seconds() const { return reference_.seconds; }
