@@ -17,8 +17,11 @@ void main()
         return;
     GpuParticle p = particles[id];
     vec3 self_grid = shadow_grid(grid_of(p.position_radius.xyz));
+    // The exponential map alone (terrain_shadow.glsl): bound by the sharp map as the froxels and
+    // the layers are, the particles inside the canyon's fog went from 4.2 to 8.0 % off the
+    // reference, darker where they were already 3 % too dark.
     particle_lights[id].grid_visible =
-        vec4(self_grid, terrain_visibility(p.position_radius.xyz + u_centre, u_ts_bias));
+        vec4(self_grid, esm_visibility(p.position_radius.xyz + u_centre, u_ts_bias));
     if (u_self_table == 0)
         return;
     ivec4 w = particle_lights[id].window;

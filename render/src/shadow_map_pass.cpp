@@ -113,6 +113,7 @@ void ShadowMapPass::bind(const ShaderProgram& program, bool on) const
 {
     program.set("u_ts_on", int(on && ready()));
     program.set("u_ts_esm", shadow_map_unit);  // even when off: its unit must not be another type's
+    program.set("u_ts_raw", shadow_depth_unit);
     if (!on || !ready())
         return;
     program.set("u_ts_sun_set", int(sun_set_));
@@ -121,6 +122,7 @@ void ShadowMapPass::bind(const ShaderProgram& program, bool on) const
     program.set("u_ts_bias", texel_m_);
     program.set("u_ts_depth", depth_range_);
     glBindTextureUnit(GLuint(shadow_map_unit), esm_[1].get());
+    glBindTextureUnit(GLuint(shadow_depth_unit), depth_.get());
 }
 
 void bind_terrain_shadow(const ShaderProgram& program, const ShadowMapPass* map)
@@ -131,6 +133,34 @@ void bind_terrain_shadow(const ShaderProgram& program, const ShadowMapPass* map)
     }
     program.set("u_ts_on", 0);
     program.set("u_ts_esm", shadow_map_unit);
+    program.set("u_ts_raw", shadow_depth_unit);
+}
+
+std::vector<float> ShadowMapPass::probe(const std::vector<glm::vec3>& points) const
+{
+    if (points.empty())
+        return {};
+    if (!probe_)
+        probe_ = std::make_unique<ShaderProgram>(
+            std::initializer_list<std::string_view>{"terrain_shadow.glsl", "terrain_shadow_probe.comp"});
+    std::vector<glm::vec4> in(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k)
+        in[k] = glm::vec4(points[k], 1.0f);
+    Buffer in_buffer = make_buffer(), out_buffer = make_buffer();
+    glNamedBufferStorage(in_buffer.get(), GLsizeiptr(in.size() * sizeof(glm::vec4)), in.data(), 0);
+    glNamedBufferStorage(out_buffer.get(), GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_MAP_READ_BIT);
+    bind(*probe_, true);
+    probe_->set("u_count", int(points.size()));
+    probe_->use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_buffer.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out_buffer.get());
+    glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<float> out(points.size());
+    glGetNamedBufferSubData(out_buffer.get(), 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+    return out;
 }
 
 }  // namespace kiri::render::detail

@@ -6,6 +6,8 @@
 // lighting, the layers and the particles.
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <memory>
+#include <vector>
 
 #include "shader_program.hpp"
 
@@ -16,6 +18,8 @@ class TerrainPass;
 //! The texture unit the shadow map is bound to in every program linking terrain_shadow.glsl
 //! (no pass uses it for anything else: samplers of different types may not share a unit).
 constexpr int shadow_map_unit = 10;
+//! The map's depth before its blur, for the same programs (terrain_shadow.glsl's hard test).
+constexpr int shadow_depth_unit = 23;
 
 class ShadowMapPass {
 public:
@@ -31,9 +35,12 @@ public:
     //! Size of a shadow-map texel in metres (the scale of its blur).
     double texel_metres() const { return texel_m_; }
     int updates() const { return updates_; }
+    //! The visibility terrain_shadow.glsl gives each point (world metres), read back: for tests.
+    std::vector<float> probe(const std::vector<glm::vec3>& points) const;
 
 private:
     ShaderProgram depth_program_, blur_;
+    mutable std::unique_ptr<ShaderProgram> probe_;
     Framebuffer fbo_;
     Texture depth_, esm_[2];
     int size_ = 0, updates_ = 0;
