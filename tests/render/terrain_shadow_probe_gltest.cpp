@@ -69,12 +69,12 @@ TEST_F(TerrainShadowProbeGl, TheMapsShadowInTheAirOfACanyonIsTheHeightfields)
     for (double y = -800.0; y <= 800.0; y += 100.0)
         for (double x = -400.0; x <= 400.0; x += 5.0)
             for (double z = 600.0; z <= 900.0; z += 5.0) {
-            const glm::dvec3 p(x, y, z);
-            if (p.z < t.height(p.x, p.y) + 1.0)
-                continue;
-            where.push_back(p);
-            points.emplace_back(p);
-        }
+                const glm::dvec3 p(x, y, z);
+                if (p.z < t.height(p.x, p.y) + 1.0)
+                    continue;
+                where.push_back(p);
+                points.emplace_back(p);
+            }
     const std::vector<float> v = map.probe(points);
     int wrong = 0, shaded = 0;
     for (std::size_t k = 0; k < where.size(); ++k) {
