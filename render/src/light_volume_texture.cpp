@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "probe_readback.hpp"
+
 namespace kiri::render::detail {
 
 void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume, const geometry::Medium* medium)
@@ -101,21 +103,8 @@ std::vector<float> LightVolumeTexture::probe(const std::vector<Probe>& points) c
     if (!probe_)
         probe_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "medium_shell.glsl", "light_volume.glsl", "light_volume_probe.comp"});
-    Buffer in_buffer = make_buffer(), out_buffer = make_buffer();
-    glNamedBufferStorage(in_buffer.get(), GLsizeiptr(points.size() * sizeof(Probe)), points.data(), 0);
-    glNamedBufferStorage(out_buffer.get(), GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_MAP_READ_BIT);
     bind(*probe_, 0, true, false);  // the probes give h and the column scale themselves
-    probe_->set("u_count", int(points.size()));
-    probe_->use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_buffer.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out_buffer.get());
-    glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<float> out(points.size());
-    glGetNamedBufferSubData(out_buffer.get(), 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
-    return out;
+    return run_point_probe(*probe_, points.data(), points.size() * sizeof(Probe), points.size());
 }
 
 }  // namespace kiri::render::detail

@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "probe_readback.hpp"
 #include "terrain_pass.hpp"
 
 namespace kiri::render::detail {
@@ -146,21 +147,8 @@ std::vector<float> ShadowMapPass::probe(const std::vector<glm::vec3>& points) co
     std::vector<glm::vec4> in(points.size());
     for (std::size_t k = 0; k < points.size(); ++k)
         in[k] = glm::vec4(points[k], 1.0f);
-    Buffer in_buffer = make_buffer(), out_buffer = make_buffer();
-    glNamedBufferStorage(in_buffer.get(), GLsizeiptr(in.size() * sizeof(glm::vec4)), in.data(), 0);
-    glNamedBufferStorage(out_buffer.get(), GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_MAP_READ_BIT);
     bind(*probe_, true);
-    probe_->set("u_count", int(points.size()));
-    probe_->use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_buffer.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out_buffer.get());
-    glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<float> out(points.size());
-    glGetNamedBufferSubData(out_buffer.get(), 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
-    return out;
+    return run_point_probe(*probe_, in.data(), in.size() * sizeof(glm::vec4), in.size());
 }
 
 }  // namespace kiri::render::detail

@@ -5,6 +5,8 @@
 
 #include <glm/geometric.hpp>
 
+#include "probe_readback.hpp"
+
 namespace kiri::render::detail {
 
 namespace {
@@ -125,23 +127,10 @@ std::vector<float> SunVolume::probe(const std::vector<glm::vec3>& points, const 
     std::vector<glm::vec4> in(points.size());
     for (std::size_t k = 0; k < points.size(); ++k)
         in[k] = glm::vec4(points[k], 1.0f);
-    Buffer in_buffer = make_buffer(), out_buffer = make_buffer();
-    glNamedBufferStorage(in_buffer.get(), GLsizeiptr(in.size() * sizeof(glm::vec4)), in.data(), 0);
-    glNamedBufferStorage(out_buffer.get(), GLsizeiptr(points.size() * sizeof(float)), nullptr, GL_MAP_READ_BIT);
     constexpr int unit = 0;
     bind(*probe_, unit, march_steps, use_volume);
     probe_->set("u_sun_direction", sun_march_direction(sun));
-    probe_->set("u_count", int(points.size()));
-    probe_->use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, in_buffer.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out_buffer.get());
-    glDispatchCompute(GLuint((points.size() + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-    std::vector<float> out(points.size());
-    glGetNamedBufferSubData(out_buffer.get(), 0, GLsizeiptr(out.size() * sizeof(float)), out.data());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
-    return out;
+    return run_point_probe(*probe_, in.data(), in.size() * sizeof(glm::vec4), in.size());
 }
 
 }  // namespace kiri::render::detail
