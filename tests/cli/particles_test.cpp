@@ -54,7 +54,9 @@ TEST(KiriParticles, AuthorWritesParticlesPly)
     EXPECT_NE(ply.find("element vertex 20000\n"), std::string::npos);
     const std::size_t end = ply.find("end_header\n");
     ASSERT_NE(end, std::string::npos);
-    EXPECT_EQ(ply.size(), end + 11 + 20000u * 6u * 4u);
+    EXPECT_EQ(ply.size(), end + 11 + 20000u * 8u * 4u);
+    // The pipeline's cloud: each particle's share above the ground and its floor, as drawn.
+    EXPECT_NE(ply.find("property float above_ground\nproperty float floor\n"), std::string::npos);
     fs::remove_all(dir);
 }
 

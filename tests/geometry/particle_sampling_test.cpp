@@ -240,7 +240,9 @@ TEST(ParticleSampling, SceneSection)
 
 TEST(ParticleSampling, PlyExport)
 {
-    const ParticleCloud c = sample_particles(slab_medium(), options(50));
+    ParticleCloud c = sample_particles(slab_medium(), options(50));
+    c.particles[1].above_ground = 0.625;  // as set_above_ground leaves them
+    c.particles[1].floor = 412.5;
     const std::filesystem::path path = kiri::test::temp_path("particles_test.ply");
     write_particles_ply(path.string(), c);
     std::ifstream in(path, std::ios::binary);
@@ -249,13 +251,20 @@ TEST(ParticleSampling, PlyExport)
     ASSERT_NE(end, std::string::npos);
     EXPECT_NE(text.find("element vertex 50\n"), std::string::npos);
     EXPECT_NE(text.find("property float optical_depth\n"), std::string::npos);
-    ASSERT_EQ(text.size(), end + 11 + 50 * 6 * sizeof(float));
-    float v[6];
-    std::memcpy(v, text.data() + end + 11 + 6 * sizeof(float), sizeof v);  // the second particle
+    EXPECT_NE(text.find("property float above_ground\nproperty float floor\n"), std::string::npos);
+    ASSERT_EQ(text.size(), end + 11 + 50 * 8 * sizeof(float));
+    float v[8];
+    std::memcpy(v, text.data() + end + 11 + 8 * sizeof(float), sizeof v);  // the second particle
     EXPECT_EQ(v[0], float(c.particles[1].position.x));
     EXPECT_EQ(v[2], float(c.particles[1].position.z));
     EXPECT_EQ(v[3], float(c.particles[1].radius));
     EXPECT_EQ(v[4], float(c.particles[1].optical_depth));
+    EXPECT_EQ(v[6], 0.625f);
+    EXPECT_EQ(v[7], 412.5f);
+    float first[8];  // no floor under the first: the lowest float, finite
+    std::memcpy(first, text.data() + end + 11, sizeof first);
+    EXPECT_EQ(first[6], 1.0f);
+    EXPECT_EQ(first[7], std::numeric_limits<float>::lowest());
     EXPECT_FALSE(std::filesystem::exists(path.string() + ".tmp"));
     std::filesystem::remove(path);
     EXPECT_THROW(write_particles_ply("/nonexistent/dir/p.ply", c), kiri::IoError);

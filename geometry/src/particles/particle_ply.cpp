@@ -1,4 +1,6 @@
 #include <bit>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -34,7 +36,12 @@ void write_particles_ply(const std::string& path, const ParticleCloud& cloud)
                << "comment anisotropy " << cloud.anisotropy << "\n"
                << "element vertex " << cloud.particles.size() << "\n"
                << "property float x\nproperty float y\nproperty float z\n"
+               << "comment above_ground: the share of the ball's mass above the ground (the rest is in "
+                  "it: a renderer that hides the ground draws optical_depth / above_ground above it)\n"
+               << "comment floor: the lowest floor of a blanket of fog under the particle (no fog below "
+                  "it there), or the lowest float where none\n"
                << "property float radius\nproperty float optical_depth\nproperty float albedo\n"
+               << "property float above_ground\nproperty float floor\n"
                << "end_header\n";
         out << header.str();
         for (const Particle& p : cloud.particles) {
@@ -44,6 +51,8 @@ void write_particles_ply(const std::string& path, const ParticleCloud& cloud)
             put(out, float(p.radius));
             put(out, float(p.optical_depth));
             put(out, float(p.albedo));
+            put(out, float(p.above_ground));
+            put(out, std::isfinite(p.floor) ? float(p.floor) : std::numeric_limits<float>::lowest());
         }
         out.close();
         if (!out) {
