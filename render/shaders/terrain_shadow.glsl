@@ -11,14 +11,12 @@ uniform float u_ts_k;            // 1/m
 uniform float u_ts_bias;         // m: the receivers' offset towards the sun
 uniform float u_ts_depth;        // m: the map's depth extent
 
-// The exponential map's visibility at p, a point at light depth d = l.z.
-float esm_visibility(vec3 p, float bias)
+// p in the map's frame: [0, 1]^2 across it, and its light depth in metres.
+vec3 light_space(vec3 p) { return (u_ts_matrix * vec4(p, 1.0)).xyz; }
+
+// The exponential map's visibility at a point l of the map's frame (the map on, the sun up).
+float esm_visibility_at(vec3 l, float bias)
 {
-    if (u_ts_on == 0)
-        return 1.0;
-    if (u_ts_sun_set != 0)
-        return 0.0;
-    vec3 l = (u_ts_matrix * vec4(p, 1.0)).xyz;
     if (any(lessThan(l.xy, vec2(0.0))) || any(greaterThan(l.xy, vec2(1.0))))
         return 1.0;
     float occluder = textureLod(u_ts_esm, l.xy, 0.0).r;
@@ -27,16 +25,26 @@ float esm_visibility(vec3 p, float bias)
     return clamp(exp(occluder - u_ts_k * (min(l.z, u_ts_depth) - bias)), 0.0, 1.0);
 }
 
-// The map before its blur at p, its 4 texels weighed bilinearly, each lit where p lies no more
-// than five times `bias` (a texel) behind its depth: a texel's depth is its centre's and a slope
-// rises within it, and air just over a slope lit at a grazing angle must stay lit (the lake's
-// threads of fog in narrow valleys: two texels left some of them 10 to 20 % too dark). The blurred map spreads a wall's light into the air a few metres behind it: the thin shade
-// along a canyon's wall under a sun a little lower than the wall is steep was lit (the views
-// bench's canyon seen from inside its fog, the froxels 4.7 % off the reference, in bands along
-// the wall; TerrainShadowProbeGl).
-float hard_visibility(vec3 p, float bias)
+// The exponential map's visibility at p.
+float esm_visibility(vec3 p, float bias)
 {
-    vec3 l = (u_ts_matrix * vec4(p, 1.0)).xyz;
+    if (u_ts_on == 0)
+        return 1.0;
+    if (u_ts_sun_set != 0)
+        return 0.0;
+    return esm_visibility_at(light_space(p), bias);
+}
+
+// The map before its blur at a point l of the map's frame, its 4 texels weighed bilinearly, each
+// lit where the point lies no more than five times `bias` (a texel) behind its depth: a texel's
+// depth is its centre's and a slope rises within it, and air just over a slope lit at a grazing
+// angle must stay lit (the lake's threads of fog in narrow valleys: two texels left some of them
+// 10 to 20 % too dark). The blurred map spreads a wall's light into the air a few metres behind
+// it: the thin shade along a canyon's wall under a sun a little lower than the wall is steep was
+// lit (the views bench's canyon seen from inside its fog, the froxels 4.7 % off the reference, in
+// bands along the wall; TerrainShadowProbeGl).
+float hard_visibility_at(vec3 l, float bias)
+{
     vec2 f = fract(l.xy * vec2(textureSize(u_ts_raw, 0)) - 0.5);
     // The bilinear footprint's texels in one fetch: (0, 1), (1, 1), (1, 0), (0, 0).
     vec4 lit = step(vec4((min(l.z, u_ts_depth) - 5.0 * bias) / u_ts_depth), textureGather(u_ts_raw, l.xy));
@@ -45,11 +53,16 @@ float hard_visibility(vec3 p, float bias)
 
 // The terrain's visibility of the sun at a point of air (the fog's lighting): the exponential
 // map's, its soft edge free of flicker, but no more than the sharp map's where that one sees the
-// point behind the terrain.
+// point behind the terrain. The point is taken into the map's frame once for both.
 float terrain_visibility(vec3 p, float bias)
 {
-    float v = esm_visibility(p, bias);
-    return v > 0.0 && u_ts_on != 0 && u_ts_sun_set == 0 ? min(v, hard_visibility(p, bias)) : v;
+    if (u_ts_on == 0)
+        return 1.0;
+    if (u_ts_sun_set != 0)
+        return 0.0;
+    vec3 l = light_space(p);
+    float v = esm_visibility_at(l, bias);
+    return v > 0.0 ? min(v, hard_visibility_at(l, bias)) : v;
 }
 
 // The terrain's own shadow at a terrain point with normal n: looked up a little off the surface

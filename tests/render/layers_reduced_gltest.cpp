@@ -55,6 +55,12 @@ class LayersReducedGl : public kiri::test::GlTest {};
 struct Sheet {
     g::LayerOptions options;
     g::LayerBase base;
+    //! Gives `r` the plain and this sheet's layers.
+    void draw_with(Renderer& r, const g::Terrain& t) const
+    {
+        r.set_terrain(t);
+        r.set_layers(base, options);
+    }
 };
 
 Sheet sheet(const g::Terrain& t)
@@ -94,8 +100,7 @@ TEST_F(LayersReducedGl, ThinFogOverAPlainAtAGrazingAngleHasNoStripes)
     const g::Terrain t = plain();
     const Sheet fog = sheet(t);
     Renderer r;
-    r.set_terrain(t);
-    r.set_layers(fog.base, fog.options);
+    fog.draw_with(r, t);
     const Camera c = overview();
     const int w = 640, h = 360;
     r.set_layer_resolution(1.0);
@@ -132,8 +137,7 @@ TEST_F(LayersReducedGl, ASmallFrameKeepsTheReducedTargetsFloor)
     const g::Terrain t = plain();
     const Sheet fog = sheet(t);
     Renderer r;
-    r.set_terrain(t);
-    r.set_layers(fog.base, fog.options);
+    fog.draw_with(r, t);
     const Camera c = overview();
     const auto frame = [&](double scale, int w, int h) {
         r.set_layer_resolution(scale);
