@@ -3,7 +3,9 @@
 // - source: the atlas alpha (border fade) times the layer's alpha with the spacing correction
 //   1 - (1 - a)^(r / r0), gray, lit by an ad hoc sun and sky term;
 // - medium: the slab of fog the layer stands for (docs/medium.md): density = the layer's
-//   profile x border fade x detail, optical depth sigma_t density r / |cos(view, normal)|,
+//   profile x border fade x detail, optical depth sigma_t density r n_z / |cos(view, normal)|
+//   (from the eye for the first layer a ray crosses; layers_end.frag adds what lies before the
+//   terrain in a slab whose layer a ray never crosses),
 //   the fog's lighting model (fog_lighting.glsl) with tau_sun from the sun volume
 //   (sun_volume.glsl), in the terrain's shadow from the sun (terrain_shadow.glsl: the froxels'
 //   and the reference's).
@@ -24,59 +26,20 @@ in float v_baked;
 flat in int v_layer;
 
 uniform sampler2D u_atlas;
-uniform sampler2D u_noise;       // tileable value noise (geometry::fog_noise_tile)
 uniform sampler2D u_heights;     // terrain heights (world metres), R32F
 uniform vec4 u_height_rect;      // x0, y0, 1 / extent x, 1 / extent y
 uniform vec2 u_height_texels;    // nx, ny
 uniform float u_opacity;
 uniform float u_ground_fade;
-uniform float u_detail;
-uniform float u_detail_scale;
-uniform vec2 u_drift;            // wind * time (metres)
-uniform vec3 u_eye;
-uniform vec3 u_sun_direction;
-uniform vec3 u_sun_radiance;
-uniform vec3 u_ambient;
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
 uniform int u_medium;            // 1: LayerShading::medium
 uniform float u_extinction;      // sigma_t (1/m) at density 1
-uniform float u_albedo;
-uniform float u_anisotropy;      // g, clamped inside (-1, 1) on the CPU
 uniform float u_top_loss;        // 1 - top_density
 uniform float u_thickness;       // T0 (m)
-uniform int u_octaves;           // multiple-scattering octaves (geometry::fog_source)
 uniform float u_lv_per_fragment; // metres from the eye within which the baked light is per fragment
 uniform int u_md_extent;         // 1: the Medium's grid is bound (medium_shell.glsl), its coverage is where the fog is
 out vec4 o_color;
-
-const float pi = 3.14159265358979;
-
-// Detail: a tileable noise texture, shifted per layer so neighbouring layers differ.
-float detail_noise(vec2 xy, float layer)
-{
-    // The tile holds 8 of the largest features: it repeats every 8 detail_scale metres.
-    vec2 q = (xy - u_drift) / (8.0 * u_detail_scale) + layer * vec2(0.137, 0.071);
-    return texture(u_noise, q).r;
-}
-
-float henyey_greenstein(float cos_theta, float g)
-{
-    float d = 1.0 + g * g - 2.0 * g * cos_theta;
-    return (1.0 - g * g) / (4.0 * pi * d * sqrt(d));
-}
-
-// geometry::fog_source (fog_lighting.hpp): the source per unit extinction towards the eye;
-// u_octaves 0: the fitted model, else that many octaves.
-vec3 fog_source(float cos_theta, float tau_sun, float visibility)
-{
-    float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
-    if (u_octaves == 0)
-        sun = fitted_sun_scattering(cos_theta, u_anisotropy, u_albedo, tau_sun, u_sun_direction.z);
-    for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
-        sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(-b * tau_sun);
-    return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient);
-}
 
 // geometry::layer_slab_over_ground: of the layer's slab (share of r), the share above the ground.
 float layer_slab_over_ground(float share, int i, float spacing, float clearance)
@@ -87,6 +50,21 @@ float layer_slab_over_ground(float share, int i, float spacing, float clearance)
         return share;
     float lower = min(share, 0.5);  // the slab's half under the layer
     return clearance / spacing + (share - lower);
+}
+
+// Whether this fragment is where its ray leaves the space around the eye: every ray from an eye
+// inside the stack leaves the space between the two layers either side of it through one of them,
+// upwards through the one over it or downwards through the one under it. That space is flat near
+// the eye, and a ray at a grazing angle crosses its fog for hundreds of metres (up to the
+// narrowing's flat radius and on) before it meets a layer. A ray that comes back into that space
+// far off crosses the same layers again: within u_first_reach only.
+bool leaves_the_eyes_slab(vec3 view, vec3 across, float dist)
+{
+    if (u_eye_inside == 0 || dist > u_first_reach)
+        return false;
+    float j = eye_region(view);
+    float climb = dot(view, dot(across, v_normal) < 0.0 ? -across : across);
+    return climb > 0.0 ? float(v_layer) == j + 1.0 : float(v_layer) == j;
 }
 
 void main()
@@ -129,7 +107,7 @@ void main()
         discard;
     float detail = 1.0;
     if (u_detail > 0.0)
-        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, float(v_layer)));
+        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, v_height * u_count));
     vec3 view = normalize(v_world - u_eye);
     float cos_sun = dot(view, u_sun_direction);
     float a;
@@ -141,9 +119,29 @@ void main()
         // The slab seen along the view, at the layer's own slant: the narrowing tilts the layers
         // near the eye away from the base (docs/layers.md), so the drawn triangle's normal.
         vec3 surface = cross(dFdx(v_world), dFdy(v_world));
-        float cos_view = max(abs(dot(dot(surface, surface) > 0.0 ? normalize(surface) : normalize(v_normal), view)), 0.02);
-        a = 1.0 - exp(-u_extinction * density * v_spacing * v_slab / cos_view);
-        float sun_up = u_sun_direction.z > 0.0 ? terrain_visibility(v_world, u_ts_bias) : 0.0;
+        vec3 across = dot(surface, surface) > 0.0 ? normalize(surface) : normalize(v_normal);
+        float cos_view = max(abs(dot(across, view)), 0.02);
+        // The ray's path through the slab, centred on the layer: the layers stand r apart
+        // vertically (the Medium's columns), so on a slope the slab between them is r cos(slope)
+        // thick across. Where the ray leaves the space around the eye, which no layer crosses, the
+        // path runs from the eye.
+        float dist = length(v_world - u_eye);
+        float path = v_spacing * v_slab * abs(across.z) / cos_view;
+        float entry = max(dist - 0.5 * path, 0.0);
+        if (leaves_the_eyes_slab(view, across, dist)) {
+            // In combined mode the froxels draw the fog nearer than the layers' share begins.
+            entry = u_partitioned != 0 ? min(u_partition.x, dist) : 0.0;
+            path = max(path, dist + 0.5 * path - entry);
+        }
+        float sigma = u_extinction * density;
+        a = 1.0 - exp(-sigma * path);
+        // A slab seen at a grazing angle is many mean free paths long: the terrain's shadow is
+        // taken over the light it scatters along its path (path_visibility), the baked light at
+        // that light's centroid, not at the layer.
+        vec3 lit = u_eye + view * (entry + emission_centroid(path, sigma * path));
+        float sun_up = u_sun_direction.z > 0.0
+            ? path_visibility(u_eye + view * entry, view, path, sigma * path, visibility_points(path, v_spacing))
+            : 0.0;
         float tau_sun;
         if (v_tau_sun >= 0.0) {
             // The fog's optical depth towards the sun, as the froxels and the reference take it:
@@ -164,8 +162,7 @@ void main()
         // fragment.
         if (u_lv_on != 0)
             radiance += u_albedo * u_sun_radiance *
-                (length(v_world - u_eye) < u_lv_per_fragment ? lv_in_scattered_at(v_world, -view, u_anisotropy, true)
-                                                              : v_baked);
+                (dist < u_lv_per_fragment ? lv_in_scattered_at(lit, -view, u_anisotropy, true) : v_baked);
     } else {
         a = v_alpha * u_opacity * tex.a * detail;
         a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);

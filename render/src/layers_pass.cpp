@@ -52,7 +52,7 @@ void set_sampling(GLuint texture, GLint filter)
 
 LayersPass::LayersPass()
     : program_({"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "fog_lighting.glsl",
-                "terrain_shadow.glsl", "froxel_fog_none.glsl", "layers.frag"}),
+                "terrain_shadow.glsl", "froxel_fog_none.glsl", "layers_light.glsl", "layers.frag"}),
       composite_({"fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
@@ -96,6 +96,7 @@ bool LayersPass::set_base(const geometry::LayerBase& base)
     glTextureStorage2D(atlas_.get(), 1, GL_RGBA8, t.width, t.height);
     glTextureSubImage2D(atlas_.get(), 0, 0, 0, t.width, t.height, GL_RGBA, GL_UNSIGNED_BYTE, t.rgba.data());
     set_sampling(atlas_.get(), GL_LINEAR);
+    end_.set_base(base);
     uploaded_base_ = base.position.data();
     uploaded_base_size_ = base.position.size();
     return true;
@@ -242,7 +243,7 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigne
     draw_fullscreen_depth(empty_vao_.get());
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
-    draw_stack(frame, h);
+    draw_stack(frame, h, resolved_depth);
 
     composite_.set("u_layers", 0);
     composite_.set("u_low_depth", 1);
@@ -293,7 +294,7 @@ void LayersPass::update_lod(const FrameContext& frame, int target_height)
     near_reach_ = -1.0;  // the near triangles come from the new list
 }
 
-void LayersPass::draw_stack(const FrameContext& frame, int target_height)
+void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsigned resolved_depth)
 {
     update_lod(frame, target_height);
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
@@ -301,7 +302,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "froxel_common.glsl",
             "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "froxel_apply.glsl",
-            "layers.frag"});
+            "layers_light.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
@@ -321,6 +322,18 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     const int under = geometry::layers_under_eye(*base_, options_, eye, top);
     p.set("u_view_projection", frame.view_projection);
     set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, under);
+    // Where the eye's rays start: the space between the layers either side of it, which they
+    // leave within about the narrowing's flat radius, L0 count / max_count (without it, about L0).
+    const geometry::LayerStackUnder at_eye = geometry::layer_stack_under(*base_, o, eye);
+    const double flat_radius = o.spacing_divisor * o.thickness / std::max(o.max_count, 1);
+    const EyeInStack in_stack{
+        under >= 1 && under <= top, at_eye.base_z, at_eye.spacing,
+        o.narrowing ? 4.0 * flat_radius : 2.0 * o.spacing_divisor * o.thickness / std::max(o.count, 1)};
+    set_eye_in_stack_uniforms(p, in_stack);
+    // The fog before the terrain in the slabs the rays end in: the farthest piece of each ray,
+    // drawn first. The medium shading over a Medium (its grid, its tau_sun).
+    if (resolved_depth != 0 && o.shading == geometry::LayerShading::medium && sun_ && sun_->medium())
+        end_.draw({o, frame, noise_shift_, in_stack, noise_.get(), resolved_depth, fog_, shadow_, sun_, light_volume_});
     p.set("u_atlas", 0);
     p.set("u_heights", 1);
     p.set("u_noise", 2);
@@ -328,14 +341,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     p.set("u_height_texels", height_texels_);
     p.set("u_opacity", float(o.opacity));
     p.set("u_ground_fade", float(o.ground_fade));
-    p.set("u_detail", float(o.optics.detail));
-    p.set("u_detail_scale", float(o.optics.detail_scale));
-    p.set("u_drift", glm::vec2(noise_drift(o.optics.wind, o.optics.time, noise_shift_, 8.0 * o.optics.detail_scale)));
-    p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
-    p.set("u_sun_radiance", frame.sun_radiance);
-    p.set("u_ambient", frame.ambient);
-    p.set("u_sky_horizon", frame.sky_horizon);
-    p.set("u_haze_density", frame.haze_density);
+    set_layers_light_uniforms(p, o, frame, noise_shift_);
     const bool medium = o.shading == geometry::LayerShading::medium;
     p.set("u_medium", int(medium));
     // The baked multiple scattering: the moments, and the Medium's columns they follow.
@@ -353,10 +359,6 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height)
     // The Medium's coverage, where the medium shading's fog is (after the baked light's binding of
     // the same grid on the same unit).
     p.set("u_md_extent", int(medium && sun_ && sun_->bind_grid(p, layers_unit_baked_moments + 1)));
-    p.set("u_extinction", float(o.optics.extinction));
-    p.set("u_albedo", float(o.optics.albedo));
-    p.set("u_octaves", geometry::shader_octaves(o.optics));
-    p.set("u_anisotropy", float(std::clamp(o.optics.anisotropy, -0.999, 0.999)));
     set_partition_uniforms(p, frame);
     p.use();
     glBindTextureUnit(0, atlas_.get());

@@ -9,6 +9,7 @@
 
 #include "frame_context.hpp"
 #include "kiri/geometry/layers/layer_stack.hpp"
+#include "layers_end.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::geometry {
@@ -110,8 +111,10 @@ private:
     void ensure_low(int width, int height);
     //! Whether there is anything to draw this frame; uploads the ground first if needed.
     bool ready(const FrameContext& frame, bool& uploaded);
-    //! target_height: the height in pixels of the target drawn into (the level of detail's scale).
-    void draw_stack(const FrameContext& frame, int target_height);
+    //! target_height: the height in pixels of the target drawn into (the level of detail's scale);
+    //! resolved_depth (0: none): the frame's depth, for the fog before the terrain (LayersEnd).
+    void draw_stack(const FrameContext& frame, int target_height, unsigned resolved_depth = 0);
+    LayersEnd end_;
     VertexArray vao_;
     Buffer vertices_, indices_;
     // The layers above `count` fade in only where the eye narrows the spacing ([Thesis] (2.8)):

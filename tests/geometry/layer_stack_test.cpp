@@ -303,6 +303,35 @@ TEST(LayerStack, EyeDecidesTheCount)
     EXPECT_LT(base.centre.x, 600.0);
 }
 
+// The eye's place in the stack is taken over its own (x, y), where the drawn triangles put the
+// layers: on a sloping base the nearest vertex lies higher or lower than the base under the eye,
+// by more than a spacing here. A base of two triangles on the plane z = 0.2 x + 100, its vertices
+// 100 m apart; the eye 60 m from the nearest one, 10.7 m above the plane under it.
+TEST(LayerStack, TheEyesPlaceIsTakenOverItsOwnPoint)
+{
+    LayerOptions o = options_15();
+    o.narrowing = false;  // r = 10 m everywhere
+    LayerBase base;
+    const auto plane = [](double x) { return 0.2 * x + 100.0; };
+    for (const glm::dvec2 xy : {glm::dvec2(0, 0), glm::dvec2(100, 0), glm::dvec2(0, 100), glm::dvec2(100, 100)}) {
+        base.position.push_back({xy.x, xy.y, plane(xy.x)});
+        base.normal.push_back(glm::normalize(glm::dvec3(-0.2, 0.0, 1.0)));
+        base.atlas_uv.push_back({0.0, 0.0});
+    }
+    base.triangles = {0, 1, 3, 0, 3, 2};
+    const glm::dvec3 eye(60.0, 20.0, plane(60.0) + 10.7);
+    const LayerStackUnder under = layer_stack_under(base, o, eye);
+    EXPECT_NEAR(under.base_z, plane(60.0), 1e-12);
+    EXPECT_NEAR(under.spacing, 10.0, 1e-12);
+    // Layers 0 and 1 lie under the eye (its nearest vertex, (100, 0, 120), 2.7 m under it, says one).
+    EXPECT_EQ(layers_under_eye(base, o, eye, 15), 2);
+    EXPECT_EQ(layers_under_eye(base, o, eye - glm::dvec3(0.0, 0.0, 0.8), 15), 1);
+    EXPECT_EQ(layers_under_eye(base, o, eye - glm::dvec3(0.0, 0.0, 12.0), 15), 0);  // under the base
+    // Beyond the base's edge: the nearest vertex's column.
+    const LayerStackUnder outside = layer_stack_under(base, o, {-50.0, 50.0, 200.0});
+    EXPECT_EQ(outside.base_z, plane(0.0));
+}
+
 TEST(LayerOptionsJson, RoundTripAndRefusals)
 {
     const std::string scene = R"({"terrain": {"path": "x.tif"}, "fog": {"thickness": 120},

@@ -191,17 +191,63 @@ int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm
     return std::clamp(int(std::ceil(most - 1e-9)), options.count, options.max_count);
 }
 
+namespace {
+// The base's triangle under (x, y) seen from above, and where in it: the GPU's layer i there is
+// its vertices' base + i r interpolated (linear over the triangle). False where none lies under.
+bool stack_under(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye, double& base_z,
+                 double& spacing)
+{
+    for (std::size_t t = 0; t + 2 < base.triangles.size(); t += 3) {
+        const std::uint32_t ia = base.triangles[t], ib = base.triangles[t + 1], ic = base.triangles[t + 2];
+        const glm::dvec3 &a = base.position[ia], &b = base.position[ib], &c = base.position[ic];
+        const double area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        if (!(std::abs(area) > 0.0))
+            continue;
+        const double wb = ((eye.x - a.x) * (c.y - a.y) - (c.x - a.x) * (eye.y - a.y)) / area;
+        const double wc = ((b.x - a.x) * (eye.y - a.y) - (eye.x - a.x) * (b.y - a.y)) / area;
+        const double wa = 1.0 - wb - wc;
+        constexpr double eps = -1e-9;  // shared edges: either triangle may answer
+        if (wa < eps || wb < eps || wc < eps)
+            continue;
+        const auto r = [&](std::uint32_t v) {
+            return options.count > 0 ? layer_column(options, eye, base.position[v], base.normal[v]).spacing : 0.0;
+        };
+        base_z = wa * a.z + wb * b.z + wc * c.z;
+        spacing = wa * r(ia) + wb * r(ib) + wc * r(ic);
+        return true;
+    }
+    return false;
+}
+}  // namespace
+
+LayerStackUnder layer_stack_under(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye)
+{
+    LayerStackUnder s;
+    if (base.position.empty())
+        return s;
+    // Where no triangle lies under the eye (beyond the base's edge), the nearest vertex's column.
+    if (!stack_under(base, options, eye, s.base_z, s.spacing)) {
+        const std::size_t nearest = nearest_vertex(base, eye);
+        s.base_z = base.position[nearest].z;
+        s.spacing =
+            options.count > 0 ? layer_column(options, eye, base.position[nearest], base.normal[nearest]).spacing : 0.0;
+    }
+    return s;
+}
+
 int layers_under_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye, int top)
 {
     if (base.position.empty() || !std::isfinite(eye.z))
         return 0;
-    const std::size_t nearest = nearest_vertex(base, eye);
-    const double above = eye.z - base.position[nearest].z;
+    // The layers over the eye's own (x, y), where its rays start: the nearest vertex of a sloping
+    // base may lie a spacing higher or lower than the base under the eye, and a count one off
+    // draws the layer the eye's rays cross first behind the next one.
+    const LayerStackUnder under = layer_stack_under(base, options, eye);
+    const double above = eye.z - under.base_z, r = under.spacing;
     if (!(above >= 0.0))
         return 0;
     if (options.count == 0)
         return top + 1;
-    const double r = layer_column(options, eye, base.position[nearest], base.normal[nearest]).spacing;
     if (!(r > 0.0))
         return top + 1;
     return int(std::clamp(std::floor(above / r) + 1.0, 0.0, double(top + 1)));

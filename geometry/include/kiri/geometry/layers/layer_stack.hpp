@@ -210,6 +210,14 @@ void validate_layer_options(const LayerOptions& options, const std::string& labe
 //! base's vertices (the top partial layer is faded in), at most options.max_count.
 int layers_for_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye);
 
+//! The stack straight under (or over) the eye, as the drawn triangles interpolate it there: layer
+//! i lies at base_z + i spacing (the nearest vertex's column beyond the base's edge).
+struct LayerStackUnder {
+    double base_z = 0.0;
+    double spacing = 0.0;
+};
+LayerStackUnder layer_stack_under(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye);
+
 //! How many of layers 0..top lie under the eye in the column nearest to it: 0 with the eye under
 //! the base, top + 1 over the whole stack. A ray that climbs crosses the layers over the eye from
 //! the lowest, one that descends those under it from the highest, so the pass draws the layers

@@ -1,0 +1,85 @@
+// Library of the layers' fog (layers.frag, layers_end.frag): the Medium's detail noise as a layer
+// takes it, and the shared lighting model (geometry::fog_source) of a slab of it.
+uniform sampler2D u_noise;       // tileable value noise (geometry::fog_noise_tile)
+uniform float u_detail;
+uniform float u_detail_scale;
+uniform vec2 u_drift;            // wind * time (metres)
+uniform vec3 u_sun_direction;
+uniform vec3 u_sun_radiance;
+uniform vec3 u_ambient;
+uniform float u_albedo;
+uniform float u_anisotropy;      // g, clamped inside (-1, 1) on the CPU
+uniform float u_count;           // l0, the reference stack's layers
+uniform int u_octaves;           // multiple-scattering octaves (geometry::fog_source)
+uniform vec3 u_eye;
+uniform int u_eye_inside;        // 1: the eye lies inside the stack (geometry::layers_under_eye)
+uniform float u_eye_base;        // the base under the eye and the layers' spacing there
+uniform float u_eye_spacing;     // (geometry::layer_stack_under): layer i at u_eye_base + i u_eye_spacing
+uniform float u_first_reach;     // metres within which a ray may still be in the space it started in
+
+const float pi = 3.14159265358979;
+
+// Detail: a tileable noise texture, shifted per layer so neighbouring layers differ. `layer` is
+// the height in the fog in layers of the reference stack (h l0), as the Medium's detail takes it
+// (Medium::detail_factor): the narrowing adds layers near the eye, and the i-th of 120 there lies
+// at the height of layer i l0 / 120 of the 15, so it shows the Medium's noise of that height.
+float detail_noise(vec2 xy, float layer)
+{
+    // The tile holds 8 of the largest features: it repeats every 8 detail_scale metres.
+    vec2 q = (xy - u_drift) / (8.0 * u_detail_scale) + layer * vec2(0.137, 0.071);
+    return texture(u_noise, q).r;
+}
+
+float henyey_greenstein(float cos_theta, float g)
+{
+    float d = 1.0 + g * g - 2.0 * g * cos_theta;
+    return (1.0 - g * g) / (4.0 * pi * d * sqrt(d));
+}
+
+// geometry::fog_source (fog_lighting.hpp): the source per unit extinction towards the eye;
+// u_octaves 0: the fitted model, else that many octaves.
+vec3 fog_source(float cos_theta, float tau_sun, float visibility)
+{
+    float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
+    if (u_octaves == 0)
+        sun = fitted_sun_scattering(cos_theta, u_anisotropy, u_albedo, tau_sun, u_sun_direction.z);
+    for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
+        sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(-b * tau_sun);
+    return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient);
+}
+
+// Of the light a slab of optical depth tau scatters along a path of length `path` into it, the
+// mean distance from where the ray enters: the weights exp(-sigma t) over [0, path].
+float emission_centroid(float path, float tau)
+{
+    if (!(tau > 1e-3))
+        return path * (0.5 - tau / 12.0);
+    return path * (1.0 / tau - 1.0 / (exp(min(tau, 80.0)) - 1.0));
+}
+
+// The space between layers j and j + 1 that a ray from the eye starts in (-1: under the base),
+// taken a hundredth of a spacing along the ray: an eye on a layer starts on the side the ray
+// leaves to.
+float eye_region(vec3 view)
+{
+    return floor((u_eye.z + view.z * 0.01 * u_eye_spacing - u_eye_base) / u_eye_spacing);
+}
+
+// The terrain's visibility of the sun over the light a path scatters towards the eye, from
+// `start` along `view` for `path` metres of optical depth `tau`: the mean at `n` points, each
+// holding an equal share of the emission. A slab seen at a grazing angle, or the fog from the eye
+// to its first layer, runs for hundreds of metres, often into the shade of a wall part of the way.
+float path_visibility(vec3 start, vec3 view, float path, float tau, int n)
+{
+    float kept = 1.0 - exp(-tau), v = 0.0;
+    for (int i = 0; i < n; ++i) {
+        float u = (float(i) + 0.5) / float(n);
+        float t = tau > 1e-4 ? -log(1.0 - u * kept) / tau * path : u * path;
+        v += terrain_visibility(start + view * t, u_ts_bias);
+    }
+    return v / float(n);
+}
+
+// Points path_visibility takes along a path of `path` metres in fog whose layers lie `spacing`
+// apart: one for a slab crossed steeply, up to 8 along a grazing one.
+int visibility_points(float path, float spacing) { return clamp(int(path / (4.0 * spacing)), 1, 8); }
