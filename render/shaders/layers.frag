@@ -138,10 +138,12 @@ void main()
         // A slab seen at a grazing angle is many mean free paths long: the terrain's shadow is
         // taken over the light it scatters along its path (path_visibility), the baked light at
         // that light's centroid, not at the layer.
-        vec3 lit = u_eye + view * (entry + emission_centroid(path, sigma * path));
-        float sun_up = u_sun_direction.z > 0.0
-            ? path_visibility(u_eye + view * entry, view, path, sigma * path, visibility_points(path, v_spacing))
-            : 0.0;
+        // A slab crossed steeply is taken at the layer (one lookup: most fragments).
+        int points = visibility_points(path, v_spacing);
+        float sun_up = 0.0;
+        if (u_sun_direction.z > 0.0)
+            sun_up = points > 1 ? path_visibility(u_eye + view * entry, view, path, sigma * path, points)
+                                : terrain_visibility(v_world, u_ts_bias);
         float tau_sun;
         if (v_tau_sun >= 0.0) {
             // The fog's optical depth towards the sun, as the froxels and the reference take it:
@@ -162,7 +164,10 @@ void main()
         // fragment.
         if (u_lv_on != 0)
             radiance += u_albedo * u_sun_radiance *
-                (dist < u_lv_per_fragment ? lv_in_scattered_at(lit, -view, u_anisotropy, true) : v_baked);
+                (dist < u_lv_per_fragment
+                     ? lv_in_scattered_at(u_eye + view * (entry + emission_centroid(path, sigma * path)), -view,
+                                          u_anisotropy, true)
+                     : v_baked);
     } else {
         a = v_alpha * u_opacity * tex.a * detail;
         a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);

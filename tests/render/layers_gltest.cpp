@@ -110,6 +110,30 @@ protected:
     {
         return &image.rgba[(std::size_t(p.y) * image.width + std::size_t(p.x)) * 4];
     }
+    // The lake's black fog (albedo 0) against the Medium it stands for, the sun with no sky light:
+    // the frame over the bare terrain, then with the layers `o` over it (last_layers: their count).
+    struct BlackFog {
+        kiri::render::RadianceImage bare, fog;
+        int last_layers = 0;
+    };
+    static BlackFog black_fog(const Camera& cam, int w, int h, const g::Medium& medium, const g::LayerOptions& o)
+    {
+        kiri::render::SunLight sun;
+        sun.ambient = glm::dvec3(0.0);
+        Renderer renderer;
+        renderer.set_terrain(*hill());
+        renderer.set_sun(sun);
+        renderer.set_sun_medium(&medium, {});
+        BlackFog b;
+        renderer.render(cam, w, h);
+        b.bare = renderer.read_radiance();
+        const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
+        renderer.set_layers(base, o);
+        renderer.render(cam, w, h);
+        b.fog = renderer.read_radiance();
+        b.last_layers = renderer.last_stats().layers;
+        return b;
+    }
 };
 
 double luminance(const std::uint8_t* p) { return 0.3 * p[0] + 0.6 * p[1] + 0.1 * p[2]; }
@@ -534,8 +558,6 @@ TEST_F(LayersGl, TheLayersNearTheEyeShowTheMediumsDetailAtTheirHeight)
     cam.position = {380.0, 380.0 - 110.0 / std::tan(slant), 140.0};
     cam.target = {380.0, 380.0, 30.0};
     cam.fov_y_deg = 24.0;
-    kiri::render::SunLight sun;
-    sun.ambient = glm::dvec3(0.0);
     g::LayerOptions o = medium_options();
     o.optics.albedo = 0.0;
     o.optics.extinction = 0.008;
@@ -543,24 +565,15 @@ TEST_F(LayersGl, TheLayersNearTheEyeShowTheMediumsDetailAtTheirHeight)
     o.optics.detail_scale = 60.0;
     o.enlargement = false;
     const g::Medium medium = lake_medium(*hill(), o);
-    Renderer renderer;
-    renderer.set_terrain(*hill());
-    renderer.set_sun(sun);
-    renderer.set_sun_medium(&medium, {});
-    renderer.render(cam, w, h);
-    const kiri::render::RadianceImage bare = renderer.read_radiance();
-    const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
-    renderer.set_layers(base, o);
-    renderer.render(cam, w, h);
-    const kiri::render::RadianceImage fog = renderer.read_radiance();
-    ASSERT_GT(renderer.last_stats().layers, 100);
+    const BlackFog frames = black_fog(cam, w, h, medium, o);
+    ASSERT_GT(frames.last_layers, 100);
     // 7 x 6 pixels, the top row's rays (800 m to the ground) left out: they leave the lake's
     // footprint, where the layers' Medium ends in a wall.
     std::vector<glm::ivec2> pixels;
     for (int j = 1; j < 7; ++j)
         for (int i = 0; i < 7; ++i)
             pixels.push_back({3 + 7 * i, 3 + 7 * j});
-    const Agreement a = agreement(medium, *hill(), cam, w, h, bare, fog, pixels);
+    const Agreement a = agreement(medium, *hill(), cam, w, h, frames.bare, frames.fog, pixels);
     std::printf("    %d pixels: transmittance off the Medium's by %.2f %% on average, %.2f %% at most\n", a.pixels,
                 100.0 * a.mean, 100.0 * a.worst);
     // Measured 0.36 % and 4.5 %; with the narrowed layers' own index as the noise's layer, about 6 % and 22 %.
@@ -580,23 +593,12 @@ TEST_F(LayersGl, AnEyeOnALayerLookingLevelSeesTheFogUpToTheHill)
     cam.position = {380.0, 380.0, 90.0};
     cam.target = {0.0, 0.0, 90.0};
     cam.fov_y_deg = 6.0;
-    kiri::render::SunLight sun;
-    sun.ambient = glm::dvec3(0.0);
     g::LayerOptions o = medium_options();
     o.optics.albedo = 0.0;
     o.optics.extinction = 0.01;
     o.narrowing = o.enlargement = false;
     const g::Medium medium = lake_medium(*hill(), o);
-    Renderer renderer;
-    renderer.set_terrain(*hill());
-    renderer.set_sun(sun);
-    renderer.set_sun_medium(&medium, {});
-    renderer.render(cam, w, h);
-    const kiri::render::RadianceImage bare = renderer.read_radiance();
-    const g::LayerBase base = g::make_layer_base(authored()->surface, authored()->tessellation, o);
-    renderer.set_layers(base, o);
-    renderer.render(cam, w, h);
-    const kiri::render::RadianceImage fog = renderer.read_radiance();
+    const BlackFog frames = black_fog(cam, w, h, medium, o);
     std::vector<glm::ivec2> pixels;
     for (int y = h / 2 - 3; y <= h / 2 + 2; ++y)
         for (int x = 4; x < w; x += 8)
@@ -605,7 +607,7 @@ TEST_F(LayersGl, AnEyeOnALayerLookingLevelSeesTheFogUpToTheHill)
     const double level = medium_transmittance(medium, *hill(), cam.position, pixel_ray(cam, w / 2, h / 2, w, h), reach);
     std::printf("    the level ray meets the hill %.0f m off, transmittance %.3f\n", reach, level);
     ASSERT_LT(level, 0.5);  // enough fog to see
-    const Agreement a = agreement(medium, *hill(), cam, w, h, bare, fog, pixels);
+    const Agreement a = agreement(medium, *hill(), cam, w, h, frames.bare, frames.fog, pixels);
     std::printf("    %d pixels: transmittance off the Medium's by %.2f %% on average, %.2f %% at most\n", a.pixels,
                 100.0 * a.mean, 100.0 * a.worst);
     EXPECT_LT(a.mean, 0.03);
