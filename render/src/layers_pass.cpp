@@ -319,16 +319,18 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
     last_triangles_ = int(drawn_triangles().size() / 3);
-    const int under = geometry::layers_under_eye(*base_, options_, eye, top);
+    const geometry::LayerStackUnder at_eye = geometry::layer_stack_under(*base_, options_, eye);
+    const int under = std::isfinite(eye.z) ? geometry::layers_under_eye(at_eye, options_, eye, top) : 0;
     p.set("u_view_projection", frame.view_projection);
     set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, under);
+    // L0 = divisor r0 ([Thesis] 2.8), within which the spacing narrows, and the flat radius within
+    // which it has reached its floor T0 / max_count, L0 count / max_count.
+    const double reach = o.spacing_divisor * o.thickness / std::max(o.count, 1);
+    const double flat = reach * double(std::max(o.count, 1)) / double(std::max(o.max_count, 1));
     // Where the eye's rays start: the space between the layers either side of it, which they
-    // leave within about the narrowing's flat radius, L0 count / max_count (without it, about L0).
-    const geometry::LayerStackUnder at_eye = geometry::layer_stack_under(*base_, o, eye);
-    const double flat_radius = o.spacing_divisor * o.thickness / std::max(o.max_count, 1);
-    const EyeInStack in_stack{
-        under >= 1 && under <= top, at_eye.base_z, at_eye.spacing,
-        o.narrowing ? 4.0 * flat_radius : 2.0 * o.spacing_divisor * o.thickness / std::max(o.count, 1)};
+    // leave within about the flat radius (without the narrowing, about L0).
+    const EyeInStack in_stack{under >= 1 && under <= top, at_eye.base_z, at_eye.spacing,
+                              o.narrowing ? 4.0 * flat : 2.0 * reach};
     set_eye_in_stack_uniforms(p, in_stack);
     // The fog before the terrain in the slabs the rays end in: the farthest piece of each ray,
     // drawn first. The medium shading over a Medium (its grid, its tau_sun).
@@ -351,7 +353,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     // where they apply fog, and their apply's lookups in these programs do not read it.
     // Per fragment within the distance where the spacing narrows, L0 = divisor r0 ([Thesis] 2.8):
     // there the full-level triangles near the eye span wide angles; per vertex beyond.
-    p.set("u_lv_per_fragment", float(o.spacing_divisor * o.thickness / std::max(o.count, 1)));
+    p.set("u_lv_per_fragment", float(reach));
     if (light_volume_)
         light_volume_->bind(p, layers_unit_baked_moments, baked);
     else
@@ -378,7 +380,6 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     // (layers.vert); each run is cut where its layers change from every triangle to the near
     // ones: the same fragments in the same order, those skipped had zero opacity.
     const int everywhere = std::min(top, o.count);
-    const double reach = o.spacing_divisor * o.thickness / std::max(o.count, 1);
     auto draw = [&](int first_instance, int instances, GLuint indices, GLsizei count) {
         if (instances <= 0 || count <= 0)
             return;
@@ -412,7 +413,6 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
         // every ray from an eye over the base meets from the highest down (bottom first), and from
         // one under the base from the lowest up. The flat triangles are nearer along every ray
         // from the eye: the cones are drawn first, then the flat part.
-        const double flat = reach * double(std::max(o.count, 1)) / double(std::max(o.max_count, 1));
         update_near(eye, reach, flat);
         run(under > 0 ? top + 1 : 0, everywhere, all_rest_.get(), all_rest_count_, near_rest_.get(), near_rest_count_);
         run(under, top, flat_.get(), flat_count_, flat_.get(), flat_count_);

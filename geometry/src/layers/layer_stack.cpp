@@ -242,8 +242,12 @@ int layers_under_eye(const LayerBase& base, const LayerOptions& options, const g
     // The layers over the eye's own (x, y), where its rays start: the nearest vertex of a sloping
     // base may lie a spacing higher or lower than the base under the eye, and a count one off
     // draws the layer the eye's rays cross first behind the next one.
-    const LayerStackUnder under = layer_stack_under(base, options, eye);
-    const double above = eye.z - under.base_z, r = under.spacing;
+    return layers_under_eye(layer_stack_under(base, options, eye), options, eye, top);
+}
+
+int layers_under_eye(const LayerStackUnder& at_eye, const LayerOptions& options, const glm::dvec3& eye, int top)
+{
+    const double above = eye.z - at_eye.base_z, r = at_eye.spacing;
     if (!(above >= 0.0))
         return 0;
     if (options.count == 0)

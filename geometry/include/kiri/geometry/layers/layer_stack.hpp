@@ -223,6 +223,8 @@ LayerStackUnder layer_stack_under(const LayerBase& base, const LayerOptions& opt
 //! the lowest, one that descends those under it from the highest, so the pass draws the layers
 //! over the eye top first and those under it bottom first: each far to near along its rays.
 int layers_under_eye(const LayerBase& base, const LayerOptions& options, const glm::dvec3& eye, int top);
+//! The same from the stack under the eye already found (one pass over the base's triangles).
+int layers_under_eye(const LayerStackUnder& at_eye, const LayerOptions& options, const glm::dvec3& eye, int top);
 
 //! One layer as a mesh: the base's triangles with LayerVertex data.
 struct LayerMesh {
