@@ -11,7 +11,8 @@
 //   and the reference's).
 // Combined mode (fog_partition.glsl): the medium shading draws only the layers' share.
 // Both: world-space detail noise drifting with the wind; where the layer meets the ground, the
-// part of its slab above the ground (medium) or a soft fade (source). Output is premultiplied
+// part of its slab before the ground along the ray, with the stretch pass, or above the ground
+// under the layer (medium), or a soft fade (source). Output is premultiplied
 // linear radiance.
 in vec3 v_world;
 in vec2 v_uv;
@@ -39,6 +40,11 @@ uniform float u_top_loss;        // 1 - top_density
 uniform float u_thickness;       // T0 (m)
 uniform float u_lv_per_fragment; // metres from the eye within which the baked light is per fragment
 uniform int u_md_extent;         // 1: the Medium's grid is bound (medium_shell.glsl), its coverage is where the fog is
+uniform int u_stretch_pass;      // 1: layers_end.frag draws the fog a ray crosses before the terrain in a slab whose
+                                 // layer it never crosses; the frame's depth is bound
+uniform sampler2D u_ground_depth; // the frame's resolved depth (with u_stretch_pass)
+uniform vec2 u_target_size;      // the target's pixels: a fragment's texel in u_ground_depth, as layers_end.frag's
+uniform mat4 u_inverse_view_projection;
 out vec4 o_color;
 
 // geometry::layer_slab_over_ground: of the layer's slab (share of r), the share above the ground.
@@ -50,6 +56,18 @@ float layer_slab_over_ground(float share, int i, float spacing, float clearance)
         return share;
     float lower = min(share, 0.5);  // the slab's half under the layer
     return clearance / spacing + (share - lower);
+}
+
+// The distance along this fragment's ray to the terrain, at the centre of its texel as
+// layers_end.frag takes it (1e30: the sky).
+float ground_distance()
+{
+    vec2 uv = gl_FragCoord.xy / u_target_size;
+    float depth = texture(u_ground_depth, uv).r;
+    if (!(depth < 1.0))
+        return 1e30;
+    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    return distance(h.xyz / h.w, u_eye);
 }
 
 // Whether this fragment is where its ray leaves the space around the eye: every ray from an eye
@@ -95,9 +113,12 @@ void main()
     h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
     float clearance = v_world.z - texture(u_heights, h_uv).r;
     // The medium shading: the part of this layer's slab above the ground, down to the ground where
-    // the layer under it lies below the ground (hidden by the terrain), as a share of the slab.
+    // the layer under it lies below the ground (hidden by the terrain), as a share of the slab;
+    // with the stretch pass, the slab along the ray up to where the ray meets the ground (below).
     float ground;
-    if (u_medium != 0)
+    if (u_medium != 0 && u_stretch_pass != 0)
+        ground = clearance >= 0.0 ? 1.0 : 0.0;
+    else if (u_medium != 0)
         ground = layer_slab_over_ground(v_slab, v_layer, v_spacing, clearance) / max(v_slab, 1e-6);
     else
         ground = u_ground_fade > 0.0 ? smoothstep(0.0, u_ground_fade, clearance) : step(0.0, clearance);
@@ -132,6 +153,14 @@ void main()
             // In combined mode the froxels draw the fog nearer than the layers' share begins.
             entry = u_partitioned != 0 ? min(u_partition.x, dist) : 0.0;
             path = max(path, dist + 0.5 * path - entry);
+        }
+        // The slab ends where the ray meets the ground: the part of it beyond lies behind the
+        // terrain, and where the ray enters the slab of the layer under this one before the
+        // ground, the stretch pass adds that slab's fog up to it.
+        if (u_stretch_pass != 0) {
+            path = min(path, ground_distance() - entry);
+            if (!(path > 0.0))
+                discard;
         }
         float sigma = u_extinction * density;
         a = 1.0 - exp(-sigma * path);

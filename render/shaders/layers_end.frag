@@ -62,7 +62,7 @@ void main()
         float below = ground.z - boundary;      // > 0: the terrain point in slab j + 1
         // The ray ends in a slab it entered through the boundary: climbing into slab j + 1, or
         // descending into slab j. Otherwise it ends in the slab of the layer it crossed last,
-        // which took the whole slab (layers.frag).
+        // which took that slab up to the terrain (layers.frag).
         if (!(abs(view.z) > 0.0) || (view.z > 0.0) != (below > 0.0))
             discard;
         stretch = min(reach, abs(below) / abs(view.z));

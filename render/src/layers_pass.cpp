@@ -35,6 +35,8 @@ constexpr int layers_unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.
 // heights (1), the noise (2), the shadow map and the froxel apply's units (5 .. 19).
 constexpr int layers_unit_baked_moments =
     20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
+// The frame's resolved depth in layers.frag, after the baked light's and the shadow map's (23).
+constexpr int layers_unit_ground_depth = 24;
 // Steps of the sun's march where a base vertex lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
 // Levels of tau_sun along the column above each base vertex (linear between them).
@@ -334,8 +336,17 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     set_eye_in_stack_uniforms(p, in_stack);
     // The fog before the terrain in the slabs the rays end in: the farthest piece of each ray,
     // drawn first. The medium shading over a Medium (its grid, its tau_sun).
-    if (resolved_depth != 0 && o.shading == geometry::LayerShading::medium && sun_ && sun_->medium())
+    // The layers' slabs then end where their rays meet the terrain (the frame's depth).
+    const bool stretch = resolved_depth != 0 && o.shading == geometry::LayerShading::medium && sun_ && sun_->medium();
+    p.set("u_stretch_pass", int(stretch));
+    if (stretch) {
         end_.draw({o, frame, noise_shift_, in_stack, noise_.get(), resolved_depth, fog_, shadow_, sun_, light_volume_});
+        // After the stretch pass, which binds its own textures.
+        p.set("u_ground_depth", layers_unit_ground_depth);
+        p.set("u_target_size", glm::vec2(float(low_width_), float(low_height_)));
+        p.set("u_inverse_view_projection", frame.inverse_view_projection);
+        glBindTextureUnit(layers_unit_ground_depth, resolved_depth);
+    }
     p.set("u_atlas", 0);
     p.set("u_heights", 1);
     p.set("u_noise", 2);
