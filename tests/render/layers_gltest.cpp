@@ -87,6 +87,16 @@ protected:
         o.optics.extinction = 0.01;
         return o;
     }
+    // Black fog (albedo 0, 0.01 / m), the layers flat and 10 m apart (no narrowing, no enlargement):
+    // the frame over the bare terrain is the transmittance.
+    static g::LayerOptions flat_black_options()
+    {
+        g::LayerOptions o = medium_options();
+        o.optics.albedo = 0.0;
+        o.optics.extinction = 0.01;
+        o.narrowing = o.enlargement = false;
+        return o;
+    }
     static Camera above()
     {
         Camera c;
@@ -593,10 +603,7 @@ TEST_F(LayersGl, AnEyeOnALayerLookingLevelSeesTheFogUpToTheHill)
     cam.position = {380.0, 380.0, 90.0};
     cam.target = {0.0, 0.0, 90.0};
     cam.fov_y_deg = 6.0;
-    g::LayerOptions o = medium_options();
-    o.optics.albedo = 0.0;
-    o.optics.extinction = 0.01;
-    o.narrowing = o.enlargement = false;
+    const g::LayerOptions o = flat_black_options();
     const g::Medium medium = lake_medium(*hill(), o);
     const BlackFog frames = black_fog(cam, w, h, medium, o);
     std::vector<glm::ivec2> pixels;
@@ -633,10 +640,7 @@ TEST_F(LayersGl, ARayDownOntoTheSlopeTakesTheFogOverTheGroundOnce)
             glm::dvec3(-0.5 * std::sqrt(2.0) * std::cos(down), -0.5 * std::sqrt(2.0) * std::cos(down), std::sin(down));
     cam.target = flank;
     cam.fov_y_deg = 20.0;
-    g::LayerOptions o = medium_options();
-    o.optics.albedo = 0.0;
-    o.optics.extinction = 0.01;
-    o.narrowing = o.enlargement = false;
+    const g::LayerOptions o = flat_black_options();
     const g::Medium medium = lake_medium(*hill(), o);
     const BlackFog frames = black_fog(cam, w, h, medium, o);
     std::vector<glm::ivec2> pixels;
