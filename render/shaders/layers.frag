@@ -41,10 +41,8 @@ uniform float u_thickness;       // T0 (m)
 uniform float u_lv_per_fragment; // metres from the eye within which the baked light is per fragment
 uniform int u_md_extent;         // 1: the Medium's grid is bound (medium_shell.glsl), its coverage is where the fog is
 uniform int u_stretch_pass;      // 1: layers_end.frag draws the fog a ray crosses before the terrain in a slab whose
-                                 // layer it never crosses; the frame's depth is bound
-uniform sampler2D u_ground_depth; // the frame's resolved depth (with u_stretch_pass)
-uniform vec2 u_target_size;      // the target's pixels: a fragment's texel in u_ground_depth, as layers_end.frag's
-uniform mat4 u_inverse_view_projection;
+                                 // layer it never crosses; the frame's depth is bound (u_frame_depth)
+uniform vec2 u_target_size;      // the target's pixels: a fragment's texel in u_frame_depth
 out vec4 o_color;
 
 // geometry::layer_slab_over_ground: of the layer's slab (share of r), the share above the ground.
@@ -62,12 +60,8 @@ float layer_slab_over_ground(float share, int i, float spacing, float clearance)
 // layers_end.frag takes it (1e30: the sky).
 float ground_distance()
 {
-    vec2 uv = gl_FragCoord.xy / u_target_size;
-    float depth = texture(u_ground_depth, uv).r;
-    if (!(depth < 1.0))
-        return 1e30;
-    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    return distance(h.xyz / h.w, u_eye);
+    vec3 ground;
+    return frame_ground(gl_FragCoord.xy / u_target_size, ground) ? distance(ground, u_eye) : 1e30;
 }
 
 // Whether this fragment is where its ray leaves the space around the eye: every ray from an eye

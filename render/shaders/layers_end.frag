@@ -12,8 +12,6 @@
 // Here each pixel of terrain adds that stretch, a slab of the fog at its height, lit as a layer
 // is at the centroid of its emission along it.
 in vec2 v_ndc;
-uniform sampler2D u_depth;              // the frame's resolved depth
-uniform mat4 u_inverse_view_projection;
 uniform sampler2D u_base_heights;       // the layers' base under (x, y) (R32F, -1e30 outside it)
 uniform vec4 u_base_rect;               // x0, y0, 1 / extent x, 1 / extent y
 uniform float u_thickness;              // T0
@@ -28,12 +26,9 @@ out vec4 o_color;
 
 void main()
 {
-    vec2 uv = v_ndc * 0.5 + 0.5;
-    float depth = texture(u_depth, uv).r;
-    if (!(depth < 1.0))
+    vec3 ground;
+    if (!frame_ground(v_ndc * 0.5 + 0.5, ground))
         discard;  // the sky: the ray leaves the fog through a layer or its side
-    vec4 h = u_inverse_view_projection * vec4(v_ndc, depth * 2.0 - 1.0, 1.0);
-    vec3 ground = h.xyz / h.w;
     vec3 ray = ground - u_eye;
     float reach = length(ray);
     if (!(reach > 0.0))

@@ -16,8 +16,23 @@ uniform int u_eye_inside;        // 1: the eye lies inside the stack (geometry::
 uniform float u_eye_base;        // the base under the eye and the layers' spacing there
 uniform float u_eye_spacing;     // (geometry::layer_stack_under): layer i at u_eye_base + i u_eye_spacing
 uniform float u_first_reach;     // metres within which a ray may still be in the space it started in
+uniform sampler2D u_frame_depth; // the frame's resolved depth (the stretch pass, and the layers with it)
+uniform mat4 u_inverse_view_projection;
 
 const float pi = 3.14159265358979;
+
+// The terrain point the frame's depth holds at uv ([0, 1]^2 over the target); false: the sky. The
+// stretch pass and the layers take the same sample for a texel, so where one's fog ends the
+// other's begins.
+bool frame_ground(vec2 uv, out vec3 ground)
+{
+    float depth = texture(u_frame_depth, uv).r;
+    if (!(depth < 1.0))
+        return false;
+    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    ground = h.xyz / h.w;
+    return true;
+}
 
 // Detail: a tileable noise texture, shifted per layer so neighbouring layers differ. `layer` is
 // the height in the fog in layers of the reference stack (h l0), as the Medium's detail takes it

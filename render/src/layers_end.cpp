@@ -96,7 +96,7 @@ void LayersEnd::draw(const Inputs& in)
     set_eye_in_stack_uniforms(p, in.eye);
     p.set("u_inverse_view_projection", in.frame.inverse_view_projection);
     p.set("u_noise", end_unit_noise);
-    p.set("u_depth", end_unit_depth);
+    p.set("u_frame_depth", end_unit_depth);
     p.set("u_base_heights", end_unit_base);
     p.set("u_base_rect", rect_);
     p.use();

@@ -342,7 +342,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     if (stretch) {
         end_.draw({o, frame, noise_shift_, in_stack, noise_.get(), resolved_depth, fog_, shadow_, sun_, light_volume_});
         // After the stretch pass, which binds its own textures.
-        p.set("u_ground_depth", layers_unit_ground_depth);
+        p.set("u_frame_depth", layers_unit_ground_depth);
         p.set("u_target_size", glm::vec2(float(low_width_), float(low_height_)));
         p.set("u_inverse_view_projection", frame.inverse_view_projection);
         glBindTextureUnit(layers_unit_ground_depth, resolved_depth);
