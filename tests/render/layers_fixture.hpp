@@ -24,7 +24,6 @@
 
 namespace {
 
-
 using kiri::render::Camera;
 using kiri::render::Image;
 using kiri::render::Renderer;
