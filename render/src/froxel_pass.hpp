@@ -27,6 +27,7 @@
 #include "kiri/geometry/volume/froxel_options.hpp"
 #include "kiri/render/renderer.hpp"
 #include "pass_timer.hpp"
+#include "render_targets.hpp"
 #include "shader_program.hpp"
 #include "shadow_map_pass.hpp"
 
@@ -65,12 +66,7 @@ public:
     void set_resolution(double scale);
     //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's).
     void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
-    //! The frame's samples before the resolve (RenderTargets::multisampled_color, _depth).
-    struct FrameSamples {
-        GLuint color = 0, depth = 0;
-        int count = 1;
-        const float* offsets = nullptr;  //!< each sample's offset from the pixel's centre (x, y; 8)
-    };
+    using FrameSamples = detail::FrameSamples;
     //! The fog on the resolved frame (colour: RGBA16F, read and written); where a pixel's
     //! samples see different fog (two surfaces, or one fogged unevenly), each side its own
     //! (froxel_edges.comp).

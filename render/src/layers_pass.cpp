@@ -55,7 +55,7 @@ void set_sampling(GLuint texture, GLint filter)
 LayersPass::LayersPass()
     : program_({"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "fog_lighting.glsl",
                 "terrain_shadow.glsl", "froxel_fog_none.glsl", "layers_light.glsl", "layers.frag"}),
-      composite_({"fullscreen.vert", "layers_composite.frag"}),
+      composite_({"depth_samples.glsl", "fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
 {}
@@ -222,7 +222,8 @@ double LayersPass::reduced_scale(double scale, int width, int height)
     return std::clamp(std::max(scale, std::sqrt(min_reduced_texels / pixels)), 0.0, 1.0);
 }
 
-bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigned resolved_fbo, unsigned resolved_depth)
+bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigned resolved_fbo, unsigned resolved_depth,
+                              const FrameSamples& samples)
 {
     bool uploaded = false;
     if (!ready(frame, uploaded))
@@ -250,6 +251,12 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigne
     composite_.set("u_layers", 0);
     composite_.set("u_low_depth", 1);
     composite_.set("u_depth", 2);
+    composite_.set("u_samples_depth", 3);
+    composite_.set("u_samples_color", 4);
+    composite_.set("u_samples_below", samples.color != 0 ? 1 : 0);
+    composite_.set("u_samples", samples.depth && samples.offsets ? samples.count : 1);
+    if (samples.offsets)
+        glProgramUniform2fv(composite_.id(), composite_.location("u_offsets"), 8, samples.offsets);
     composite_.set("u_low_size", glm::vec2(float(w), float(h)));
     composite_.set("u_near", planes.x);
     composite_.set("u_far", planes.y);
@@ -257,6 +264,8 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigne
     glBindTextureUnit(0, low_color_.get());
     glBindTextureUnit(1, low_depth_.get());
     glBindTextureUnit(2, resolved_depth);
+    glBindTextureUnit(3, samples.depth);
+    glBindTextureUnit(4, samples.color);
     glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
     glViewport(0, 0, frame.width, frame.height);
     glDisable(GL_DEPTH_TEST);

@@ -10,6 +10,7 @@
 #include "frame_context.hpp"
 #include "kiri/geometry/layers/layer_stack.hpp"
 #include "layers_end.hpp"
+#include "render_targets.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::geometry {
@@ -64,7 +65,8 @@ public:
     //! depth-tested against the resolved frame's depth, then composites into `resolved_fbo`
     //! with depth-aware upsampling (a quarter of the fragments at scale 0.5). Returns true on
     //! an upload.
-    bool draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth);
+    bool draw_reduced(const FrameContext& frame, double scale, unsigned resolved_fbo, unsigned resolved_depth,
+                      const FrameSamples& samples);
 
     //! The froxel fog each layer reads at its own depth (nullptr: none; drawn after its apply)
     //! and the sun's shadow map of the terrain (nullptr: no terrain shadows), for the frame.

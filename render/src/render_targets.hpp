@@ -9,6 +9,14 @@ namespace kiri::render::detail {
 
 class ShaderProgram;
 
+//! A frame's samples before the resolve (RenderTargets::frame_samples): the passes after the resolve
+//! that split a pixel whose samples see two surfaces (the froxels' apply, the layers' composite).
+struct FrameSamples {
+    GLuint color = 0, depth = 0;
+    int count = 1;
+    const float* offsets = nullptr;  //!< each sample's offset from the pixel's centre (x, y; 8)
+};
+
 //! The offscreen framebuffers of a frame. Passes draw linear radiance into a 4x multisampled
 //! half-float target (colour RGBA16F, depth 32F), resolved into single-sampled copies ("hdr")
 //! that later passes blend into (layers, fog); the depth is resolved to each pixel's centre
@@ -42,6 +50,10 @@ public:
     int resolved_samples() const { return resolve_samples_; }
     //! Each sample's offset from its pixel's centre (pixels; x, y per sample, 8 samples).
     const float* sample_offsets() const { return sample_offsets_.data(); }
+    FrameSamples frame_samples() const
+    {
+        return {msaa_color_.get(), msaa_depth_.get(), resolve_samples_, sample_offsets_.data()};
+    }
     //! The tone-mapped 8-bit image (+ the resolved depth).
     GLuint display_framebuffer() const { return display_.get(); }
     int width() const { return width_; }

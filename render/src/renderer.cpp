@@ -424,13 +424,15 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     }
     if (fog) {  // the volume from the frame's depth, then the fog on the resolved frame
         r.froxel->update(frame, r.terrain, r.targets.resolved_depth());
-        r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth(),
-                        {r.targets.multisampled_color(), r.targets.multisampled_depth(), r.targets.resolved_samples(),
-                         r.targets.sample_offsets()});
+        r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth(), r.targets.frame_samples());
     }
     if (!layers_multisampled) {  // layers in their own target, composited after the resolve
         const ScopedPassTimer timed(r.layers_timer);
-        if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.hdr_framebuffer(), r.targets.resolved_depth()))
+        // The samples' colour, unless the froxels' fog went into the resolved frame since.
+        detail::FrameSamples below = r.targets.frame_samples();
+        if (fog)
+            below.color = 0;
+        if (r.layers.draw_reduced(frame, r.layer_scale, r.targets.hdr_framebuffer(), r.targets.resolved_depth(), below))
             ++r.pending_uploads;
     }
     const bool particles = r.particles.has_particles();

@@ -1,11 +1,13 @@
 // The layers drawn at reduced resolution (Renderer::set_layer_resolution) against the same
 // layers at full resolution: a thin fog over a flat plain seen at a grazing angle, the case
 // where testing the low-resolution layers against one full-resolution pixel's depth cut the fog
-// into stripes (rows whose lowest layers lay behind that pixel's ground).
+// into stripes (rows whose lowest layers lay behind that pixel's ground); and a ridge against the
+// fogged plain behind it, where a pixel's samples see the two.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <vector>
 
@@ -147,6 +149,99 @@ TEST_F(LayersReducedGl, ASmallFrameKeepsTheReducedTargetsFloor)
     EXPECT_TRUE(frame(0.5, 160, 90) == frame(1.0, 160, 90));
     EXPECT_TRUE(frame(0.25, 320, 180) == frame(1.0, 320, 180));
     EXPECT_FALSE(frame(0.5, 480, 270) == frame(1.0, 480, 270));  // 320 x 180 of 480 x 270: reduced
+}
+
+// A ridge 200 m high across a 2 km plain (20 m cells), and a sheet of fog 50 m deep over the
+// plain on both sides of it.
+g::Terrain ridge()
+{
+    g::Heightfield hf;
+    hf.nx = hf.ny = 101;
+    hf.dx = hf.dy = 20.0;
+    hf.x0 = hf.y0 = -1000.0;
+    for (int j = 0; j < hf.ny; ++j)
+        for (int i = 0; i < hf.nx; ++i) {
+            const double x = hf.x_of(i);
+            hf.z.push_back(200.0 * std::exp(-x * x / (2.0 * 40.0 * 40.0)));
+        }
+    hf.valid.assign(hf.z.size(), 1);
+    return g::Terrain(std::move(hf));
+}
+
+// Where a pixel's samples see the ridge's crest and the fogged plain far behind it, the layers
+// over each are those of its own surface: the layers drawn into their own target (per pixel,
+// against the depth at its centre) and composited take each sample's from the texels around it
+// that lie at that sample's depth, as the layers drawn straight into the multisampled frame (per
+// sample: the oracle) have them.
+TEST_F(LayersReducedGl, APixelAcrossTheRidgeTakesEachSamplesFog)
+{
+    const g::Terrain t = ridge();
+    g::FogSpec spec;
+    spec.footprint = g::rectangle_footprint({-980, -980}, {980, 980});
+    spec.patch_size = 140.0;
+    spec.surface = g::SurfaceKind::gregory;
+    spec.fit.mode = g::FitMode::lake;
+    spec.fit.altitude = 50.0;
+    spec.tessellation.level = 4;
+    g::BaseSurface surface = g::fog_control_surface(t, spec);
+    g::fit_fog_surface(surface, t, spec);
+    const g::Tessellation tessellation = g::tessellate(surface, spec.tessellation);
+    g::LayerOptions o;
+    o.count = 10;
+    o.thickness = 50.0;
+    o.base_offset = -50.0;
+    o.shading = g::LayerShading::medium;
+    o.optics.extinction = 0.03;
+    o.optics.detail = 0.0;
+    o.ground_fade = 5.0;
+    const g::LayerBase base = g::make_layer_base(surface, tessellation, o);
+    Renderer r;
+    r.set_terrain(t);
+    r.set_layers(base, o);
+    Camera c;  // over the ridge's crest onto the plain behind it
+    c.position = {-700.0, -500.0, 500.0};
+    c.target = {500.0, 400.0, 0.0};
+    c.fov_y_deg = 20.0;
+    const int w = 64, h = 36;
+    r.set_layer_resolution(1.0, true);
+    r.render(c, w, h);
+    const kiri::render::RadianceImage oracle = r.read_radiance();
+    const kiri::render::RadianceSamples samples = r.read_radiance_samples();
+    r.set_layer_resolution(1.0);
+    r.render(c, w, h);
+    const kiri::render::RadianceImage composited = r.read_radiance();
+    const auto luminance = [](const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; };
+    double edge_sum = 0.0, edge_worst = 0.0, inner_sum = 0.0;
+    int edges = 0, inner = 0;
+    for (std::size_t k = 0; k < std::size_t(w) * h; ++k) {
+        double spread = 0.0;  // the samples' largest difference in a channel, relative
+        for (int s = 1; s < samples.samples; ++s)
+            for (int ch = 0; ch < 3; ++ch) {
+                const double a = samples.rgba[(k * samples.samples + s) * 4 + ch],
+                             b = samples.rgba[k * samples.samples * 4 + ch];
+                spread = std::max(spread, std::abs(a - b) / std::max(std::min(a, b), 1e-6));
+            }
+        const double expected = luminance(&oracle.rgba[k * 4]), got = luminance(&composited.rgba[k * 4]);
+        const double e = std::abs(got / expected - 1.0);
+        if (std::getenv("KIRI_TEST_VERBOSE") && k % w == std::size_t(w / 2))
+            std::printf("      row %zu: spread %.3f got %.4f expected %.4f\n", k / w, spread, got, expected);
+        if (spread > 0.1) {  // the crest and the fog far behind it in one pixel
+            edge_sum += e;
+            edge_worst = std::max(edge_worst, e);
+            ++edges;
+        } else {
+            inner_sum += e;
+            ++inner;
+        }
+    }
+    ASSERT_GE(edges, 20);
+    std::printf(
+        "    %d pixels across the crest: %.2f %% off the multisampled layers on average, %.2f %% at most "
+        "(the %d others: %.2f %%)\n",
+        edges, 100.0 * edge_sum / edges, 100.0 * edge_worst, inner, 100.0 * inner_sum / inner);
+    // Measured 2.00 % (worst 14.6 %); composited with the texels matched to the pixel's centre alone
+    // (each pixel one surface's layers) 4.70 %.
+    EXPECT_LT(edge_sum / edges, 0.03);
 }
 
 }  // namespace
