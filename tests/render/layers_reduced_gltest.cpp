@@ -52,12 +52,12 @@ std::vector<double> row_means(const Image& image)
 
 class LayersReducedGl : public kiri::test::GlTest {};
 
-// A thin sheet of fog over the plain: the layers' base and options (the renderer keeps
+// A lake fog's layers: their base and options (the renderer keeps
 // references to both).
 struct Sheet {
     g::LayerOptions options;
     g::LayerBase base;
-    //! Gives `r` the plain and this sheet's layers.
+    //! Gives `r` the terrain and this fog's layers.
     void draw_with(Renderer& r, const g::Terrain& t) const
     {
         r.set_terrain(t);
@@ -65,28 +65,33 @@ struct Sheet {
     }
 };
 
-Sheet sheet(const g::Terrain& t)
+// A lake fog up to `altitude` over the square of half side `half` (its layers the Medium's slabs):
+// over the plain, a sheet of that thickness.
+Sheet lake_sheet(const g::Terrain& t, double half, double patch, double altitude, int count)
 {
-    g::FogSpec spec;  // a sheet of fog 20 m thick over the whole plain
-    spec.footprint = g::rectangle_footprint({-30000, -30000}, {30000, 30000});
-    spec.patch_size = 2000.0;
+    g::FogSpec spec;
+    spec.footprint = g::rectangle_footprint({-half, -half}, {half, half});
+    spec.patch_size = patch;
     spec.surface = g::SurfaceKind::gregory;
     spec.fit.mode = g::FitMode::lake;
-    spec.fit.altitude = 23.0;
+    spec.fit.altitude = altitude;
     spec.tessellation.level = 4;
     g::BaseSurface surface = g::fog_control_surface(t, spec);
     g::fit_fog_surface(surface, t, spec);
     const g::Tessellation tessellation = g::tessellate(surface, spec.tessellation);
     g::LayerOptions o;
-    o.count = 15;
-    o.thickness = 23.0;
-    o.base_offset = -23.0;
+    o.count = count;
+    o.thickness = altitude;
+    o.base_offset = -altitude;
     o.shading = g::LayerShading::medium;
     o.optics.extinction = 0.03;
     o.optics.detail = 0.0;
     o.ground_fade = 5.0;
     return {o, g::make_layer_base(surface, tessellation, o)};
 }
+
+// A sheet of fog 23 m thick over the whole plain.
+Sheet sheet(const g::Terrain& t) { return lake_sheet(t, 30000.0, 2000.0, 23.0, 15); }
 
 Camera overview()
 {
@@ -176,28 +181,9 @@ g::Terrain ridge()
 TEST_F(LayersReducedGl, APixelAcrossTheRidgeTakesEachSamplesFog)
 {
     const g::Terrain t = ridge();
-    g::FogSpec spec;
-    spec.footprint = g::rectangle_footprint({-980, -980}, {980, 980});
-    spec.patch_size = 140.0;
-    spec.surface = g::SurfaceKind::gregory;
-    spec.fit.mode = g::FitMode::lake;
-    spec.fit.altitude = 50.0;
-    spec.tessellation.level = 4;
-    g::BaseSurface surface = g::fog_control_surface(t, spec);
-    g::fit_fog_surface(surface, t, spec);
-    const g::Tessellation tessellation = g::tessellate(surface, spec.tessellation);
-    g::LayerOptions o;
-    o.count = 10;
-    o.thickness = 50.0;
-    o.base_offset = -50.0;
-    o.shading = g::LayerShading::medium;
-    o.optics.extinction = 0.03;
-    o.optics.detail = 0.0;
-    o.ground_fade = 5.0;
-    const g::LayerBase base = g::make_layer_base(surface, tessellation, o);
+    const Sheet fog = lake_sheet(t, 980.0, 140.0, 50.0, 10);
     Renderer r;
-    r.set_terrain(t);
-    r.set_layers(base, o);
+    fog.draw_with(r, t);
     Camera c;  // over the ridge's crest onto the plain behind it
     c.position = {-700.0, -500.0, 500.0};
     c.target = {500.0, 400.0, 0.0};
