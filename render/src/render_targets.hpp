@@ -43,13 +43,12 @@ public:
     GLuint hdr_framebuffer() const { return resolved_.get(); }
     GLuint hdr_color() const { return resolved_color_.get(); }
     GLuint resolved_depth() const { return resolved_depth_.get(); }
-    //! The multisampled colour and depth before the resolve (the froxels' apply splits a pixel
-    //! whose samples see two surfaces), and how many samples a pixel has.
-    GLuint multisampled_color() const { return msaa_color_.get(); }
-    GLuint multisampled_depth() const { return msaa_depth_.get(); }
+    //! How many samples a pixel has.
     int resolved_samples() const { return resolve_samples_; }
     //! Each sample's offset from its pixel's centre (pixels; x, y per sample, 8 samples).
     const float* sample_offsets() const { return sample_offsets_.data(); }
+    //! The multisampled colour and depth before the resolve, for the passes after it that split a
+    //! pixel whose samples see two surfaces.
     FrameSamples frame_samples() const
     {
         return {msaa_color_.get(), msaa_depth_.get(), resolve_samples_, sample_offsets_.data()};
