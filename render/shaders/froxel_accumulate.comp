@@ -3,7 +3,8 @@
 // so each froxel is its own history: no reprojection, and no clamp to the current sample's
 // neighbourhood (a clamp rejects what a moving view changed; here it would only pull the mean
 // towards the last sample). With u_weight = k / (k + 1) after k samples the result is their mean.
-// Froxels not lit (a = 0) say nothing about J, as in froxel_temporal.comp.
+// Froxels not lit (a < 0) say nothing about J, as in froxel_temporal.comp; both parts of a lit one
+// (J in the terrain's shadow, the sun's share: froxel_lighting.comp) are averaged.
 layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
 layout(rgba16f, binding = 0) writeonly uniform image3D o_resolved;
 uniform sampler3D u_current;
@@ -17,11 +18,11 @@ void main()
     if (any(greaterThanEqual(id, u_fx_size)))
         return;
     vec4 current = texelFetch(u_current, id, 0);
-    vec3 j = current.rgb;
+    vec4 j = current;
     if (u_history_valid != 0) {
         vec4 history = texelFetch(u_history, id, 0);
-        if (current.a > 0.0 && history.a > 0.99)
-            j = mix(current.rgb, history.rgb, u_weight);
+        if (current.a >= 0.0 && history.a >= 0.0)
+            j = mix(current, history, u_weight);
     }
-    imageStore(o_resolved, id, vec4(j, current.a));
+    imageStore(o_resolved, id, j);
 }

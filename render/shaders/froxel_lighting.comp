@@ -1,10 +1,11 @@
 #version 450 core
 // Pass 2: the Medium's lighting per froxel (froxel_light.glsl, docs/froxel.md) as J = S / sigma_t,
 // the in-scattered radiance per unit of its extinction. J is smooth where the density is not: it
-// is what the temporal filter blends, what the integration weighs by the Medium's density and
-// what the pixels that march read at their own. Stored as (J, 1); (0, 0) where skipped: froxels
-// without the Medium (standard slicing), or every froxel of a tile without fog (fog-aware, where
-// the apply may look J up anywhere in a tile's range). The height fog is lit where it is
+// is what the temporal filter blends and what the integration weighs by the Medium's density.
+// Stored in two parts (medium_light_parts_at): (J in the terrain's shadow, the sun's share), the
+// integration taking the terrain's visibility of the sun along each tile's ray through a slice;
+// (0, -1) where skipped: froxels without the Medium (standard slicing), or every froxel of a tile
+// without fog (fog-aware). The height fog is lit where it is
 // integrated and marched, at its own points (froxel_integrate.comp, froxel_march.glsl): a haze
 // tens of metres deep changes its light within a froxel, and one J for both media let the
 // haze's light stand for the Medium's where a froxel held both.
@@ -23,7 +24,7 @@ void main()
     vec4 density = texelFetch(u_density, id, 0);
     vec2 range = fx_tile_range(id.xy);
     if (u_md_on == 0 || !(u_whole_tiles != 0 ? range.y > range.x : density.x > 0.0)) {
-        imageStore(o_light, id, vec4(0.0));
+        imageStore(o_light, id, vec4(0.0, 0.0, 0.0, -1.0));
         return;
     }
     vec2 uv = (vec2(id.xy) + u_jitter.xy) / vec2(u_fx_size.xy);
@@ -33,5 +34,5 @@ void main()
     // the tile see farther) take the light of the ray's last point before the ground, not that
     // of a point inside the hill.
     vec3 p = fx_world(uv, min(mix(d0, d1, density.z), 0.998 * fx_tile_ground(id.xy)));
-    imageStore(o_light, id, vec4(medium_light_at(p, u_fx_eye, u_sun_jitter), 1.0));
+    imageStore(o_light, id, medium_light_parts_at(p, u_fx_eye, u_sun_jitter));
 }

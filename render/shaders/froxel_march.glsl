@@ -47,8 +47,9 @@ float froxel_step_depth(vec3 q0, vec3 q1, float len)
 // Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
 // spread like the slices over [a, b], up to `stop` (<= b: where the ray ends). The Medium (when
 // with_medium): its optical depth over each step (froxel_step_depth), lit at the ray's own
-// points every fourth step (medium_light_at, froxel_light.glsl), in between linear; the froxels'
-// J, bilinear across four tiles, mixed the light of a sunlit ridge and of a valley in its shadow
+// points every fourth step (medium_light_parts_at, froxel_light.glsl), in between linear, the
+// terrain's visibility of the sun taken along each step (segment_visibility); the froxels' J,
+// bilinear across four tiles, mixed the light of a sunlit ridge and of a valley in its shadow
 // (the lake's threads from afar 7.8 % off the reference so, 4.7 % lit at their own points). The
 // height fog: its optical depth over each step in closed form, lit at its own points (the volume's J would light a haze a few
 // tens of metres deep at one point of a slice hundreds of metres deep: the plain under the
@@ -61,14 +62,15 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
     vec3 ray = fx_ray(uv);
     float stretch = length(ray);
     float d0 = a;
-    vec3 j0 = vec3(0.0), j1 = j0;
+    vec4 j0 = vec4(0.0), j1 = j0;  // J's two parts (medium_light_parts_at) at the ends of four steps
+    float visible_d0 = -1.0;       // the terrain's visibility of the sun at d0 where the step before took it
     for (int k = 0; k < n && d0 < stop; ++k) {
         // J at the start (the first step) and at the end of the next four steps; one call in a
         // loop the compiler keeps, so that the light is inlined once.
         for (int m = with_medium && k % 4 == 0 ? (k == 0 ? 0 : 1) : 2; m < 2; ++m) {
             float at = m == 0 ? a : min(fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)), stop);
             j0 = j1;
-            j1 = medium_light_at(u_fx_eye + ray * at, u_fx_eye, 0.5);
+            j1 = medium_light_parts_at(u_fx_eye + ray * at, u_fx_eye, 0.5);
         }
         float d1 = min(fx_slice_depth(float(k + 1) / float(n), vec2(a, b)), stop);
         vec3 q0 = u_fx_eye + ray * d0, q1 = u_fx_eye + ray * d1;
@@ -78,12 +80,18 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
         const float haze = 0.0;
 #endif
         float medium = with_medium ? froxel_step_depth(q0, q1, (d1 - d0) * stretch) : 0.0;
+        float visible_d1 = -1.0;
         if (haze + medium > 0.0) {
             float through = exp(-(haze + medium));
             float opacity = fog.a * (1.0 - through) / (haze + medium);  // per unit of optical depth
             if (medium > 0.0) {
                 float span = float(min(4, n - (k / 4) * 4));
-                fog.rgb += opacity * medium * mix(j0, j1, (float(k % 4) + 0.5) / span);
+                vec4 parts = mix(j0, j1, (float(k % 4) + 0.5) / span);
+                // The terrain's visibility of the sun along the step, not at the lit points.
+                float visible = parts.a > 0.0
+                    ? segment_visibility(q0, q1, visible_d0 >= 0.0 ? visible_d0 : medium_visibility_at(q0), visible_d1)
+                    : 0.0;
+                fog.rgb += opacity * medium * medium_light_from_parts(parts, visible);
             }
 #if FROXEL_HEIGHT_FOG
             if (haze > 0.0)
@@ -91,6 +99,7 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
 #endif
             fog.a *= through;
         }
+        visible_d0 = visible_d1;
         d0 = d1;
     }
 }

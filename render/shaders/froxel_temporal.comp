@@ -44,8 +44,8 @@ void main()
     }
     float w = fx_slice_coordinate(depth, previous_range) * float(u_fx_size.z) - 0.5;
     int k0 = clamp(int(floor(w)), 0, u_fx_size.z - 1), k1 = min(k0 + 1, u_fx_size.z - 1);
-    vec4 history = mix(texelFetch(u_history, ivec3(tile, k0), 0), texelFetch(u_history, ivec3(tile, k1), 0),
-                       clamp(w - float(k0), 0.0, 1.0));
+    vec4 h0 = texelFetch(u_history, ivec3(tile, k0), 0), h1 = texelFetch(u_history, ivec3(tile, k1), 0);
+    vec4 history = mix(h0, h1, clamp(w - float(k0), 0.0, 1.0));
     vec4 lo = current, hi = current;
     const ivec3 offsets[6] = ivec3[](ivec3(1, 0, 0), ivec3(-1, 0, 0), ivec3(0, 1, 0), ivec3(0, -1, 0),
                                      ivec3(0, 0, 1), ivec3(0, 0, -1));
@@ -53,15 +53,16 @@ void main()
         ivec3 q = id + offsets[k];
         if (all(greaterThanEqual(q, ivec3(0))) && all(lessThan(q, u_fx_size))) {
             vec4 v = texelFetch(u_current, q, 0);
-            if (v.a > 0.0) {
+            if (v.a >= 0.0) {
                 lo = min(lo, v);
                 hi = max(hi, v);
             }
         }
     }
-    // Neighbours and history that were not lit (a = 0) say nothing about J.
-    vec3 j = current.rgb;
-    if (current.a > 0.0 && history.a > 0.99)
-        j = mix(current.rgb, clamp(history.rgb, lo.rgb, hi.rgb), u_weight);
-    imageStore(o_resolved, id, vec4(j, current.a));
+    // Neighbours and history that were not lit (a < 0) say nothing about J. Both parts of J (in
+    // the terrain's shadow, the sun's share: froxel_lighting.comp) are blended.
+    vec4 j = current;
+    if (current.a >= 0.0 && h0.a >= 0.0 && h1.a >= 0.0)
+        j = mix(current, clamp(history, lo, hi), u_weight);
+    imageStore(o_resolved, id, j);
 }
