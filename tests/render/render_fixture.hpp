@@ -49,4 +49,26 @@ inline geometry::Terrain gaussian_hill(int n = 65, double d = 20.0, double peak 
     return geometry::Terrain(std::move(hf));
 }
 
+//! The views bench's canyon (apps/kiri/bench/views_bench.cpp): a meandering canyon 300 m deep in
+//! a plateau rising northwards, 240 x 180 samples 10 m apart, centred on the origin.
+inline geometry::Terrain views_bench_canyon()
+{
+    geometry::Heightfield hf;
+    hf.nx = 240;
+    hf.ny = 180;
+    hf.dx = hf.dy = 10.0;
+    hf.x0 = -0.5 * (hf.nx - 1) * hf.dx;
+    hf.y0 = -0.5 * (hf.ny - 1) * hf.dy;
+    hf.z.resize(std::size_t(hf.nx) * std::size_t(hf.ny));
+    hf.valid.assign(hf.z.size(), 1);
+    for (int j = 0; j < hf.ny; ++j)
+        for (int i = 0; i < hf.nx; ++i) {
+            const double x = double(i) / (hf.nx - 1), y = double(j) / (hf.ny - 1);
+            const double axis = 0.5 + 0.1 * std::sin(6.0 * y);
+            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] = 900.0 -
+                300.0 * std::exp(-(x - axis) * (x - axis) / 0.008) + 60.0 * y + 20.0 * std::sin(9.0 * x + 3.0 * y);
+        }
+    return geometry::Terrain(std::move(hf));
+}
+
 }  // namespace kiri::test

@@ -21,27 +21,6 @@ namespace g = kiri::geometry;
 using kiri::render::detail::ShadowMapPass;
 using kiri::render::detail::TerrainPass;
 
-// The views bench's canyon: 300 m deep, meandering, in a plateau rising northwards (10 m cells).
-g::Terrain canyon()
-{
-    g::Heightfield hf;
-    hf.nx = 240;
-    hf.ny = 180;
-    hf.dx = hf.dy = 10.0;
-    hf.x0 = -1195.0;
-    hf.y0 = -895.0;
-    hf.z.resize(std::size_t(hf.nx) * std::size_t(hf.ny));
-    hf.valid.assign(hf.z.size(), 1);
-    for (int j = 0; j < hf.ny; ++j)
-        for (int i = 0; i < hf.nx; ++i) {
-            const double x = double(i) / (hf.nx - 1), y = double(j) / (hf.ny - 1);
-            const double axis = 0.5 + 0.1 * std::sin(6.0 * y);
-            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] = 900.0 -
-                300.0 * std::exp(-(x - axis) * (x - axis) / 0.008) + 60.0 * y + 20.0 * std::sin(9.0 * x + 3.0 * y);
-        }
-    return g::Terrain(std::move(hf));
-}
-
 bool sun_visible(const g::Terrain& t, const glm::dvec3& p, const glm::dvec3& sun)
 {
     for (double s = 0.5; s < 5000.0; s += 0.5) {
@@ -58,7 +37,7 @@ class TerrainShadowProbeGl : public kiri::test::GlTest {};
 
 TEST_F(TerrainShadowProbeGl, TheMapsShadowInTheAirOfACanyonIsTheHeightfields)
 {
-    const g::Terrain t = canyon();
+    const g::Terrain t = kiri::test::views_bench_canyon();
     TerrainPass terrain;
     terrain.set_terrain(t, 1.0);
     ShadowMapPass map;
