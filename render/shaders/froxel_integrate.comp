@@ -81,7 +81,7 @@ void main()
             vec3 a = fx_world(uv, min(d0, ground)), b = fx_world(uv, min(d1, ground));
             float visible = 0.0;
             if (v.a > 0.0)
-                visible = segment_visibility(a, b, visible_d0 >= 0.0 ? visible_d0 : medium_visibility_at(a), visible_d1);
+                visible = segment_visibility(a, b, visible_d0, visible_d1);
             radiance += opacity * m.x * medium_light_from_parts(v, visible);
         }
         visible_d0 = visible_d1;

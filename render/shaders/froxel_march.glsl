@@ -88,9 +88,7 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
                 float span = float(min(4, n - (k / 4) * 4));
                 vec4 parts = mix(j0, j1, (float(k % 4) + 0.5) / span);
                 // The terrain's visibility of the sun along the step, not at the lit points.
-                float visible = parts.a > 0.0
-                    ? segment_visibility(q0, q1, visible_d0 >= 0.0 ? visible_d0 : medium_visibility_at(q0), visible_d1)
-                    : 0.0;
+                float visible = parts.a > 0.0 ? segment_visibility(q0, q1, visible_d0, visible_d1) : 0.0;
                 fog.rgb += opacity * medium * medium_light_from_parts(parts, visible);
             }
 #if FROXEL_HEIGHT_FOG
