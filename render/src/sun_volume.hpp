@@ -25,8 +25,9 @@ glm::vec3 sun_march_direction(glm::vec3 direction);
 struct SunVolumeResolution {
     //! Columns a side: the grid's samples, at most max_columns, and at least min_columns (each
     //! cell divided evenly: tau_sun bends where the sun's path leaves through the Medium's side,
-    //! however coarse its grid).
-    int min_columns = 64, max_columns = 128;
+    //! however coarse its grid). Threads of fog in valleys a few hundred metres wide need columns
+    //! closer than the 230 m that 128 gave over Jacksboro's fog (docs/medium.md).
+    int min_columns = 64, max_columns = 192;
     int levels = 48;  //!< levels a column (medium_shell.glsl: 60 % of them from floor to top)
     int steps = 48;   //!< steps of each level's march towards the sun
     bool operator==(const SunVolumeResolution&) const = default;
