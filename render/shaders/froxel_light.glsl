@@ -92,10 +92,10 @@ float medium_visibility_at(vec3 p) { return terrain_visibility(medium_lit_point(
 
 // Its mean over the segment [a, b] of a ray, given its value at a (va, or < 0: not taken yet; vb:
 // its value at b, the next segment's va): the ends' mean where they agree, else the middles' of
-// eight pieces: the edge of the shade a wall casts into the fog crosses the segment there. One point's visibility for a slice or four steps
-// of a march tens of metres deep left bands along that shade a slice or four steps apart (the
-// views bench's canyon from inside its fog: the froxels 2.37 % off the reference, 0.72 % now;
-// 0.71 % with 256 slices instead of 64).
+// eight pieces: the edge of the shade a wall casts into the fog crosses the segment there. One
+// point's visibility for a slice or four steps of a march tens of metres deep left bands along
+// that shade a slice or four steps apart (the views bench's canyon from inside its fog: the
+// froxels 2.37 % off the reference, 0.72 % now; 0.71 % with 256 slices instead of 64).
 float segment_visibility(vec3 a, vec3 b, float va, out float vb)
 {
     vb = medium_visibility_at(b);
