@@ -16,7 +16,9 @@ flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
 flat in float v_seen_tau;  // tau with the particle's mass in the ground added (particles.vert)
 flat in float v_floor;     // the fog's floor under it, relative to u_centre; below -1e29: none
-flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale)
+flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale, widened)
+flat in float v_depth_radius;      // the ball's extent along the rays
+flat in vec2 v_centre_ndc;         // the centre on the screen (normalised device coordinates)
 in vec4 v_fog;
 flat in float v_baked;
 uniform sampler3D u_log_gamma;
@@ -49,27 +51,36 @@ void main()
     float x = sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_footprint_radius;
     if (x >= 1.0)
         discard;
-    float scene = linear_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy * u_depth_scale), 0).r) /
-                  max(dot(ray, u_camera_forward), 1e-6);
+    // A billboard widened beyond its ball (particles.vert) spreads the ball's mass over pixels
+    // whose rays miss the ball: what the terrain and the fog's bounds hide of it is taken along
+    // the ray through its centre, at the depth of the pixel there, not along rays that meet the
+    // ground in front of it (a ball on the ground seen obliquely lost half its mass so).
+    bool widened = v_footprint_radius > v_depth_radius * 1.001;
+    vec3 cut_ray = widened ? normalize(v_centre) : ray;
+    ivec2 depth_size = textureSize(u_depth, 0);
+    ivec2 depth_pixel = widened ? clamp(ivec2((v_centre_ndc * 0.5 + 0.5) * vec2(depth_size)), ivec2(0), depth_size - 1)
+                                : ivec2(gl_FragCoord.xy * u_depth_scale);
+    float scene = linear_depth(texelFetch(u_depth, depth_pixel, 0).r) / max(dot(cut_ray, u_camera_forward), 1e-6);
     // The part of the ray that lies in the fog: in front of the terrain and over the rectangle
     // that holds the fog (the Medium's grid: a particle at its edge would blur the fog's wall).
     float t0 = 0.0, t1 = scene;
-    line_over_rect(u_eye - u_centre, ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
+    line_over_rect(u_eye - u_centre, cut_ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
     // And above the fog's floor where the fog floats over the ground (a blanket's bottom): seen
     // from under the blanket, a particle's ball below it would veil the clear air.
     if (v_floor > -1e29) {
         float above = u_eye.z - u_centre.z - v_floor;  // the eye over the floor's plane
-        if (ray.z > 0.0)
-            t0 = max(t0, -above / ray.z);
-        else if (ray.z < 0.0)
-            t1 = min(t1, -above / ray.z);
+        if (cut_ray.z > 0.0)
+            t0 = max(t0, -above / cut_ray.z);
+        else if (cut_ray.z < 0.0)
+            t1 = min(t1, -above / cut_ray.z);
         else if (above < 0.0)
             t1 = t0;
     }
-    float share = footprint_ray_share(x, v_footprint_radius, t0 - along, t1 - along);
+    float cut_along = widened ? length(v_centre) : along;
+    float share = footprint_ray_share(widened ? 0.0 : x, v_depth_radius, t0 - cut_along, t1 - cut_along);
     float alpha = 1.0 - exp(-v_seen_tau * footprint_profile(x) * share);
     // Lit where the ray's visible part passes nearest the centre.
-    float t = clamp(along, t0, max(t0, t1));
+    float t = widened ? along : clamp(along, t0, max(t0, t1));
     if (u_soft_edge > 0.0)  // a softer meeting with the terrain than the particle's own, if asked
         alpha *= clamp((scene - t) / u_soft_edge, 0.0, 1.0);
     if (alpha < 1e-5)

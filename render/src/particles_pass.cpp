@@ -273,6 +273,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
             return;
         glProgramUniform1ui(p.id(), p.location("u_first"), GLuint(first));
         p.set("u_depth_scale", glm::vec2(float(frame.width) / float(w), float(frame.height) / float(h)));
+        p.set("u_pixel_angle", float(2.0 / (frame.projection[1][1] * double(h))));
         glBindFramebuffer(GL_FRAMEBUFFER, fbo);
         glViewport(0, 0, w, h);
         glDrawElements(GL_TRIANGLES, GLsizei(6 * n), GL_UNSIGNED_INT, nullptr);

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include <glm/geometric.hpp>
@@ -108,6 +109,51 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
     return a;
 }
 
+// The optical depth one black particle spreads over the frame, summed over its pixels as
+// -ln T times each pixel's solid angle (T: the frame with it over the frame without it), over
+// what its ball holds seen from the eye: tau footprint_area r^2 / d^2 (1 when they agree).
+double optical_mass_ratio(const glm::dvec3& centre, double radius, double tau)
+{
+    const g::Terrain flat = kiri::test::gaussian_hill(33, 100.0, 0.0);
+    kiri::render::Camera cam;
+    cam.position = {0.0, 0.0, 30.0};
+    cam.target = {0.0, 200.0, 0.0};
+    cam.fov_y_deg = 60.0;
+    const int w = 64, h = 48;
+    kiri::render::SunLight sun;
+    sun.direction = glm::normalize(glm::dvec3(0.3, -0.4, 0.8));
+    kiri::render::ParticleStyle style;
+    style.near_scale = 1;
+    kiri::render::Renderer bare;
+    bare.set_terrain(flat, 1.0, false);
+    bare.set_sun(sun);
+    bare.render(cam, w, h);
+    const kiri::render::RadianceImage behind = bare.read_radiance();
+    g::ParticleCloud cloud;
+    cloud.scattering_octaves = 1;
+    cloud.particles.push_back({centre, radius, tau, 0.0, 1.0, -1e300});
+    kiri::render::Renderer r;
+    r.set_terrain(flat, 1.0, false);
+    r.set_sun(sun);
+    r.set_particles(cloud, style);
+    r.render(cam, w, h);
+    const kiri::render::RadianceImage seen = r.read_radiance();
+    const g::ReferenceView view = kiri::render::reference_view(cam, w, h, 0.0);
+    const double pixel = 2.0 * std::tan(cam.fov_y_deg * std::numbers::pi / 360.0) / h;  // on the plane 1 m ahead
+    double mass = 0.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::size_t i = (std::size_t(y) * w + x) * 4 + 1;
+            if (!(behind.rgba[i] > 0.02f) || !(seen.rgba[i] < behind.rgba[i]))
+                continue;
+            const double cos_off_axis = glm::dot(view.ray(x, y), view.forward());
+            mass +=
+                -std::log(double(seen.rgba[i]) / double(behind.rgba[i])) * pixel * pixel * std::pow(cos_off_axis, 3.0);
+        }
+    const double d = glm::length(centre - cam.position);
+    return mass / (tau * g::footprint_area() * radius * radius / (d * d));
+}
+
 }  // namespace
 
 TEST_F(ParticleViewGl, AParticleAroundTheEyeHidesWhatLiesInFrontOfTheEye)
@@ -185,4 +231,24 @@ TEST_F(ParticleViewGl, AParticleAstrideTheFogsEdgeHidesNothingBeyondIt)
     EXPECT_LT(a.hidden, 0.8 * whole.hidden);
     EXPECT_LT(a.mean, 0.001) << a.worst;
     EXPECT_LT(a.worst, 0.01);
+}
+
+TEST_F(ParticleViewGl, AParticleNarrowerThanAPixelKeepsItsOpticalMass)
+{
+    // A ball 1.5 m across 300 m off spans a fifth of a pixel: drawn as it is, a pixel's centre
+    // either misses it (nothing) or meets its middle (the pixel's whole solid angle at its central
+    // optical depth, 30 times its mass). Widened to a pixel and a half with its optical depth
+    // thinned alike, the pixels around it sum to its mass wherever it falls between their centres
+    // (its optical depth of 20 thinned to 0.4: the frame's half floats keep -ln T to 0.1 %).
+    for (double shift : {0.0, 0.21, 0.43, 0.77, 1.1}) {
+        const double ratio = optical_mass_ratio({shift, 300.0, 12.0 + 0.5 * shift}, 1.5, 20.0);
+        EXPECT_NEAR(ratio, 1.0, 0.02) << "shifted " << shift << " m";
+    }
+    // Resting on the ground, seen at a slant (8 degrees): the pixels below it see the ground in
+    // front of it, but what hides the ball is taken along the ray through its centre, which
+    // passes it whole.
+    for (double shift : {0.0, 0.43}) {
+        const double ratio = optical_mass_ratio({shift, 200.0, 1.6}, 1.5, 20.0);
+        EXPECT_NEAR(ratio, 1.0, 0.02) << "on the ground, shifted " << shift << " m";
+    }
 }
