@@ -52,9 +52,9 @@ void main()
     if (x >= 1.0)
         discard;
     // A billboard widened beyond its ball (particles.vert) spreads the ball's mass over pixels
-    // whose rays miss the ball: what the terrain and the fog's bounds hide of it is taken along
-    // the ray through its centre, at the depth of the pixel there, not along rays that meet the
-    // ground in front of it (a ball on the ground seen obliquely lost half its mass so).
+    // whose rays miss the ball: what the terrain hides of it is taken at the depth of the pixel
+    // its centre falls in, along the ray through it, not along rays that meet the ground in front
+    // of it (a ball on the ground seen obliquely lost a quarter of its mass so).
     bool widened = v_footprint_radius > v_depth_radius * 1.001;
     vec3 cut_ray = widened ? normalize(v_centre) : ray;
     ivec2 depth_size = textureSize(u_depth, 0);
@@ -77,7 +77,7 @@ void main()
             t1 = t0;
     }
     float cut_along = widened ? length(v_centre) : along;
-    float share = footprint_ray_share(widened ? 0.0 : x, v_depth_radius, t0 - cut_along, t1 - cut_along);
+    float share = footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
     float alpha = 1.0 - exp(-v_seen_tau * footprint_profile(x) * share);
     // Lit where the ray's visible part passes nearest the centre.
     float t = widened ? along : clamp(along, t0, max(t0, t1));
