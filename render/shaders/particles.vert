@@ -37,7 +37,7 @@ uniform vec3 u_camera_forward;
 uniform vec2 u_tan_half;  // tan of half the view's angle across and up
 uniform float u_pixel_angle;  // the target's pixel across, in radians at the screen's centre
 const float kWholeScreen = 1.5;  // a particle nearer than this many radii covers the screen
-const float kMinPixels = 1.5;    // the narrowest footprint drawn, in pixels of radius
+const float kMinPixels = 1.0;    // the narrowest footprint drawn, in pixels of radius
 
 void main()
 {
