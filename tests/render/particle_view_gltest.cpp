@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <optional>
 
@@ -29,21 +30,24 @@ struct Agreement {
     double hidden = 0.0;  // the mean opacity the particle should show
 };
 
-// One black particle (albedo 0: it only hides what lies behind it) over flat ground. The frame's
-// radiance with it over the radiance without it is the transmittance T of each pixel's ray; the
-// closed form is exp(-tau f(rho / r) share), the share of the column between the eye and the
-// ground the ray meets there (pick), and over the fog's rectangle [xy_min, xy_max].
-Agreement transmittance_agreement(const glm::dvec3& centre, double radius, double tau,
-                                  glm::dvec2 xy_min = glm::dvec2(-1e300), glm::dvec2 xy_max = glm::dvec2(1e300),
-                                  double above_ground = 1.0, double floor = -1e300,
-                                  glm::dvec3 target = glm::dvec3(0.0, 200.0, 0.0))
-{
-    const g::Terrain flat = kiri::test::gaussian_hill(33, 100.0, 0.0);
+// One black particle (albedo 0: it only hides what lies behind it) over flat ground, seen from
+// 30 m up at 64x48: the frame without it (behind) and with it (seen), linear radiance, and the
+// renderer that drew it (its pick).
+struct OneParticle {
     kiri::render::Camera cam;
-    cam.position = {0.0, 0.0, 30.0};
-    cam.target = target;
-    cam.fov_y_deg = 60.0;
-    const int w = 64, h = 48;
+    int w = 64, h = 48;
+    kiri::render::RadianceImage behind, seen;
+    kiri::render::Renderer r;
+};
+
+std::unique_ptr<OneParticle> draw_one_particle(const g::Particle& particle, glm::dvec2 xy_min, glm::dvec2 xy_max,
+                                               const glm::dvec3& target)
+{
+    auto d = std::make_unique<OneParticle>();
+    const g::Terrain flat = kiri::test::gaussian_hill(33, 100.0, 0.0);
+    d->cam.position = {0.0, 0.0, 30.0};
+    d->cam.target = target;
+    d->cam.fov_y_deg = 60.0;
     kiri::render::SunLight sun;
     sun.direction = glm::normalize(glm::dvec3(0.3, -0.4, 0.8));
     kiri::render::ParticleStyle style;
@@ -52,21 +56,36 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
     kiri::render::Renderer bare;
     bare.set_terrain(flat, 1.0, false);
     bare.set_sun(sun);
-    bare.render(cam, w, h);
-    const kiri::render::RadianceImage behind = bare.read_radiance();
+    bare.render(d->cam, d->w, d->h);
+    d->behind = bare.read_radiance();
 
     g::ParticleCloud cloud;
     cloud.scattering_octaves = 1;
-    cloud.particles.push_back({centre, radius, tau, 0.0, above_ground, floor});
+    cloud.particles.push_back(particle);
     cloud.fog_xy_min = xy_min;
     cloud.fog_xy_max = xy_max;
-    kiri::render::Renderer r;
-    r.set_terrain(flat, 1.0, false);
-    r.set_sun(sun);
-    r.set_particles(cloud, style);
-    r.render(cam, w, h);
-    const kiri::render::RadianceImage seen = r.read_radiance();
+    d->r.set_terrain(flat, 1.0, false);
+    d->r.set_sun(sun);
+    d->r.set_particles(cloud, style);
+    d->r.render(d->cam, d->w, d->h);
+    d->seen = d->r.read_radiance();
+    return d;
+}
 
+// The frame with the particle over the frame without it (draw_one_particle) is the transmittance
+// T of each pixel's ray; the closed form is exp(-tau f(rho / r) share), the share of the column between the eye and the
+// ground the ray meets there (pick), and over the fog's rectangle [xy_min, xy_max].
+Agreement transmittance_agreement(const glm::dvec3& centre, double radius, double tau,
+                                  glm::dvec2 xy_min = glm::dvec2(-1e300), glm::dvec2 xy_max = glm::dvec2(1e300),
+                                  double above_ground = 1.0, double floor = -1e300,
+                                  glm::dvec3 target = glm::dvec3(0.0, 200.0, 0.0))
+{
+    const std::unique_ptr<OneParticle> d =
+        draw_one_particle({centre, radius, tau, 0.0, above_ground, floor}, xy_min, xy_max, target);
+    const kiri::render::Camera& cam = d->cam;
+    const int w = d->w, h = d->h;
+    const kiri::render::RadianceImage &behind = d->behind, &seen = d->seen;
+    kiri::render::Renderer& r = d->r;
     const g::ReferenceView view = kiri::render::reference_view(cam, w, h, 0.0);
     Agreement a;
     double sum = 0.0, hidden = 0.0;
@@ -114,30 +133,11 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
 // what its ball holds seen from the eye: tau footprint_area r^2 / d^2 (1 when they agree).
 double optical_mass_ratio(const glm::dvec3& centre, double radius, double tau)
 {
-    const g::Terrain flat = kiri::test::gaussian_hill(33, 100.0, 0.0);
-    kiri::render::Camera cam;
-    cam.position = {0.0, 0.0, 30.0};
-    cam.target = {0.0, 200.0, 0.0};
-    cam.fov_y_deg = 60.0;
-    const int w = 64, h = 48;
-    kiri::render::SunLight sun;
-    sun.direction = glm::normalize(glm::dvec3(0.3, -0.4, 0.8));
-    kiri::render::ParticleStyle style;
-    style.near_scale = 1;
-    kiri::render::Renderer bare;
-    bare.set_terrain(flat, 1.0, false);
-    bare.set_sun(sun);
-    bare.render(cam, w, h);
-    const kiri::render::RadianceImage behind = bare.read_radiance();
-    g::ParticleCloud cloud;
-    cloud.scattering_octaves = 1;
-    cloud.particles.push_back({centre, radius, tau, 0.0, 1.0, -1e300});
-    kiri::render::Renderer r;
-    r.set_terrain(flat, 1.0, false);
-    r.set_sun(sun);
-    r.set_particles(cloud, style);
-    r.render(cam, w, h);
-    const kiri::render::RadianceImage seen = r.read_radiance();
+    const std::unique_ptr<OneParticle> d = draw_one_particle(
+        {centre, radius, tau, 0.0, 1.0, -1e300}, glm::dvec2(-1e300), glm::dvec2(1e300), glm::dvec3(0.0, 200.0, 0.0));
+    const kiri::render::Camera& cam = d->cam;
+    const int w = d->w, h = d->h;
+    const kiri::render::RadianceImage &behind = d->behind, &seen = d->seen;
     const g::ReferenceView view = kiri::render::reference_view(cam, w, h, 0.0);
     const double pixel = 2.0 * std::tan(cam.fov_y_deg * std::numbers::pi / 360.0) / h;  // on the plane 1 m ahead
     double mass = 0.0;
@@ -150,8 +150,8 @@ double optical_mass_ratio(const glm::dvec3& centre, double radius, double tau)
             mass +=
                 -std::log(double(seen.rgba[i]) / double(behind.rgba[i])) * pixel * pixel * std::pow(cos_off_axis, 3.0);
         }
-    const double d = glm::length(centre - cam.position);
-    return mass / (tau * g::footprint_area() * radius * radius / (d * d));
+    const double distance = glm::length(centre - cam.position);
+    return mass / (tau * g::footprint_area() * radius * radius / (distance * distance));
 }
 
 }  // namespace
