@@ -53,8 +53,8 @@ void main()
     // much or little of its mass as it falls: a far fog of small billboards drew as speckle
     // (thin fog over a plain, 20,000 billboards of a third of a pixel: 16.6 % off the reference).
     // Widened to kMinPixels pixels with its optical depth thinned to keep its mass, as splatting
-    // low-passes a splat by the pixel's own footprint ([Zwicker01]).
-    // Across the rays alone: the ball keeps its depth, so the terrain hides as much of it.
+    // low-passes a splat by the pixel's own footprint ([Zwicker01]); across the rays alone: the
+    // ball keeps its depth, so the terrain hides as much of it (particles.frag).
     float widen = max(kMinPixels * u_pixel_angle * d / r, 1.0);
     v_depth_radius = r;
     r *= widen;

@@ -73,8 +73,9 @@ std::unique_ptr<OneParticle> draw_one_particle(const g::Particle& particle, glm:
 }
 
 // The frame with the particle over the frame without it (draw_one_particle) is the transmittance
-// T of each pixel's ray; the closed form is exp(-tau f(rho / r) share), the share of the column between the eye and the
-// ground the ray meets there (pick), and over the fog's rectangle [xy_min, xy_max].
+// T of each pixel's ray; the closed form is exp(-tau f(rho / r) share), the share of the column
+// between the eye and the ground the ray meets there (pick), and over the fog's rectangle
+// [xy_min, xy_max].
 Agreement transmittance_agreement(const glm::dvec3& centre, double radius, double tau,
                                   glm::dvec2 xy_min = glm::dvec2(-1e300), glm::dvec2 xy_max = glm::dvec2(1e300),
                                   double above_ground = 1.0, double floor = -1e300,
@@ -257,6 +258,5 @@ TEST_F(ParticleViewGl, AParticleNarrowerThanAPixelKeepsItsOpticalMass)
     for (double across : {0.0, 1.8, 3.6, 5.4}) {
         const double ratio = optical_mass_ratio({across, 200.0, 1.6}, 1.5, 20.0);
         EXPECT_NEAR(ratio, 1.0, 0.25) << "on the ground, shifted " << across << " m";
-        sum += ratio;
     }
 }
