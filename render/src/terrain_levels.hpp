@@ -23,4 +23,12 @@ struct GridLayout {
 //! stride that would leave fewer than two coarse cells across or down is halved until it does not.
 std::vector<std::uint32_t> grid_level_indices(const GridLayout& grid, int stride);
 
+//! The surround's triangles around grid_level_indices(grid, stride): the `grid.offset` rings on
+//! every side, all of them (the surround's smoothstep lies in them), but along the grid's sides
+//! only at the level's samples (the full mesh draws a cell of each ring per sample of the border:
+//! eleven times the triangles of the 8th level of Jacksboro's grid). The strip next to the grid
+//! takes every sample of the grid's border, as a fan, so it meets the level without a crack;
+//! stride 1 is the full tensor grid's surround.
+std::vector<std::uint32_t> surround_level_indices(const GridLayout& grid, int stride);
+
 }  // namespace kiri::render::detail

@@ -113,27 +113,32 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
                                                  {float(-gx * inv), float(-gy * inv), float(inv)}};
         }
     // Two triangles per cell split along (i, j)-(i+1, j+1), as geometry::Terrain does, counter-
-    // clockwise seen from above: the grid's cells first, then the surround's.
-    std::vector<std::uint32_t> indices, outer;
-    indices.reserve(std::size_t(hf.nx - 1) * (hf.ny - 1) * 6);
-    for (int j = 0; j + 1 < ny; ++j)
-        for (int i = 0; i + 1 < nx; ++i) {
+    // clockwise seen from above: the grid's cells, then per level (every sample, every 2nd, 4th
+    // and 8th) the level's grid (the first: those cells) and its surround, on the same vertices.
+    std::vector<std::uint32_t> indices;
+    indices.reserve(std::size_t(nx - 1) * (ny - 1) * 6);
+    for (int j = k; j + 1 < k + hf.ny; ++j)
+        for (int i = k; i + 1 < k + hf.nx; ++i) {
             const std::uint32_t a = std::uint32_t(j * nx + i), b = a + 1, c = a + 1 + std::uint32_t(nx),
                                 d = a + std::uint32_t(nx);
-            auto& list = in_grid(i, j) && in_grid(i + 1, j + 1) ? indices : outer;
-            list.insert(list.end(), {a, b, c, a, c, d});
+            indices.insert(indices.end(), {a, b, c, a, c, d});
         }
     grid_index_count_ = GLsizei(indices.size());
-    surround_index_count_ = GLsizei(outer.size());
-    indices.insert(indices.end(), outer.begin(), outer.end());
-    // The coarser levels after them, on the same vertices.
-    levels_[0] = {0, grid_index_count_};
     const GridLayout layout{hf.nx, hf.ny, nx, k};
-    for (int level = 1; level < int(std::size(levels_)); ++level) {
-        const std::vector<std::uint32_t> coarse = grid_level_indices(layout, 1 << level);
-        levels_[level] = {GLsizei(indices.size()), GLsizei(coarse.size())};
-        indices.insert(indices.end(), coarse.begin(), coarse.end());
+    for (int level = 0; level < int(std::size(levels_)); ++level) {
+        Level& l = levels_[level];
+        if (level > 0) {
+            const std::vector<std::uint32_t> coarse = grid_level_indices(layout, 1 << level);
+            l.grid = {GLsizei(indices.size()), GLsizei(coarse.size())};
+            indices.insert(indices.end(), coarse.begin(), coarse.end());
+        } else {
+            l.grid = {0, grid_index_count_};
+        }
+        const std::vector<std::uint32_t> outer = surround_level_indices(layout, 1 << level);
+        l.surround = {GLsizei(indices.size()), GLsizei(outer.size())};
+        indices.insert(indices.end(), outer.begin(), outer.end());
     }
+    surround_index_count_ = levels_[0].surround.count;
     vao_ = make_vertex_array();
     shaded_ = false;
     shade_grid_ = {hf.nx, hf.ny, nx, k, glm::vec2(float(hf.x0), float(hf.y0)), glm::vec2(float(hf.dx), float(hf.dy))};
@@ -188,7 +193,7 @@ void TerrainPass::set_resolution(double scale)
         ++level_;
 }
 
-GLsizei TerrainPass::drawn_triangles() const { return has_terrain() ? levels_[level_].count / 3 : 0; }
+GLsizei TerrainPass::drawn_triangles() const { return has_terrain() ? levels_[level_].grid.count / 3 : 0; }
 
 void TerrainPass::draw_mesh() const
 {
@@ -241,16 +246,18 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow) c
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao_.get());
-    const Level& grid = levels_[level_];
-    glDrawElements(GL_TRIANGLES, grid.count, GL_UNSIGNED_INT,
-                   reinterpret_cast<const void*>(std::size_t(grid.offset) * sizeof(std::uint32_t)));
-    if (surround_index_count_ > 0) {
+    const Level& level = levels_[level_];
+    const auto draw_range = [](Range r) {
+        glDrawElements(GL_TRIANGLES, r.count, GL_UNSIGNED_INT,
+                       reinterpret_cast<const void*>(std::size_t(r.offset) * sizeof(std::uint32_t)));
+    };
+    draw_range(level.grid);
+    if (level.surround.count > 0) {
         // The frame's far plane is fitted to the grid: the surround beyond it is kept at the far
         // depth (the sky pass's flat ground is what lies further still).
         glEnable(GL_DEPTH_CLAMP);
         glDepthFunc(GL_LEQUAL);
-        glDrawElements(GL_TRIANGLES, surround_index_count_, GL_UNSIGNED_INT,
-                       reinterpret_cast<const void*>(std::size_t(grid_index_count_) * sizeof(std::uint32_t)));
+        draw_range(level.surround);
         glDisable(GL_DEPTH_CLAMP);
         glDepthFunc(GL_LESS);
     }

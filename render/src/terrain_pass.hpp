@@ -82,9 +82,13 @@ private:
     std::size_t uploaded_size_ = 0;
     double uploaded_exaggeration_ = 0.0;
     bool uploaded_surround_ = false;
-    // The grid's levels in the index buffer: every sample, every 2nd, 4th and 8th.
-    struct Level {
+    // The grid's and the surround's levels in the index buffer: every sample, every 2nd, 4th
+    // and 8th (terrain_levels.hpp).
+    struct Range {
         GLsizei offset = 0, count = 0;
+    };
+    struct Level {
+        Range grid, surround;
     };
     Level levels_[4];
     int level_ = 0;

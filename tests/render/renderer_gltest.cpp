@@ -54,7 +54,7 @@ TEST(Camera, TargetProjectsToImageCentreAndFovEdgeToTopRow)
 TEST_F(RendererGl, ACoarseTerrainLevelDrawsAFractionOfTheGridAndTheSameGround)
 {
     // A frame drawn small (80x60) at every 4th sample of a 257 x 257 hill: a sixteenth of the
-    // triangles (and the fans of the border), the ground where it was: every terrain point picked
+    // triangles (and the fans of the border), the ground (and the surround around it) where it was: every terrain point picked
     // on the coarse level lies on the hill within the coarse cells' chord error, and the picture
     // differs from the whole grid's by little.
     const kiri::geometry::Terrain hill = kiri::test::gaussian_hill(257, 5.0);
@@ -76,15 +76,20 @@ TEST_F(RendererGl, ACoarseTerrainLevelDrawsAFractionOfTheGridAndTheSameGround)
     EXPECT_LT(coarse_triangles, full_triangles / 14);
     // Each pixel sees the ground where the whole grid put it, within the coarse cells' chord
     // error (a quarter of a metre on this hill) and the depth buffer's steps.
-    int picked = 0;
+    // The surround too, drawn at the level's samples along the grid's sides (its rings meet
+    // the level's border sample by sample).
+    int picked = 0, on_surround = 0;
     std::size_t k = 0;
     for (int y = 0; y < h; y += 5)
         for (int x = 0; x < w; x += 5, ++k)
             if (const auto seen = renderer.pick(x, y); seen && full_picks[k]) {
                 ++picked;
+                on_surround += std::max(std::abs(full_picks[k]->x), std::abs(full_picks[k]->y)) > 640.0;
                 EXPECT_LT(glm::length(*seen - *full_picks[k]), 2.0) << x << ", " << y;
             }
     EXPECT_GT(picked, 100);
+    EXPECT_GT(on_surround, 20);
+    std::printf("    %d picks, %d of them on the surround\n", picked, on_surround);
     double difference = 0.0;
     for (std::size_t k = 0; k < full.rgba.size(); ++k)
         difference += std::abs(double(full.rgba[k]) - double(coarse.rgba[k]));

@@ -1,10 +1,13 @@
 // The terrain grid's coarser levels (render/src/terrain_levels.hpp): a level covers the grid's
 // rectangle exactly, counter-clockwise, watertight inside (each inner edge shared by two
 // triangles in opposite directions: no T-junction), and its border is the full grid's, sample by
-// sample, so the surround's first ring meets it without a crack.
+// sample, so the surround's first ring meets it without a crack. The surround's levels keep every
+// ring and meet the grid's level without a crack: grid and surround together tile the whole
+// tensor grid watertight, its outer border at the level's samples.
 #include <gtest/gtest.h>
 
 #include <map>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -14,6 +17,7 @@ namespace {
 
 using kiri::render::detail::grid_level_indices;
 using kiri::render::detail::GridLayout;
+using kiri::render::detail::surround_level_indices;
 
 struct Checked {
     double area = 0.0;
@@ -105,6 +109,101 @@ TEST(TerrainLevels, ALevelDrawsAboutOneCellInStrideSquared)
         // The border's fans add a few per cent; fewer than stride^2 times fewer, more than 70 % of it (48 at 8, the grid 403 x 344).
         EXPECT_GT(ratio, 0.7 * stride * stride) << stride;
         EXPECT_LT(ratio, double(stride * stride)) << stride;
+    }
+}
+
+// The whole vertex array (grid and rings) as one grid: the layout its check() reads ids in.
+GridLayout tensor(const GridLayout& g) { return {g.nx + 2 * g.offset, g.ny + 2 * g.offset, g.nx + 2 * g.offset, 0}; }
+
+std::vector<std::uint32_t> level_with_surround(const GridLayout& g, int stride)
+{
+    std::vector<std::uint32_t> all = grid_level_indices(g, stride);
+    const std::vector<std::uint32_t> outer = surround_level_indices(g, stride);
+    all.insert(all.end(), outer.begin(), outer.end());
+    return all;
+}
+
+TEST(TerrainLevels, StrideOneIsTheFullSurround)
+{
+    // Every cell of the rings, row by row, split as the grid's cells are.
+    const GridLayout g{5, 4, 5 + 6, 3};
+    std::vector<std::uint32_t> expected;
+    const GridLayout t = tensor(g);
+    for (int j = 0; j + 1 < t.ny; ++j)
+        for (int i = 0; i + 1 < t.nx; ++i) {
+            const bool in_grid = i >= g.offset && i + 1 < g.offset + g.nx && j >= g.offset && j + 1 < g.offset + g.ny;
+            if (!in_grid)
+                expected.insert(expected.end(),
+                                {t.vertex(i, j), t.vertex(i + 1, j), t.vertex(i + 1, j + 1), t.vertex(i, j),
+                                 t.vertex(i + 1, j + 1), t.vertex(i, j + 1)});
+        }
+    EXPECT_EQ(surround_level_indices(g, 1), expected);
+}
+
+TEST(TerrainLevels, ASurroundLevelMeetsTheGridsLevelWatertightAndKeepsEveryRing)
+{
+    for (const auto& [nx, ny] : {std::pair{13, 10}, {9, 9}, {17, 5}, {3, 3}, {2, 7}, {203, 144}})
+        for (int rings : {1, 4})
+            for (int stride : {1, 2, 4, 8}) {
+                const GridLayout g{nx, ny, nx + 2 * rings, rings};
+                const GridLayout t = tensor(g);
+                const std::vector<std::uint32_t> level = level_with_surround(g, stride);
+                const Checked c = check(t, level);
+                EXPECT_DOUBLE_EQ(c.area, double(t.nx - 1) * (t.ny - 1)) << nx << "x" << ny << " / " << stride;
+                EXPECT_EQ(c.degenerate, 0) << nx << "x" << ny << " / " << stride;
+                EXPECT_EQ(c.clockwise, 0) << nx << "x" << ny << " / " << stride;
+                EXPECT_EQ(c.unmatched_inner, 0) << nx << "x" << ny << " / " << stride;
+                // Every ring at each of the level's samples along the grid's sides: the vertex
+                // (k + s, r) below the grid, and the same on the other three sides.
+                std::set<std::uint32_t> used(level.begin(), level.end());
+                // The level's samples: 0, s, 2 s, ..., n - 1, the stride halved until two coarse
+                // cells fit each way (terrain_levels.hpp).
+                int s = stride;
+                while (s > 1 && (s >= nx - 1 || s >= ny - 1))
+                    s /= 2;
+                std::set<int> xs{nx - 1}, ys{ny - 1};
+                for (int i = 0; i < nx - 1; i += s)
+                    xs.insert(i);
+                for (int j = 0; j < ny - 1; j += s)
+                    ys.insert(j);
+                for (int r = 0; r < rings; ++r) {
+                    for (int i : xs)
+                        for (int j : {r, t.ny - 1 - r})
+                            EXPECT_EQ(used.count(t.vertex(rings + i, j)), 1u) << nx << "x" << ny << " / " << stride;
+                    for (int j : ys)
+                        for (int i : {r, t.nx - 1 - r})
+                            EXPECT_EQ(used.count(t.vertex(i, rings + j)), 1u) << nx << "x" << ny << " / " << stride;
+                }
+                // No crack: every edge used once lies on the tensor's outer border (a T-junction
+                // where the strip meets the grid's level leaves edges used once inside), and
+                // the border runs round once: each of its vertices left as often as entered.
+                std::map<int, int> out_of, into;
+                const auto on_side = [&](int a, int b) {
+                    const int ia = a % t.nx, ja = a / t.nx, ib = b % t.nx, jb = b / t.nx;
+                    return (ja == jb && (ja == 0 || ja == t.ny - 1)) || (ia == ib && (ia == 0 || ia == t.nx - 1));
+                };
+                int inside = 0;
+                for (const auto& [edge, n] : c.border) {
+                    out_of[edge.first] += n;
+                    into[edge.second] += n;
+                    inside += !on_side(edge.first, edge.second);
+                }
+                EXPECT_EQ(inside, 0) << nx << "x" << ny << " / " << stride;
+                EXPECT_EQ(out_of, into) << nx << "x" << ny << " / " << stride;
+            }
+}
+
+TEST(TerrainLevels, ASurroundLevelDrawsItsRingsAtTheLevelsSamples)
+{
+    // Jacksboro's grid and rings at the preview's floor (the 8th level): 66,108 triangles of
+    // surround at every sample, about stride times fewer at the level's, plus the corners' and
+    // the fans of the strip next to the grid.
+    const GridLayout g{403, 344, 403 + 2 * 19, 19};
+    const double full = double(surround_level_indices(g, 1).size());
+    for (int stride : {2, 4, 8}) {
+        const double ratio = full / double(surround_level_indices(g, stride).size());
+        EXPECT_GT(ratio, 0.6 * stride) << stride;
+        EXPECT_LT(ratio, double(stride)) << stride;
     }
 }
 
