@@ -195,11 +195,14 @@ TEST(TerrainLevels, ASurroundLevelMeetsTheGridsLevelWatertightAndKeepsEveryRing)
 
 TEST(TerrainLevels, ASurroundLevelDrawsItsRingsAtTheLevelsSamples)
 {
-    // Jacksboro's grid and rings at the preview's floor (the 8th level): 66,108 triangles of
-    // surround at every sample, about stride times fewer at the level's, plus the corners' and
-    // the fans of the strip next to the grid.
-    const GridLayout g{403, 344, 403 + 2 * 19, 19};
+    // Jacksboro's grid (344 x 403) and its 21 rings: 66,108 triangles of surround at every
+    // sample, 12,726 at the 8th level (the preview's floor), whose grid has 5,688. Along the
+    // sides stride times fewer; the corners' ring-by-ring cells and the fans of the strip next to
+    // the grid stay.
+    const GridLayout g{344, 403, 344 + 2 * 21, 21};
     const double full = double(surround_level_indices(g, 1).size());
+    EXPECT_EQ(full, 3.0 * 66108);
+    EXPECT_EQ(surround_level_indices(g, 8).size(), 3u * 12726);
     for (int stride : {2, 4, 8}) {
         const double ratio = full / double(surround_level_indices(g, stride).size());
         EXPECT_GT(ratio, 0.6 * stride) << stride;
