@@ -112,32 +112,21 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
             vertices[std::size_t(j) * nx + i] = {{float(xs[i]), float(ys[j]), float(z)},
                                                  {float(-gx * inv), float(-gy * inv), float(inv)}};
         }
-    // Two triangles per cell split along (i, j)-(i+1, j+1), as geometry::Terrain does, counter-
-    // clockwise seen from above: the grid's cells, then per level (every sample, every 2nd, 4th
-    // and 8th) the level's grid (the first: those cells) and its surround, on the same vertices.
+    // Per level (every sample, every 2nd, 4th and 8th) the level's grid and its surround, on the
+    // same vertices, counter-clockwise seen from above; the first level's grid is every cell split
+    // along (i, j)-(i+1, j+1), as geometry::Terrain does (terrain_levels.hpp).
     std::vector<std::uint32_t> indices;
-    indices.reserve(std::size_t(nx - 1) * (ny - 1) * 6);
-    for (int j = k; j + 1 < k + hf.ny; ++j)
-        for (int i = k; i + 1 < k + hf.nx; ++i) {
-            const std::uint32_t a = std::uint32_t(j * nx + i), b = a + 1, c = a + 1 + std::uint32_t(nx),
-                                d = a + std::uint32_t(nx);
-            indices.insert(indices.end(), {a, b, c, a, c, d});
-        }
-    grid_index_count_ = GLsizei(indices.size());
     const GridLayout layout{hf.nx, hf.ny, nx, k};
     for (int level = 0; level < int(std::size(levels_)); ++level) {
         Level& l = levels_[level];
-        if (level > 0) {
-            const std::vector<std::uint32_t> coarse = grid_level_indices(layout, 1 << level);
-            l.grid = {GLsizei(indices.size()), GLsizei(coarse.size())};
-            indices.insert(indices.end(), coarse.begin(), coarse.end());
-        } else {
-            l.grid = {0, grid_index_count_};
-        }
+        const std::vector<std::uint32_t> grid = grid_level_indices(layout, 1 << level);
+        l.grid = {GLsizei(indices.size()), GLsizei(grid.size())};
+        indices.insert(indices.end(), grid.begin(), grid.end());
         const std::vector<std::uint32_t> outer = surround_level_indices(layout, 1 << level);
         l.surround = {GLsizei(indices.size()), GLsizei(outer.size())};
         indices.insert(indices.end(), outer.begin(), outer.end());
     }
+    grid_index_count_ = levels_[0].grid.count;
     surround_index_count_ = levels_[0].surround.count;
     vao_ = make_vertex_array();
     shaded_ = false;

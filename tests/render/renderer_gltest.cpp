@@ -54,9 +54,9 @@ TEST(Camera, TargetProjectsToImageCentreAndFovEdgeToTopRow)
 TEST_F(RendererGl, ACoarseTerrainLevelDrawsAFractionOfTheGridAndTheSameGround)
 {
     // A frame drawn small (80x60) at every 4th sample of a 257 x 257 hill: a sixteenth of the
-    // triangles (and the fans of the border), the ground (and the surround around it) where it was: every terrain point picked
-    // on the coarse level lies on the hill within the coarse cells' chord error, and the picture
-    // differs from the whole grid's by little.
+    // triangles (and the fans of the border), the ground (and the surround around it) where it
+    // was: every terrain point picked on the coarse level lies on the hill within the coarse
+    // cells' chord error, and the picture differs from the whole grid's by little.
     const kiri::geometry::Terrain hill = kiri::test::gaussian_hill(257, 5.0);
     Renderer renderer;
     renderer.set_terrain(hill);
