@@ -163,16 +163,16 @@ void run(const RenderArgs& a)
                          stats.refined_shade_vertices, stats.terrain_vertices,
                          100.0 * stats.refined_shade_vertices / stats.terrain_vertices);
         if (stats.froxel.applied_pixels > 0)
-            std::fprintf(stderr,
-                         "kiri render: froxel apply marched %d of %d pixels (%.1f %%), took the mean of the marched "
-                         "samples around them at %d (%.1f %%), read the volume elsewhere; %d pixels (%.1f %%) saw "
-                         "different fog among their samples and marched each side's (%d of them one surface fogged "
-                         "unevenly, the others two surfaces)\n",
-                         stats.froxel.marched_pixels, stats.froxel.applied_pixels,
-                         100.0 * stats.froxel.marched_pixels / stats.froxel.applied_pixels,
-                         stats.froxel.upsampled_pixels,
-                         100.0 * stats.froxel.upsampled_pixels / stats.froxel.applied_pixels, stats.froxel.edge_pixels,
-                         100.0 * stats.froxel.edge_pixels / stats.froxel.applied_pixels, stats.froxel.fog_split_pixels);
+            std::fprintf(
+                stderr,
+                "kiri render: froxel apply marched %d of %d pixels (%.1f %%), took the mean of the marched "
+                "samples around them at %d (%.1f %%), read the volume elsewhere; %d pixels (%.1f %%) saw "
+                "different fog among their samples and marched each sample's ray (%d of them one surface fogged "
+                "unevenly, the others two surfaces)\n",
+                stats.froxel.marched_pixels, stats.froxel.applied_pixels,
+                100.0 * stats.froxel.marched_pixels / stats.froxel.applied_pixels, stats.froxel.upsampled_pixels,
+                100.0 * stats.froxel.upsampled_pixels / stats.froxel.applied_pixels, stats.froxel.edge_pixels,
+                100.0 * stats.froxel.edge_pixels / stats.froxel.applied_pixels, stats.froxel.fog_split_pixels);
     }
     if (const geometry::ParticleCloud* particles = rendering.particles()) {
         const render::AttenuationBuffer& b = renderer.attenuation();

@@ -4,20 +4,50 @@
 // marched; u_stage 1, the points of the grid at u_spacing that froxel_upsample.comp listed,
 // which march, into o_fog. One invocation a point, so that the marches run side by side: in the
 // apply's own pass a marching pixel among pixels that do not held its neighbours' lanes
-// (llvmpipe runs eight invocations as one). With u_edge_rays (the split pixels' marches,
-// froxel_edges.comp), stage 1: each listed pixel marches the ray through the mean of its other
-// side's samples to their depth (u_depth's r) into o_fog, or, listed with y | 0x8000, its first
-// side's (their depth in u_depth's g, their offset in b and a) into o_first_fog; both over
-// bounds of their stretch of the shell (u_edge_ray: the other side's offset in pixels, first,
-// last).
+// (llvmpipe runs eight invocations as one). With u_split (the split pixels' marches,
+// froxel_edges.comp), stage 1: each listed pixel's samples march their own rays (u_offsets) to
+// their own depths (u_ms_depth) over bounds of their stretch of the shell (u_split_ray), and
+// the pixel gets their mean as one fog over its resolved colour C: of the samples' colours B_s
+// (u_ms_color; C their mean), mean(B_s T_s + S_s) = C T + S with T = mean(T_s) and
+// S = mean(B_s T_s + S_s) - mean(B_s) T, into o_fog.
 layout(local_size_x = 64) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
 layout(rgba32f, binding = 1) writeonly uniform image2D o_info;  // stage 0: the points' frame_point_info
-layout(rgba32f, binding = 2) writeonly uniform image2D o_first_fog;
 uniform int u_stage;
-uniform int u_edge_rays;
-uniform sampler2D u_edge_ray;
+uniform int u_split;
+uniform sampler2D u_split_ray;
+uniform sampler2DMS u_ms_depth;
+uniform sampler2DMS u_ms_color;
+uniform int u_samples;      // the frame's samples a pixel (u_split)
+uniform vec2 u_offsets[8];  // each sample's offset from the pixel's centre (pixels)
 shared uint group_marched;
+
+// Bounds of the stretch of the shell of the ray through sample point px + offset: where the four
+// pixels around the point all meet the shell, their rasterised entries and exits read at the
+// point, widened by half their spread, within `bounds` (the split pixel's: those of the pixels
+// around it); elsewhere `bounds`. Seen at a grazing angle the entry into a level top moves by
+// hundreds of metres from one row of pixels to the next, and the steps spread over all the
+// pixels' stretches lay far apart in the fog (the lake from afar: 2.4 % off the reference so,
+// 2.1 % read at the point).
+vec2 froxel_sample_stretch(ivec2 px, vec2 offset, vec2 bounds)
+{
+    if (u_fx_shell == 0)
+        return bounds;
+    vec2 q = vec2(px) + offset;
+    ivec2 base = ivec2(floor(q));
+    vec2 f = q - vec2(base);
+    vec2 at = vec2(0.0), lo = vec2(3e38), hi = vec2(0.0);
+    for (int k = 0; k < 4; ++k) {
+        ivec2 o = ivec2(k & 1, k >> 1);
+        vec2 c = froxel_pixel_shell(clamp(base + o, ivec2(0), u_size - 1));
+        if (!(c.y > c.x))
+            return bounds;
+        at += (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y) * c;
+        lo = min(lo, c);
+        hi = max(hi, c);
+    }
+    return vec2(max(bounds.x, at.x - 0.5 * (hi.x - lo.x)), min(bounds.y, at.y + 0.5 * (hi.y - lo.y)));
+}
 
 void main()
 {
@@ -25,45 +55,54 @@ void main()
         group_marched = 0u;
     barrier();
     uint i = gl_GlobalInvocationID.x;
-    // The pixel, and where its fog goes (its sample, or itself); one call of the march below,
-    // which the compiler inlines whole (a second one doubled the program's compile time).
+    // The pixel, and where its fog goes (its point of the grid, or itself).
     ivec2 px = ivec2(-1), at = ivec2(-1);
-    bool first_side = false;
     if (u_stage == 0) {
         ivec2 n = frame_grid(u_spacing);
         if (i < uint(n.x * n.y))
             at = ivec2(int(i) % n.x, int(i) / n.x);
     } else if (i < fm_listed) {
         at = ivec2(int(fm_pixels[i] & 0xffffu), int(fm_pixels[i] >> 16));
-        first_side = u_edge_rays != 0 && at.y >= 0x8000;
-        at.y &= 0x7fff;
     }
     if (at.x >= 0)
         px = frame_grid_pixel(at, u_spacing);
     if (px.x >= 0) {
-        vec2 uv = frame_uv(px);
-        vec2 shell = vec2(0.0);
-        float depth;
-        if (u_edge_rays != 0) {
-            vec4 ray = texelFetch(u_edge_ray, px, 0);
-            vec4 depths = texelFetch(u_depth, px, 0);
-            uv += (first_side ? depths.zw : ray.xy) / vec2(u_size);
-            depth = frame_view_depth(first_side ? depths.y : depths.x);
-            shell = ray.zw;
-        } else {
-            depth = frame_depth(px);
-            shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : shell;
+        // One call of the march, in a loop over the split pixel's samples, which the compiler
+        // inlines whole (a second one doubled the program's compile time).
+        int rays = u_split != 0 ? u_samples : 1;
+        vec3 lit = vec3(0.0), background = vec3(0.0);  // sums of B_s T_s + S_s and of B_s
+        float through = 0.0;                           // of T_s
+        vec4 fog = vec4(0.0, 0.0, 0.0, 1.0);
+        for (int s = 0; s < rays; ++s) {
+            vec2 uv = frame_uv(px);
+            vec2 shell = vec2(0.0);
+            float depth;
+            if (u_split != 0) {
+                uv += u_offsets[s] / vec2(u_size);
+                depth = frame_view_depth(texelFetch(u_ms_depth, px, s).r);
+                shell = froxel_sample_stretch(px, u_offsets[s], texelFetch(u_split_ray, px, 0).xy);
+            } else {
+                depth = frame_depth(px);
+                shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : shell;
+            }
+            if (u_stage == 0)
+                imageStore(o_info, at, frame_point_info(px, depth));
+            bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
+            fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(uv, depth, shell, u_split == 0);
+            if (u_stage == 0 && !resolved)
+                atomicAdd(group_marched, 1u);
+            if (u_split != 0) {
+                vec3 b = texelFetch(u_ms_color, px, s).rgb;
+                lit += b * fog.a + fog.rgb;
+                background += b;
+                through += fog.a;
+            }
         }
-        if (u_stage == 0)
-            imageStore(o_info, at, frame_point_info(px, depth));
-        bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
-        vec4 fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(uv, depth, shell, u_edge_rays == 0);
-        if (u_stage == 0 && !resolved)
-            atomicAdd(group_marched, 1u);
-        if (first_side)
-            imageStore(o_first_fog, at, fog);
-        else
-            imageStore(o_fog, at, fog);
+        if (u_split != 0) {
+            float n = float(rays);
+            fog = vec4(lit / n - background / n * (through / n), through / n);
+        }
+        imageStore(o_fog, at, fog);
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u && group_marched > 0u)

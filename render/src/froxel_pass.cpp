@@ -300,21 +300,17 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
         return;
     const ScopedPassTimer timed(timers_[apply_stage]);
     run_pixel_fog(frame, depth_texture, color_texture, applied_);
-    const bool edges = run_edges(frame, depth_texture, samples, applied_);
+    const bool splits = run_splits(frame, depth_texture, samples, applied_);
     const ShaderProgram& p = apply_program_;
     p.set("u_fog", 0);
-    p.set("u_edges", int(edges));
-    p.set("u_edge", 1);
-    p.set("u_edge_fog", 2);
-    p.set("u_edge_depth", 3);
-    p.set("u_edge_first_fog", 4);
+    p.set("u_splits", int(splits));
+    p.set("u_split", 1);
+    p.set("u_split_fog", 2);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
     p.use();
     glBindTextureUnit(0, applied_.fog.get());
-    glBindTextureUnit(1, applied_.edge.get());
-    glBindTextureUnit(2, applied_.edge_fog.get());
-    glBindTextureUnit(3, applied_.edge_depth.get());
-    glBindTextureUnit(4, applied_.edge_first_fog.get());
+    glBindTextureUnit(1, applied_.split.get());
+    glBindTextureUnit(2, applied_.split_fog.get());
     glBindImageTexture(0, color_texture, 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA16F);
     glDispatchCompute(GLuint((frame.width + 31) / 32), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_FRAMEBUFFER_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT | GL_TEXTURE_UPDATE_BARRIER_BIT);
@@ -583,7 +579,7 @@ void FroxelPass::append_timings(std::vector<PassTime>& out) const
     stats_.marched_pixels = stats_.upsampled_pixels = stats_.edge_pixels = stats_.fog_split_pixels = 0;
     if (applied_pixels_ > 0) {
         std::tie(stats_.marched_pixels, stats_.upsampled_pixels) = applied_.counts();
-        std::tie(stats_.edge_pixels, stats_.fog_split_pixels) = applied_.edge_counts();
+        std::tie(stats_.edge_pixels, stats_.fog_split_pixels) = applied_.split_counts();
     }
     for (const PassTimer& timer : timers_)
         if (timer.ran())

@@ -111,26 +111,25 @@ private:
         Texture fog, background;
         // The points each refinement (spacings 4, 2, 1) left to march, and its counts.
         std::array<Buffer, sample_spacings.size()> lists;
-        // Pixels whose samples see two surfaces, or one fogged unevenly (froxel_edges.comp): the
-        // other side's colour and share, its window depth, its fog, its ray (offset and bounds
-        // of its stretch of the shell); the list of them, which march.
-        Texture edge, edge_depth, edge_fog, edge_first_fog, edge_ray;
-        Buffer edge_list;
-        bool edges_run = false;  // the last frame split its edges
+        // Pixels whose samples see two surfaces, or one fogged unevenly (froxel_edges.comp): split
+        // (1 where their samples march), bounds of their rays' stretch of the shell, the mean of
+        // their samples' fog over the resolved colour; the list of them.
+        Texture split, split_ray, split_fog;
+        Buffer split_list;
+        bool splits_run = false;  // the last frame split pixels
         void resize(int width, int height);
         //! (pixels that marched, pixels that took their samples' mean) in the last run.
         std::pair<int, int> counts() const;
         //! (pixels split in the last frame, those of them split by their fog on one surface).
-        std::pair<int, int> edge_counts() const;
+        std::pair<int, int> split_counts() const;
     };
     PixelFog applied_;  // the apply's; read_fog runs over it again, judged over its background
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,
     //! judged over its colour (RGBA16F, before the fog; 0: out.background's, the last one copied).
     void run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out);
-    //! The apply's pixels whose samples see different fog: the other side's colour and share,
-    //! the sides' depths and rays, and their fog (out.edge, edge_depth, edge_ray, edge_fog,
-    //! edge_first_fog). Whether it ran.
-    bool run_edges(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out);
+    //! The apply's pixels whose samples see different fog, each sample's own ray marched to its
+    //! own surface, their mean (out.split, split_ray, split_fog). Whether it ran.
+    bool run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out);
     //! A program of froxel_frame.glsl's pixels (the march's, the grids') bound for the frame, its
     //! grid at `spacing`, the frame's depth on the unit u_depth reads.
     void bind_pixel_program(const ShaderProgram& program, const FrameContext& frame, int spacing) const;

@@ -15,7 +15,10 @@ namespace kiri::render::detail {
 namespace {
 
 // The fog's samplers stay clear of the apply's units (froxel_pass.cpp: 5..19).
-constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2, unit_sample_info = 3, unit_edge_ray = 4;
+// The split pixels' multisampled depth and colour share the units of the grids' samples and the
+// background, which their programs do not read.
+constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2, unit_sample_info = 3, unit_split_ray = 4,
+              unit_ms_depth = unit_samples, unit_ms_color = unit_background;
 // A pixel's samples split by their fog where the largest gap between what the fog before their
 // surfaces lets through exceeds this (froxel_edges.comp).
 constexpr float fog_split = 0.05f;
@@ -60,18 +63,20 @@ void FroxelPass::PixelFog::resize(int w, int h)
     const float black[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearTexImage(background.get(), 0, GL_RGBA, GL_FLOAT, black);
     fog = make_fog_image(size);
-    edge = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(edge.get(), 1, GL_RGBA16F, w, h);
-    edge_depth = make_fog_image(size);
-    edge_fog = make_fog_image(size);
-    edge_first_fog = make_fog_image(size);
-    edge_ray = make_fog_image(size);
-    glTextureParameteri(edge.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTextureParameteri(edge.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    edge_list = make_buffer();
-    glNamedBufferStorage(edge_list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(w) * h),
+    split = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(split.get(), 1, GL_R8, w, h);
+    glTextureParameteri(split.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(split.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    split_ray = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(split_ray.get(), 1, GL_RG32F, w, h);
+    glTextureParameteri(split_ray.get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(split_ray.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    split_fog = make_fog_image(size);
+    // Each pixel is listed once at most.
+    split_list = make_buffer();
+    glNamedBufferStorage(split_list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(w) * h),
                          nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
-    edges_run = false;
+    splits_run = false;
     // Refinement k lists points of the grid at half the spacing of grid k.
     for (std::size_t k = 0; k < sample_spacings.size(); ++k) {
         const glm::ivec2 n = grid_points(size, sample_spacings[k] / 2);
@@ -95,14 +100,14 @@ std::pair<int, int> FroxelPass::PixelFog::counts() const
     return {marched, upsampled};
 }
 
-std::pair<int, int> FroxelPass::PixelFog::edge_counts() const
+std::pair<int, int> FroxelPass::PixelFog::split_counts() const
 {
-    if (!edges_run || !edge_list)
+    if (!splits_run || !split_list)
         return {0, 0};
     MarchHeader h;
-    glGetNamedBufferSubData(edge_list.get(), 0, sizeof h, &h);
-    // A pixel split by its fog is listed twice (each side marches) and counted in `sampled`.
-    return {int(h.listed - h.sampled), int(h.sampled)};
+    glGetNamedBufferSubData(split_list.get(), 0, sizeof h, &h);
+    // A pixel split by its fog on one surface is counted in `sampled` too.
+    return {int(h.listed), int(h.sampled)};
 }
 
 namespace {
@@ -125,59 +130,61 @@ void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& 
     bind_light(p, frame);  // every sampler on its own unit, used or not
     set_frame(p, frame);
     p.set("u_spacing", spacing);
-    p.set("u_edge_ray", unit_edge_ray);
-    p.set("u_edge_rays", 0);
+    p.set("u_split_ray", unit_split_ray);
+    p.set("u_ms_depth", unit_ms_depth);
+    p.set("u_ms_color", unit_ms_color);
+    p.set("u_split", 0);
 }
 
-bool FroxelPass::run_edges(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out)
+bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out)
 {
-    out.edges_run = false;
+    out.splits_run = false;
     // Only where pixels march (the fog-aware apply), and only in a frame drawn at the still's
-    // resolution: a frame the preview draws small while the view moves has more edge pixels for
+    // resolution: a frame the preview draws small while the view moves has more split pixels for
     // its size and no time for their marches.
     const bool marching = visible_ && apply_ && options_.fog_aware;
     if (!marching || resolution_ < 1.0 || samples.count < 2 || samples.color == 0 || samples.depth == 0 ||
         !samples.offsets)
         return false;
+    const int count = std::min(samples.count, 8);
     const MarchHeader header;
-    glNamedBufferSubData(out.edge_list.get(), 0, sizeof header, &header);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.edge_list.get());
-    // The pixels whose samples see different fog (two surfaces, or one fogged unevenly): the other
-    // side's colour and share, the sides' depths and rays, listed.
+    glNamedBufferSubData(out.split_list.get(), 0, sizeof header, &header);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.split_list.get());
+    // The pixels whose samples see different fog (two surfaces, or one fogged unevenly), listed
+    // with bounds of their rays' stretch of the shell.
     const ShaderProgram& e = edges_;
     bind_pixel_program(e, frame, 1);
     e.set("u_fog_split", fog_split);
-    e.set("u_ms_depth", unit_samples);
-    e.set("u_ms_color", unit_background);
-    e.set("u_samples", std::min(samples.count, 8));
+    e.set("u_samples", count);
     glProgramUniform2fv(e.id(), e.location("u_offsets"), 8, samples.offsets);
     e.use();
     glBindTextureUnit(unit_frame_depth, depth_texture);
-    glBindTextureUnit(unit_samples, samples.depth);
-    glBindTextureUnit(unit_background, samples.color);
-    glBindImageTexture(0, out.edge.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    glBindImageTexture(1, out.edge_depth.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(2, out.edge_ray.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindTextureUnit(unit_ms_depth, samples.depth);
+    glBindImageTexture(0, out.split.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R8);
+    glBindImageTexture(1, out.split_ray.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32F);
     glDispatchCompute(GLuint((frame.width + 7) / 8), GLuint((frame.height + 7) / 8), 1);
     glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT |
                     GL_TEXTURE_FETCH_BARRIER_BIT);
-    // Their marches: the grids' listed marches (froxel_pixels.comp's stage 1) along each side's
-    // own ray to its own depth (u_edge_rays).
+    // Their samples' marches, each along its own ray to its own surface (froxel_pixels.comp's
+    // stage 1 with u_split), their mean into out.split_fog.
     const ShaderProgram& pixels = pixels_.get(options_.height_fog.enabled());
     bind_pixel_program(pixels, frame, 1);
     pixels.set("u_stage", 1);
-    pixels.set("u_edge_rays", 1);
+    pixels.set("u_split", 1);
+    pixels.set("u_samples", count);
+    glProgramUniform2fv(pixels.id(), pixels.location("u_offsets"), 8, samples.offsets);
     pixels.use();
-    glBindTextureUnit(unit_frame_depth, out.edge_depth.get());
-    glBindTextureUnit(unit_edge_ray, out.edge_ray.get());
-    glBindImageTexture(0, out.edge_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindImageTexture(2, out.edge_first_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.edge_list.get());
+    glBindTextureUnit(unit_frame_depth, depth_texture);
+    glBindTextureUnit(unit_split_ray, out.split_ray.get());
+    glBindTextureUnit(unit_ms_depth, samples.depth);
+    glBindTextureUnit(unit_ms_color, samples.color);
+    glBindImageTexture(0, out.split_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.split_list.get());
     glDispatchComputeIndirect(0);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    out.edges_run = true;
+    out.splits_run = true;
     return true;
 }
 

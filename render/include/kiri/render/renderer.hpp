@@ -84,10 +84,10 @@ struct FroxelStats {
     //! those that took the mean of the marched half-resolution samples around them
     //! (FroxelOptions::upsample).
     int applied_pixels = 0, marched_pixels = 0, upsampled_pixels = 0;
-    //! Pixels whose samples saw different fog, each side getting its own: two surfaces (a ridge
-    //! against the fog behind it; the other side from a march of its own), or one fogged unevenly
+    //! Pixels whose samples saw different fog, each sample's own ray marched to its own surface:
+    //! two surfaces (a ridge against the fog behind it), or one fogged unevenly
     //! (`fog_split_pixels` of them: a thread of fog narrower than the pixel, the fog's top meeting
-    //! a slope; each side from a march of its own).
+    //! a slope).
     int edge_pixels = 0, fog_split_pixels = 0;
 };
 
