@@ -217,17 +217,9 @@ namespace {
 // Round hills 300 m apart, 0 to 160 m high, on a 20 m grid over [-half, half]^2.
 g::Terrain egg_crate(double half)
 {
-    g::Heightfield hf;
-    hf.nx = hf.ny = int(std::lround(2.0 * half / 20.0)) + 1;
-    hf.dx = hf.dy = 20.0;
-    hf.x0 = hf.y0 = -half;
-    hf.z.resize(std::size_t(hf.nx) * hf.ny);
-    hf.valid.assign(hf.z.size(), 1);
-    for (int j = 0; j < hf.ny; ++j)
-        for (int i = 0; i < hf.nx; ++i)
-            hf.z[std::size_t(j) * hf.nx + i] =
-                80.0 + 80.0 * std::sin(2.0 * M_PI * hf.x_of(i) / 300.0) * std::sin(2.0 * M_PI * hf.y_of(j) / 300.0);
-    return g::Terrain(std::move(hf));
+    return sampled_terrain(half, [](double x, double y) {
+        return 80.0 + 80.0 * std::sin(2.0 * M_PI * x / 300.0) * std::sin(2.0 * M_PI * y / 300.0);
+    });
 }
 
 }  // namespace

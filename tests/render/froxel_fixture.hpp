@@ -39,9 +39,9 @@ inline g::Terrain flat_ground(double half = 2000.0, double spacing = 50.0, doubl
     return g::Terrain(std::move(hf));
 }
 
-// Parallel valleys along y, 400 m apart and 160 m deep (z = 80 (1 - cos(2 pi x / 400))), on a
-// 20 m grid over [-half, half]^2: narrow valleys to hold threads of fog.
-inline g::Terrain parallel_valleys(double half)
+// The terrain z = height(x, y) on a 20 m grid over [-half, half]^2.
+template <class Height>
+g::Terrain sampled_terrain(double half, Height height)
 {
     g::Heightfield hf;
     hf.nx = hf.ny = int(std::lround(2.0 * half / 20.0)) + 1;
@@ -51,8 +51,15 @@ inline g::Terrain parallel_valleys(double half)
     hf.valid.assign(hf.z.size(), 1);
     for (int j = 0; j < hf.ny; ++j)
         for (int i = 0; i < hf.nx; ++i)
-            hf.z[std::size_t(j) * hf.nx + i] = 80.0 * (1.0 - std::cos(2.0 * M_PI * hf.x_of(i) / 400.0));
+            hf.z[std::size_t(j) * hf.nx + i] = height(hf.x_of(i), hf.y_of(j));
     return g::Terrain(std::move(hf));
+}
+
+// Parallel valleys along y, 400 m apart and 160 m deep (z = 80 (1 - cos(2 pi x / 400))), on a
+// 20 m grid over [-half, half]^2: narrow valleys to hold threads of fog.
+inline g::Terrain parallel_valleys(double half)
+{
+    return sampled_terrain(half, [](double x, double) { return 80.0 * (1.0 - std::cos(2.0 * M_PI * x / 400.0)); });
 }
 
 // A shell between bottom and top over [-half, half]^2, coverage 1.
