@@ -78,7 +78,8 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
         uploaded_surround_ == surround)
         return false;
     if (hf.nx < 2 || hf.ny < 2) {
-        grid_index_count_ = surround_index_count_ = 0;
+        for (Level& l : levels_)
+            l = {};
         return false;
     }
     const geometry::Ground ground(hf, surround);
@@ -126,8 +127,6 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
         l.surround = {GLsizei(indices.size()), GLsizei(outer.size())};
         indices.insert(indices.end(), outer.begin(), outer.end());
     }
-    grid_index_count_ = levels_[0].grid.count;
-    surround_index_count_ = levels_[0].surround.count;
     vao_ = make_vertex_array();
     shaded_ = false;
     shade_grid_ = {hf.nx, hf.ny, nx, k, glm::vec2(float(hf.x0), float(hf.y0)), glm::vec2(float(hf.dx), float(hf.dy))};
@@ -171,7 +170,7 @@ void TerrainPass::set_ground_uniforms(const ShaderProgram& p) const
     p.set("u_water", int(water_));
     p.set("u_sea_level", sea_level_);
     p.set("u_water_tolerance", water_tolerance_);
-    p.set("u_ground", int(has_terrain() && surround_index_count_ > 0));
+    p.set("u_ground", int(has_terrain() && levels_[0].surround.count > 0));
     p.set("u_ground_z", base_z_);
 }
 
@@ -189,7 +188,7 @@ void TerrainPass::draw_mesh() const
     if (!has_terrain())
         return;
     glBindVertexArray(vao_.get());
-    glDrawElements(GL_TRIANGLES, grid_index_count_, GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, levels_[0].grid.count, GL_UNSIGNED_INT, nullptr);  // at offset 0
 }
 
 bool TerrainPass::set_fog_shade(const SunVolume* sun, const glm::vec3& sun_direction)

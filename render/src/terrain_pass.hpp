@@ -23,7 +23,7 @@ public:
     TerrainPass();
     //! Returns true when it had to upload (the terrain, the exaggeration or the surround changed).
     bool set_terrain(const geometry::Terrain& terrain, double exaggeration, bool surround = true);
-    bool has_terrain() const { return grid_index_count_ > 0; }
+    bool has_terrain() const { return levels_[0].grid.count > 0; }
     //! The fog the sun shines through onto the ground: the sun volume's Medium and height fog
     //! (GroundShade: tau_sun per vertex, rebuilt when the sun, the fog or the mesh change). Null,
     //! or a volume without either, lights the ground fully. Returns true when it rebuilt.
@@ -72,7 +72,6 @@ private:
     GroundShade shade_;
     bool shaded_ = false;           // attribute 2 reads shade_'s buffer
     GroundShade::Grid shade_grid_;  // the mesh's tensor grid
-    GLsizei grid_index_count_ = 0, surround_index_count_ = 0;
     glm::dvec3 min_{0.0}, max_{-1.0};
     // ground.glsl's and sky.frag's ground uniforms.
     float colour_z_min_ = 0.0f, colour_z_max_ = 0.0f, sea_level_ = 0.0f, water_tolerance_ = 0.0f, base_z_ = 0.0f;
