@@ -9,6 +9,7 @@
 #include <glm/common.hpp>
 
 #include "flip_rows.hpp"
+#include "staged_read.hpp"
 #include "terrain_pass.hpp"
 
 namespace kiri::render::detail {
@@ -75,14 +76,14 @@ void FroxelPass::PixelFog::resize(int w, int h)
     // Each pixel is listed once at most.
     split_list = make_buffer();
     glNamedBufferStorage(split_list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(w) * h),
-                         nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+                         nullptr, GL_DYNAMIC_STORAGE_BIT);
     splits_run = false;
     // Refinement k lists points of the grid at half the spacing of grid k.
     for (std::size_t k = 0; k < sample_spacings.size(); ++k) {
         const glm::ivec2 n = grid_points(size, sample_spacings[k] / 2);
         lists[k] = make_buffer();
         glNamedBufferStorage(lists[k].get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(n.x) * n.y),
-                             nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
     }
 }
 
@@ -93,7 +94,7 @@ std::pair<int, int> FroxelPass::PixelFog::counts() const
         if (!list)
             return {0, 0};
         MarchHeader h;
-        glGetNamedBufferSubData(list.get(), 0, sizeof h, &h);
+        read_buffer_staged(list.get(), 0, sizeof h, &h);
         marched += int(h.sampled + h.listed);
         upsampled += int(h.upsampled);
     }
@@ -105,7 +106,7 @@ std::pair<int, int> FroxelPass::PixelFog::split_counts() const
     if (!splits_run || !split_list)
         return {0, 0};
     MarchHeader h;
-    glGetNamedBufferSubData(split_list.get(), 0, sizeof h, &h);
+    read_buffer_staged(split_list.get(), 0, sizeof h, &h);
     // A pixel split by its fog on one surface is counted in `sampled` too.
     return {int(h.listed), int(h.sampled)};
 }

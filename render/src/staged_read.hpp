@@ -1,0 +1,14 @@
+#pragma once
+// Reading a few bytes of a buffer the GPU works in (a list's counts, a tally) without the
+// buffer itself being read back: a driver that sees a buffer read by the CPU may move it to host
+// memory for good, and the shaders' atomics on it then cross the bus. NVIDIA's did so with the
+// froxel apply's lists: the apply went from 0.26 to 26 ms a frame at 1920x1080 (docs/speed.md,
+// "On a GPU"). The bytes are copied into a small staging buffer on the GPU and read from there.
+#include <epoxy/gl.h>
+
+namespace kiri::render::detail {
+
+//! `bytes` of `source` from `offset` into `out`, through a staging copy (waits for the GPU).
+void read_buffer_staged(GLuint source, GLintptr offset, GLsizeiptr bytes, void* out);
+
+}  // namespace kiri::render::detail
