@@ -31,10 +31,12 @@ constexpr int unit_light_volume = 19;  // and 21: the cells' floors (LightVolume
 // 2 as 4 (all 13 views within 0.02 points, the lake's combined 5.71 -> 5.45 %; the default
 // scene's lighting at 1280x720 0.6 -> 0.3 s). Each sample costs one lighting pass.
 constexpr int halton_cycle = 16, still_samples = 2;
-enum Stage { tiles, density, lighting, temporal, integrate, classify, apply_stage, stage_count };
+// The apply's work in three timers (a GL timer query cannot nest): the grids and the marches of
+// the pixels the volume does not resolve, the split pixels' samples' marches, the frame's fog.
+enum Stage { tiles, density, lighting, temporal, integrate, classify, marches, splits, apply_stage, stage_count };
 const char* const stage_names[stage_count] = {"froxel tiles",    "froxel density",   "froxel lighting",
                                               "froxel temporal", "froxel integrate", "froxel classify",
-                                              "froxel apply"};
+                                              "froxel marches",  "froxel splits",    "froxel apply"};
 // froxel_classify.comp: where the volume's lookup may stand for a pixel's own march. The error
 // a tap's bilinear lookup may make (in transmittance, or in radiance relative to its tile's
 // in-scattering) and how far the fog's edge may spread over a tile's slices. At 0.004 the
@@ -298,12 +300,21 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
 {
     if (!visible_ || !apply_)
         return;
+    {
+        const ScopedPassTimer timed(timers_[marches]);
+        run_pixel_fog(frame, depth_texture, color_texture, applied_);
+    }
+    bool split = false;
+    {
+        const ScopedPassTimer timed(timers_[splits]);
+        split = run_splits(frame, depth_texture, samples, applied_);
+    }
+    if (!split)
+        timers_[splits].forget();
     const ScopedPassTimer timed(timers_[apply_stage]);
-    run_pixel_fog(frame, depth_texture, color_texture, applied_);
-    const bool splits = run_splits(frame, depth_texture, samples, applied_);
     const ShaderProgram& p = apply_program_;
     p.set("u_fog", 0);
-    p.set("u_splits", int(splits));
+    p.set("u_splits", int(split));
     p.set("u_split", 1);
     p.set("u_split_fog", 2);
     p.set("u_size", glm::ivec2(frame.width, frame.height));
