@@ -52,15 +52,19 @@ void main()
             d0 = d1;
         }
     }
-    vec3 light[haze_runs];
-    for (int i = 0; i < haze_runs; ++i)
-        light[i] = vec3(0.0);
     // Each run's light (without one, the heaviest step's at its middle: a segment of no length),
-    // one call of it in a loop the compiler keeps (haze_runs_finish says why).
+    // one call of it in a loop the compiler keeps (haze_runs_finish says why); at constant
+    // indices (haze_run_a says why).
+    vec3 light0 = vec3(0.0), light1 = vec3(0.0);
     bool lone = runs.count == 0 && runs.before > 1e-5;
-    for (int i = 0; i < (lone ? 1 : runs.count); ++i)
-        light[i] = height_fog_segment_light(lone ? runs.at : runs.a[i], lone ? runs.at : runs.b[i], u_fx_eye,
-                                            lone ? 0.0 : runs.tau[i]);
+    for (int i = 0; i < (lone ? 1 : runs.count); ++i) {
+        vec3 j = height_fog_segment_light(lone ? runs.at : haze_run_a(runs, i), lone ? runs.at : haze_run_b(runs, i),
+                                          u_fx_eye, lone ? 0.0 : haze_run_tau(runs, i));
+        if (i == 0)
+            light0 = j;
+        else
+            light1 = j;
+    }
     HazeRuns replay = haze_runs_along_ray();
 #endif
     vec3 radiance = vec3(0.0);
@@ -88,7 +92,7 @@ void main()
 #if FROXEL_HEIGHT_FOG
         if (m.y > 0.0) {
             haze_run_step(replay, opacity * m.y, fx_world(uv, min(d0, ground)), fx_world(uv, min(d1, ground)), m.y * l);
-            radiance += opacity * m.y * light[max(replay.count - 1, 0)];
+            radiance += opacity * m.y * (replay.count <= 1 ? light0 : light1);
         }
 #endif
         transmittance *= through;

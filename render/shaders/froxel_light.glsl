@@ -205,27 +205,47 @@ HazeRuns haze_runs_along_ray()
     return r;
 }
 
+// Run i's ends, optical depth and share, read and written at constant indices only: an array of
+// the struct indexed by a variable (the run's count, a loop's counter) is kept in local memory by
+// NVIDIA's compiler, and each step of each march read and wrote it there (docs/speed.md, "On a GPU").
+vec3 haze_run_a(HazeRuns r, int i) { return i == 0 ? r.a[0] : r.a[1]; }
+vec3 haze_run_b(HazeRuns r, int i) { return i == 0 ? r.b[0] : r.b[1]; }
+float haze_run_tau(HazeRuns r, int i) { return i == 0 ? r.tau[0] : r.tau[1]; }
+float haze_run_share(HazeRuns r, int i) { return i == 0 ? r.share[0] : r.share[1]; }
+
 // Step [a, b] of the height fog's optical depth tau, whose light adds `share` of it.
 void haze_run_step(inout HazeRuns r, float share, vec3 a, vec3 b, float tau)
 {
     bool needs = share > froxel_haze_significant || (r.count == 0 && r.before + share > 5.0 * froxel_haze_significant);
     if (needs) {
         if (!r.open && r.count < haze_runs) {
-            r.a[r.count] = a;
-            r.tau[r.count] = 0.0;
-            r.share[r.count] = r.count == 0 ? r.before : 0.0;
+            if (r.count == 0) {
+                r.a[0] = a;
+                r.share[0] = r.before;
+            } else {
+                r.a[1] = a;
+            }
             ++r.count;
         }
-        int last = r.count - 1;
-        r.b[last] = b;
-        r.tau[last] += tau;  // a later run joined to the last: the stretch between adds little
-        r.share[last] += share;
+        // The last run grows (a later run joined to it: the stretch between adds little).
+        if (r.count == 1) {
+            r.b[0] = b;
+            r.tau[0] += tau;
+            r.share[0] += share;
+        } else {
+            r.b[1] = b;
+            r.tau[1] += tau;
+            r.share[1] += share;
+        }
         r.open = true;
         return;
     }
     r.open = false;
     if (r.count > 0) {
-        r.share[r.count - 1] += share;
+        if (r.count == 1)
+            r.share[0] += share;
+        else
+            r.share[1] += share;
         return;
     }
     r.before += share;
@@ -243,6 +263,7 @@ void haze_runs_finish(HazeRuns r, inout vec3 radiance)
     if (lone && !(r.before > 1e-5))
         return;
     for (int i = 0; i < max(r.count, 1); ++i)
-        radiance += (lone ? r.before : r.share[i]) *
-            height_fog_segment_light(lone ? r.at : r.a[i], lone ? r.at : r.b[i], u_fx_eye, lone ? 0.0 : r.tau[i]);
+        radiance += (lone ? r.before : haze_run_share(r, i)) *
+            height_fog_segment_light(lone ? r.at : haze_run_a(r, i), lone ? r.at : haze_run_b(r, i), u_fx_eye,
+                                     lone ? 0.0 : haze_run_tau(r, i));
 }
