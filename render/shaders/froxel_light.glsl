@@ -179,7 +179,7 @@ vec3 height_fog_light(vec3 p, vec3 eye) { return height_fog_segment_light(p, p, 
 // the light within it); at most haze_runs of them, a later run joins the last. Steps between runs
 // take the light of the run before them (those before the first, of the first; with no run, of
 // the heaviest of them, once they add up to 5 times froxel_haze_significant).
-const int haze_runs = 2;
+const int haze_runs = 2;  // haze_run_a and the rest index runs 0 and 1 by name: two, no more
 struct HazeRuns {
     vec3 a[haze_runs], b[haze_runs];  // each run's ends
     float tau[haze_runs];             // its height fog's optical depth
