@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <tuple>
 
 #include <glm/geometric.hpp>
 
@@ -589,8 +588,11 @@ void FroxelPass::append_timings(std::vector<PassTime>& out) const
     stats_.applied_pixels = applied_pixels_;
     stats_.marched_pixels = stats_.upsampled_pixels = stats_.edge_pixels = stats_.fog_split_pixels = 0;
     if (applied_pixels_ > 0) {
-        std::tie(stats_.marched_pixels, stats_.upsampled_pixels) = applied_.counts();
-        std::tie(stats_.edge_pixels, stats_.fog_split_pixels) = applied_.split_counts();
+        const PixelFog::Counts c = applied_.read_counts();
+        stats_.marched_pixels = c.marched;
+        stats_.upsampled_pixels = c.upsampled;
+        stats_.edge_pixels = c.split;
+        stats_.fog_split_pixels = c.fog_split;
     }
     for (const PassTimer& timer : timers_)
         if (timer.ran())

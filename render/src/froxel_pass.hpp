@@ -118,10 +118,12 @@ private:
         Buffer split_list;
         bool splits_run = false;  // the last frame split pixels
         void resize(int width, int height);
-        //! (pixels that marched, pixels that took their samples' mean) in the last run.
-        std::pair<int, int> counts() const;
-        //! (pixels split in the last frame, those of them split by their fog on one surface).
-        std::pair<int, int> split_counts() const;
+        //! The last run's pixels that marched, that took their samples' mean, that were split, and
+        //! of those the ones split by their fog on one surface.
+        struct Counts {
+            int marched = 0, upsampled = 0, split = 0, fog_split = 0;
+        };
+        Counts read_counts() const;
     };
     PixelFog applied_;  // the apply's; read_fog runs over it again, judged over its background
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,

@@ -2,6 +2,7 @@
 // the frame and read_fog reads back, by the same passes.
 #include "froxel_pass.hpp"
 
+#include <array>
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -87,28 +88,31 @@ void FroxelPass::PixelFog::resize(int w, int h)
     }
 }
 
-std::pair<int, int> FroxelPass::PixelFog::counts() const
+FroxelPass::PixelFog::Counts FroxelPass::PixelFog::read_counts() const
 {
-    int marched = 0, upsampled = 0;
-    for (const Buffer& list : lists) {
-        if (!list)
-            return {0, 0};
-        MarchHeader h;
-        read_buffer_staged(list.get(), 0, sizeof h, &h);
-        marched += int(h.sampled + h.listed);
-        upsampled += int(h.upsampled);
+    Counts c;
+    if (!lists[0])
+        return c;
+    // Every list's header in one staged read: one wait for the GPU a frame, not one a list.
+    std::array<GLuint, sample_spacings.size() + 1> sources{};
+    for (std::size_t k = 0; k < lists.size(); ++k)
+        sources[k] = lists[k].get();
+    const bool splits = splits_run && split_list;
+    const std::size_t n = lists.size() + (splits ? 1 : 0);
+    if (splits)
+        sources[lists.size()] = split_list.get();
+    std::array<MarchHeader, sample_spacings.size() + 1> h;
+    read_buffers_staged({sources.data(), n}, sizeof(MarchHeader), h.data());
+    for (std::size_t k = 0; k < lists.size(); ++k) {
+        c.marched += int(h[k].sampled + h[k].listed);
+        c.upsampled += int(h[k].upsampled);
     }
-    return {marched, upsampled};
-}
-
-std::pair<int, int> FroxelPass::PixelFog::split_counts() const
-{
-    if (!splits_run || !split_list)
-        return {0, 0};
-    MarchHeader h;
-    read_buffer_staged(split_list.get(), 0, sizeof h, &h);
-    // A pixel split by its fog on one surface is counted in `sampled` too.
-    return {int(h.listed), int(h.sampled)};
+    if (splits) {
+        // A pixel split by its fog on one surface is counted in `sampled` too.
+        c.split = int(h[lists.size()].listed);
+        c.fog_split = int(h[lists.size()].sampled);
+    }
+    return c;
 }
 
 namespace {

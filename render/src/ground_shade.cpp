@@ -113,7 +113,8 @@ bool GroundShade::update(const SunVolume* sun, const glm::vec3& sun_direction, G
         glDispatchCompute(groups(grid.nx), groups(grid.ny), 1);
         glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
         GLuint refined = 0;  // once per sun and fog: the wait is the pass's own
-        read_buffer_staged(marks_.get(), 0, sizeof(GLuint), &refined);
+        const GLuint marks = marks_.get();
+        read_buffers_staged({&marks, 1}, sizeof(GLuint), &refined);
         refined_ = int(refined);
     }
     if (refined_ > 0) {

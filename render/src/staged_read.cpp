@@ -1,16 +1,22 @@
 #include "staged_read.hpp"
 
+#include <cstddef>
+
 #include "gl_objects.hpp"
 
 namespace kiri::render::detail {
 
-void read_buffer_staged(GLuint source, GLintptr offset, GLsizeiptr bytes, void* out)
+void read_buffers_staged(std::span<const GLuint> sources, GLsizeiptr bytes, void* out)
 {
+    if (sources.empty())
+        return;
+    const auto total = GLsizeiptr(sources.size()) * bytes;
     Buffer staging = make_buffer();
-    glNamedBufferStorage(staging.get(), bytes, nullptr, GL_MAP_READ_BIT);
-    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // after the shaders' writes to it
-    glCopyNamedBufferSubData(source, staging.get(), offset, 0, bytes);
-    glGetNamedBufferSubData(staging.get(), 0, bytes, out);
+    glNamedBufferStorage(staging.get(), total, nullptr, GL_MAP_READ_BIT);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);  // after the shaders' writes to them
+    for (std::size_t k = 0; k < sources.size(); ++k)
+        glCopyNamedBufferSubData(sources[k], staging.get(), 0, GLintptr(k) * bytes, bytes);
+    glGetNamedBufferSubData(staging.get(), 0, total, out);
 }
 
 }  // namespace kiri::render::detail

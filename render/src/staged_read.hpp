@@ -6,9 +6,12 @@
 // "On a GPU"). The bytes are copied into a small staging buffer on the GPU and read from there.
 #include <epoxy/gl.h>
 
+#include <span>
+
 namespace kiri::render::detail {
 
-//! `bytes` of `source` from `offset` into `out`, through a staging copy (waits for the GPU).
-void read_buffer_staged(GLuint source, GLintptr offset, GLsizeiptr bytes, void* out);
+//! The first `bytes` of each of `sources`, one after another into `out`, through one staging
+//! copy (one wait for the GPU).
+void read_buffers_staged(std::span<const GLuint> sources, GLsizeiptr bytes, void* out);
 
 }  // namespace kiri::render::detail
