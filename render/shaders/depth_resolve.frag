@@ -20,7 +20,7 @@ void main()
     if (ds_read(u_depth, px, u_near, u_far, lo, hi, depth)) {
         depth = lo;
         float split = 0.5 * (lo + hi), near_count = 0.0;
-        for (int s = 0; s < u_samples; ++s)
+        for (int s = 0; s < ds_max && s < u_samples; ++s)
             near_count += ds[s] <= split ? 1.0 : 0.0;
         float at;
         if (2.0 * near_count > float(u_samples)) {

@@ -1,12 +1,17 @@
 // Library: a multisampled pixel's depth samples (depth_resolve.frag, froxel_edges.comp): the
 // plane they lie on, and whether they see one surface or two.
-uniform int u_samples;      // at most 8
+uniform int u_samples;      // at most ds_max
 uniform vec2 u_offsets[8];  // each sample's offset from the pixel's centre (pixels)
+
+// Loops over the samples run to this constant and stop at u_samples: a bound the compiler can
+// see lets it unroll them and keep ds in registers; an array indexed at run time lives in local
+// memory on NVIDIA (as the height fog's runs did, docs/speed.md "On a GPU").
+const int ds_max = 8;
 
 // The pixel's samples' window depths, written before anything reads them; initialised so that
 // Mesa's compiler, which cannot see that from ds_plane_at_centre, does not warn of it on every
 // start.
-float ds[8] = float[8](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
+float ds[ds_max] = float[ds_max](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
 
 float ds_view_depth(float window, float near_plane, float far_plane)
 {
@@ -22,7 +27,7 @@ bool ds_plane_at_centre(float lo, float hi, out float at)
     mat3 normal = mat3(0.0);
     vec3 rhs = vec3(0.0);
     int count = 0;
-    for (int s = 0; s < u_samples; ++s)
+    for (int s = 0; s < ds_max && s < u_samples; ++s)
         if (ds[s] >= lo && ds[s] <= hi) {
             vec3 row = vec3(1.0, u_offsets[s]);
             normal += outerProduct(row, row);
@@ -34,7 +39,7 @@ bool ds_plane_at_centre(float lo, float hi, out float at)
         return false;
     vec3 plane = inverse(normal) * rhs;
     float residual = 0.0, low = 1.0, high = 0.0;
-    for (int s = 0; s < u_samples; ++s)
+    for (int s = 0; s < ds_max && s < u_samples; ++s)
         if (ds[s] >= lo && ds[s] <= hi) {
             residual = max(residual, abs(ds[s] - dot(plane, vec3(1.0, u_offsets[s]))));
             low = min(low, ds[s]);
@@ -54,7 +59,7 @@ bool ds_read(sampler2DMS depth, ivec2 px, float near_plane, float far_plane, out
 {
     lo = 1.0;
     hi = 0.0;
-    for (int s = 0; s < u_samples; ++s) {
+    for (int s = 0; s < ds_max && s < u_samples; ++s) {
         ds[s] = texelFetch(depth, px, s).r;
         lo = min(lo, ds[s]);
         hi = max(hi, ds[s]);

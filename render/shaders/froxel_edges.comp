@@ -9,12 +9,13 @@
 //   fog's top meeting a slope; the fog's side wall): the samples' estimates of the fog just
 //   before their surfaces (fog_before) split at their largest gap where it exceeds u_fog_split in
 //   transmittance; on two surfaces too, where each side by the fog lies on one of them.
-// Such a pixel's samples each march their own ray to their own surface (froxel_pixels.comp) and
-// the pixel takes their mean. Not one ray a side: seen from afar at a grazing angle a quarter
-// of a pixel is tens of metres of height, and where the fog's top cuts the ground within the
-// pixel the fog before a side's mean surface point is not the mean of its samples' (the lake
-// from afar: a side's mean ray let 0.59 of the light through where its three samples let 0.08,
-// 0.13 and 0.22; 2.8 % off the reference with one ray a side, 0.7 % with a ray a sample).
+// Such a pixel's samples each march their own ray to their own surface (froxel_pixels.comp, an
+// invocation a sample) and the pixel takes their mean. Not one ray a side: seen from afar at a
+// grazing angle a quarter of a pixel is tens of metres of height, and where the fog's top cuts
+// the ground within the pixel the fog before a side's mean surface point is not the mean of its
+// samples' (the lake from afar: a side's mean ray let 0.59 of the light through where its three
+// samples let 0.08, 0.13 and 0.22; 2.8 % off the reference with one ray a side, 0.7 % with a ray
+// a sample).
 // Per pixel split: o_split 1 (0: one fog, the centre's stands for the pixel), o_split_ray the
 // bounds of its samples' rays' stretch of the shell (froxel_pixels.comp's u_split_ray); the pixel
 // listed (FrameMarches) for its samples' marches, and counted in fm_sampled where split by its fog.
@@ -57,10 +58,12 @@ float fog_before(vec2 uv, float depth, out float t)
     return (enter + along) * depth / reach;
 }
 
+// Lists a pixel for its samples' marches: one invocation a sample (froxel_pixels.comp), so a
+// group of 64 takes 64 / u_samples pixels.
 void list_march(uint entry)
 {
     uint i = atomicAdd(fm_listed, 1u);
-    if (i % 64u == 0u)
+    if (i % uint(64 / u_samples) == 0u)
         atomicAdd(fm_dispatch.x, 1u);
     fm_pixels[i] = entry;
 }
@@ -79,20 +82,20 @@ void main()
         if (two) {
             float split = 0.5 * (lo + hi);
             bool resolved_near = texelFetch(u_depth, px, 0).r <= split;
-            for (int s = 0; s < u_samples; ++s)
+            for (int s = 0; s < ds_max && s < u_samples; ++s)
                 other |= (ds[s] <= split) != resolved_near ? 1u << s : 0u;
         }
         if (u_fog_split > 0.0 && (u_fx_shell != 0 || u_hf.x > 0.0) && hi < 1.0) {
-            float t[8];
+            float t[ds_max];
             float gap = 0.0, at = 0.0;
-            for (int s = 0; s < u_samples; ++s) {
+            for (int s = 0; s < ds_max && s < u_samples; ++s) {
                 vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
                 under = max(under, fog_before(uv, ds_view_depth(ds[s], u_near_plane, u_far_plane), t[s]));
             }
             // The largest gap between the samples' transmittances, in order.
-            for (int s = 0; s < u_samples; ++s) {
+            for (int s = 0; s < ds_max && s < u_samples; ++s) {
                 float next = 2.0;
-                for (int r = 0; r < u_samples; ++r)
+                for (int r = 0; r < ds_max && r < u_samples; ++r)
                     if (t[r] > t[s])
                         next = min(next, t[r]);
                 if (next <= 1.0 && next - t[s] > gap) {
@@ -106,7 +109,7 @@ void main()
             // that stand with the floor's as the floor.
             uint by_fog = 0u;
             float near_clear = 1.0, far_clear = 0.0, near_fogged = 1.0, far_fogged = 0.0;
-            for (int s = 0; s < u_samples; ++s)
+            for (int s = 0; s < ds_max && s < u_samples; ++s)
                 if (t[s] > at) {
                     by_fog |= 1u << s;
                     near_clear = min(near_clear, ds[s]);

@@ -22,6 +22,6 @@ float fog_over_surface(ivec2 px, float depth)
 // each instead of their depths, shell and columns.
 vec4 frame_point_info(ivec2 px, float depth)
 {
-    vec2 shell = u_fx_shell != 0 ? vec2(texelFetch(u_fx_first, px, 0).r, texelFetch(u_fx_last, px, 0).r) : vec2(0.0);
+    vec2 shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : vec2(0.0);
     return vec4(depth, fog_over_surface(px, depth), shell);
 }

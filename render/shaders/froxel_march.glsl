@@ -18,8 +18,7 @@
 uniform int u_fx_shell;               // the shell's per-pixel depths are there (eye outside it)
 uniform int u_fx_pixel_steps;
 uniform float u_fx_near;              // the volume's first depth
-uniform sampler2D u_fx_first;         // per pixel: the shell's nearest depth (3e38: none)
-uniform sampler2D u_fx_last;          // per pixel: the shell's farthest depth (0: none)
+uniform sampler2D u_fx_shell_depths;  // per pixel: minus the shell's nearest depth (-3e38: none), its farthest (0: none)
 uniform int u_fx_classified;          // the tiles' w marks where pixels march (froxel_classify.comp)
 
 // The Medium's optical depth over the step [q0, q1] of length `len`: its extinction at the middle
@@ -104,7 +103,11 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
 
 // Pixel px's ray's entry into the Medium's shell and its exit (view depths; first 3e38 and last
 // 0: none), rasterised. Only with the shell's per-pixel depths (u_fx_shell).
-vec2 froxel_pixel_shell(ivec2 px) { return vec2(texelFetch(u_fx_first, px, 0).r, texelFetch(u_fx_last, px, 0).r); }
+vec2 froxel_pixel_shell(ivec2 px)
+{
+    vec2 d = texelFetch(u_fx_shell_depths, px, 0).rg;
+    return vec2(-d.x, d.y);
+}
 
 // The stretch [first, last] of view depths over which a ray (its surface at `end`, at most the
 // volume's far depth) is in the Medium's shell (`shell`: froxel_pixel_shell's, or bounds of it),
@@ -148,8 +151,9 @@ bool froxel_resolved(ivec2 px, vec2 uv, float depth)
     float end = min(depth, u_fx_far);
     float fog_end = end;  // where the pixel's fog ends: its surface, or where it leaves the shell
     if (u_fx_shell != 0 && !(u_hf.x > 0.0)) {
-        fog_end = min(texelFetch(u_fx_last, px, 0).r, end);
-        if (!(fog_end > max(texelFetch(u_fx_first, px, 0).r, u_fx_near)))
+        vec2 shell = froxel_pixel_shell(px);
+        fog_end = min(shell.y, end);
+        if (!(fog_end > max(shell.x, u_fx_near)))
             fog_end = 0.0;
     }
     vec2 p = uv * vec2(u_fx_size.xy) - 0.5;

@@ -6,10 +6,11 @@
 // apply's own pass a marching pixel among pixels that do not held its neighbours' lanes
 // (llvmpipe runs eight invocations as one). With u_split (the split pixels' marches,
 // froxel_edges.comp), stage 1: each listed pixel's samples march their own rays (u_offsets) to
-// their own depths (u_ms_depth) over bounds of their stretch of the shell (u_split_ray), and
-// the pixel gets their mean as one fog over its resolved colour C: of the samples' colours B_s
-// (u_ms_color; C their mean), mean(B_s T_s + S_s) = C T + S with T = mean(T_s) and
-// S = mean(B_s T_s + S_s) - mean(B_s) T, into o_fog.
+// their own depths (u_ms_depth) over bounds of their stretch of the shell (u_split_ray), an
+// invocation a sample (a group: 64 / u_samples pixels; four marches in a row in one invocation
+// left most of a GPU idle), and the pixel gets their mean as one fog over its resolved colour C:
+// of the samples' colours B_s (u_ms_color; C their mean), mean(B_s T_s + S_s) = C T + S with
+// T = mean(T_s) and S = mean(B_s T_s + S_s) - mean(B_s) T, into o_fog.
 layout(local_size_x = 64) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
 layout(rgba32f, binding = 1) writeonly uniform image2D o_info;  // stage 0: the points' frame_point_info
@@ -21,6 +22,8 @@ uniform sampler2DMS u_ms_color;
 uniform int u_samples;      // the frame's samples a pixel (u_split)
 uniform vec2 u_offsets[8];  // each sample's offset from the pixel's centre (pixels)
 shared uint group_marched;
+shared vec4 group_sample_fog[64];         // u_split: each sample's B_s T_s + S_s and T_s
+shared vec3 group_sample_background[64];  // and its B_s
 
 // Bounds of the stretch of the shell of the ray through sample point px + offset: where the four
 // pixels around the point all meet the shell, their rasterised entries and exits read at the
@@ -55,6 +58,15 @@ void main()
         group_marched = 0u;
     barrier();
     uint i = gl_GlobalInvocationID.x;
+    // u_split: the invocation's sample, and the lane of its pixel's first sample.
+    int sample_index = 0;
+    uint first_lane = gl_LocalInvocationIndex;
+    if (u_split != 0) {
+        uint per_group = uint(64 / u_samples), local = gl_LocalInvocationIndex / uint(u_samples);
+        sample_index = int(gl_LocalInvocationIndex % uint(u_samples));
+        first_lane = local * uint(u_samples);
+        i = local < per_group ? gl_WorkGroupID.x * per_group + local : 0xffffffffu;
+    }
     // The pixel, and where its fog goes (its point of the grid, or itself).
     ivec2 px = ivec2(-1), at = ivec2(-1);
     if (u_stage == 0) {
@@ -66,45 +78,47 @@ void main()
     }
     if (at.x >= 0)
         px = frame_grid_pixel(at, u_spacing);
+    vec4 fog = vec4(0.0, 0.0, 0.0, 1.0);
     if (px.x >= 0) {
-        // One call of the march, in a loop over the split pixel's samples, which the compiler
-        // inlines whole (a second one doubled the program's compile time).
-        int rays = u_split != 0 ? u_samples : 1;
-        vec3 lit = vec3(0.0), background = vec3(0.0);  // sums of B_s T_s + S_s and of B_s
-        float through = 0.0;                           // of T_s
-        vec4 fog = vec4(0.0, 0.0, 0.0, 1.0);
-        for (int s = 0; s < rays; ++s) {
-            vec2 uv = frame_uv(px);
-            vec2 shell = vec2(0.0);
-            float depth;
-            if (u_split != 0) {
-                uv += u_offsets[s] / vec2(u_size);
-                depth = frame_view_depth(texelFetch(u_ms_depth, px, s).r);
-                shell = froxel_sample_stretch(px, u_offsets[s], texelFetch(u_split_ray, px, 0).xy);
-            } else {
-                depth = frame_depth(px);
-                shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : shell;
-            }
-            if (u_stage == 0)
-                imageStore(o_info, at, frame_point_info(px, depth));
-            bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
-            fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(uv, depth, shell, u_split == 0);
-            if (u_stage == 0 && !resolved)
-                atomicAdd(group_marched, 1u);
-            if (u_split != 0) {
-                vec3 b = texelFetch(u_ms_color, px, s).rgb;
-                lit += b * fog.a + fog.rgb;
-                background += b;
-                through += fog.a;
-            }
-        }
+        vec2 uv = frame_uv(px);
+        vec2 shell = vec2(0.0);
+        float depth;
         if (u_split != 0) {
-            float n = float(rays);
-            fog = vec4(lit / n - background / n * (through / n), through / n);
+            uv += u_offsets[sample_index] / vec2(u_size);
+            depth = frame_view_depth(texelFetch(u_ms_depth, px, sample_index).r);
+            shell = froxel_sample_stretch(px, u_offsets[sample_index], texelFetch(u_split_ray, px, 0).xy);
+        } else {
+            depth = frame_depth(px);
+            shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : shell;
         }
-        imageStore(o_fog, at, fog);
+        if (u_stage == 0)
+            imageStore(o_info, at, frame_point_info(px, depth));
+        bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
+        fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(uv, depth, shell, u_split == 0);
+        if (u_stage == 0 && !resolved)
+            atomicAdd(group_marched, 1u);
+        if (u_split != 0) {
+            vec3 b = texelFetch(u_ms_color, px, sample_index).rgb;
+            group_sample_fog[gl_LocalInvocationIndex] = vec4(b * fog.a + fog.rgb, fog.a);
+            group_sample_background[gl_LocalInvocationIndex] = b;
+        }
     }
     barrier();
+    if (u_split != 0 && px.x >= 0 && sample_index == 0) {
+        // The pixel's samples' mean, summed in their order.
+        vec3 lit = vec3(0.0), background = vec3(0.0);  // sums of B_s T_s + S_s and of B_s
+        float through = 0.0;                           // of T_s
+        for (int s = 0; s < u_samples; ++s) {
+            vec4 f = group_sample_fog[first_lane + uint(s)];
+            lit += f.rgb;
+            background += group_sample_background[first_lane + uint(s)];
+            through += f.a;
+        }
+        float n = float(u_samples);
+        fog = vec4(lit / n - background / n * (through / n), through / n);
+    }
+    if (px.x >= 0 && sample_index == 0)
+        imageStore(o_fog, at, fog);
     if (gl_LocalInvocationIndex == 0u && group_marched > 0u)
         atomicAdd(fm_sampled, group_marched);
 }

@@ -1,11 +1,9 @@
 #version 450 core
-// Blended with GL_MIN into the first target and GL_MAX into the second: per pixel, the nearest
-// and the farthest depth where the ray meets the shell.
+// Blended with GL_MAX into one target: per pixel, minus the nearest and the farthest depth
+// where the ray meets the shell (max(-a, -b) = -min(a, b), exactly).
 in float v_depth;
-layout(location = 0) out float o_first;
-layout(location = 1) out float o_last;
+layout(location = 0) out vec2 o_depths;
 void main()
 {
-    o_first = v_depth;
-    o_last = v_depth;
+    o_depths = vec2(-v_depth, v_depth);
 }

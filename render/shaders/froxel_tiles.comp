@@ -10,8 +10,7 @@
 // centre (3e38: sky) for the apply.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_tiles;
-uniform sampler2D u_first;   // nearest shell depth per pixel (3e38: none)
-uniform sampler2D u_last;    // farthest shell depth (0: none)
+uniform sampler2D u_shell_depths;  // per pixel: minus the shell's nearest depth (-3e38: none), its farthest (0: none)
 uniform sampler2D u_ground;  // the frame's depth buffer
 uniform ivec2 u_raster;      // the frame's size
 uniform ivec2 u_tiles;
@@ -73,8 +72,9 @@ void main()
                 last = max(last, ground);
                 continue;
             }
-            float a = texelFetch(u_first, r, 0).r;
-            float b = min(texelFetch(u_last, r, 0).r, ground);
+            vec2 shell = texelFetch(u_shell_depths, r, 0).rg;
+            float a = -shell.x;
+            float b = min(shell.y, ground);
             if (a < b) {
                 first = min(first, a);
                 last = max(last, b);

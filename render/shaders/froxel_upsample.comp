@@ -106,7 +106,7 @@ bool froxel_upsampled(ivec2 t, ivec2 px, float depth, vec4 own, out vec4 fog)
         return false;
     if (u_fx_shell == 0)
         return true;
-    vec2 shell = known ? own.zw : vec2(texelFetch(u_fx_first, px, 0).r, texelFetch(u_fx_last, px, 0).r);
+    vec2 shell = known ? own.zw : froxel_pixel_shell(px);
     return within(shell.x, firsts) && within(shell.y, lasts);
 }
 

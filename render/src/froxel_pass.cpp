@@ -18,7 +18,7 @@ namespace {
 // Unit 10 is the sun's shadow map's (shadow_map_unit).
 constexpr int unit_tiles = 8, unit_volume = 9, unit_medium = 11;  // 11, 12
 constexpr int unit_density = 13, unit_light = 14, unit_history = 15, unit_history_tiles = 7;
-constexpr int unit_first = 5, unit_last = 6;
+constexpr int unit_shell_depths = 5;
 constexpr int unit_sun = 16;           // 16, 17, 18
 constexpr int unit_light_volume = 19;  // and 21: the cells' floors (LightVolumeTexture::bind)
 // A moving view's jitter goes round one Halton cycle, a sample a frame; a still averages the
@@ -32,10 +32,24 @@ constexpr int unit_light_volume = 19;  // and 21: the cells' floors (LightVolume
 constexpr int halton_cycle = 16, still_samples = 2;
 // The apply's work in three timers (a GL timer query cannot nest): the grids and the marches of
 // the pixels the volume does not resolve, the split pixels' samples' marches, the frame's fog.
-enum Stage { tiles, density, lighting, temporal, integrate, classify, marches, splits, apply_stage, stage_count };
-const char* const stage_names[stage_count] = {"froxel tiles",    "froxel density",   "froxel lighting",
-                                              "froxel temporal", "froxel integrate", "froxel classify",
-                                              "froxel marches",  "froxel splits",    "froxel apply"};
+// The shell's rasterisation is timed apart from the tiles' reduction: a raster pass and a
+// compute pass, which a data-centre GPU runs at very different speeds (docs/speed.md).
+enum Stage {
+    shell_stage,
+    tiles,
+    density,
+    lighting,
+    temporal,
+    integrate,
+    classify,
+    marches,
+    splits,
+    apply_stage,
+    stage_count
+};
+const char* const stage_names[stage_count] = {
+    "froxel shell",     "froxel tiles",    "froxel density", "froxel lighting", "froxel temporal",
+    "froxel integrate", "froxel classify", "froxel marches", "froxel splits",   "froxel apply"};
 // froxel_classify.comp: where the volume's lookup may stand for a pixel's own march. The error
 // a tap's bilinear lookup may make (in transmittance, or in radiance relative to its tile's
 // in-scattering) and how far the fog's edge may spread over a tile's slices. At 0.004 the
@@ -399,11 +413,15 @@ void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
         else
             mode_ = o.height_fog.enabled() ? FroxelTileBounds::Mode::haze : FroxelTileBounds::Mode::shell;
     }
+    {
+        const ScopedPassTimer timed(timers_[shell_stage]);
+        use_shell_for_resolution();
+        tile_bounds_.rasterise(frame, mode_, shell_ok_);
+    }
     const ScopedPassTimer timed(timers_[tiles]);
-    use_shell_for_resolution();
     // The depths each tile's slices span.
-    tile_bounds_.update(frame, mode_, shell_ok_, {size.x, size.y}, view_.near, view_.far, depth_texture,
-                        v_->tiles[current_].get(), o.height_fog.top());
+    tile_bounds_.reduce(frame, mode_, {size.x, size.y}, view_.near, view_.far, depth_texture, v_->tiles[current_].get(),
+                        o.height_fog.top());
     if (mode_ == FroxelTileBounds::Mode::shell) {  // ranges end where the fog turns opaque
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
         bind_layout(opaque_);
@@ -564,8 +582,7 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
     // Every sampler on its own unit, even unused ones: types may not share a unit.
     p.set("u_fx_tiles", unit_tiles);
     p.set("u_fx_volume", unit_volume);
-    p.set("u_fx_first", unit_first);
-    p.set("u_fx_last", unit_last);
+    p.set("u_fx_shell_depths", unit_shell_depths);
     p.set("u_md_grid", unit_medium);
     p.set("u_md_noise", unit_medium + 1);
     p.set("u_fx_apply", visible_ && apply_ ? (options_.fog_aware ? 2 : 1) : 0);
@@ -579,8 +596,7 @@ void FroxelPass::bind_apply(const ShaderProgram& p) const
     p.set("u_fx_near", view_.near);
     p.set("u_fx_pixel_steps", marched_steps());
     glBindTextureUnit(unit_volume, v_->integrated.get());
-    glBindTextureUnit(unit_first, tile_bounds_.first());
-    glBindTextureUnit(unit_last, tile_bounds_.last());
+    glBindTextureUnit(unit_shell_depths, tile_bounds_.shell_depths());
 }
 
 void FroxelPass::append_timings(std::vector<PassTime>& out) const

@@ -46,27 +46,20 @@ void FroxelTileBounds::ensure_raster(const glm::ivec2& size)
 {
     if (size == raster_ && fbo_)
         return;
-    first_ = make_texture(GL_TEXTURE_2D);
-    last_ = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(first_.get(), 1, GL_R32F, size.x, size.y);
-    glTextureStorage2D(last_.get(), 1, GL_R32F, size.x, size.y);
-    for (GLuint t : {first_.get(), last_.get()})
-        nearest(t);
+    depths_ = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(depths_.get(), 1, GL_RG32F, size.x, size.y);
+    nearest(depths_.get());
     fbo_ = make_framebuffer();
-    glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, first_.get(), 0);
-    glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT1, last_.get(), 0);
-    const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    glNamedFramebufferDrawBuffers(fbo_.get(), 2, both);
+    glNamedFramebufferTexture(fbo_.get(), GL_COLOR_ATTACHMENT0, depths_.get(), 0);
+    glNamedFramebufferDrawBuffer(fbo_.get(), GL_COLOR_ATTACHMENT0);
     raster_ = size;
 }
 
-void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, const glm::ivec2& tiles, double near,
-                              double far, GLuint depth_texture, GLuint tiles_texture, double haze_top)
+void FroxelTileBounds::rasterise(const FrameContext& frame, Mode mode, bool shell)
 {
     ensure_raster({frame.width, frame.height});
-    const float none_first[4] = {3e38f, 0.0f, 0.0f, 0.0f}, none_last[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, none_first);
-    glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 1, none_last);
+    const float none[4] = {-3e38f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, none);
     if ((shell || mode == Mode::shell) && index_count_ > 0) {
         // The shell's nearest and farthest depth per pixel, behind the ground or not.
         glBindFramebuffer(GL_FRAMEBUFFER, fbo_.get());
@@ -75,9 +68,7 @@ void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, 
         glDepthMask(GL_FALSE);
         glDisable(GL_CULL_FACE);
         glEnablei(GL_BLEND, 0);
-        glEnablei(GL_BLEND, 1);
-        glBlendEquationi(0, GL_MIN);
-        glBlendEquationi(1, GL_MAX);
+        glBlendEquationi(0, GL_MAX);
         const glm::dvec3 forward(-frame.view[0][2], -frame.view[1][2], -frame.view[2][2]);
         shell_program_.set("u_view_projection", frame.view_projection);
         shell_program_.set("u_eye", frame.eye);
@@ -86,15 +77,17 @@ void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, 
         glBindVertexArray(vao_.get());
         glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
         glBlendEquationi(0, GL_FUNC_ADD);
-        glBlendEquationi(1, GL_FUNC_ADD);
         glDisablei(GL_BLEND, 0);
-        glDisablei(GL_BLEND, 1);
         glDepthMask(GL_TRUE);
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
     }
+}
+
+void FroxelTileBounds::reduce(const FrameContext& frame, Mode mode, const glm::ivec2& tiles, double near, double far,
+                              GLuint depth_texture, GLuint tiles_texture, double haze_top)
+{
     const glm::vec2 planes = depth_planes(frame);
-    reduce_.set("u_first", 0);
-    reduce_.set("u_last", 1);
+    reduce_.set("u_shell_depths", 0);
     reduce_.set("u_ground", 2);
     reduce_.set("u_raster", raster_);
     reduce_.set("u_tiles", tiles);
@@ -110,8 +103,7 @@ void FroxelTileBounds::update(const FrameContext& frame, Mode mode, bool shell, 
     reduce_.set("u_haze_top", float(haze_top));
     set_partition_uniforms(reduce_, frame);
     reduce_.use();
-    glBindTextureUnit(0, first_.get());
-    glBindTextureUnit(1, last_.get());
+    glBindTextureUnit(0, depths_.get());
     glBindTextureUnit(2, depth_texture);
     glBindImageTexture(0, tiles_texture, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glDispatchCompute(GLuint((tiles.x + 7) / 8), GLuint((tiles.y + 7) / 8), 1);

@@ -1,8 +1,9 @@
 #pragma once
 // Fog-aware slicing: per screen tile of the froxel volume, the view depths its slices span.
 // The Medium's shell (froxel_shell.hpp) is rasterised at the frame's resolution into its
-// nearest and farthest depth per pixel (GL_MIN / GL_MAX blending); froxel_tiles.comp reduces
-// them, cut at the frame's depth buffer, to one range per tile. The per-pixel depths stay for
+// nearest and farthest depth per pixel (one RG32F target blended with GL_MAX: minus the nearest
+// depth, and the farthest; two targets blended GL_MIN and GL_MAX cost a GPU whose raster
+// pipeline is its narrow part twice the blending); froxel_tiles.comp reduces them, cut at the frame's depth buffer, to one range per tile. The per-pixel depths stay for
 // the apply (froxel_apply.glsl).
 #include <glm/vec2.hpp>
 
@@ -25,14 +26,17 @@ public:
     FroxelTileBounds();
     //! Uploads the shell mesh (once per medium).
     void set_shell(const ShellMesh& shell);
+    //! Rasterises the shell's per-pixel depths when `shell` (or in shell mode); else clears them
+    //! to none. Before reduce(), in its own pass (a raster pass, timed apart from the compute).
+    void rasterise(const FrameContext& frame, Mode mode, bool shell);
     //! Writes the tiles' ranges and central ground depths into `tiles` (RGBA32F, tiles.x by
-    //! tiles.y) from the frame's depth texture; rasterises the shell when `shell` (or in shell mode).
+    //! tiles.y) from the frame's depth texture and the shell's depths of rasterise().
     //! haze_top: in haze mode, the height above which the height fog adds nothing to see.
-    void update(const FrameContext& frame, Mode mode, bool shell, const glm::ivec2& tiles, double near, double far,
+    void reduce(const FrameContext& frame, Mode mode, const glm::ivec2& tiles, double near, double far,
                 GLuint depth_texture, GLuint tiles_texture, double haze_top = 0.0);
-    //! Per pixel of the last update with the shell: its nearest and farthest view depth.
-    GLuint first() const { return first_.get(); }
-    GLuint last() const { return last_.get(); }
+    //! Per pixel of the last rasterise() with the shell (RG32F): minus its nearest view depth
+    //! (-3e38: none) and its farthest (0: none).
+    GLuint shell_depths() const { return depths_.get(); }
 
 private:
     ShaderProgram shell_program_, reduce_;
@@ -40,7 +44,7 @@ private:
     Buffer vertices_, indices_;
     GLsizei index_count_ = 0;
     Framebuffer fbo_;
-    Texture first_, last_;
+    Texture depths_;
     glm::ivec2 raster_{0};
     void ensure_raster(const glm::ivec2& size);
 };

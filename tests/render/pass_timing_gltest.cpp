@@ -64,9 +64,8 @@ TEST_F(PassTimingGl, EveryPassThatDrawsTookTimeAndNoMoreThanItsFrame)
         c.position.x += 10.0;
         r.draw(c, 160, 96);
         std::set<std::string> drawn = {
-            "sky",          "terrain",        "resolve",         "tonemap",          "particles",
-            "froxel tiles", "froxel density", "froxel lighting", "froxel integrate", "froxel marches",
-            "froxel apply"};
+            "sky",          "terrain",        "resolve",         "tonemap",          "particles",      "froxel shell",
+            "froxel tiles", "froxel density", "froxel lighting", "froxel integrate", "froxel marches", "froxel apply"};
         if (frame > 0)  // the history of a moving view
             drawn.insert("froxel temporal");
         SCOPED_TRACE("frame " + std::to_string(frame));
