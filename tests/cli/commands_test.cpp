@@ -121,9 +121,14 @@ TEST(KiriBench, ViewsStageJudgesTheViewsNamed)
         ASSERT_EQ(cols.size(), 9u) << line;
         EXPECT_EQ(cols[2], "\"canyon/derived\"") << line;
         modes.push_back(cols[1]);
-        // Measured 4.8 % (layers), 3.0 % (particles), 1.1 % (froxels), 1.4 % (combined).
+        // Measured 0.64 % (layers), 2.11 % (particles), 0.40 % (froxels), 0.64 % (combined) on
+        // 2026-12-04. Each renderer's light 10 % too bright fails its bound (docs/tests.md).
+        const double measured = cols[1] == "\"layers\"" ? 0.0064
+            : cols[1] == "\"particles\""                ? 0.0211
+            : cols[1] == "\"froxel\""                   ? 0.0040
+                                                        : 0.0064;
         EXPECT_GT(std::stod(cols[6]), 0.001) << line;
-        EXPECT_LT(std::stod(cols[6]), cols[1] == "\"layers\"" ? 0.06 : 0.035) << line;
+        EXPECT_LT(std::stod(cols[6]), 1.5 * measured) << line;
     }
     EXPECT_EQ(modes, (std::vector<std::string>{"\"layers\"", "\"particles\"", "\"froxel\"", "\"combined\""}));
     const std::string md = kiri::test::read_all(dir / "views.md");
