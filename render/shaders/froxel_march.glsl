@@ -18,7 +18,8 @@
 uniform int u_fx_shell;               // the shell's per-pixel depths are there (eye outside it)
 uniform int u_fx_pixel_steps;
 uniform float u_fx_near;              // the volume's first depth
-uniform sampler2D u_fx_shell_depths;  // per pixel: minus the shell's nearest depth (-3e38: none), its farthest (0: none)
+// Per pixel: minus the shell's nearest depth (-3e38: none) and its farthest (0: none).
+uniform sampler2D u_fx_shell_depths;
 uniform int u_fx_classified;          // the tiles' w marks where pixels march (froxel_classify.comp)
 
 // The Medium's optical depth over the step [q0, q1] of length `len`: its extinction at the middle

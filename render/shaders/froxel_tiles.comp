@@ -10,7 +10,7 @@
 // centre (3e38: sky) for the apply.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_tiles;
-uniform sampler2D u_shell_depths;  // per pixel: minus the shell's nearest depth (-3e38: none), its farthest (0: none)
+uniform sampler2D u_shell_depths;  // per pixel: -(shell's nearest depth) (-3e38: none), its farthest (0)
 uniform sampler2D u_ground;  // the frame's depth buffer
 uniform ivec2 u_raster;      // the frame's size
 uniform ivec2 u_tiles;

@@ -2,9 +2,9 @@
 // Fog-aware slicing: per screen tile of the froxel volume, the view depths its slices span.
 // The Medium's shell (froxel_shell.hpp) is rasterised at the frame's resolution into its
 // nearest and farthest depth per pixel (one RG32F target blended with GL_MAX: minus the nearest
-// depth, and the farthest; two targets blended GL_MIN and GL_MAX cost a GPU whose raster
-// pipeline is its narrow part twice the blending); froxel_tiles.comp reduces them, cut at the frame's depth buffer, to one range per tile. The per-pixel depths stay for
-// the apply (froxel_apply.glsl).
+// depth, and the farthest; half the blending of two targets, GL_MIN and GL_MAX);
+// froxel_tiles.comp reduces them, cut at the frame's depth buffer, to one range per tile. The
+// per-pixel depths stay for the apply (froxel_march.glsl).
 #include <glm/vec2.hpp>
 
 #include "frame_context.hpp"
