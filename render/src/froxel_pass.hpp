@@ -30,6 +30,7 @@
 #include "render_targets.hpp"
 #include "shader_program.hpp"
 #include "shadow_map_pass.hpp"
+#include "staged_read.hpp"
 
 namespace kiri::geometry {
 class Medium;
@@ -124,6 +125,7 @@ private:
             int marched = 0, upsampled = 0, split = 0, fog_split = 0;
         };
         Counts read_counts() const;
+        mutable StagingBuffer staging;  // read_counts' (every frame's counts)
     };
     PixelFog applied_;  // the apply's; read_fog runs over it again, judged over its background
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,

@@ -102,7 +102,7 @@ FroxelPass::PixelFog::Counts FroxelPass::PixelFog::read_counts() const
     if (splits)
         sources[lists.size()] = split_list.get();
     std::array<MarchHeader, sample_spacings.size() + 1> h;
-    read_buffers_staged({sources.data(), n}, sizeof(MarchHeader), h.data());
+    staging.read({sources.data(), n}, sizeof(MarchHeader), h.data());
     for (std::size_t k = 0; k < lists.size(); ++k) {
         c.marched += int(h[k].sampled + h[k].listed);
         c.upsampled += int(h[k].upsampled);

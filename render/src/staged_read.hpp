@@ -8,10 +8,24 @@
 
 #include <span>
 
+#include "gl_objects.hpp"
+
 namespace kiri::render::detail {
 
-//! The first `bytes` of each of `sources`, one after another into `out`, through one staging
-//! copy (one wait for the GPU).
+//! A staging buffer kept for reads made every frame: created at the first read (and again when
+//! one needs more bytes), not once a read.
+class StagingBuffer {
+public:
+    //! The first `bytes` of each of `sources`, one after another into `out`, through one staging
+    //! copy (one wait for the GPU).
+    void read(std::span<const GLuint> sources, GLsizeiptr bytes, void* out);
+
+private:
+    Buffer buffer_;
+    GLsizeiptr size_ = 0;
+};
+
+//! The same through a staging buffer of its own, for a read made once (per sun, per fog).
 void read_buffers_staged(std::span<const GLuint> sources, GLsizeiptr bytes, void* out);
 
 }  // namespace kiri::render::detail
