@@ -26,4 +26,20 @@ double resolution_step(float ratio)
     return r;
 }
 
+int off_power_of_two(int side)
+{
+    const auto power_of_two = [](int v) { return v >= 2 && (v & (v - 1)) == 0; };
+    const auto clashes = [&](int v) {
+        for (int k = 1; k <= 16; k *= 2)
+            if (power_of_two((v + k - 1) / k))
+                return true;
+        return false;
+    };
+    if (side < 2)
+        return side;
+    while (clashes(side))
+        ++side;
+    return side;
+}
+
 }  // namespace kiri::preview

@@ -354,7 +354,11 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
         (camera_moved || ImGui::IsAnyItemActive()) && !force && v.reduce_while_moving && moving_scale < scale;
     if (reduced)
         scale = moving_scale;
-    const int w = std::max(1, int(std::lround(fb_w * scale))), h = std::max(1, int(std::lround(fb_h * scale)));
+    int w = std::max(1, int(std::lround(fb_w * scale))), h = std::max(1, int(std::lround(fb_h * scale)));
+    if (reduced) {  // a size llvmpipe has compiled the passes for (frame_budget.hpp)
+        w = std::min(off_power_of_two(w), std::max(fb_w, 1));
+        h = std::min(off_power_of_two(h), std::max(fb_h, 1));
+    }
     const bool redraw = force || scene_dirty_ || camera_moved || w != last_width_ || h != last_height_ ||
         (last_frame_reduced_ && !reduced);
     if (redraw) {

@@ -289,6 +289,27 @@ TEST(FrameBudget, TheReducedResolutionStepsByPowersOfTwo)
     EXPECT_EQ(resolution_step(-1.0f), 0.125);
 }
 
+TEST(FrameBudget, AMovingFramesSidesAreNoPowersOfTwo)
+{
+    using kiri::preview::off_power_of_two;
+    EXPECT_EQ(off_power_of_two(250), 257);  // a 16th of 241..256 is 16: 257, 129, 65, 33, 17
+    EXPECT_EQ(off_power_of_two(141), 141);
+    EXPECT_EQ(off_power_of_two(117), 129);  // a 16th of 113..128 is 8
+    EXPECT_EQ(off_power_of_two(211), 211);
+    EXPECT_EQ(off_power_of_two(1), 1);
+    EXPECT_EQ(off_power_of_two(0), 0);
+    const auto power_of_two = [](int v) { return v >= 2 && (v & (v - 1)) == 0; };
+    for (int side = 2; side <= 4096; ++side) {
+        const int s = off_power_of_two(side);
+        ASSERT_GE(s, side);
+        ASSERT_LE(s - side, side > 32 ? 16 : 31) << side;
+        for (int k = 1; k <= 16; k *= 2)
+            ASSERT_FALSE(power_of_two((s + k - 1) / k)) << side << " -> " << s << " over " << k;
+        if (s > side)  // the next such size: every size between clashes
+            ASSERT_EQ(off_power_of_two(s - 1), s);
+    }
+}
+
 TEST(FrameBudget, StepsTowardsTheBudgetDampedAndClamped)
 {
     using kiri::preview::FrameBudget;
