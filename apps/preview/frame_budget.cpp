@@ -35,7 +35,7 @@ int off_power_of_two(int side)
                 return true;
         return false;
     };
-    if (side < 2)
+    if (side < 2 || side > (1 << 24))  // no texture is that large; no overflow below
         return side;
     while (clashes(side))
         ++side;

@@ -31,11 +31,12 @@ float next_moving_scale(float scale, double measured_ms, const FrameBudget& budg
 double resolution_step(float ratio);
 
 //! A moving frame's width or height: `side` or the next larger size that is not a power of two,
-//! nor is it divided by 2, 4, 8 or 16 and rounded up (the frame's reduced targets, the froxel
-//! apply's grids and blocks). llvmpipe keys its compiled programs by whether each texture's sides
+//! nor is it divided by 2, 4, 8 or 16 and rounded up (the textures the passes size from the
+//! frame: its reduced targets, the froxel apply's grids of pixels). llvmpipe keys its compiled programs by whether each texture's sides
 //! are powers of two: moving frames 241 to 256 wide or 113 to 128 high (a 16th of them 16 or 8)
 //! each compiled a new variant of the apply, 1.8 to 2.3 s in the middle of a camera move, until
-//! its disk cache held it. At most 16 pixels more above 32 (31 below); sides below 2 are kept.
+//! its disk cache held it. At most 16 pixels more above 32 (31 below); sides below 2 or above
+//! 2^24 are kept.
 int off_power_of_two(int side);
 
 }  // namespace kiri::preview

@@ -298,6 +298,7 @@ TEST(FrameBudget, AMovingFramesSidesAreNoPowersOfTwo)
     EXPECT_EQ(off_power_of_two(211), 211);
     EXPECT_EQ(off_power_of_two(1), 1);
     EXPECT_EQ(off_power_of_two(0), 0);
+    EXPECT_EQ(off_power_of_two(std::numeric_limits<int>::max()), std::numeric_limits<int>::max());
     const auto power_of_two = [](int v) { return v >= 2 && (v & (v - 1)) == 0; };
     for (int side = 2; side <= 4096; ++side) {
         const int s = off_power_of_two(side);
