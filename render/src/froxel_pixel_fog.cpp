@@ -16,7 +16,7 @@
 namespace kiri::render::detail {
 namespace {
 
-// The fog's samplers stay clear of the apply's units (froxel_pass.cpp: 5..19).
+// The fog's samplers stay clear of the apply's units (froxel_pass_parts.hpp: 5..19).
 // The split pixels' multisampled depth and colour share the units of the grids' samples and the
 // background, which their programs do not read.
 constexpr int unit_frame_depth = 0, unit_samples = 1, unit_background = 2, unit_sample_info = 3, unit_split_ray = 4,
