@@ -21,7 +21,7 @@ void main()
     // The terrain's own shadow where the froxel fog built the sun's shadow map (terrain_shadow.glsl;
     // froxel_none.glsl without it), and the fog's shade (ground_shade.glsl).
     if (direct > 0.0)
-        direct *= terrain_shadow(v_world, n) * exp(-max(ground_sun_depth(v_world, v_shade), 0.0));
+        direct *= terrain_shadow(v_world, n, u_sun_direction) * exp(-max(ground_sun_depth(v_world, v_shade), 0.0));
     vec3 sky = u_ambient * (0.6 + 0.4 * n.z);
     vec3 radiance = base * (u_sun_radiance * direct + sky);
     float haze = 1.0 - exp(-length(v_world - u_eye) * u_haze_density);

@@ -35,6 +35,17 @@ float esm_visibility(vec3 p, float bias)
     return esm_visibility_at(light_space(p), bias);
 }
 
+// The map before its blur at a point l of the map's frame, its 4 texels weighed bilinearly
+// (percentage closer), each lit where the point lies no more than `tolerance` metres behind its
+// depth.
+float sharp_visibility_at(vec3 l, float tolerance)
+{
+    vec2 f = fract(l.xy * vec2(textureSize(u_ts_raw, 0)) - 0.5);
+    // The bilinear footprint's texels in one fetch: (0, 1), (1, 1), (1, 0), (0, 0).
+    vec4 lit = step(vec4((min(l.z, u_ts_depth) - tolerance) / u_ts_depth), textureGather(u_ts_raw, l.xy));
+    return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);
+}
+
 // The map before its blur at a point l of the map's frame, its 4 texels weighed bilinearly, each
 // lit where the point lies no more than five times `bias` (a texel) behind its depth: a texel's
 // depth is its centre's and a slope rises within it, and air just over a slope lit at a grazing
@@ -43,13 +54,7 @@ float esm_visibility(vec3 p, float bias)
 // it: the thin shade along a canyon's wall under a sun a little lower than the wall is steep was
 // lit (the views bench's canyon seen from inside its fog, the froxels 4.7 % off the reference, in
 // bands along the wall; TerrainShadowProbeGl).
-float hard_visibility_at(vec3 l, float bias)
-{
-    vec2 f = fract(l.xy * vec2(textureSize(u_ts_raw, 0)) - 0.5);
-    // The bilinear footprint's texels in one fetch: (0, 1), (1, 1), (1, 0), (0, 0).
-    vec4 lit = step(vec4((min(l.z, u_ts_depth) - 5.0 * bias) / u_ts_depth), textureGather(u_ts_raw, l.xy));
-    return mix(mix(lit.w, lit.z, f.x), mix(lit.x, lit.y, f.x), f.y);
-}
+float hard_visibility_at(vec3 l, float bias) { return sharp_visibility_at(l, 5.0 * bias); }
 
 // The terrain's visibility of the sun at a point of air (the fog's lighting): the exponential
 // map's, its soft edge free of flicker, but no more than the sharp map's where that one sees the
@@ -65,6 +70,18 @@ float terrain_visibility(vec3 p, float bias)
     return v > 0.0 ? min(v, hard_visibility_at(l, bias)) : v;
 }
 
-// The terrain's own shadow at a terrain point with normal n: looked up a little off the surface
-// (normal offset), so that the map's texels do not shadow the surface they were made of.
-float terrain_shadow(vec3 world, vec3 n) { return esm_visibility(world + n * (2.0 * u_ts_bias), 0.0); }
+// The terrain's own shadow at a terrain point with normal n, the sun towards `sun`: the sharp
+// map's, each texel lit where the point lies behind its depth by no more than the surface's own
+// rise across the taps (a texel's depth is its centre's; the four taps reach a texel and a half
+// away, where a slope turned from the sun by theta lies 1.5 texels x tan(theta) deeper) and half a
+// texel.
+float terrain_shadow(vec3 world, vec3 n, vec3 sun)
+{
+    if (u_ts_on == 0)
+        return 1.0;
+    if (u_ts_sun_set != 0)
+        return 0.0;
+    float c = clamp(dot(n, sun), 0.05, 1.0);
+    float rise = 1.5 * sqrt(1.0 - c * c) / c;
+    return sharp_visibility_at(light_space(world), u_ts_bias * (0.5 + rise));
+}

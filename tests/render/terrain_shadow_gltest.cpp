@@ -22,8 +22,8 @@ using kiri::render::Renderer;
 using kiri::render::SunLight;
 namespace g = kiri::geometry;
 
-// A ridge along y through x = 0: 400 m high, 40 m wide (a Gaussian), the plain at 0 around it.
-g::Terrain ridge()
+// A ridge along y through x = 0: `height` high, 40 m wide (a Gaussian), the plain at 0 around it.
+g::Terrain ridge(double height = 400.0)
 {
     g::Heightfield hf;
     hf.nx = hf.ny = 65;
@@ -34,19 +34,20 @@ g::Terrain ridge()
     for (int j = 0; j < hf.ny; ++j)
         for (int i = 0; i < hf.nx; ++i) {
             const double x = hf.x_of(i);
-            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] = 400.0 * std::exp(-x * x / (2.0 * 40.0 * 40.0));
+            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] = height * std::exp(-x * x / (2.0 * 40.0 * 40.0));
         }
     return g::Terrain(std::move(hf));
 }
 
 // The sun low in the east (+x), 17 degrees up: west of the ridge the plain and 100 m of air
 // above it lie in its shadow for 1.3 km.
-SunLight sun(bool on, bool shadows = true)
+SunLight sun(bool on, bool shadows = true, int map_size = 1024)
 {
     SunLight s;
     s.direction = {1.0, 0.0, 0.3};
     s.intensity = on ? 3.0 : 0.0;
     s.terrain_shadows = shadows;
+    s.shadow_map_size = map_size;
     return s;
 }
 
@@ -74,11 +75,11 @@ class TerrainShadowGl : public kiri::test::GlTest {
 protected:
     // What the sun adds at the centre of a view straight down at x: the largest channel change
     // between the frames with the sun on and off.
-    static int sun_adds(Renderer& r, double x, bool shadows)
+    static int sun_adds(Renderer& r, double x, bool shadows, int map_size = 1024)
     {
-        r.set_sun(sun(true, shadows));
+        r.set_sun(sun(true, shadows, map_size));
         const Image on = r.render(straight_down(x), 48, 48);
-        r.set_sun(sun(false, shadows));
+        r.set_sun(sun(false, shadows, map_size));
         const Image off = r.render(straight_down(x), 48, 48);
         return centre_difference(on, off);
     }
@@ -92,6 +93,22 @@ TEST_F(TerrainShadowGl, TheGroundLiesInTheRidgesShadow)
     EXPECT_LE(sun_adds(r, shaded_x, true), 1);
     EXPECT_GT(sun_adds(r, lit_x, true), 20);
     EXPECT_GT(sun_adds(r, shaded_x, false), 20);  // without shadows the sun reaches it
+}
+
+// A ridge 150 m high: its shadow on the plain ends 501 m west of its crest, where the ray towards
+// the sun first clears it. On a coarse map (64 texels, about 20 m each: the default scene's is
+// about 41 m over ridges a few hundred metres high) the ground's shadow still reaches that far: a
+// point 120 m inside its end lies in it, one 120 m beyond it in the sun. The exponential map
+// looked up 2 texels off the surface lit the first (the sun added 51 levels of 255), and most of
+// the default scene's cast shadows with it.
+TEST_F(TerrainShadowGl, ARidgesShadowReachesItsEndOnACoarseMap)
+{
+    const g::Terrain t = ridge(150.0);
+    Renderer r;
+    r.set_terrain(t);
+    EXPECT_LE(sun_adds(r, -380.0, true, 64), 1);
+    EXPECT_GT(sun_adds(r, -620.0, true, 64), 20);
+    EXPECT_LE(sun_adds(r, -200.0, true, 64), 1);
 }
 
 TEST_F(TerrainShadowGl, TheLayersLieInTheRidgesShadow)
