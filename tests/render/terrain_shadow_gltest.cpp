@@ -34,7 +34,8 @@ g::Terrain ridge(double height = 400.0)
     for (int j = 0; j < hf.ny; ++j)
         for (int i = 0; i < hf.nx; ++i) {
             const double x = hf.x_of(i);
-            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] = height * std::exp(-x * x / (2.0 * 40.0 * 40.0));
+            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] =
+                height * std::exp(-x * x / (2.0 * 40.0 * 40.0));
         }
     return g::Terrain(std::move(hf));
 }

@@ -135,7 +135,7 @@ void visit_fields(O& o, V&& v)
        .widget = closed(0, 0.1)});
     v(o.terrain_shadows,
       {.key = "terrain_shadows",
-       .doc = "the terrain's shadow map (ESM) shades the ground and every fog renderer (froxels, layers, particles)"});
+       .doc = "the terrain's sun shadow map shades the ground and every fog renderer (froxels, layers, particles)"});
     v(o.fog_shadows, {.key = "fog_shadows", .doc = "the fog dims the sun on its way (tau_sun)"});
     v(o.shadow_map_size,
       {.key = "shadow_map_size", .unit = "texels", .range = closed(64, 8192), .doc = "a side of the sun's shadow map"});
