@@ -487,6 +487,18 @@ int PreviewApp::run()
                              cloud->particles.size(), rebuilds.c_str());
             if (froxels_on())
                 std::fprintf(stderr, "kiri-preview: froxel passes run per frame:%s\n", froxel_runs.c_str());
+            // Where the last frame (with --moving, the still) went, as kiri render --timings
+            // prints a still's passes.
+            std::string passes;
+            for (const render::PassTime& t : renderer_->last_stats().passes) {
+                char entry[96];
+                std::snprintf(entry, sizeof entry, " %s %.0f,", t.pass.c_str(), t.gpu_ms);
+                passes += entry;
+            }
+            if (!passes.empty()) {
+                passes.pop_back();
+                std::fprintf(stderr, "kiri-preview: the last frame's passes (ms):%s\n", passes.c_str());
+            }
             return 0;
         }
         window_->swap_buffers();

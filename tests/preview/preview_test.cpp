@@ -11,8 +11,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <functional>
+#include <sstream>
 #include <string>
 
 #include "cli/kiri_runner.hpp"
@@ -268,6 +268,30 @@ TEST_F(PreviewXvfb, TheDefaultModeIsKiriRendersCombinedFog)
     EXPECT_NE(r.err.find("mode combined"), std::string::npos) << r.err;
     EXPECT_NE(log.find("froxel passes run per frame: 1\n"), std::string::npos) << log;
     EXPECT_NE(log.find("attenuation buffer builds per frame: 1\n"), std::string::npos) << log;
+    // The frame's passes, each timed, together within the 3D view's time (one frame: its mean).
+    const std::size_t at = log.find("the last frame's passes (ms):");
+    const std::size_t view = log.find("3D view ");
+    ASSERT_NE(at, std::string::npos) << log;
+    ASSERT_NE(view, std::string::npos) << log;
+    const double view_ms = std::stod(log.substr(view + 8));
+    std::istringstream passes(log.substr(at + 29, log.find('\n', at) - at - 29));
+    double sum = 0.0;
+    int timed = 0;
+    bool terrain = false, marches = false;
+    for (std::string entry; std::getline(passes, entry, ',');) {
+        const std::size_t last_space = entry.find_last_of(' ');
+        const double ms = std::stod(entry.substr(last_space + 1));
+        EXPECT_GE(ms, 0.0) << entry;
+        terrain = terrain || (entry.find(" terrain ") == 0 && ms > 0.0);
+        marches = marches || entry.find(" froxel marches ") == 0;
+        sum += ms;
+        ++timed;
+    }
+    EXPECT_GE(timed, 10) << log;
+    EXPECT_TRUE(terrain) << log;
+    EXPECT_TRUE(marches) << log;
+    EXPECT_GT(sum, 0.0);
+    EXPECT_LE(sum, view_ms * 1.05 + 5.0) << log;
     const Image rendered = kiri::render::read_png(png);
     fs::remove(png);
     ASSERT_EQ(rendered.width, preview.width);
