@@ -22,7 +22,6 @@ in float v_spacing;
 in float v_slab;
 in float v_height;
 in vec3 v_normal;
-in float v_tau_sun;
 in float v_baked;
 flat in int v_layer;
 
@@ -40,6 +39,8 @@ uniform float u_top_loss;        // 1 - top_density
 uniform float u_thickness;       // T0 (m)
 uniform float u_lv_per_fragment; // metres from the eye within which the baked light is per fragment
 uniform int u_md_extent;         // 1: the Medium's grid is bound (medium_shell.glsl), its coverage is where the fog is
+uniform int u_sun_lookup;        // 1: tau_sun from the sun volume (sun_volume.glsl), at u_sv_direction
+uniform vec3 u_sv_direction;
 uniform int u_stretch_pass;      // 1: layers_end.frag draws the fog a ray crosses before the terrain in a slab whose
                                  // layer it never crosses; the frame's depth is bound (u_frame_depth)
 uniform vec2 u_target_size;      // the target's pixels: a fragment's texel in u_frame_depth
@@ -168,11 +169,15 @@ void main()
             sun_up = points > 1 ? path_visibility(u_eye + view * entry, view, path, sigma * path, points)
                                 : terrain_visibility(v_world, u_ts_bias);
         float tau_sun;
-        if (v_tau_sun >= 0.0) {
+        if (u_sun_lookup != 0) {
             // The fog's optical depth towards the sun, as the froxels and the reference take it:
             // the whole Medium along the slanted path (its top and coverage over the columns the
-            // path crosses, the detail), from the sun volume at the vertices, and the height fog.
-            tau_sun = v_tau_sun;
+            // path crosses, the detail), from the sun volume at this fragment, and the height fog.
+            // Not interpolated from the base's vertices: a lake's base spans the ridges between its
+            // threads, where a vertex lies in the ground, and a triangle across a thread's edge
+            // mixed the thread's tau_sun with a point's inside the ridge (the lake's threads 7 %
+            // too dark in the sun's light, docs/layers.md).
+            tau_sun = sun_optical_depth(v_world, u_sv_direction, 0.5);
         } else {
             // No Medium given: the slab above this layer, the profile integrated from h to the
             // top, (1 - h) - k (1 - h^2) / 2 of the thickness, along the slant of the sun.

@@ -34,28 +34,11 @@ out float v_spacing;        // r (m): the spacing of the layers here
 out float v_slab;           // the share of r that this layer's slab of fog spans (layer_slab_share)
 out float v_height;         // h = i / n in [0, 1]: where in the fog's thickness
 out vec3 v_normal;
-// The fog's optical depth towards the sun at the vertex (sun_volume.glsl: the Medium along the
-// sun's slanted path and the height fog), smooth enough to interpolate over a triangle: from the
-// column of it above the base vertex (layers_sun.comp), linear between its levels; -1 without one
-// (the fragment then takes the slab above its layer).
-out float v_tau_sun;
 // The baked multiple scattering towards the eye at the vertex (light_volume.glsl; 0 unless the
 // model is `baked`): its cells span hundreds of metres, so a triangle interpolates it well, at a
 // fraction of a lookup per fragment.
 out float v_baked;
 uniform float u_anisotropy;
-layout(std430, binding = 2) readonly buffer SunColumns { float sun_columns[]; };
-uniform int u_sun_columns;  // levels a column; 0: none
-uniform float u_sun_column_height;
-
-float layer_tau_sun(float above_base)
-{
-    if (u_sun_columns < 2)
-        return -1.0;
-    float f = clamp(above_base / u_sun_column_height, 0.0, 1.0) * float(u_sun_columns - 1);
-    int k = min(int(f), u_sun_columns - 2), first = gl_VertexID * u_sun_columns;
-    return mix(sun_columns[first + k], sun_columns[first + k + 1], f - float(k));
-}
 flat out int v_layer;
 
 // geometry::layer_slab_share: the stack as the trapezoid rule over the fog's thickness, with nodes
@@ -85,7 +68,6 @@ void main()
         v_slab = 1.0;
         v_height = 0.0;
         v_normal = a_normal;
-        v_tau_sun = layer_tau_sun(0.0);
         v_baked = u_lv_on != 0 ? lv_in_scattered_at(p, normalize(u_eye - p), u_anisotropy, true) : 0.0;
         gl_Position = u_view_projection * vec4(p, 1.0);
         return;
@@ -114,7 +96,6 @@ void main()
     float scale = 1.0 + fi * u_rate * sin_theta;
     vec2 xy = u_centre + scale * (p.xy - u_centre);
     v_world = vec3(xy, p.z + fi * r);
-    v_tau_sun = layer_tau_sun(fi * r);
     v_baked = u_lv_on != 0 ? lv_in_scattered_at(v_world, normalize(u_eye - v_world), u_anisotropy, true) : 0.0;
     gl_Position = u_view_projection * vec4(v_world, 1.0);
 }

@@ -30,17 +30,15 @@ struct LayersPassVertex {
     float uv[2];
 };
 
-constexpr int layers_unit_sun = 0;  // 0, 1, 2: sun_volume.glsl's in layers_sun.comp
 // The baked light's Medium grid and moments in layers.frag, apart from the atlas (0), the
 // heights (1), the noise (2), the shadow map and the froxel apply's units (5 .. 19).
 constexpr int layers_unit_baked_moments =
     20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
 // The frame's resolved depth in layers.frag, after the baked light's and the shadow map's (23).
 constexpr int layers_unit_ground_depth = 24;
-// Steps of the sun's march where a base vertex lies outside the sun volume's grid.
+constexpr int layers_unit_sun = 25;  // 25, 26, 27: sun_volume.glsl's in layers.frag
+// Steps of the sun's march where a fragment lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
-// Levels of tau_sun along the column above each base vertex (linear between them).
-constexpr int sun_column_levels = 16;
 
 void set_sampling(GLuint texture, GLint filter)
 {
@@ -53,8 +51,9 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "fog_lighting.glsl",
-                "terrain_shadow.glsl", "froxel_fog_none.glsl", "layers_light.glsl", "layers.frag"}),
+    : program_({"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "froxel_common.glsl",
+                "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl",
+                "sun_volume.glsl", "froxel_fog_none.glsl", "layers_light.glsl", "layers.frag"}),
       composite_({"depth_samples.glsl", "fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
@@ -312,20 +311,13 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     if (fog_ && !fog_program_)
         fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "froxel_common.glsl",
-            "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "froxel_apply.glsl",
-            "layers_light.glsl", "layers.frag"});
+            "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl",
+            "sun_volume.glsl", "froxel_apply.glsl", "layers_light.glsl", "layers.frag"});
     const ShaderProgram& p = fog_ ? *fog_program_ : program_;
     if (fog_)
         fog_->bind_apply(p);
     bind_terrain_shadow(p, shadow_);
-    // tau_sun from the sun volume, along the column above each base vertex; without a Medium
-    // the slab above each layer.
     const auto& o = options_;
-    const bool columns = update_sun_columns(frame);
-    p.set("u_sun_columns", columns ? sun_column_levels : 0);
-    p.set("u_sun_column_height", float(sun_column_height()));
-    if (columns)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, sun_columns_.get());
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
@@ -380,6 +372,14 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
         LightVolumeTexture{}.bind(p, layers_unit_baked_moments, false);
     // The Medium's coverage, where the medium shading's fog is (after the baked light's binding of
     // the same grid on the same unit).
+    // tau_sun per fragment from the sun volume (before the grid's binding below, which points
+    // u_md_grid at the same grid on another unit); without one, the slab above each layer.
+    const bool sun_lookup = sun_ && sun_->ready() && o.shading == geometry::LayerShading::medium;
+    if (sun_)
+        sun_->bind(p, layers_unit_sun, sun_march_steps);
+    p.set("u_sv_volume", layers_unit_sun + 2);  // its sampler on a unit of its own, bound or not
+    p.set("u_sun_lookup", int(sun_lookup));
+    p.set("u_sv_direction", sun_march_direction(frame.sun_direction));
     p.set("u_md_extent", int(medium && sun_ && sun_->bind_grid(p, layers_unit_baked_moments + 1)));
     set_partition_uniforms(p, frame);
     p.use();
@@ -440,59 +440,6 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, 0);
-}
-
-double LayersPass::sun_column_height() const
-{
-    return options_.thickness * (1.0 + 1.0 / std::max(options_.count, 1));  // the partial top layer too
-}
-
-std::optional<LayersPass::SunColumnsKey> LayersPass::sun_columns_key() const
-{
-    if (!sun_ || !sun_->ready() || !base_ || index_count_ <= 0 || !(sun_column_height() > 0.0) ||
-        options_.shading != geometry::LayerShading::medium)
-        return std::nullopt;
-    return SunColumnsKey{sun_, sun_->updates(), uploaded_base_, index_count_, sun_column_height()};
-}
-
-bool LayersPass::sun_columns_stale() const
-{
-    const std::optional<SunColumnsKey> key = sun_columns_key();
-    return key && !(sun_columns_key_ && *sun_columns_key_ == *key);
-}
-
-bool LayersPass::update_sun_columns(const FrameContext& frame)
-{
-    const std::optional<SunColumnsKey> key = sun_columns_key();
-    if (!key)
-        return false;
-    if (sun_columns_key_ && *sun_columns_key_ == *key)
-        return true;
-    const double height = key->height;
-    if (!sun_columns_program_)
-        sun_columns_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
-            "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "layers_sun.comp"});
-    const ShaderProgram& c = *sun_columns_program_;
-    const GLsizei vertices = GLsizei(base_->position.size());
-    sun_columns_ = make_buffer();
-    glNamedBufferStorage(sun_columns_.get(), GLsizeiptr(std::size_t(vertices) * sun_column_levels * sizeof(float)),
-                         nullptr, 0);
-    sun_->bind(c, layers_unit_sun, sun_march_steps);
-    c.set("u_sun_direction", sun_march_direction(frame.sun_direction));
-    c.set("u_vertices", int(vertices));
-    c.set("u_levels", sun_column_levels);
-    c.set("u_height", float(height));
-    c.use();
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, vertices_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, sun_columns_.get());
-    glDispatchCompute(GLuint((vertices + 63) / 64), 1, 1);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
-    sun_columns_key_ = key;
-    return true;
 }
 
 void LayersPass::update_near(const glm::dvec3& eye, double reach, double flat)

@@ -41,11 +41,6 @@ public:
     void set_ground(const geometry::Heightfield& heightfield, double exaggeration);
     void clear() { index_count_ = 0; }
     bool has_layers() const { return index_count_ > 0; }
-    //! After set_fog: whether update_sun_columns would build (a new sun volume or base).
-    bool sun_columns_stale() const;
-    //! tau_sun along the column above each base vertex from the sun volume (layers_sun.comp),
-    //! built when stale; whether the columns are there (a sun volume with a Medium).
-    bool update_sun_columns(const FrameContext& frame);
     //! Layers above the base the last draw used (0 when culled or empty).
     int last_layer_count() const { return last_layers_; }
     //! The base's triangles the last draw used for a layer (the level of detail's; 0 when culled).
@@ -89,21 +84,6 @@ private:
     const ShadowMapPass* shadow_ = nullptr;
     const SunVolume* sun_ = nullptr;
     const LightVolumeTexture* light_volume_ = nullptr;
-    // tau_sun along the column above each base vertex (layers_sun.comp), rebuilt with the sun
-    // volume or the base.
-    struct SunColumnsKey {
-        const SunVolume* sun = nullptr;
-        int sun_updates = 0;
-        const void* base = nullptr;
-        GLsizei indices = 0;
-        double height = 0.0;
-        bool operator==(const SunColumnsKey&) const = default;
-    };
-    std::unique_ptr<ShaderProgram> sun_columns_program_;
-    Buffer sun_columns_;
-    std::optional<SunColumnsKey> sun_columns_key_;
-    double sun_column_height() const;
-    std::optional<SunColumnsKey> sun_columns_key() const;
     VertexArray empty_vao_;
     Texture noise_;
     // The reduced-resolution target.

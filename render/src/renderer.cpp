@@ -94,7 +94,7 @@ struct Renderer::Impl {
     void apply_froxel_fog();
     PassTimer shadow_timer{"shadow map"}, sky_timer{"sky"}, terrain_timer{"terrain"}, layers_timer{"layers"},
         resolve_timer{"resolve"}, overlays_timer{"overlays"}, tonemap_timer{"tonemap"}, particles_timer{"particles"},
-        sun_volume_timer{"sun volume"}, sun_columns_timer{"layers sun"}, ground_shade_timer{"ground shade"};
+        sun_volume_timer{"sun volume"}, ground_shade_timer{"ground shade"};
 
     //! The sun's shadow map brought up to date for the frame; null without terrain shadows.
     const detail::ShadowMapPass* update_shadow_map(const FrameContext& frame)
@@ -396,11 +396,6 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     const bool layers_multisampled = r.layers_multisampled && !fog;
     r.layers.set_fog(fog, shadow, sun_volume);
     r.layers.set_light_volume(&r.light_volume);
-    r.sun_columns_timer.forget();
-    if (r.layers.visible(frame) && r.layers.sun_columns_stale()) {  // tau_sun above the layers' base
-        const ScopedPassTimer timed(r.sun_columns_timer);
-        r.layers.update_sun_columns(frame);
-    }
     r.particles.set_fog(fog, shadow);
     r.particles.set_light_volume(&r.light_volume);
     r.targets.bind_for_drawing();
@@ -459,7 +454,7 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     if (shadow && r.shadow_timer.ran())
         r.stats.passes.push_back(r.shadow_timer.result());
     r.stats.shadow_map_updates = r.shadow_map ? r.shadow_map->updates() : 0;
-    for (const PassTimer* t : {&r.sun_volume_timer, &r.sun_columns_timer, &r.ground_shade_timer})
+    for (const PassTimer* t : {&r.sun_volume_timer, &r.ground_shade_timer})
         if (t->ran())
             r.stats.passes.push_back(t->result());
     r.stats.sun_volume_updates = r.sun_volume ? r.sun_volume->updates() : 0;
