@@ -370,16 +370,16 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
         light_volume_->bind(p, layers_unit_baked_moments, baked);
     else
         LightVolumeTexture{}.bind(p, layers_unit_baked_moments, false);
-    // The Medium's coverage, where the medium shading's fog is (after the baked light's binding of
-    // the same grid on the same unit).
     // tau_sun per fragment from the sun volume (before the grid's binding below, which points
     // u_md_grid at the same grid on another unit); without one, the slab above each layer.
     const bool sun_lookup = sun_ && sun_->ready() && o.shading == geometry::LayerShading::medium;
-    if (sun_)
+    if (sun_lookup)
         sun_->bind(p, layers_unit_sun, sun_march_steps);
     p.set("u_sv_volume", layers_unit_sun + 2);  // its sampler on a unit of its own, bound or not
     p.set("u_sun_lookup", int(sun_lookup));
     p.set("u_sv_direction", sun_march_direction(frame.sun_direction));
+    // The Medium's coverage, where the medium shading's fog is (after the baked light's binding of
+    // the same grid on the same unit).
     p.set("u_md_extent", int(medium && sun_ && sun_->bind_grid(p, layers_unit_baked_moments + 1)));
     set_partition_uniforms(p, frame);
     p.use();

@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <numbers>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include "cli/kiri_runner.hpp"
