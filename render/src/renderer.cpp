@@ -405,7 +405,8 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     }
     {
         const ScopedPassTimer timed(r.terrain_timer);
-        r.terrain.draw(frame, shadow);
+        const detail::FrameSamples samples = r.targets.frame_samples();
+        r.terrain.draw(frame, shadow, &samples);
     }
     if (layers_multisampled) {  // layers straight into the multisampled frame
         const ScopedPassTimer timed(r.layers_timer);

@@ -38,8 +38,10 @@ public:
     int vertex_count() const { return int(vertex_count_); }
     int refined_shade_vertices() const { return shaded_ ? shade_.refined_vertices() : 0; }
     //! Draws the ground in the shadows of the sun's shadow map (terrain_shadow.glsl; null: no
-    //! shadows) and in the fog's shade (set_fog_shade).
-    void draw(const FrameContext& frame, const class ShadowMapPass* shadow = nullptr) const;
+    //! shadows) and in the fog's shade (set_fog_shade), into a frame of `samples` (null: one a
+    //! pixel), each fragment shaded at the samples it shows (terrain.frag).
+    void draw(const FrameContext& frame, const class ShadowMapPass* shadow = nullptr,
+              const struct FrameSamples* samples = nullptr) const;
     //! Draws the grid's mesh, without the surround, with whatever program is bound (positions at
     //! attribute 0): depth passes (the sun's shadow map ignores the surround).
     void draw_mesh() const;

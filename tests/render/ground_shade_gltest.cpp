@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <glm/geometric.hpp>
@@ -240,4 +241,52 @@ TEST_F(GroundShadeGl, AFogsWallWithinACellShadesTheGroundWhereTheWallStands)
     }
     EXPECT_LT(sum / size, 0.01) << "mean |dT| over the pixel columns (interpolated: 0.036)";
     EXPECT_LT(worst, 0.12) << "at the wall's kink, between the fine map's samples (interpolated: 0.35)";
+}
+
+// Beyond the DEM's edge the fog's wall shades the surround: a slab 60 m deep over the whole
+// DEM (5 x 5 samples 160 m apart), the sun 30 degrees up in the east, so the ground west of the
+// DEM lies in the wall's shadow up to 104 m out, where the sun's path passes over the wall's top
+// (tau falls linearly to 0 there, then stays 0). The surround's vertices take tau_sun marched,
+// and the ground interpolates between them: with its first ring a cell out (160 m, the kink
+// between it and the edge) the shade spilled over the sunlit ground beyond (mean |dT| 0.073,
+// worst 0.33); the rings start at a third of a cell (render/src/terrain_pass.cpp, ring_offsets:
+// 0.008, 0.093). Each pixel column's transmittance must follow the closed form exp(-sigma L), L the
+// sun's path in the fog.
+TEST_F(GroundShadeGl, AFogsWallAtTheDemsEdgeShadesTheSurroundWhereItsShadowFalls)
+{
+    constexpr double extinction = 0.01, depth = 60.0, edge = -320.0;
+    const g::Terrain plain = kiri::test::gaussian_hill(5, 160.0, 0.0);
+    g::MediumGrid grid;
+    grid.nx = grid.ny = 33;
+    grid.dx = grid.dy = 20.0;
+    grid.x0 = grid.y0 = edge;
+    const std::size_t n = std::size_t(grid.nx) * std::size_t(grid.ny);
+    grid.floor.assign(n, 0.0);
+    grid.bottom.assign(n, 0.0);
+    grid.top.assign(n, depth);
+    grid.coverage.assign(n, 1.0);
+    g::MediumOptions options;
+    options.extinction = extinction;
+    options.top_density = 1.0;
+    g::MediumDetail uniform;
+    uniform.detail = 0.0;
+    const g::Medium fog(std::move(grid), options, uniform);
+    constexpr double centre = edge - 100.0, across = 320.0;
+    constexpr int size = 64;
+    int refined = 0;
+    const std::vector<double> got = sun_let_through_across(plain, fog, centre, across, size, &refined);
+    const double tan_elevation = std::tan(0.5235987755982988), sin_elevation = 0.5;
+    double sum = 0.0, worst = 0.0;
+    for (int x = 0; x < size; ++x) {
+        const double ground = centre + ((x + 0.5) / size - 0.5) * across;
+        const double out = std::max(edge - ground, 0.0);  // beyond the edge
+        const double path = std::max(depth - out * tan_elevation, 0.0) / sin_elevation;
+        const double want = std::exp(-extinction * path);
+        const double off = std::abs(got[std::size_t(x)] - want);
+        sum += off;
+        worst = std::max(worst, off);
+    }
+    std::printf("    mean |dT| %.4f, worst %.4f\n", sum / size, worst);
+    EXPECT_LT(sum / size, 0.02) << "mean |dT| over the pixel columns";
+    EXPECT_LT(worst, 0.15) << "at the kink, between two rings";
 }
