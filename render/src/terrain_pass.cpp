@@ -67,7 +67,8 @@ static_assert(fine_shade_unit != shadow_map_unit);
 TerrainPass::TerrainPass() { program(false, false); }
 
 // Whether terrain.frag can read which samples passed the depth test (GL_ARB_post_depth_coverage,
-// llvmpipe's and NVIDIA's); without it, those its triangle covers.
+// llvmpipe's and NVIDIA's); without it, those its triangle covers. Its #extension line goes before
+// every stage of the program (the preamble's way), so `enable`: a stage it means nothing to warns.
 static bool post_depth_coverage()
 {
     static const bool has = epoxy_has_gl_extension("GL_ARB_post_depth_coverage");
@@ -84,7 +85,7 @@ const ShaderProgram& TerrainPass::program(bool shadow, bool refined) const
         files.push_back("terrain.frag");
         p = std::make_unique<ShaderProgram>(
             files,
-            post_depth_coverage() ? "#extension GL_ARB_post_depth_coverage : require\n#define SEEN_SAMPLES 1\n" : "");
+            post_depth_coverage() ? "#extension GL_ARB_post_depth_coverage : enable\n#define SEEN_SAMPLES 1\n" : "");
     }
     return *p;
 }
