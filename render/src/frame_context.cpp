@@ -40,6 +40,10 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
     const glm::dmat4 vp = f.projection * f.view;
     f.view_projection = glm::mat4(vp);
     f.inverse_view_projection = glm::mat4(glm::inverse(vp));
+    const glm::dmat4& V = f.view;
+    f.ray_forward = glm::dvec3(-V[0][2], -V[1][2], -V[2][2]);
+    f.ray_right = glm::dvec3(V[0][0], V[1][0], V[2][0]) / f.projection[0][0];
+    f.ray_up = glm::dvec3(V[0][1], V[1][1], V[2][1]) / f.projection[1][1];
     f.eye = glm::vec3(camera.position);
     const double len = glm::length(sun.direction);
     f.sun_direction = glm::vec3(len > 0.0 ? sun.direction / len : glm::dvec3(0.0, 0.0, 1.0));

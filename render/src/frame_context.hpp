@@ -14,6 +14,9 @@ struct FrameContext {
     glm::dmat4 view{1.0}, projection{1.0};
     glm::mat4 view_projection{1.0f};
     glm::mat4 inverse_view_projection{1.0f};
+    //! The ray through NDC point (x, y) with unit view depth: ray_forward + x ray_right + y ray_up
+    //! (the view's axes and the projection's focal lengths, whatever its near and far planes).
+    glm::dvec3 ray_forward{0.0, 0.0, -1.0}, ray_right{1.0, 0.0, 0.0}, ray_up{0.0, 1.0, 0.0};
     glm::vec3 eye{0.0f};
     glm::vec3 sun_direction{0.0f, 0.0f, 1.0f};  // towards the sun, unit
     glm::vec3 sun_radiance{1.0f};

@@ -97,10 +97,9 @@ void FroxelPass::advance_view(const FrameContext& frame)
     current_ = 1 - current_;
     view_.view_projection = frame.view_projection;
     view_.eye = frame.eye;
-    const glm::dmat4& V = frame.view;
-    view_.forward = glm::vec3(-V[0][2], -V[1][2], -V[2][2]);
-    view_.right = glm::vec3(V[0][0], V[1][0], V[2][0]) / float(frame.projection[0][0]);
-    view_.up = glm::vec3(V[0][1], V[1][1], V[2][1]) / float(frame.projection[1][1]);
+    view_.forward = glm::vec3(frame.ray_forward);
+    view_.right = glm::vec3(frame.ray_right);
+    view_.up = glm::vec3(frame.ray_up);
     const double far_plane = depth_planes(frame).y;
     view_.near = float(o.near);
     view_.far = float(o.far > 0.0 ? o.far : far_plane);

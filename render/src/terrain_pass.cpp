@@ -246,14 +246,11 @@ static void set_shown_samples(const ShaderProgram& p, const FrameContext& frame,
             shown[std::size_t(mask)] = sum / float(n);
         }
     glProgramUniform2fv(p.id(), p.location("u_shown_offsets"), 16, &shown[0].x);
-    // A window point's ray from the view's axes and the projection's focal lengths alone (in
-    // double, independent of the frame's near and far planes, which move with the scene's bounds:
-    // two frames of one view shade the ground alike): view space (x / P00, y / P11, -1) at NDC (x, y).
-    const glm::dmat3 to_world = glm::transpose(glm::dmat3(frame.view));
-    const glm::dvec3 right = to_world[0] / frame.projection[0][0], up = to_world[1] / frame.projection[1][1];
-    const glm::dvec3 back = to_world[2];
-    const glm::vec3 rays[3] = {glm::vec3(-right - up - back), glm::vec3(right * (2.0 / double(frame.width))),
-                               glm::vec3(up * (2.0 / double(frame.height)))};
+    // The frame's NDC rays in window points (independent of its near and far planes, which move
+    // with the scene's bounds: two frames of one view shade the ground alike).
+    const glm::vec3 rays[3] = {glm::vec3(frame.ray_forward - frame.ray_right - frame.ray_up),
+                               glm::vec3(frame.ray_right * (2.0 / double(frame.width))),
+                               glm::vec3(frame.ray_up * (2.0 / double(frame.height)))};
     glProgramUniform3fv(p.id(), p.location("u_rays"), 3, &rays[0].x);
 }
 
