@@ -61,6 +61,7 @@ PipelineStatus Pipeline::status() const
 {
     std::lock_guard lock(mutex_);
     PipelineStatus s = status_;
+    s.waiting = result_.has_value();
     const Clock::time_point now = Clock::now();
     if (s.busy) {
         s.stage_seconds = seconds_between(stage_start_, now);

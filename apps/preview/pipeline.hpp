@@ -49,6 +49,7 @@ struct PipelineStatus {
     int stage = 0;  //!< running now (when busy)
     double stage_seconds = 0.0, job_seconds = 0.0;
     std::uint64_t requested = 0, finished = 0;
+    bool waiting = false;  //!< a finished job's products not taken yet
     std::array<StageRecord, stage_count> stages{};
 };
 

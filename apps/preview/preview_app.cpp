@@ -88,6 +88,8 @@ PreviewApp::PreviewApp(const Args& args) : args_(args)
     // Ours first: ImGui's back end chains to the callback installed before it.
     glfwSetWindowUserPointer(window_->window(), this);
     glfwSetKeyCallback(window_->window(), on_key);
+    glfwSetMouseButtonCallback(window_->window(), on_mouse_button);
+    glfwSetCursorPosCallback(window_->window(), on_cursor);  // ImGui 1.86 polls the cursor instead
     ImGui_ImplGlfw_InitForOpenGL(window_->window(), true);
     ImGui_ImplOpenGL3_Init("#version 450 core");
     scale_ui_to_monitor();
@@ -387,6 +389,15 @@ bool PreviewApp::draw_scene(int fb_w, int fb_h, bool camera_moved, bool force)
     return redraw;
 }
 
+bool PreviewApp::view_settled() const
+{
+    const PipelineStatus s = pipeline_.status();
+    if (s.busy || s.waiting || s.finished != s.requested)
+        return false;
+    // A scene that never loaded has nothing more to show; playing time keeps the froxels moving.
+    return !shown_.fog.terrain || (!last_frame_reduced_ && (!scene_dirty_ || ui_.view.play_time));
+}
+
 void PreviewApp::screenshot(const fs::path& path)
 {
     render::write_png_atomic(path, window_->read_back_buffer());
@@ -454,8 +465,11 @@ int PreviewApp::run()
         }
         ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
         try {
-            if (ui_.screenshot)
+            screenshot_pending_ |= ui_.screenshot;
+            if (screenshot_pending_ && view_settled()) {
+                screenshot_pending_ = false;
                 screenshot(next_screenshot_path(fs::current_path(), fs::path(args_.scene).stem().string()));
+            }
             if (ui_.save) {
                 save_scene(scene_, ui_.save_path);
                 report("saved " + ui_.save_path);
@@ -505,9 +519,9 @@ int PreviewApp::run()
         times_.loop_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
         // Idle: sleep until an event (or a moment, to show the pipeline's progress).
         const ImGuiIO& io = ImGui::GetIO();
-        const bool active = moved || scene_dirty_ || ui_.view.play_time || ImGui::IsAnyItemActive() ||
-            io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2] || io.MouseDelta.x != 0.0f ||
-            io.MouseDelta.y != 0.0f || io.MouseWheel != 0.0f;
+        const bool active = moved || scene_dirty_ || screenshot_pending_ || ui_.view.play_time ||
+            ImGui::IsAnyItemActive() || io.MouseDown[0] || io.MouseDown[1] || io.MouseDown[2] ||
+            io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f || io.MouseWheel != 0.0f;
         if (args_.scripted() || active)
             glfwPollEvents();
         else

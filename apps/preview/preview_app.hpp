@@ -14,6 +14,7 @@
 #include "kiri/render/scene_rendering.hpp"
 #include "kiri/render/window_context.hpp"
 #include "frame_budget.hpp"
+#include "mouse_drags.hpp"
 #include "orbit_camera.hpp"
 #include "panels/panels.hpp"
 #include "pipeline.hpp"
@@ -87,6 +88,9 @@ private:
     };
     std::vector<KeyPress> key_presses_;
     static void on_key(GLFWwindow* window, int key, int scancode, int action, int mods);
+    MouseDrags drags_;
+    static void on_mouse_button(GLFWwindow* window, int button, int action, int mods);
+    static void on_cursor(GLFWwindow* window, double x, double y);
     void place_camera(const std::string& name);
     void focus_fog();
     void pivot_at_cursor();
@@ -96,6 +100,11 @@ private:
     bool draw_scene(int framebuffer_width, int framebuffer_height, bool camera_moved, bool force);
     void draw_panel();
     void screenshot(const std::filesystem::path& path);
+    //! F12 waits for the view it was pressed on to settle: the pipeline's newest products shown,
+    //! the frame drawn at full scale and its froxels converged, so that the picture is the one
+    //! the view settles to, not a reduced moving frame or the fog of the edit before.
+    bool screenshot_pending_ = false;
+    bool view_settled() const;
     void report(const std::string& message, bool error = false);
 };
 

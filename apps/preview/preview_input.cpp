@@ -16,19 +16,20 @@ bool PreviewApp::handle_input(double seconds)
 {
     const ImGuiIO& io = ImGui::GetIO();
     const glm::dvec3 before = camera_.eye(), target_before = camera_.target();
-    if (!io.WantCaptureMouse) {
-        const double dx = io.MouseDelta.x, dy = io.MouseDelta.y;  // window pixels, also on HiDPI
-        if (ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
-            pivot_at_cursor();
-        else if (io.MouseDown[ImGuiMouseButton_Left])
-            ui_.fly_mode ? camera_.look_around(dx, dy) : camera_.orbit(dx, dy);
-        if (io.MouseDown[ImGuiMouseButton_Middle])
-            camera_.look_around(dx, dy);
-        if (io.MouseDown[ImGuiMouseButton_Right])
-            camera_.pan(dx, dy, io.DisplaySize.y);
-        if (io.MouseWheel != 0.0f)
-            camera_.zoom(io.MouseWheel);
-    }
+    // Each button's drag as gathered from the events (mouse_drags.hpp); a drag begun on the panel
+    // gathers nothing.
+    const glm::dvec2 left = drags_.take(GLFW_MOUSE_BUTTON_LEFT), right = drags_.take(GLFW_MOUSE_BUTTON_RIGHT),
+                     middle = drags_.take(GLFW_MOUSE_BUTTON_MIDDLE);
+    if (!io.WantCaptureMouse && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left))
+        pivot_at_cursor();
+    else if (left != glm::dvec2(0.0))
+        ui_.fly_mode ? camera_.look_around(left.x, left.y) : camera_.orbit(left.x, left.y);
+    if (middle != glm::dvec2(0.0))
+        camera_.look_around(middle.x, middle.y);
+    if (right != glm::dvec2(0.0))
+        camera_.pan(right.x, right.y, io.DisplaySize.y);
+    if (!io.WantCaptureMouse && io.MouseWheel != 0.0f)
+        camera_.zoom(io.MouseWheel);
     if (!io.WantCaptureKeyboard) {
         if (!io.KeyCtrl) {  // Ctrl+S saves, it does not fly backwards
             GLFWwindow* w = window_->window();
@@ -48,6 +49,20 @@ void PreviewApp::on_key(GLFWwindow* window, int key, int, int action, int mods)
 {
     if (action == GLFW_PRESS)
         static_cast<PreviewApp*>(glfwGetWindowUserPointer(window))->key_presses_.push_back({key, mods});
+}
+
+void PreviewApp::on_mouse_button(GLFWwindow* window, int button, int action, int)
+{
+    auto* app = static_cast<PreviewApp*>(glfwGetWindowUserPointer(window));
+    if (action == GLFW_PRESS)
+        app->drags_.press(button, ImGui::GetIO().WantCaptureMouse);
+    else if (action == GLFW_RELEASE)
+        app->drags_.release(button);
+}
+
+void PreviewApp::on_cursor(GLFWwindow* window, double x, double y)
+{
+    static_cast<PreviewApp*>(glfwGetWindowUserPointer(window))->drags_.move(x, y);
 }
 
 void PreviewApp::handle_keys()

@@ -12,6 +12,7 @@
 
 #include "camera_path.hpp"
 #include "frame_budget.hpp"
+#include "mouse_drags.hpp"
 #include "cli/kiri_runner.hpp"
 #include "fog_views.hpp"
 #include "geometry/fog_test_terrains.hpp"
@@ -220,6 +221,44 @@ TEST(OrbitCamera, MovesAsItsControlsSay)
     EXPECT_NEAR(glm::length(c.eye() - eye_now), 20.0, 1e-9);
 }
 
+// A drag gathers the cursor's steps while its button is down, whatever the frames: a press, moves
+// and a release between two frames give the whole drag at the next; the cursor's way to the
+// press is not part of it, nor a drag begun on the panel.
+TEST(MouseDrags, GatherTheStepsBetweenPressAndReleaseWhateverTheFrames)
+{
+    kiri::preview::MouseDrags d;
+    d.move(40.0, 300.0);
+    d.move(150.0, 250.0);  // to the press: no button down
+    d.press(1, false);
+    for (int i = 1; i <= 10; ++i)
+        d.move(150.0, 250.0 + 8.0 * i);
+    EXPECT_TRUE(d.held(1));
+    d.release(1);
+    EXPECT_FALSE(d.held(1));
+    d.move(40.0, 300.0);  // after the release
+    EXPECT_EQ(d.take(1), glm::dvec2(0.0, 80.0));
+    EXPECT_EQ(d.take(1), glm::dvec2(0.0));  // taken once
+    EXPECT_EQ(d.take(0), glm::dvec2(0.0));  // the other buttons gathered nothing
+    // Split across frames: each take has the steps since the last, and they add up.
+    d.press(0, false);
+    d.move(50.0, 310.0);
+    const glm::dvec2 first = d.take(0);
+    d.move(70.0, 290.0);
+    d.release(0);
+    EXPECT_EQ(first, glm::dvec2(10.0, 10.0));
+    EXPECT_EQ(d.take(0), glm::dvec2(20.0, -20.0));
+    // Begun on the panel: the camera gets nothing until the button comes up and goes down again.
+    d.press(2, true);
+    d.move(500.0, 100.0);
+    EXPECT_FALSE(d.held(2));
+    d.release(2);
+    EXPECT_EQ(d.take(2), glm::dvec2(0.0));
+    // Buttons GLFW has beyond the three are ignored.
+    d.press(7, false);
+    d.move(0.0, 0.0);
+    EXPECT_EQ(d.take(7), glm::dvec2(0.0));
+}
+
 TEST(CameraPath, ReadsKeysAndInterpolates)
 {
     const fs::path file = kiri::test::temp_path("path.txt");
@@ -306,8 +345,9 @@ TEST(FrameBudget, AMovingFramesSidesAreNoPowersOfTwo)
         ASSERT_LE(s - side, side > 32 ? 16 : 31) << side;
         for (int k = 1; k <= 16; k *= 2)
             ASSERT_FALSE(power_of_two((s + k - 1) / k)) << side << " -> " << s << " over " << k;
-        if (s > side)  // the next such size: every size between clashes
+        if (s > side) {  // the next such size: every size between clashes
             ASSERT_EQ(off_power_of_two(s - 1), s);
+        }
     }
 }
 
