@@ -130,7 +130,51 @@ TEST(ParticleSampling, BlueNoise)
     // The same number of plain random points (1 candidate each: nothing eliminated).
     ParticleOptions plain = options(1500);
     plain.candidates = 1.0;
+    plain.relax = 0;
     EXPECT_LT(mean_nearest(sample_particles(m, plain)) / spacing, 0.62);
+}
+
+// A blanket one particle deep (40 m of fog, particles ~100 m apart across it), seen from above:
+// its column's optical depth, the particles' footprints summed, at points of the inner square.
+// Blue noise still crowds and thins out; the relaxation's sweeps even it out towards a
+// lattice's (the spread of the columns 0.32 -> 0.18), and keep the density where it was (as many
+// particles in each half as before).
+TEST(ParticleSampling, RelaxedParticlesEvenOutTheBlanketsColumns)
+{
+    const Medium m = slab_medium(2000.0, 100.0, 140.0, true);
+    const auto column_spread = [&](const ParticleCloud& c, double& west_share) {
+        std::vector<double> tau;
+        for (int j = 0; j < 40; ++j)
+            for (int i = 0; i < 40; ++i) {
+                const glm::dvec2 q(-600.0 + 1200.0 * (i + 0.5) / 40.0, -600.0 + 1200.0 * (j + 0.5) / 40.0);
+                double sum = 0.0;
+                for (const Particle& p : c.particles)
+                    sum += p.optical_depth * footprint_profile(glm::distance(glm::dvec2(p.position), q) / p.radius);
+                tau.push_back(sum);
+            }
+        double mean = 0.0, var = 0.0;
+        for (double t : tau)
+            mean += t / double(tau.size());
+        for (double t : tau)
+            var += (t - mean) * (t - mean) / double(tau.size());
+        west_share = 0.0;
+        for (const Particle& p : c.particles)
+            west_share += p.position.x < 0.0 ? 1.0 / double(c.particles.size()) : 0.0;
+        return std::sqrt(var) / mean;
+    };
+    ParticleOptions eliminated = options(400, 5);
+    eliminated.relax = 0;
+    const ParticleCloud before = sample_particles(m, eliminated), after = sample_particles(m, options(400, 5));
+    ASSERT_EQ(after.particles.size(), 400u);
+    double west_before = 0.0, west_after = 0.0;
+    const double spread_before = column_spread(before, west_before), spread_after = column_spread(after, west_after);
+    EXPECT_LT(spread_after, 0.7 * spread_before) << spread_before << " -> " << spread_after;
+    EXPECT_NEAR(west_after, west_before, 0.03);
+    for (const Particle& p : after.particles) {  // inside the fog, each as high as it was drawn
+        EXPECT_GT(m.density(p.position), 0.0);
+        EXPECT_GE(p.position.z, 100.0);
+        EXPECT_LE(p.position.z, 140.0);
+    }
 }
 
 TEST(ParticleSampling, CarriesTheMediumsExtinction)

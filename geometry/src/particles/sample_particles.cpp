@@ -13,6 +13,7 @@
 #include "kiri/geometry/medium/fog_lighting.hpp"
 #include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/geometry/particles/particles.hpp"
+#include "particles/relax_particles.hpp"
 #include "particles/sample_elimination.hpp"
 #include "particles/shell_envelope.hpp"
 
@@ -242,6 +243,20 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
         spacing[i] = std::cbrt(integral / (double(count) * std::max(density[i], min_relative_density)));
     const std::vector<std::size_t> kept = detail::eliminate_samples(candidates, spacing, spacing_full, count);
 
+    std::vector<glm::dvec3> placed(kept.size());
+    for (std::size_t k = 0; k < kept.size(); ++k)
+        placed[k] = candidates[kept[k]];
+    // Two points keep 1.6 spacings apart: from the default camera over its blanket (one particle
+    // deep) the particles' error 3.99 -> 3.37 %; in trials (the fog's edge found at each sweep)
+    // 1.3: 3.63 %, 1.6: 3.28 %, 2.0: 3.72 % with 30 sweeps, 3.45 % with 60 at 1.6.
+    constexpr double relax_reach = 1.6;
+    detail::relax_points(placed,
+                         {[&](const glm::dvec3& p) {
+                              return std::cbrt(integral / (double(count) * std::max(target(p), min_relative_density)));
+                          },
+                          target, [&](double x, double y) { return medium.column(x, y); }},
+                         options.relax, relax_reach);
+
     cloud.density_integral = integral;
     cloud.spacing = spacing_full;
     const double albedo = options.albedo >= 0.0 ? options.albedo : medium.options().albedo;
@@ -252,9 +267,10 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     // drawn in proportion to the density): tau r^2 footprint_area = extinction * integral / count.
     const double carried = extinction * integral / double(kept.size());
     cloud.particles.reserve(kept.size());
-    for (std::size_t i : kept) {
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+        const std::size_t i = kept[k];
         Particle p;
-        p.position = candidates[i];
+        p.position = placed[k];
         p.radius = std::clamp(options.radius_scale * spacing[i], r_min, std::max(r_min, r_max));
         p.optical_depth = carried / (footprint_area() * p.radius * p.radius);
         p.albedo = albedo;

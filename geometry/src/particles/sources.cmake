@@ -1,6 +1,7 @@
 # Sources of geometry/src/particles (paths relative to geometry/)
 list(APPEND KIRI_GEOMETRY_SOURCES
   src/particles/particle_footprint.cpp
+  src/particles/relax_particles.cpp
   src/particles/sample_elimination.cpp
   src/particles/shell_envelope.cpp
   src/particles/sample_particles.cpp

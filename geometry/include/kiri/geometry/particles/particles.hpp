@@ -62,6 +62,9 @@ struct ParticleOptions {
     double forward_scattering = 0.0;
     std::uint64_t seed = 1;
     double candidates = 5.0;
+    //! Sweeps that even out the particles' spacing across the fog after the elimination
+    //! (relax_particles.hpp); 0: the blue noise as eliminated.
+    int relax = 30;
     // The attenuation buffer and the billboards (render).
     int resolution = 128;
     bool half_float = true;  //!< storage of log Gamma
@@ -141,6 +144,10 @@ void visit_fields(O& o, V&& v)
     v(o.seed, {.key = "seed", .range = closed(0, 2147483647), .doc = "the same seed, the same particles"});
     v(o.candidates,
       {.key = "candidates", .range = closed(1, 50), .doc = "candidates per particle for the sample elimination"});
+    v(o.relax,
+      {.key = "relax",
+       .range = closed(0, 1000),
+       .doc = "sweeps that even out the particles' spacing across the fog (0: blue noise as eliminated)"});
     v(o.resolution,
       {.key = "resolution",
        .unit = "voxels",
