@@ -93,6 +93,9 @@ void relax_points(std::vector<glm::dvec3>& points, const RelaxFog& fog, int iter
     const std::size_t n = points.size();
     if (n < 2 || iterations <= 0 || !(reach > 0.0))
         return;
+    for (const glm::dvec3& p : points)  // the grid's box needs finite points (the sampler's are)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+            return;
     std::vector<double> h(n);
     const auto spacing_at = [&](const glm::dvec3& p) {
         const double s = fog.spacing(p);
@@ -104,7 +107,7 @@ void relax_points(std::vector<glm::dvec3>& points, const RelaxFog& fog, int iter
         for (std::size_t k = first; k < end; ++k) {
             const glm::dvec3& p = points[k];
             const double r = reach * spacing_at(p);
-            bool edge = !(r > 0.0) || !std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z);
+            bool edge = !(r > 0.0);
             for (int a = 0; a < 8 && !edge; ++a) {
                 const double phi = std::numbers::pi * a / 4.0;
                 edge = !has_fog(fog.column(p.x + r * std::cos(phi), p.y + r * std::sin(phi)));

@@ -16,8 +16,8 @@
 namespace kiri::geometry::detail {
 
 struct RelaxFog {
-    std::function<double(const glm::dvec3&)> spacing;   //!< the local spacing at a point (> 0)
-    std::function<double(const glm::dvec3&)> density;   //!< > 0 inside the fog the points stand for
+    std::function<double(const glm::dvec3&)> spacing;    //!< the local spacing at a point (> 0)
+    std::function<double(const glm::dvec3&)> density;    //!< > 0 inside the fog the points stand for
     std::function<MediumColumn(double, double)> column;  //!< the fog's floor and top at (x, y)
 };
 
