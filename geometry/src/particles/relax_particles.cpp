@@ -4,31 +4,17 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
-#include <thread>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 
+#include "particles/for_slices.hpp"
+
 namespace kiri::geometry::detail {
 namespace {
 
 bool has_fog(const MediumColumn& c) { return c.coverage > 0.0 && c.top > c.floor; }
-
-// Runs body(first, end) over [0, n) in slices, one a core (each point's sweep reads the last
-// sweep's positions alone, so the slices are independent).
-template <class Body>
-void in_slices(std::size_t n, Body&& body)
-{
-    const std::size_t threads =
-        std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, std::max<std::size_t>(n / 1000, 1));
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t)
-        pool.emplace_back([&body, n, t, threads] { body(n * t / threads, n * (t + 1) / threads); });
-    body(0, n / threads);
-    for (std::thread& t : pool)
-        t.join();
-}
 
 // Points bucketed in cubes of side `cell` over their bounding box.
 class PointGrid {
@@ -103,7 +89,7 @@ void relax_points(std::vector<glm::dvec3>& points, const RelaxFog& fog, int iter
     };
     // The fog's edge within reach: those points stay (8 columns on the circle of the reach).
     std::vector<char> pinned(n, 0);
-    in_slices(n, [&](std::size_t first, std::size_t end) {
+    for_slices(n, [&](std::size_t first, std::size_t end) {
         for (std::size_t k = first; k < end; ++k) {
             const glm::dvec3& p = points[k];
             const double r = reach * spacing_at(p);
@@ -118,7 +104,7 @@ void relax_points(std::vector<glm::dvec3>& points, const RelaxFog& fog, int iter
     std::vector<glm::dvec3> next = points;
     for (int it = 0; it < iterations; ++it) {
         double cell = HUGE_VAL;
-        in_slices(n, [&](std::size_t first, std::size_t end) {
+        for_slices(n, [&](std::size_t first, std::size_t end) {
             for (std::size_t k = first; k < end; ++k)
                 h[k] = spacing_at(points[k]);
         });
@@ -128,7 +114,7 @@ void relax_points(std::vector<glm::dvec3>& points, const RelaxFog& fog, int iter
         if (!std::isfinite(cell))
             return;
         const PointGrid grid(points, cell);
-        in_slices(n, [&](std::size_t first, std::size_t end) {
+        for_slices(n, [&](std::size_t first, std::size_t end) {
             for (std::size_t k = first; k < end; ++k) {
                 next[k] = points[k];
                 if (pinned[k])

@@ -13,6 +13,7 @@
 #include "kiri/geometry/medium/fog_lighting.hpp"
 #include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/geometry/particles/particles.hpp"
+#include "particles/for_slices.hpp"
 #include "particles/relax_particles.hpp"
 #include "particles/sample_elimination.hpp"
 #include "particles/shell_envelope.hpp"
@@ -238,9 +239,12 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
 
     // Local spacing where each candidate lies: the distance between particles at that density.
     const double spacing_full = std::cbrt(integral / double(count));
+    const auto spacing_at_density = [&](double d) {
+        return std::cbrt(integral / (double(count) * std::max(d, min_relative_density)));
+    };
     std::vector<double> spacing(candidates.size());
     for (std::size_t i = 0; i < candidates.size(); ++i)
-        spacing[i] = std::cbrt(integral / (double(count) * std::max(density[i], min_relative_density)));
+        spacing[i] = spacing_at_density(density[i]);
     const std::vector<std::size_t> kept = detail::eliminate_samples(candidates, spacing, spacing_full, count);
 
     std::vector<glm::dvec3> placed(kept.size());
@@ -251,10 +255,8 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     // 1.3: 3.63 %, 1.6: 3.28 %, 2.0: 3.72 % with 30 sweeps, 3.45 % with 60 at 1.6.
     constexpr double relax_reach = 1.6;
     detail::relax_points(placed,
-                         {[&](const glm::dvec3& p) {
-                              return std::cbrt(integral / (double(count) * std::max(target(p), min_relative_density)));
-                          },
-                          target, [&](double x, double y) { return medium.column(x, y); }},
+                         {[&](const glm::dvec3& p) { return spacing_at_density(target(p)); }, target,
+                          [&](double x, double y) { return medium.column(x, y); }},
                          options.relax, relax_reach);
 
     cloud.density_integral = integral;
@@ -327,15 +329,7 @@ void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::fun
             });
         }
     };
-    const std::size_t n = cloud.particles.size();
-    const std::size_t threads =
-        std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1, std::max<std::size_t>(n / 1000, 1));
-    std::vector<std::thread> pool;
-    for (std::size_t t = 1; t < threads; ++t)
-        pool.emplace_back(run, n * t / threads, n * (t + 1) / threads);
-    run(0, n / threads);
-    for (std::thread& t : pool)
-        t.join();
+    detail::for_slices(cloud.particles.size(), run);
 }
 
 HeightShare particle_height_share(const FogPartition& partition)
