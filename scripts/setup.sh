@@ -7,7 +7,7 @@ cmake g++ make pkg-config ccache git
 libopenmesh-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev libosd-dev libglm-dev
 libglfw3-dev libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgl-dev
 libgdal-dev gdal-bin libstb-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev
-libopenvdb-dev libboost-iostreams-dev libtbb-dev libeigen3-dev libopenexr-dev
+libopenvdb-dev libboost-iostreams-dev libtbb-dev libeigen3-dev libopenexr-dev zlib1g-dev
 libgtest-dev libgmock-dev libbenchmark-dev libimgui-dev libxtst-dev
 xvfb xauth gnuplot-nox clang libclang-rt-14-dev clang-format-14
 "

@@ -1,12 +1,13 @@
 #include "kiri/render/image.hpp"
 
 #include <stb_image.h>
-#include <stb_image_write.h>
 
+#include <fstream>
 #include <system_error>
 #include <unistd.h>
 
 #include "kiri/geometry/core/error.hpp"
+#include "png_encode.hpp"
 
 namespace kiri::render {
 
@@ -17,7 +18,15 @@ void write_png_atomic(const std::filesystem::path& path, const Image& image)
     // Same folder as the target so that rename() is atomic (same file system).
     std::filesystem::path tmp = path;
     tmp += ".tmp." + std::to_string(::getpid());
-    if (!stbi_write_png(tmp.c_str(), image.width, image.height, 4, image.rgba.data(), image.width * 4)) {
+    const std::vector<std::uint8_t> png = detail::encode_png(image);
+    bool written = false;
+    if (!png.empty()) {
+        std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
+        file.write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+        file.close();
+        written = bool(file);
+    }
+    if (!written) {
         std::error_code ignored;
         std::filesystem::remove(tmp, ignored);
         throw IoError(path.string(), "", "cannot write the PNG (missing folder or no permission?)");

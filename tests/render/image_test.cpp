@@ -3,6 +3,7 @@
 #include "temp_path.hpp"
 
 #include <filesystem>
+#include <random>
 
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/render/image.hpp"
@@ -20,6 +21,25 @@ TEST(Png, RoundTripsExactly)
     EXPECT_EQ(back.width, 3);
     EXPECT_EQ(back.height, 2);
     EXPECT_EQ(back.rgba, image.rgba);
+    fs::remove(path);
+}
+
+// kiri encodes its PNGs itself (zlib's deflate, rows filtered by Sub); stb_image decodes them:
+// every byte back, where a filter's differences wrap below 0 and over 255, at a width that is
+// no multiple of anything, with the alpha channel varying.
+TEST(Png, RoundTripsEveryByteOfALargeNoisyFrame)
+{
+    kiri::render::Image image{333, 77, std::vector<std::uint8_t>(333 * 77 * 4)};
+    std::mt19937 rng(3);
+    for (std::size_t k = 0; k < image.rgba.size(); ++k)  // noise over a gradient: both kinds of row
+        image.rgba[k] = std::uint8_t(k % 7 == 0 ? rng() : (k / 4) % 333);
+    const fs::path path = kiri::test::temp_path("image_test_large.png");
+    kiri::render::write_png_atomic(path, image);
+    const kiri::render::Image back = kiri::render::read_png(path);
+    EXPECT_EQ(back.width, 333);
+    EXPECT_EQ(back.height, 77);
+    EXPECT_EQ(back.rgba, image.rgba);
+    EXPECT_LT(fs::file_size(path), image.rgba.size());  // compressed
     fs::remove(path);
 }
 
