@@ -30,6 +30,17 @@ detail::RelaxFog open_fog()
             [fog](double x, double y) { return std::abs(x) < 2000.0 && std::abs(y) < 2000.0 ? fog : MediumColumn{}; }};
 }
 
+// n points uniform in a box 600 m wide within the fog, far from its edges.
+std::vector<glm::dvec3> points_in_the_fog(std::size_t n, unsigned seed)
+{
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> across(-300.0, 300.0), up(10.0, 590.0);
+    std::vector<glm::dvec3> points(n);
+    for (glm::dvec3& p : points)
+        p = {across(rng), across(rng), up(rng)};
+    return points;
+}
+
 // One sweep as relax_points documents it, every pair tried.
 std::vector<glm::dvec3> one_sweep_by_every_pair(const std::vector<glm::dvec3>& points, const detail::RelaxFog& fog,
                                                 double reach)
@@ -53,11 +64,7 @@ std::vector<glm::dvec3> one_sweep_by_every_pair(const std::vector<glm::dvec3>& p
 
 TEST(RelaxPoints, OneSweepPushesEachPointByEveryNeighbourWithinReachOfTheirMeanSpacing)
 {
-    std::mt19937 rng(7);
-    std::uniform_real_distribution<double> across(-300.0, 300.0), up(10.0, 590.0);
-    std::vector<glm::dvec3> points(3000);
-    for (glm::dvec3& p : points)
-        p = {across(rng), across(rng), up(rng)};
+    std::vector<glm::dvec3> points = points_in_the_fog(3000, 7);
     const detail::RelaxFog fog = open_fog();
     const std::vector<glm::dvec3> expected = one_sweep_by_every_pair(points, fog, 1.6);
     std::vector<glm::dvec3> relaxed = points;
@@ -72,11 +79,7 @@ TEST(RelaxPoints, OneSweepPushesEachPointByEveryNeighbourWithinReachOfTheirMeanS
 
 TEST(RelaxPoints, TheSameWhateverThePointsOrder)
 {
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> across(-300.0, 300.0), up(10.0, 590.0);
-    std::vector<glm::dvec3> points(2000);
-    for (glm::dvec3& p : points)
-        p = {across(rng), across(rng), up(rng)};
+    std::vector<glm::dvec3> points = points_in_the_fog(2000, 11);
     std::vector<glm::dvec3> reversed(points.rbegin(), points.rend());
     const detail::RelaxFog fog = open_fog();
     detail::relax_points(points, fog, 5, 1.6);

@@ -10,18 +10,30 @@
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Writes the image, reads it back and expects every byte; the file's size.
+std::uintmax_t expect_round_trip(const kiri::render::Image& image, const std::string& name)
+{
+    const fs::path path = kiri::test::temp_path(name);
+    kiri::render::write_png_atomic(path, image);
+    const kiri::render::Image back = kiri::render::read_png(path);
+    EXPECT_EQ(back.width, image.width);
+    EXPECT_EQ(back.height, image.height);
+    EXPECT_EQ(back.rgba, image.rgba);
+    const std::uintmax_t size = fs::file_size(path);
+    fs::remove(path);
+    return size;
+}
+
+}  // namespace
+
 TEST(Png, RoundTripsExactly)
 {
     kiri::render::Image image{3, 2, {}};
     for (int k = 0; k < 3 * 2 * 4; ++k)
         image.rgba.push_back(std::uint8_t(k * 11));
-    const fs::path path = kiri::test::temp_path("image_test.png");
-    kiri::render::write_png_atomic(path, image);
-    const kiri::render::Image back = kiri::render::read_png(path);
-    EXPECT_EQ(back.width, 3);
-    EXPECT_EQ(back.height, 2);
-    EXPECT_EQ(back.rgba, image.rgba);
-    fs::remove(path);
+    expect_round_trip(image, "image_test.png");
 }
 
 // kiri encodes its PNGs itself (zlib's deflate, rows filtered by Sub); stb_image decodes them:
@@ -33,14 +45,7 @@ TEST(Png, RoundTripsEveryByteOfALargeNoisyFrame)
     std::mt19937 rng(3);
     for (std::size_t k = 0; k < image.rgba.size(); ++k)  // noise over a gradient: both kinds of row
         image.rgba[k] = std::uint8_t(k % 7 == 0 ? rng() : (k / 4) % 333);
-    const fs::path path = kiri::test::temp_path("image_test_large.png");
-    kiri::render::write_png_atomic(path, image);
-    const kiri::render::Image back = kiri::render::read_png(path);
-    EXPECT_EQ(back.width, 333);
-    EXPECT_EQ(back.height, 77);
-    EXPECT_EQ(back.rgba, image.rgba);
-    EXPECT_LT(fs::file_size(path), image.rgba.size());  // compressed
-    fs::remove(path);
+    EXPECT_LT(expect_round_trip(image, "image_test_large.png"), image.rgba.size());  // compressed
 }
 
 TEST(Png, UnwritablePathThrowsAndLeavesNothing)
