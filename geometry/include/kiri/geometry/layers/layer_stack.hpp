@@ -136,9 +136,9 @@ void visit_fields(O& o, V&& v)
     v(o.resolution,
       {.key = "resolution",
        .range = closed(0.125, 1),
-       .doc = "of the target the layers are drawn into, relative to the frame (1: full resolution, "
-              "multisampled with the terrain; below 1: reduced, upsampled by depth, the target keeping "
-              "320 x 180 texels at least)"});
+       .doc = "of the target the layers are drawn into, relative to the frame (1: full resolution; "
+              "below 1: reduced; a half-float target of its own, composited by depth, keeping 320 x 180 "
+              "texels at least)"});
     v(o.lod,
       {.key = "lod",
        .unit = "px",
