@@ -53,7 +53,12 @@ std::string number(double x)
 
 std::string vector_text(const glm::dvec3& v)
 {
-    return "[" + number(v.x) + ", " + number(v.y) + ", " + number(v.z) + "]";
+    // Appended, not "[" + ...: GCC 12 warns -Wrestrict on a literal plus a temporary string (a
+    // false positive, its bug 105651).
+    std::string text = "[";
+    for (int k = 0; k < 3; ++k)
+        text.append(number(v[k])).append(k < 2 ? ", " : "]");
+    return text;
 }
 
 // A camera looking along `forward` at `target`, as close as it can be while the box (lo, hi)
