@@ -1,6 +1,5 @@
 #include "png_encode.hpp"
 
-#include <array>
 #include <cstddef>
 #include <string_view>
 
