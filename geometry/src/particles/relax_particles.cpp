@@ -123,20 +123,16 @@ void relax_points(std::vector<glm::dvec3>& points, const RelaxFog& fog, int iter
         const double s = fog.spacing(p);
         return std::isfinite(s) && s > 0.0 ? s : 0.0;
     };
-    // Each point's spacing and column, kept from the sweep that last moved it.
+    // Each point's spacing and column, kept from the sweep that last moved it; and whether the
+    // fog's edge lies within its reach: those points stay (8 columns on the circle of the reach).
     std::vector<double> h(n);
     std::vector<MediumColumn> columns(n);
-    for_slices(n, [&](std::size_t first, std::size_t end) {
-        for (std::size_t k = first; k < end; ++k) {
-            h[k] = spacing_at(points[k]);
-            columns[k] = fog.column(points[k].x, points[k].y);
-        }
-    });
-    // The fog's edge within reach: those points stay (8 columns on the circle of the reach).
     std::vector<char> pinned(n, 0);
     for_slices(n, [&](std::size_t first, std::size_t end) {
         for (std::size_t k = first; k < end; ++k) {
             const glm::dvec3& p = points[k];
+            h[k] = spacing_at(p);
+            columns[k] = fog.column(p.x, p.y);
             const double r = reach * h[k];
             bool edge = !(r > 0.0);
             for (int a = 0; a < 8 && !edge; ++a) {
