@@ -117,6 +117,26 @@ TEST(FittedMultipleScattering, IsPoissonsOrdersOfScattering)
         EXPECT_TRUE(std::isfinite(v) && v >= 0.0) << v;
 }
 
+TEST(SunScatteringDecay, IsEachModelsSlowestFallWithTheSunsOpticalDepth)
+{
+    // Deep in the fog each model's S falls as e^-(rate tau): its lobe that lasts longest.
+    const MultipleScatteringFit fit;
+    const auto ratio = [&](MultipleScattering kind, int octaves, double tau) {
+        return sun_scattering(kind, octaves, 0.3, 0.7, 1.0, tau + 1.0, 0.5, fit) /
+            sun_scattering(kind, octaves, 0.3, 0.7, 1.0, tau, 0.5, fit);
+    };
+    EXPECT_DOUBLE_EQ(sun_scattering_decay(MultipleScattering::none, 3), 1.0);
+    EXPECT_NEAR(ratio(MultipleScattering::none, 3, 20.0), std::exp(-1.0), 1e-12);
+    for (int octaves : {1, 3, 8}) {
+        const double rate = sun_scattering_decay(MultipleScattering::octaves, octaves);
+        EXPECT_DOUBLE_EQ(rate, std::pow(0.5, octaves - 1));
+        EXPECT_NEAR(ratio(MultipleScattering::octaves, octaves, 40.0 / rate), std::exp(-rate), 1e-6) << octaves;
+    }
+    const double rate = sun_scattering_decay(MultipleScattering::fitted, 3, fit);
+    EXPECT_DOUBLE_EQ(rate, 1.0 - fit.persistence);
+    EXPECT_NEAR(ratio(MultipleScattering::fitted, 3, 60.0), std::exp(-rate), 1e-6);  // at albedo 1
+}
+
 // The exact light (every order of scattering, the path tracer) of a 100 m slab at sun 30
 // degrees, seen from above and from inside towards the sun, and of a 15 m layer from above: the
 // fitted model's brightness within 30 %, 10 % and 15 % (docs/medium.md: 0.73, 0.97, 1.04),

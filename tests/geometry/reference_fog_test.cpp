@@ -107,6 +107,37 @@ TEST(ReferenceFog, HomogeneousSlabLitByTheSunThroughTheFog)
     EXPECT_NEAR(r.transmittance, std::exp(-sigma * d), 1e-12);
 }
 
+TEST(ReferenceFog, DeepInADenseSlabTheSunsLightIsTheModels)
+{
+    // 80 m under the top of a fog of 0.1 per metre, the sun 22.9 degrees up: tau_sun = 20.5.
+    // Single scattering has e^-20.5 of the sun left there, but the fitted model's light scattered
+    // many times falls as e^-(1 - b) tau (b = 0.73) and the octaves' last as e^-tau / 4: the
+    // reference marched tau_sun only to 12 and lit the point as if it lay at 12 (the fitted
+    // model's sun there 10 times too bright). Now to 12 / sun_scattering_decay.
+    const double sigma = 0.1, a = 0.95, g = 0.7, H = 100.0, z = 20.0, d = 300.0, e = 0.4;
+    const Medium m = slab(0.0, H, sigma, 1.0, a, g);
+    FogLighting light;
+    light.sun_direction = {std::cos(e), 0.0, std::sin(e)};
+    light.sun_radiance = {3.0, 2.0, 1.0};
+    light.ambient = glm::dvec3(0.0);
+    light.terrain_shadows = false;
+    const glm::dvec3 w(0.0, 1.0, 0.0);
+    const double tau_sun = sigma * (H - z) / std::sin(e);
+    ASSERT_GT(tau_sun, 20.0);
+    MediumOptions optics;
+    optics.albedo = a;
+    optics.anisotropy = g;
+    const FogLight fl{light.sun_radiance, light.ambient, std::sin(e)};
+    for (const auto kind : {MultipleScattering::fitted, MultipleScattering::octaves}) {
+        light.multiple_scattering = optics.multiple_scattering = kind;
+        light.scattering_octaves = optics.scattering_octaves = 3;
+        const RayFog r = reference_ray({&m, {}}, nullptr, {0.0, 0.0, z}, w, d, light);
+        expect_rel(r.inscatter,
+                   fog_source(fl, optics, glm::dot(w, light.sun_direction), tau_sun) * (1.0 - std::exp(-sigma * d)),
+                   1e-4);  // the ray stops where its transmittance falls under 1e-5
+    }
+}
+
 TEST(ReferenceFog, LookingDownThroughASlabWithTheSunOverhead)
 {
     // Eye at 2H looking straight down onto flat ground at 0, sun at the zenith: a point at

@@ -62,6 +62,17 @@ double sun_scattering(MultipleScattering kind, int octaves, double cos_theta, do
     return sun_scattering(cos_theta, g, tau_sun, 1);
 }
 
+double sun_scattering_decay(MultipleScattering kind, int octaves, const MultipleScatteringFit& fit)
+{
+    switch (kind) {
+    case MultipleScattering::fitted: return std::max(1.0 - std::clamp(fit.persistence, 0.0, 1.0), 1e-3);
+    case MultipleScattering::octaves: return std::ldexp(1.0, 1 - std::clamp(octaves, 1, 8));
+    case MultipleScattering::none:
+    case MultipleScattering::baked: break;
+    }
+    return 1.0;
+}
+
 MultipleScattering multiple_scattering_of(const Medium* medium)
 {
     return medium ? medium->options().multiple_scattering : MediumOptions{}.multiple_scattering;

@@ -48,6 +48,8 @@ FogMarcher::FogMarcher(const FogVolume& fog, const Heightfield* terrain, const F
     o_.knot_optical_step = std::clamp(o_.knot_optical_step, 1e-4, 1.0);
     o_.feature_fraction = std::clamp(o_.feature_fraction, 1e-3, 4.0);
     o_.shadow_feature_fraction = std::clamp(o_.shadow_feature_fraction, 1e-3, 16.0);
+    sun_decay_ = sun_scattering_decay(light_.multiple_scattering, light_.scattering_octaves, light_.fit);
+    sun_cutoff_ = o_.sun_cutoff / sun_decay_;
 }
 
 double FogMarcher::feature_length(const glm::dvec3& p, const glm::dvec3& d, bool in_shell, double fraction) const
@@ -157,7 +159,7 @@ double FogMarcher::sun_optical_depth(const glm::dvec3& p, MarchScratch& s) const
     if (!light_.fog_shadows)
         return 0.0;
     double tau = fog_.height_fog.optical_depth(p, sun_, 0.0, inf);
-    if (!fog_.medium || !(tau <= o_.sun_cutoff))
+    if (!fog_.medium || !(tau <= sun_cutoff_))
         return tau;
     const Bounds3& b = fog_.medium->bounds();
     double t0 = 0.0, t1 = inf;
@@ -170,8 +172,10 @@ double FogMarcher::sun_optical_depth(const glm::dvec3& p, MarchScratch& s) const
         double sigma_estimate = sigma_medium(p + sun_ * (t + 1e-9 * (iv.t1 - iv.t0)));
         while (t < iv.t1) {
             const glm::dvec3 q = p + sun_ * t;
+            // Past sun_cutoff the light left falls as e^-(decay tau): steps as long in that.
+            const double optical_step = o_.shadow_optical_step / (tau < o_.sun_cutoff ? 1.0 : sun_decay_);
             double dt = std::min({feature_length(q, sun_, true, o_.shadow_feature_fraction),
-                                  o_.shadow_optical_step / std::max(sigma_estimate, 1e-12), iv.t1 - t});
+                                  optical_step / std::max(sigma_estimate, 1e-12), iv.t1 - t});
             dt = std::max(dt, 1e-7 * (1.0 + t));
             if (t + dt > iv.t1 || iv.t1 - (t + dt) < 1e-9 * dt)
                 dt = iv.t1 - t;
@@ -180,7 +184,7 @@ double FogMarcher::sun_optical_depth(const glm::dvec3& p, MarchScratch& s) const
             tau += 0.5 * (s1 + s2) * dt;
             sigma_estimate = std::max(s1, s2);
             t += dt;
-            if (tau > o_.sun_cutoff)
+            if (tau > sun_cutoff_)
                 return tau;
         }
     }

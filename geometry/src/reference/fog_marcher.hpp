@@ -45,6 +45,10 @@ private:
     FogLighting light_;
     glm::dvec3 sun_{0.0, 0.0, 1.0};
     ReferenceOptions o_;
+    // The lighting model's slowest fall of the sun's light with tau_sun (sun_scattering_decay),
+    // and the optical depth towards the sun past which that light is below the options'
+    // sun_cutoff's: sun_cutoff / decay.
+    double sun_decay_ = 1.0, sun_cutoff_ = 12.0;
 
     double sigma_medium(const glm::dvec3& p) const { return fog_.medium ? fog_.medium->extinction(p) : 0.0; }
     //! Longest step along d at p that resolves the medium's features (grid cells, noise

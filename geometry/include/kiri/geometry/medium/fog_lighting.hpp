@@ -113,6 +113,13 @@ double fitted_sun_scattering(double cos_theta, double g, double albedo, double t
 double sun_scattering(MultipleScattering kind, int octaves, double cos_theta, double g, double albedo, double tau_sun,
                       double sun_elevation_sine, const MultipleScatteringFit& fit = {});
 
+//! The slowest rate at which the model's S falls with tau_sun: S(tau) <= S_max exp(-rate tau)
+//! (none and baked's single scattering: 1; octaves: 2^-(octaves - 1), the last octave's; fitted:
+//! 1 - persistence, the orders' sum exp(-(1 - b) tau) at albedo 1). An optical depth towards the
+//! sun may be cut off where e^-(rate tau) is negligible, not where e^-tau is: the fitted model
+//! still lights fog 12 deep in tau_sun with 2 % of its sun.
+double sun_scattering_decay(MultipleScattering kind, int octaves, const MultipleScatteringFit& fit = {});
+
 //! The octaves a renderer lights the fog with: the Medium's, MediumOptions' default without one
 //! (a height fog alone).
 int scattering_octaves_of(const Medium* medium);

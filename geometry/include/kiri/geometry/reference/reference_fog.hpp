@@ -65,8 +65,10 @@ struct ReferenceOptions {
     double feature_fraction = 0.25;     //!< steps at most this fraction of the medium's features
     double shadow_feature_fraction = 1.0;
     double min_transmittance = 1e-5;  //!< the view ray stops when T falls below
-    double sun_cutoff = 12.0;         //!< T_sun is 0 beyond this optical depth (6e-6)
-    int threads = 0;                  //!< 0: every core
+    //! The sun's light is 0 beyond this optical depth towards the sun (e^-12 = 6e-6) divided by
+    //! the lighting model's sun_scattering_decay (fitted: 52, three octaves: 48).
+    double sun_cutoff = 12.0;
+    int threads = 0;  //!< 0: every core
     //! false: the terrain is black (it still ends rays and casts shadows), so the picture holds
     //! the fog's light alone (`kiri render --black-ground`).
     bool shade_terrain = true;
