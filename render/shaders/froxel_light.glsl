@@ -58,8 +58,10 @@ vec3 through_air(vec3 j, vec3 p, vec3 eye) { return mix(j, u_air.rgb, 1.0 - exp(
 // froxel without fog whose J the apply reads for fog nearby, a march's point between the fog's
 // top and the ground) would take the sun's light in empty air, unshadowed by the fog, under a
 // grazing sun all of the difference; it takes the light of its column's fog nearest to it, a
-// thousandth of the fog's depth inside either end (the baked light ends at the column's floor,
-// where a ray's last point lies on the ground).
+// thousandth of the fog's depth inside its floor (the baked light ends at the column's floor,
+// where a ray's last point lies on the ground) and at most a millimetre under its top (the sunlit
+// skin of a dense fog is decimetres deep: at 10 per metre, a third of a metre under a 300 m
+// fog's top the sun is down to e^-6).
 vec3 medium_lit_point(vec3 p)
 {
     vec3 lit = p;
@@ -67,7 +69,7 @@ vec3 medium_lit_point(vec3 p)
         vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
         float lo = max(column.x, column.y), hi = column.z;
         if (hi > lo)
-            lit.z = clamp(p.z, mix(lo, hi, 1e-3), mix(lo, hi, 0.999));
+            lit.z = clamp(p.z, mix(lo, hi, 1e-3), hi - min(1e-3 * (hi - lo), 1e-3));
     }
     return lit;
 }
@@ -79,12 +81,58 @@ vec3 medium_lit_point(vec3 p)
 // step (segment_visibility): one point's V for a slice tens of metres deep left bands along the
 // shade a canyon's wall casts into its fog. sun_jitter: where along its steps the sun's optical
 // depth is marched.
-vec4 medium_light_parts_at(vec3 p, vec3 eye, float sun_jitter)
+// tau: the optical depth towards the sun there.
+vec4 medium_light_parts_at(vec3 p, vec3 eye, float sun_jitter, out float tau)
 {
     vec3 lit = medium_lit_point(p), ray = normalize(p - eye);
-    float tau = u_fog_shadows != 0 ? sun_optical_depth(lit, u_sun_direction, sun_jitter) : 0.0;
+    tau = u_fog_shadows != 0 ? sun_optical_depth(lit, u_sun_direction, sun_jitter) : 0.0;
     float air = exp(-distance(p, eye) * u_air.w);  // J's own share against the air's (through_air)
     return vec4(mix(u_air.rgb, medium_light(0, lit, ray, 0.0, tau), air), air * medium_sun_share(0, ray, tau));
+}
+
+vec4 medium_light_parts_at(vec3 p, vec3 eye, float sun_jitter)
+{
+    float tau;
+    return medium_light_parts_at(p, eye, sun_jitter, tau);
+}
+
+// (1 - e^-x) / x, 1 at 0.
+float exp_mean(float x) { return abs(x) < 1e-4 ? 1.0 - 0.5 * x : (1.0 - exp(-x)) / x; }
+
+// The mean over a step of the sun's share of the Medium's J along `ray` (medium_sun_share, times
+// `air`, J's own share against the air's), weighted by what the step lets through in front of
+// each point: e^(-depth u) at u in [0, 1] along it, depth its optical depth, the optical depth
+// towards the sun linear from tau0 to tau1 along it (exact under a flat top). Across a dense
+// fog's sunlit skin, decimetres deep under steps of metres, the share at the step's middle or
+// the mean of its ends is far off. No model's share falls faster than single scattering's
+// e^-tau_sun, so the share times e^(rise u) (rise: tau_sun's gain over the step) is smooth, and
+// is integrated against e^(-(depth + rise) u) by the two-point Gauss rule of that weight on
+// [0, 1] (exact for cubics): single scattering exactly, the skin under a flat top
+// s / (1 + the view's rate of descent over the sun's).
+float sun_share_over_step(vec3 ray, float air, float tau0, float tau1, float depth)
+{
+    float rise = max(tau1 - tau0, 0.0);
+    float c = depth + rise;
+    vec2 u = vec2(0.5 - 0.5 / sqrt(3.0), 0.5 + 0.5 / sqrt(3.0)), w = vec2(0.5);  // Gauss-Legendre
+    if (c > 0.5) {
+        // The weight's moments on [0, 1] over its mass: m_k = (k m_(k-1) - e^-c) / c.
+        float e = exp(-c), m0 = (1.0 - e) / c;
+        float m1 = (m0 - e) / c, m2 = (2.0 * m1 - e) / c, m3 = (3.0 * m2 - e) / c;
+        m1 /= m0;
+        m2 /= m0;
+        m3 /= m0;
+        float alpha = (m1 * m2 - m3) / max(m2 - m1 * m1, 1e-30), beta = -m2 - alpha * m1;
+        float root = sqrt(max(0.25 * alpha * alpha - beta, 0.0));
+        u = clamp(vec2(-0.5 * alpha - root, -0.5 * alpha + root), 0.0, 1.0);
+        w.x = u.y > u.x ? clamp((u.y - m1) / (u.y - u.x), 0.0, 1.0) : 1.0;
+        w.y = 1.0 - w.x;
+    }
+    float sum = 0.0;
+    for (int i = 0; i < 2; ++i) {
+        float f = medium_sun_share(0, ray, mix(tau0, tau1, u[i])) * exp(rise * u[i]);
+        sum += (c > 0.5 ? w[i] : w[i] * exp(-c * u[i]) / exp_mean(c)) * f;
+    }
+    return air * sum * exp_mean(c) / exp_mean(depth);
 }
 
 // The terrain's visibility of the sun for the Medium's light at p (medium_lit_point).

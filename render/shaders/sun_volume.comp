@@ -17,7 +17,7 @@ void main()
         return;
     vec2 xy = shell_column_xy(id.xy, size.xy);
     vec4 column = shell_column(xy);
-    vec3 p = vec3(xy, shell_height(float(id.z) / float(size.z - 1), column));
+    vec3 p = vec3(xy, shell_height(float(id.z) / float(size.z - 1), column, float(size.z)));
     float graze = sun_path_grazes_a_wall(p, u_sun_direction, vec3(size)) ? 1.0 : 0.0;
     imageStore(o_tau, id, vec4(medium_sun_depth(p, u_sun_direction, u_steps, 0.5), graze, 0.0, 0.0));
 }

@@ -32,8 +32,9 @@ bool sun_path_grazes_a_wall(vec3 p, vec3 s, vec3 size)
     vec4 here = shell_column(p.xy), there = shell_column(q.xy);
     vec3 span = shell_span(here);
     // The height of q moves by this much as p moves to a neighbouring column or level.
-    float level = p.z <= span.y ? (span.y - span.x) / (shell_inside * (size.z - 1.0))
-                                : (span.z - span.y) / ((1.0 - shell_inside) * (size.z - 1.0));
+    float inside = shell_inside(size.z);
+    float level = p.z <= span.y ? (span.y - span.x) / (inside * (size.z - 1.0))
+                                : (span.z - span.y) / ((1.0 - inside) * (size.z - 1.0));
     float margin = 1.25 * max(spacing[wall] * s.z / abs(s[wall]), level);
     if (!(q.z < u_md_ceiling + margin))
         return false;  // it leaves well over the fog's highest top
