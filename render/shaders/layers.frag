@@ -185,7 +185,18 @@ void main()
             float above = u_extinction * tex.a * u_thickness * ((1.0 - h) - 0.5 * u_top_loss * (1.0 - h * h));
             tau_sun = above / max(u_sun_direction.z, 0.02);
         }
-        radiance = fog_source(cos_sun, tau_sun, sun_up);
+        // Where tau_sun changes by more than 1 across the slab under a flat top (a dense fog's
+        // sunlit skin, at 0.4 per metre a few metres deep, in slabs ten metres thick), S over the
+        // slab, tau_sun linear across it through its value at the layer (the slab's middle).
+        // Thinner (the bundled lake's slabs: 0.8) the light at the middle is as close (the lake
+        // 5.23 -> 5.19 % for 40 % more time in the layers pass).
+        float across_slab = view.z * sigma * path / max(u_sun_direction.z, 0.05);  // tau_sun's change, the ray's way
+        if (abs(across_slab) > 1.0)
+            radiance = fog_source_of(sun_scattering_over_slab(cos_sun, max(tau_sun + 0.5 * across_slab, 0.0),
+                                                              max(tau_sun - 0.5 * across_slab, 0.0), sigma * path),
+                                     sun_up);
+        else
+            radiance = fog_source(cos_sun, tau_sun, sun_up);
         // The baked multiple scattering (light_volume.glsl; u_lv_on with the model `baked`),
         // towards the eye, not hidden by the terrain's shadow: from the vertices (layers.vert),
         // but near the eye, where a triangle spans a wide angle of directions towards it, per

@@ -51,16 +51,59 @@ float henyey_greenstein(float cos_theta, float g)
     return (1.0 - g * g) / (4.0 * pi * d * sqrt(d));
 }
 
-// geometry::fog_source (fog_lighting.hpp): the source per unit extinction towards the eye;
+// S of geometry::fog_source (fog_lighting.hpp): the sun's phase and transmittance through tau_sun;
 // u_octaves 0: the fitted model, else that many octaves.
-vec3 fog_source(float cos_theta, float tau_sun, float visibility)
+float sun_scattering(float cos_theta, float tau_sun)
 {
     float sun = 0.0, a = 1.0, b = 1.0, c = 1.0;
     if (u_octaves == 0)
         sun = fitted_sun_scattering(cos_theta, u_anisotropy, u_albedo, tau_sun, u_sun_direction.z);
     for (int i = 0; i < u_octaves; ++i, a *= 0.5, b *= 0.5, c *= 0.5)
         sun += a * henyey_greenstein(cos_theta, c * u_anisotropy) * exp(-b * tau_sun);
-    return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient);
+    return sun;
+}
+
+// geometry::fog_source: the source per unit extinction towards the eye, with S given.
+vec3 fog_source_of(float sun, float visibility) { return u_albedo * (pi * visibility * sun * u_sun_radiance + u_ambient); }
+
+vec3 fog_source(float cos_theta, float tau_sun, float visibility)
+{
+    return fog_source_of(sun_scattering(cos_theta, tau_sun), visibility);
+}
+
+// (1 - e^-x) / x, 1 at 0.
+float layers_exp_mean(float x) { return abs(x) < 1e-4 ? 1.0 - 0.5 * x : (1.0 - exp(-x)) / x; }
+
+// S over a slab the ray crosses with optical depth `depth`, tau_sun linear from tau0 where it
+// enters to tau1 where it leaves (exact under a flat top), weighted by what the slab lets through
+// in front of each point. A dense fog's top slab is lit in its first decimetres, which its middle
+// or its emission centroid do not see (the layers 18 % too dark over a lake of 10 m visibility).
+// S e^(gain u) is smooth (no model falls faster than e^-tau_sun), integrated against
+// e^-(depth + gain) u on [0, 1] by that weight's two-point Gauss rule; as froxel_light.glsl's
+// sun_share_over_step.
+float sun_scattering_over_slab(float cos_theta, float tau0, float tau1, float depth)
+{
+    float gain = max(tau1 - tau0, 0.0);
+    float c = depth + gain;
+    vec2 u = vec2(0.5 - 0.5 / sqrt(3.0), 0.5 + 0.5 / sqrt(3.0)), w = vec2(0.5);
+    if (c > 0.5) {
+        float e = exp(-c), m0 = (1.0 - e) / c;  // the weight's moments: m_k = (k m_(k-1) - e^-c) / c
+        float m1 = (m0 - e) / c, m2 = (2.0 * m1 - e) / c, m3 = (3.0 * m2 - e) / c;
+        m1 /= m0;
+        m2 /= m0;
+        m3 /= m0;
+        float alpha = (m1 * m2 - m3) / max(m2 - m1 * m1, 1e-30), beta = -m2 - alpha * m1;
+        float root = sqrt(max(0.25 * alpha * alpha - beta, 0.0));
+        u = clamp(vec2(-0.5 * alpha - root, -0.5 * alpha + root), 0.0, 1.0);
+        w.x = u.y > u.x ? clamp((u.y - m1) / (u.y - u.x), 0.0, 1.0) : 1.0;
+        w.y = 1.0 - w.x;
+    }
+    float sum = 0.0;
+    for (int i = 0; i < 2; ++i) {
+        float f = sun_scattering(cos_theta, mix(tau0, tau1, u[i])) * exp(gain * u[i]);
+        sum += (c > 0.5 ? w[i] : w[i] * exp(-c * u[i]) / layers_exp_mean(c)) * f;
+    }
+    return sum * layers_exp_mean(c) / layers_exp_mean(depth);
 }
 
 // Of the light a slab of optical depth tau scatters along a path of length `path` into it, the

@@ -18,6 +18,7 @@
 #include "bench/bench.hpp"
 #include "bench/fog_judge.hpp"
 #include "kiri/geometry/core/error.hpp"
+#include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/scene/dem_scene.hpp"
 #include "kiri/geometry/scene/pipeline.hpp"
 #include "kiri/render/image.hpp"
@@ -100,6 +101,11 @@ std::vector<View> views(Context& c)
                 v.push_back({name + "/" + cam.name, s, cam.name});
         }
     }
+    // The lake as a dense fog (10 m of visibility, 0.39 per metre): its light comes from a sunlit
+    // skin a few metres deep, thinner than a layer's slab, a march's step or a froxel.
+    geometry::Scene dense = medium_alone(geometry::load_scene(scenes / "jacksboro_lake.json"));
+    dense.medium.extinction = geometry::extinction_from_visibility(10.0);
+    v.push_back({"jacksboro_lake_dense/default", dense, "default"});
     // The default scene as users render it: its height fog (a dense haze in the valleys) too.
     const geometry::Scene with_haze = geometry::load_scene(scenes / "jacksboro.json");
     for (const char* cam : {"default", "top"})
