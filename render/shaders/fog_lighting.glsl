@@ -31,3 +31,31 @@ float fitted_sun_scattering(float cos_theta, float g, float albedo, float tau, f
     multiple += rest * fitted_hg(cos_theta, clamp(diffuse_eccentricity + forward, -1.0, 1.0) * g);
     return single * fitted_hg(cos_theta, g) + amplitude * pow(max(s, 1e-6), sun_power) * multiple;
 }
+
+// (1 - e^-x) / x, 1 at 0.
+float fog_exp_mean(float x) { return abs(x) < 1e-4 ? 1.0 - 0.5 * x : (1.0 - exp(-x)) / x; }
+
+// The two-point Gauss rule of the weight e^(-c u) on [0, 1], c >= 0, over its mass: the mean of
+// f under that weight is about w.x f(u.x) + w.y f(u.y), exact for cubics. A march's step or a
+// layer's slab weighs its light so (what lies in front of each point lets it through), where the
+// sun's share falls steeply across it (a dense fog's sunlit skin). From the weight's moments,
+// m_k = (k m_(k-1) - e^-c) / c; near c = 0, where they cancel, Gauss-Legendre's nodes with the
+// weight folded into w.
+void exp_weight_gauss_rule(float c, out vec2 u, out vec2 w)
+{
+    u = vec2(0.5 - 0.5 / sqrt(3.0), 0.5 + 0.5 / sqrt(3.0));
+    if (!(c > 0.5)) {
+        w = 0.5 * exp(-c * u) / fog_exp_mean(c);
+        return;
+    }
+    float e = exp(-c), m0 = (1.0 - e) / c;
+    float m1 = (m0 - e) / c, m2 = (2.0 * m1 - e) / c, m3 = (3.0 * m2 - e) / c;
+    m1 /= m0;
+    m2 /= m0;
+    m3 /= m0;
+    float alpha = (m1 * m2 - m3) / max(m2 - m1 * m1, 1e-30), beta = -m2 - alpha * m1;
+    float root = sqrt(max(0.25 * alpha * alpha - beta, 0.0));
+    u = clamp(vec2(-0.5 * alpha - root, -0.5 * alpha + root), 0.0, 1.0);
+    w.x = u.y > u.x ? clamp((u.y - m1) / (u.y - u.x), 0.0, 1.0) : 1.0;
+    w.y = 1.0 - w.x;
+}

@@ -96,9 +96,6 @@ vec4 medium_light_parts_at(vec3 p, vec3 eye, float sun_jitter)
     return medium_light_parts_at(p, eye, sun_jitter, tau);
 }
 
-// (1 - e^-x) / x, 1 at 0.
-float exp_mean(float x) { return abs(x) < 1e-4 ? 1.0 - 0.5 * x : (1.0 - exp(-x)) / x; }
-
 // The mean over a step of the sun's share of the Medium's J along `ray` (medium_sun_share, times
 // `air`, J's own share against the air's), weighted by what the step lets through in front of
 // each point: e^(-depth u) at u in [0, 1] along it, depth its optical depth, the optical depth
@@ -106,33 +103,18 @@ float exp_mean(float x) { return abs(x) < 1e-4 ? 1.0 - 0.5 * x : (1.0 - exp(-x))
 // fog's sunlit skin, decimetres deep under steps of metres, the share at the step's middle or
 // the mean of its ends is far off. No model's share falls faster than single scattering's
 // e^-tau_sun, so the share times e^(rise u) (rise: tau_sun's gain over the step) is smooth, and
-// is integrated against e^(-(depth + rise) u) by the two-point Gauss rule of that weight on
-// [0, 1] (exact for cubics): single scattering exactly, the skin under a flat top
-// s / (1 + the view's rate of descent over the sun's).
+// is integrated against e^(-(depth + rise) u) by that weight's two-point Gauss rule
+// (exp_weight_gauss_rule, fog_lighting.glsl): single scattering exactly, the skin under a flat
+// top s / (1 + the view's rate of descent over the sun's).
 float sun_share_over_step(vec3 ray, float air, float tau0, float tau1, float depth)
 {
     float rise = max(tau1 - tau0, 0.0);
-    float c = depth + rise;
-    vec2 u = vec2(0.5 - 0.5 / sqrt(3.0), 0.5 + 0.5 / sqrt(3.0)), w = vec2(0.5);  // Gauss-Legendre
-    if (c > 0.5) {
-        // The weight's moments on [0, 1] over its mass: m_k = (k m_(k-1) - e^-c) / c.
-        float e = exp(-c), m0 = (1.0 - e) / c;
-        float m1 = (m0 - e) / c, m2 = (2.0 * m1 - e) / c, m3 = (3.0 * m2 - e) / c;
-        m1 /= m0;
-        m2 /= m0;
-        m3 /= m0;
-        float alpha = (m1 * m2 - m3) / max(m2 - m1 * m1, 1e-30), beta = -m2 - alpha * m1;
-        float root = sqrt(max(0.25 * alpha * alpha - beta, 0.0));
-        u = clamp(vec2(-0.5 * alpha - root, -0.5 * alpha + root), 0.0, 1.0);
-        w.x = u.y > u.x ? clamp((u.y - m1) / (u.y - u.x), 0.0, 1.0) : 1.0;
-        w.y = 1.0 - w.x;
-    }
-    float sum = 0.0;
-    for (int i = 0; i < 2; ++i) {
-        float f = medium_sun_share(0, ray, mix(tau0, tau1, u[i])) * exp(rise * u[i]);
-        sum += (c > 0.5 ? w[i] : w[i] * exp(-c * u[i]) / exp_mean(c)) * f;
-    }
-    return air * sum * exp_mean(c) / exp_mean(depth);
+    vec2 u, w;
+    exp_weight_gauss_rule(depth + rise, u, w);
+    float mean = 0.0;
+    for (int i = 0; i < 2; ++i)
+        mean += w[i] * medium_sun_share(0, ray, mix(tau0, tau1, u[i])) * exp(rise * u[i]);
+    return air * mean * fog_exp_mean(depth + rise) / fog_exp_mean(depth);
 }
 
 // The terrain's visibility of the sun for the Medium's light at p (medium_lit_point).

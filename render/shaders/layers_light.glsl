@@ -71,39 +71,22 @@ vec3 fog_source(float cos_theta, float tau_sun, float visibility)
     return fog_source_of(sun_scattering(cos_theta, tau_sun), visibility);
 }
 
-// (1 - e^-x) / x, 1 at 0.
-float layers_exp_mean(float x) { return abs(x) < 1e-4 ? 1.0 - 0.5 * x : (1.0 - exp(-x)) / x; }
-
 // S over a slab the ray crosses with optical depth `depth`, tau_sun linear from tau0 where it
 // enters to tau1 where it leaves (exact under a flat top), weighted by what the slab lets through
-// in front of each point. A dense fog's top slab is lit in its first decimetres, which its middle
-// or its emission centroid do not see (the layers 18 % too dark over a lake of 10 m visibility).
-// S e^(gain u) is smooth (no model falls faster than e^-tau_sun), integrated against
-// e^-(depth + gain) u on [0, 1] by that weight's two-point Gauss rule; as froxel_light.glsl's
-// sun_share_over_step.
+// in front of each point. A dense fog's top slab is lit in its first metres, which its middle
+// does not see (the layers 18 % too dark over a lake of 10 m visibility). S e^(gain u) is smooth
+// (no model falls faster than e^-tau_sun), integrated against e^-(depth + gain) u by that
+// weight's two-point Gauss rule (exp_weight_gauss_rule, fog_lighting.glsl), as a march's step
+// (froxel_light.glsl's sun_share_over_step).
 float sun_scattering_over_slab(float cos_theta, float tau0, float tau1, float depth)
 {
     float gain = max(tau1 - tau0, 0.0);
-    float c = depth + gain;
-    vec2 u = vec2(0.5 - 0.5 / sqrt(3.0), 0.5 + 0.5 / sqrt(3.0)), w = vec2(0.5);
-    if (c > 0.5) {
-        float e = exp(-c), m0 = (1.0 - e) / c;  // the weight's moments: m_k = (k m_(k-1) - e^-c) / c
-        float m1 = (m0 - e) / c, m2 = (2.0 * m1 - e) / c, m3 = (3.0 * m2 - e) / c;
-        m1 /= m0;
-        m2 /= m0;
-        m3 /= m0;
-        float alpha = (m1 * m2 - m3) / max(m2 - m1 * m1, 1e-30), beta = -m2 - alpha * m1;
-        float root = sqrt(max(0.25 * alpha * alpha - beta, 0.0));
-        u = clamp(vec2(-0.5 * alpha - root, -0.5 * alpha + root), 0.0, 1.0);
-        w.x = u.y > u.x ? clamp((u.y - m1) / (u.y - u.x), 0.0, 1.0) : 1.0;
-        w.y = 1.0 - w.x;
-    }
-    float sum = 0.0;
-    for (int i = 0; i < 2; ++i) {
-        float f = sun_scattering(cos_theta, mix(tau0, tau1, u[i])) * exp(gain * u[i]);
-        sum += (c > 0.5 ? w[i] : w[i] * exp(-c * u[i]) / layers_exp_mean(c)) * f;
-    }
-    return sum * layers_exp_mean(c) / layers_exp_mean(depth);
+    vec2 u, w;
+    exp_weight_gauss_rule(depth + gain, u, w);
+    float mean = 0.0;
+    for (int i = 0; i < 2; ++i)
+        mean += w[i] * sun_scattering(cos_theta, mix(tau0, tau1, u[i])) * exp(gain * u[i]);
+    return mean * fog_exp_mean(depth + gain) / fog_exp_mean(depth);
 }
 
 // Of the light a slab of optical depth tau scatters along a path of length `path` into it, the
