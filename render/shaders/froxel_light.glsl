@@ -62,16 +62,19 @@ vec3 through_air(vec3 j, vec3 p, vec3 eye) { return mix(j, u_air.rgb, 1.0 - exp(
 // where a ray's last point lies on the ground) and at most a millimetre under its top (the sunlit
 // skin of a dense fog is decimetres deep: at 10 per metre, a third of a metre under a 300 m
 // fog's top the sun is down to e^-6).
-vec3 medium_lit_point(vec3 p)
+// With p's column at hand (shell_column(p.xy), read where `covered`: shell_covers(p.xy)).
+vec3 medium_lit_point_in(vec3 p, bool covered, vec4 column)  // column: floor, bottom, top, coverage
 {
     vec3 lit = p;
-    if (shell_covers(p.xy)) {
-        vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
-        float lo = max(column.x, column.y), hi = column.z;
-        if (hi > lo)
-            lit.z = clamp(p.z, mix(lo, hi, 1e-3), hi - min(1e-3 * (hi - lo), 1e-3));
-    }
+    float lo = max(column.x, column.y), hi = column.z;
+    if (covered && hi > lo)
+        lit.z = clamp(p.z, mix(lo, hi, 1e-3), hi - min(1e-3 * (hi - lo), 1e-3));
     return lit;
+}
+vec3 medium_lit_point(vec3 p)
+{
+    bool covered = shell_covers(p.xy);
+    return medium_lit_point_in(p, covered, covered ? shell_column(p.xy) : vec4(0.0));
 }
 
 // The Medium's J at p seen from the eye in two parts, as the froxels' lighting pass stores it and
@@ -84,8 +87,11 @@ vec3 medium_lit_point(vec3 p)
 // tau: the optical depth towards the sun there.
 vec4 medium_light_parts_at(vec3 p, vec3 eye, float sun_jitter, out float tau)
 {
-    vec3 lit = medium_lit_point(p), ray = normalize(p - eye);
-    tau = u_fog_shadows != 0 ? sun_optical_depth(lit, u_sun_direction, sun_jitter) : 0.0;
+    // p's column read once, for its lit point and its optical depth towards the sun.
+    bool covered = shell_covers(p.xy);
+    vec4 column = covered ? shell_column(p.xy) : vec4(0.0);
+    vec3 lit = medium_lit_point_in(p, covered, column), ray = normalize(p - eye);
+    tau = u_fog_shadows != 0 ? sun_optical_depth_in(lit, u_sun_direction, sun_jitter, covered, column) : 0.0;
     float air = exp(-distance(p, eye) * u_air.w);  // J's own share against the air's (through_air)
     return vec4(mix(u_air.rgb, medium_light(0, lit, ray, 0.0, tau), air), air * medium_sun_share(0, ray, tau));
 }

@@ -95,8 +95,11 @@ void main()
     // the layers further. The source shading, and the medium's without a Medium, take the atlas.
     vec4 tex;
     float thickness = 1e30;  // the fog's, for combined mode's particle share (fog_partition.glsl)
+    bool covered = false;    // the Medium's column here, read once (its optical depth towards the sun reads it too)
+    vec4 column = vec4(0.0);
     if (u_medium != 0 && u_md_extent != 0) {
-        vec4 column = shell_covers(v_world.xy) ? shell_column(v_world.xy) : vec4(0.0);
+        covered = shell_covers(v_world.xy);
+        column = covered ? shell_column(v_world.xy) : vec4(0.0);
         tex = vec4(1.0, 1.0, 1.0, column.w);
         thickness = column.z - column.x;
     } else {
@@ -177,7 +180,11 @@ void main()
             // threads, where a vertex lies in the ground, and a triangle across a thread's edge
             // mixed the thread's tau_sun with a point's inside the ridge (the lake's threads 7 %
             // too dark in the sun's light, docs/layers.md).
-            tau_sun = sun_optical_depth(v_world, u_sv_direction, 0.5);
+            if (u_md_extent == 0) {  // the column was not read above
+                covered = u_md_on != 0 && shell_covers(v_world.xy);
+                column = covered ? shell_column(v_world.xy) : vec4(0.0);
+            }
+            tau_sun = sun_optical_depth_in(v_world, u_sv_direction, 0.5, covered, column);
         } else {
             // No Medium given: the slab above this layer, the profile integrated from h to the
             // top, (1 - h) - k (1 - h^2) / 2 of the thickness, along the slant of the sun.

@@ -76,12 +76,14 @@ vec2 shell_column_xy(ivec2 ij, ivec2 columns)
 // varies linearly with the level between a column's floor and top, such as the optical depth
 // under a flat top, blends exactly between columns whose floors differ. Outside the grid: the
 // nearest columns.
-vec4 shell_lookup_all(sampler3D volume, vec3 p)
+// shell_lookup_all_in: with p's column (shell_column(p.xy)) already at hand.
+vec4 shell_lookup_all_in(sampler3D volume, vec3 p, vec4 column)
 {
     vec3 size = vec3(textureSize(volume, 0));
     vec2 f = clamp(shell_fraction(p.xy), 0.0, 1.0);
-    float w = shell_level(p.z, shell_column(p.xy), size.z);
+    float w = shell_level(p.z, column, size.z);
     return textureLod(volume, (vec3(f, w) * (size - 1.0) + 0.5) / size, 0.0);
 }
+vec4 shell_lookup_all(sampler3D volume, vec3 p) { return shell_lookup_all_in(volume, p, shell_column(p.xy)); }
 
 float shell_lookup(sampler3D volume, vec3 p) { return shell_lookup_all(volume, p).r; }

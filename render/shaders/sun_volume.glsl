@@ -43,8 +43,9 @@ bool sun_path_grazes_a_wall(vec3 p, vec3 s, vec3 size)
     return (corner && q.z < top + margin) || abs(q.z - top) < margin || abs(q.z - bottom) < margin;
 }
 
-// The Medium's part alone.
-float medium_sun_optical_depth(vec3 p, vec3 s, float jitter)
+// The Medium's part alone, with p's column (shell_column(p.xy), read where `covered`:
+// shell_covers(p.xy)) at hand: the froxels' lit points and the layers' fragments have looked it up.
+float medium_sun_optical_depth_in(vec3 p, vec3 s, float jitter, bool covered, vec4 column)
 {
     if (!(u_md_on != 0 && p.z < u_md_ceiling))
         return 0.0;
@@ -52,13 +53,24 @@ float medium_sun_optical_depth(vec3 p, vec3 s, float jitter)
     // pass's invocations a larger program (two took the default still's froxel lighting 12 %
     // longer).
     int steps = u_sv_steps;
-    if (u_sv_on != 0 && shell_covers(p.xy)) {
-        vec2 tau_graze = shell_lookup_all(u_sv_volume, p).rg;
+    if (u_sv_on != 0 && covered) {
+        vec2 tau_graze = shell_lookup_all_in(u_sv_volume, p, column).rg;
         if (!(tau_graze.y > 0.0))
             return max(tau_graze.x, 0.0);
         steps = max(steps, sv_wall_steps);
     }
     return medium_sun_depth(p, s, steps, jitter);
+}
+
+float medium_sun_optical_depth(vec3 p, vec3 s, float jitter)
+{
+    bool covered = u_sv_on != 0 && u_md_on != 0 && p.z < u_md_ceiling && shell_covers(p.xy);
+    return medium_sun_optical_depth_in(p, s, jitter, covered, covered ? shell_column(p.xy) : vec4(0.0));
+}
+
+float sun_optical_depth_in(vec3 p, vec3 s, float jitter, bool covered, vec4 column)
+{
+    return medium_sun_optical_depth_in(p, s, jitter, covered, column) + height_fog_sun(p, s);
 }
 
 float sun_optical_depth(vec3 p, vec3 s, float jitter)
