@@ -249,46 +249,34 @@ vec3 haze_run_b(HazeRuns r, int i) { return i == 0 ? r.b[0] : r.b[1]; }
 float haze_run_tau(HazeRuns r, int i) { return i == 0 ? r.tau[0] : r.tau[1]; }
 float haze_run_share(HazeRuns r, int i) { return i == 0 ? r.share[0] : r.share[1]; }
 
-// Step [a, b] of the height fog's optical depth tau, whose light adds `share` of it.
+// Step [a, b] of the height fog's optical depth tau, whose light adds `share` of it. Written with
+// selects, not branches: every step of every march runs it, and on llvmpipe's eight lanes in
+// lockstep the branches cost more than the few additions they chose between.
 void haze_run_step(inout HazeRuns r, float share, vec3 a, vec3 b, float tau)
 {
     bool needs = share > froxel_haze_significant || (r.count == 0 && r.before + share > 5.0 * froxel_haze_significant);
-    if (needs) {
-        if (!r.open && r.count < haze_runs) {
-            if (r.count == 0) {
-                r.a[0] = a;
-                r.share[0] = r.before;
-            } else {
-                r.a[1] = a;
-            }
-            ++r.count;
-        }
-        // The last run grows (a later run joined to it: the stretch between adds little).
-        if (r.count == 1) {
-            r.b[0] = b;
-            r.tau[0] += tau;
-            r.share[0] += share;
-        } else {
-            r.b[1] = b;
-            r.tau[1] += tau;
-            r.share[1] += share;
-        }
-        r.open = true;
-        return;
-    }
-    r.open = false;
-    if (r.count > 0) {
-        if (r.count == 1)
-            r.share[0] += share;
-        else
-            r.share[1] += share;
-        return;
-    }
-    r.before += share;
-    if (share > r.heaviest) {
-        r.heaviest = share;
-        r.at = 0.5 * (a + b);
-    }
+    // A step that must be lit opens a run where the last step was not lit, while there are runs
+    // to open; a later one joins the last run (the stretch between adds little).
+    bool opens = needs && !r.open && r.count < haze_runs;
+    bool first = opens && r.count == 0, second = opens && r.count == 1;
+    r.a[0] = first ? a : r.a[0];
+    r.share[0] = first ? r.before : r.share[0];
+    r.a[1] = second ? a : r.a[1];
+    r.count += opens ? 1 : 0;
+    // The step's share goes to the last run, or before the first; a lit step also grows it.
+    bool to0 = r.count == 1, to1 = r.count == 2;
+    r.b[0] = needs && to0 ? b : r.b[0];
+    r.b[1] = needs && to1 ? b : r.b[1];
+    r.tau[0] += needs && to0 ? tau : 0.0;
+    r.tau[1] += needs && to1 ? tau : 0.0;
+    r.share[0] += to0 ? share : 0.0;
+    r.share[1] += to1 ? share : 0.0;
+    bool before = r.count == 0;
+    r.before += before ? share : 0.0;
+    bool heavier = before && share > r.heaviest;
+    r.heaviest = heavier ? share : r.heaviest;
+    r.at = heavier ? 0.5 * (a + b) : r.at;
+    r.open = needs;
 }
 
 void haze_runs_finish(HazeRuns r, inout vec3 radiance)
