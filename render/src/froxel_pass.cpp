@@ -256,7 +256,7 @@ void FroxelPass::apply(const FrameContext& frame, GLuint color_texture, GLuint d
         return;
     {
         const ScopedPassTimer timed(timers_[marches]);
-        run_pixel_fog(frame, depth_texture, color_texture, applied_);
+        run_pixel_fog(frame, depth_texture, color_texture, applied_, &samples);
     }
     bool split = false;
     {

@@ -130,10 +130,13 @@ private:
     PixelFog applied_;  // the apply's; read_fog runs over it again, judged over its background
     //! Every pixel's (in-scattered radiance, transmittance) into out.fog, over the frame's depth,
     //! judged over its colour (RGBA16F, before the fog; 0: out.background's, the last one copied).
-    void run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out);
+    void run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out,
+                       const FrameSamples* samples = nullptr);
     //! The apply's pixels whose samples see different fog, each sample's own ray marched to its
     //! own surface, their mean (out.split, split_ray, split_fog). Whether it ran.
     bool run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out);
+    //! The split pixels' inputs (their rays' bounds, the frame's samples where given) on their units.
+    static void bind_split_inputs(const PixelFog& out, const FrameSamples* samples);
     //! A program of froxel_frame.glsl's pixels (the march's, the grids') bound for the frame, its
     //! grid at `spacing`, the frame's depth on the unit u_depth reads.
     void bind_pixel_program(const ShaderProgram& program, const FrameContext& frame, int spacing) const;

@@ -141,6 +141,19 @@ void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& 
     p.set("u_split", 0);
 }
 
+// The split pixels' inputs on the units the pixels' program reads them from, bound for its marches
+// too: llvmpipe compiles a program's variant for each set of textures and images bound to its
+// units, and the marches and the split pixels' samples, the same program, each took their own
+// (about 1.5 s of a new user's first frame at 1280x720, or of the first after a change).
+void FroxelPass::bind_split_inputs(const PixelFog& out, const FrameSamples* samples)
+{
+    glBindTextureUnit(unit_split_ray, out.split_ray.get());
+    if (samples && samples->depth != 0 && samples->color != 0) {
+        glBindTextureUnit(unit_ms_depth, samples->depth);
+        glBindTextureUnit(unit_ms_color, samples->color);
+    }
+}
+
 bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out)
 {
     out.splits_run = false;
@@ -180,10 +193,9 @@ bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, con
     glProgramUniform2fv(pixels.id(), pixels.location("u_offsets"), 8, samples.offsets);
     pixels.use();
     glBindTextureUnit(unit_frame_depth, depth_texture);
-    glBindTextureUnit(unit_split_ray, out.split_ray.get());
-    glBindTextureUnit(unit_ms_depth, samples.depth);
-    glBindTextureUnit(unit_ms_color, samples.color);
+    bind_split_inputs(out, &samples);
     glBindImageTexture(0, out.split_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, out.info.back().get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);  // unwritten here
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.split_list.get());
     glDispatchComputeIndirect(0);
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
@@ -193,7 +205,8 @@ bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, con
     return true;
 }
 
-void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out)
+void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, GLuint color_texture, PixelFog& out,
+                               const FrameSamples* samples)
 {
     out.resize(frame.width, frame.height);
     const bool haze = options_.height_fog.enabled();
@@ -209,6 +222,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glNamedBufferSubData(list.get(), 0, sizeof header, &header);
     glBindTextureUnit(unit_frame_depth, depth_texture);
     const glm::ivec2 size(frame.width, frame.height);
+    bind_split_inputs(out, samples);
     // The grid at `spacing` into `image` (its points' info into `info`, 0: none) from the one at
     // twice it (`coarser`, its points' info `coarser_info`), listing into `list` the points that
     // march, then marching them.
