@@ -14,18 +14,30 @@
 //   - a pixel's surface lies in a slice too dense to interpolate within (transmittance falling
 //     by more than u_tolerance * 8 across it, where the lookup is linear and the fog
 //     exponential): a thin dense layer within a slice.
+//   - the volume's lookup at the tile's central pixel misses its own ray's fog (marched) by more
+//     than u_missed: where none of the above holds (w = -1), the pixels' program marches that ray
+//     (froxel_pixels.comp, u_stage 2) and decides. Marched here, the march was compiled twice, for
+//     this program and for the pixels': 1.2 s of a new user's first frame on llvmpipe.
 // (A tap without slices as deep as a pixel's fog goes, a ground edge, is the apply's own check:
 // froxel_resolved.)
 // Needs froxel_common.glsl, froxel_medium.glsl and froxel_apply.glsl before it.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) uniform image2D io_tiles;
+// The tiles left to their central ray (w = -1), listed for froxel_pixels.comp's u_stage 2 as
+// froxel_frame.glsl's FrameMarches lists its points: the indirect dispatch (groups of 64), the
+// count, each tile (x | y << 16).
+layout(std430, binding = 0) buffer TileRays {
+    uvec4 tr_dispatch;
+    uint tr_listed;
+    uint tr_counts[3];
+    uint tr_tiles[];
+};
 uniform sampler2D u_depth;   // the frame's
 uniform ivec2 u_raster;      // the frame's size
 uniform float u_near_plane;  // of the frame's projection
 uniform float u_far_plane;
 uniform float u_tolerance;
 uniform float u_edge_slices;
-uniform float u_missed;      // transmittance, or radiance relative to the tile's, a lookup may miss by
 
 float view_depth(ivec2 px)
 {
@@ -38,7 +50,8 @@ float view_depth(ivec2 px)
 
 float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
-bool march(ivec2 t)
+// 1: march, 0: read the volume, -1: as the tile's central ray decides (froxel_pixels.comp).
+float march(ivec2 t)
 {
     vec2 range = fx_tile_range(t);
     float n = float(u_fx_size.z);
@@ -78,13 +91,13 @@ bool march(ivec2 t)
                 surface = vec2(min(surface.x, end), max(surface.y, end));
         }
     if (with_fog > 0 && without_fog > 0)
-        return true;
+        return 1.0;
     if (!(range.y > range.x))
-        return false;  // no fog here (a pixel's taps that do not reach its fog: froxel_resolved)
+        return 0.0;  // no fog here (a pixel's taps that do not reach its fog: froxel_resolved)
     if (enter.y > enter.x && (fx_slice_coordinate(enter.y, range) - fx_slice_coordinate(enter.x, range)) * n > u_edge_slices)
-        return true;
+        return 1.0;
     if (leave.y > leave.x && (fx_slice_coordinate(leave.y, range) - fx_slice_coordinate(leave.x, range)) * n > u_edge_slices)
-        return true;
+        return 1.0;
     // The bilinear lookup across tiles, at the tile's slice ends in front of its pixels'
     // surfaces; along each axis only where the three tiles' central rays all reach (the
     // fog-aware lookup hardly weighs a tile whose ground lies nearer).
@@ -107,24 +120,7 @@ bool march(ivec2 t)
             worst = max(worst, abs(froxel_column(y0, d) + froxel_column(y1, d) - 2.0 * c));
         worst /= 8.0;
         if (worst.a > u_tolerance || max3(worst.rgb) > u_tolerance * scale)
-            return true;
-    }
-    // The tile's central pixel marched as the apply would, against the lookup there: a fog
-    // thinner than the slices are deep (a blanket seen from afar, 15 km off through slices
-    // hundreds of metres deep) that the froxels' density samples missed in some tiles, whose
-    // neighbours missed it too (so the lookup across them looked smooth). Only a gross miss: the
-    // lookup's usual error (a few per cent) would send whole views to march for nothing.
-    // With the eye outside the shell (u_fx_shell): the march then covers the pixel's stretch in
-    // the shell alone, finely; from inside it spreads its steps over the whole ray, and the
-    // volume is the better of the two.
-    if (u_fx_shell != 0) {
-        ivec2 centre = clamp(ivec2((vec2(t) + 0.5) * cell), ivec2(0), u_raster - 1);
-        vec2 centre_uv = (vec2(centre) + 0.5) / vec2(u_raster);
-        float centre_depth = view_depth(centre);
-        vec4 looked = froxel_fog_at(centre_uv, centre_depth);
-        vec4 marched = froxel_marched_fog(centre_uv, centre_depth, froxel_pixel_shell(centre), true);
-        if (abs(looked.a - marched.a) > u_missed || max3(abs(looked.rgb - marched.rgb)) > u_missed * scale)
-            return true;
+            return 1.0;
     }
     // Surfaces inside a slice whose transmittance falls steeply.
     if (surface.y >= surface.x) {
@@ -132,10 +128,17 @@ bool march(ivec2 t)
         for (int k = clamp(k0, 0, u_fx_size.z - 1); k <= clamp(k1, 0, u_fx_size.z - 1); ++k) {
             float before = k == 0 ? 1.0 : texelFetch(u_fx_volume, ivec3(t, k - 1), 0).a;
             if (before - texelFetch(u_fx_volume, ivec3(t, k), 0).a > 8.0 * u_tolerance)
-                return true;
+                return 1.0;
         }
     }
-    return false;
+    // Left to the tile's central pixel, marched as the apply would, against the lookup there
+    // (froxel_pixels.comp, u_stage 2): a fog thinner than the slices are deep (a blanket seen from
+    // afar, 15 km off through slices hundreds of metres deep) that the froxels' density samples
+    // missed in some tiles, whose neighbours missed it too (so the lookup across them looked
+    // smooth). With the eye outside the shell (u_fx_shell) only: the march then covers the
+    // pixel's stretch in the shell alone, finely; from inside it spreads its steps over the whole
+    // ray, and the volume is the better of the two.
+    return u_fx_shell != 0 ? -1.0 : 0.0;
 }
 
 void main()
@@ -144,6 +147,12 @@ void main()
     if (any(greaterThanEqual(t, u_fx_size.xy)))
         return;
     vec4 tile = imageLoad(io_tiles, t);
-    tile.w = march(t) ? 1.0 : 0.0;
+    tile.w = march(t);
     imageStore(io_tiles, t, tile);
+    if (tile.w < 0.0) {
+        uint i = atomicAdd(tr_listed, 1u);
+        if (i % 64u == 0u)
+            atomicAdd(tr_dispatch.x, 1u);
+        tr_tiles[i] = uint(t.x) | uint(t.y) << 16;
+    }
 }

@@ -14,6 +14,15 @@
 layout(local_size_x = 64) in;
 layout(rgba32f, binding = 0) writeonly uniform image2D o_fog;
 layout(rgba32f, binding = 1) writeonly uniform image2D o_info;  // stage 0: the points' frame_point_info
+// u_stage 2: the classification's last test (froxel_classify.comp), one invocation a tile it left
+// undecided (w = -1, listed in fm_pixels): the tile's central pixel marched against the volume's
+// lookup there, w = 1 where
+// they differ by more than u_missed (in transmittance, or in radiance relative to the tile's
+// total), else 0. Here, in this program's one call of the march, so that llvmpipe compiles the
+// march once. Bound in every stage alike (FroxelPass::bind_split_inputs): a program's compiled
+// variant is llvmpipe's per set of bound images and textures.
+layout(rgba32f, binding = 2) uniform image2D io_tiles;
+uniform float u_missed;
 uniform int u_stage;
 uniform int u_split;
 uniform sampler2D u_split_ray;
@@ -77,7 +86,8 @@ void main()
         at = ivec2(int(fm_pixels[i] & 0xffffu), int(fm_pixels[i] >> 16));
     }
     if (at.x >= 0)
-        px = frame_grid_pixel(at, u_spacing);
+        px = u_stage == 2 ? clamp(ivec2((vec2(at) + 0.5) * (vec2(u_size) / vec2(u_fx_size.xy))), ivec2(0), u_size - 1)
+                          : frame_grid_pixel(at, u_spacing);
     vec4 fog = vec4(0.0, 0.0, 0.0, 1.0);
     if (px.x >= 0) {
         vec2 uv = frame_uv(px);
@@ -94,7 +104,17 @@ void main()
         if (u_stage == 0)
             imageStore(o_info, at, frame_point_info(px, depth));
         bool resolved = u_stage == 0 && froxel_resolved(px, uv, depth);
-        fog = resolved ? froxel_fog_at(uv, depth) : froxel_marched_fog(uv, depth, shell, u_split == 0);
+        // One call of each: a copy of the march inlined costs llvmpipe a second of compiling.
+        vec4 looked = resolved || u_stage == 2 ? froxel_fog_at(uv, depth) : vec4(0.0);
+        fog = resolved ? looked : froxel_marched_fog(uv, depth, shell, u_split == 0);
+        if (u_stage == 2) {
+            vec3 c = froxel_column(at, fx_tile_range(at).y).rgb;
+            float scale = max(max(c.x, max(c.y, c.z)), 1e-6);
+            vec3 off = abs(looked.rgb - fog.rgb);
+            vec4 tile = imageLoad(io_tiles, at);
+            tile.w = abs(looked.a - fog.a) > u_missed || max(off.x, max(off.y, off.z)) > u_missed * scale ? 1.0 : 0.0;
+            imageStore(io_tiles, at, tile);
+        }
         if (u_stage == 0 && !resolved)
             atomicAdd(group_marched, 1u);
         if (u_split != 0) {
@@ -117,7 +137,7 @@ void main()
         float n = float(u_samples);
         fog = vec4(lit / n - background / n * (through / n), through / n);
     }
-    if (px.x >= 0 && sample_index == 0)
+    if (px.x >= 0 && sample_index == 0 && u_stage != 2)
         imageStore(o_fog, at, fog);
     if (gl_LocalInvocationIndex == 0u && group_marched > 0u)
         atomicAdd(fm_sampled, group_marched);

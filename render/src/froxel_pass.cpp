@@ -189,7 +189,8 @@ void FroxelPass::prepare(const FrameContext& frame, const ShadowMapPass* shadow)
     shadow_ = options_.terrain_shadows ? shadow : nullptr;
 }
 
-void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture)
+void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture,
+                        const FrameSamples* samples)
 {
     if (!visible_)
         return;
@@ -242,7 +243,7 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
     key_ = std::move(key);
     shadow_version_ = shadow_version;
     apply_ = true;  // before the passes: the classification reads the volume as the apply does
-    run_passes(frame, depth_texture, still);
+    run_passes(frame, depth_texture, still, samples);
     converged_ = still || !o.temporal;
     stats_.updated = true;
     stats_.converged = converged_;

@@ -65,9 +65,11 @@ public:
     const geometry::FroxelOptions& options() const { return options_; }
     //! Renderer::set_froxel_resolution.
     void set_resolution(double scale);
-    //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's).
-    void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture);
     using FrameSamples = detail::FrameSamples;
+    //! After the resolve: the volume's passes, when this frame needs them (depth: the frame's;
+    //! samples: the frame's, which the apply will read, or null).
+    void update(const FrameContext& frame, const TerrainPass& terrain, GLuint depth_texture,
+                const FrameSamples* samples = nullptr);
     //! The fog on the resolved frame (colour: RGBA16F, read and written); where a pixel's
     //! samples see different fog (two surfaces, or one fogged unevenly), each side its own
     //! (froxel_edges.comp).
@@ -135,8 +137,17 @@ private:
     //! The apply's pixels whose samples see different fog, each sample's own ray marched to its
     //! own surface, their mean (out.split, split_ray, split_fog). Whether it ran.
     bool run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out);
-    //! The split pixels' inputs (their rays' bounds, the frame's samples where given) on their units.
-    static void bind_split_inputs(const PixelFog& out, const FrameSamples* samples);
+    //! The split pixels' inputs (their rays' bounds, the frame's samples where given) and the
+    //! tiles on the units the pixels' program declares them: bound alike in each of its stages.
+    void bind_split_inputs(const PixelFog& out, const FrameSamples* samples) const;
+    //! The classification's last test: the tiles it left undecided (w = -1) march their central
+    //! pixel's ray in the pixels' program (froxel_pixels.comp's u_stage 2), and march where it
+    //! and the volume's lookup differ by more than `missed`.
+    void run_tile_rays(const FrameContext& frame, GLuint depth_texture, const FrameSamples* samples, float missed);
+    //! The list of those tiles, emptied and bound for the classification to fill.
+    void bind_tile_rays();
+    Buffer tile_rays_;
+    int tile_rays_capacity_ = 0;
     //! A program of froxel_frame.glsl's pixels (the march's, the grids') bound for the frame, its
     //! grid at `spacing`, the frame's depth on the unit u_depth reads.
     void bind_pixel_program(const ShaderProgram& program, const FrameContext& frame, int spacing) const;
@@ -191,7 +202,7 @@ private:
     bool visible(const FrameContext& frame) const;
     void bind_layout(const ShaderProgram& program) const;
     // The update's passes, in order; each times itself.
-    void run_passes(const FrameContext& frame, GLuint depth_texture, bool still);
+    void run_passes(const FrameContext& frame, GLuint depth_texture, bool still, const FrameSamples* samples);
     struct Jitter {
         glm::vec3 froxel{0.5f};  // the sample's position in its froxel
         float sun = 0.5f;        // the start of its sun march
@@ -209,7 +220,7 @@ private:
     void run_temporal(int history, const View& from, bool history_valid, int into, float weight);
     void run_integrate(const FrameContext& frame);
     //! Per tile: may the apply read the volume, or must the pixels around it march?
-    void run_classify(const FrameContext& frame, GLuint depth_texture);
+    void run_classify(const FrameContext& frame, GLuint depth_texture, const FrameSamples* samples);
     //! froxel_light.glsl's uniforms and textures (the sun volume, the terrain's shadow map, the
     //! baked light) on the lighting pass or a program that marches pixels (froxel_march.glsl).
     void bind_light(const ShaderProgram& program, const FrameContext& frame) const;

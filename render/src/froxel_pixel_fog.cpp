@@ -141,17 +141,54 @@ void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& 
     p.set("u_split", 0);
 }
 
-// The split pixels' inputs on the units the pixels' program reads them from, bound for its marches
-// too: llvmpipe compiles a program's variant for each set of textures and images bound to its
-// units, and the marches and the split pixels' samples, the same program, each took their own
-// (about 1.5 s of a new user's first frame at 1280x720, or of the first after a change).
-void FroxelPass::bind_split_inputs(const PixelFog& out, const FrameSamples* samples)
+// The split pixels' inputs and the tiles on the units the pixels' program declares them, bound
+// in each of its stages: llvmpipe compiles a program's variant for each set of textures and images
+// bound to its units, and the marches and the split pixels' samples, the same program, each took
+// their own (about 1.5 s of a new user's first frame at 1280x720, or of the first after a change).
+void FroxelPass::bind_split_inputs(const PixelFog& out, const FrameSamples* samples) const
 {
     glBindTextureUnit(unit_split_ray, out.split_ray.get());
     if (samples && samples->depth != 0 && samples->color != 0) {
         glBindTextureUnit(unit_ms_depth, samples->depth);
         glBindTextureUnit(unit_ms_color, samples->color);
     }
+    glBindImageTexture(2, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+}
+
+void FroxelPass::bind_tile_rays()
+{
+    const int tiles = v_->size.x * v_->size.y;
+    if (!tile_rays_ || tile_rays_capacity_ < tiles) {
+        tile_rays_ = make_buffer();
+        glNamedBufferStorage(tile_rays_.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(tiles)),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        tile_rays_capacity_ = tiles;
+    }
+    const MarchHeader header;
+    glNamedBufferSubData(tile_rays_.get(), 0, sizeof header, &header);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tile_rays_.get());
+}
+
+void FroxelPass::run_tile_rays(const FrameContext& frame, GLuint depth_texture, const FrameSamples* samples,
+                               float missed)
+{
+    applied_.resize(frame.width, frame.height);
+    const ShaderProgram& pixels = pixels_.get(options_.height_fog.enabled());
+    bind_pixel_program(pixels, frame, 1);
+    pixels.set("u_stage", 2);
+    pixels.set("u_missed", missed);
+    pixels.use();
+    glBindTextureUnit(unit_frame_depth, depth_texture);
+    bind_split_inputs(applied_, samples);
+    // Images of the formats the marches bind there (unwritten in this stage).
+    glBindImageTexture(0, applied_.fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindImageTexture(1, applied_.info.back().get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tile_rays_.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tile_rays_.get());
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
 bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out)

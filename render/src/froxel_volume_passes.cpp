@@ -50,7 +50,7 @@ void dispatch_volume(const glm::ivec3& size, int depth)
 
 }  // namespace
 
-void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, bool still)
+void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, bool still, const FrameSamples* samples)
 {
     advance_view(frame);
     run_tiles(frame, depth_texture);
@@ -80,7 +80,7 @@ void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, boo
         history_valid_ = true;
     ++frame_index_;
     run_integrate(frame);
-    run_classify(frame, depth_texture);
+    run_classify(frame, depth_texture, samples);
 }
 
 FroxelPass::Jitter FroxelPass::halton_jitter(int index)
@@ -255,7 +255,7 @@ void FroxelPass::run_integrate(const FrameContext& frame)
     dispatch_volume(v_->size, 1);
 }
 
-void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
+void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture, const FrameSamples* samples)
 {
     // Worth it where most pixels' marches are long: the eye inside the Medium's shell (every
     // ray marches from the eye) or a height fog (every ray marches its haze). Seen from outside
@@ -277,12 +277,16 @@ void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture)
     p.set("u_far_plane", planes.y);
     p.set("u_tolerance", classify_tolerance);
     p.set("u_edge_slices", classify_edge_slices);
-    p.set("u_missed", classify_missed);
     p.use();
     glBindTextureUnit(0, depth_texture);
     glBindImageTexture(0, v_->tiles[current_].get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA32F);
+    bind_tile_rays();
     glDispatchCompute(GLuint((v_->size.x + 7) / 8), GLuint((v_->size.y + 7) / 8), 1);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT |
+                    GL_COMMAND_BARRIER_BIT);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    if (shell_ok_)
+        run_tile_rays(frame, depth_texture, samples, classify_missed);
 }
 
 }  // namespace kiri::render::detail

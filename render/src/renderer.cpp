@@ -419,8 +419,9 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
         r.targets.resolve(planes.x, planes.y);
     }
     if (fog) {  // the volume from the frame's depth, then the fog on the resolved frame
-        r.froxel->update(frame, r.terrain, r.targets.resolved_depth());
-        r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth(), r.targets.frame_samples());
+        const detail::FrameSamples samples = r.targets.frame_samples();
+        r.froxel->update(frame, r.terrain, r.targets.resolved_depth(), &samples);
+        r.froxel->apply(frame, r.targets.hdr_color(), r.targets.resolved_depth(), samples);
     }
     if (!layers_multisampled) {  // layers in their own target, composited after the resolve
         const ScopedPassTimer timed(r.layers_timer);
