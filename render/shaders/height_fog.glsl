@@ -9,7 +9,7 @@ uniform vec4 u_hf_extent;  // its horizontal extent: min x, min y, max x, max y
 bool line_over_rect(vec3 o, vec3 d, vec2 lo, vec2 hi, inout float t0, inout float t1)
 {
     // Both axes at once, without a loop or a branch: llvmpipe runs eight invocations in lockstep,
-    // and the loop's early exits cost the froxels' split pixels a seventh of their pass.
+    // and with the loop's early exits the froxels' marches and split pixels took 4-7 % longer.
     bvec2 level = lessThan(abs(d.xy), vec2(1e-20));  // the line does not move along this axis
     vec2 along = mix(d.xy, vec2(1.0), level);
     vec2 s0 = (lo - o.xy) / along, s1 = (hi - o.xy) / along;
