@@ -20,33 +20,12 @@
 //     this program and for the pixels': 1.2 s of a new user's first frame on llvmpipe.
 // (A tap without slices as deep as a pixel's fog goes, a ground edge, is the apply's own check:
 // froxel_resolved.)
-// Needs froxel_common.glsl, froxel_medium.glsl and froxel_apply.glsl before it.
+// Needs froxel_common.glsl, froxel_medium.glsl, froxel_apply.glsl and froxel_frame.glsl before it;
+// the tiles left to their central ray are listed in froxel_frame.glsl's FrameMarches (x | y << 16).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(rgba32f, binding = 0) uniform image2D io_tiles;
-// The tiles left to their central ray (w = -1), listed for froxel_pixels.comp's u_stage 2 as
-// froxel_frame.glsl's FrameMarches lists its points: the indirect dispatch (groups of 64), the
-// count, each tile (x | y << 16).
-layout(std430, binding = 0) buffer TileRays {
-    uvec4 tr_dispatch;
-    uint tr_listed;
-    uint tr_counts[3];
-    uint tr_tiles[];
-};
-uniform sampler2D u_depth;   // the frame's
-uniform ivec2 u_raster;      // the frame's size
-uniform float u_near_plane;  // of the frame's projection
-uniform float u_far_plane;
 uniform float u_tolerance;
 uniform float u_edge_slices;
-
-float view_depth(ivec2 px)
-{
-    float d = texelFetch(u_depth, px, 0).r;
-    if (d >= 1.0)
-        return 3e38;
-    float z = d * 2.0 - 1.0;
-    return 2.0 * u_near_plane * u_far_plane / (u_far_plane + u_near_plane - z * (u_far_plane - u_near_plane));
-}
 
 float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
@@ -55,9 +34,9 @@ float march(ivec2 t)
 {
     vec2 range = fx_tile_range(t);
     float n = float(u_fx_size.z);
-    vec2 cell = vec2(u_raster) / vec2(u_fx_size.xy);
+    vec2 cell = vec2(u_size) / vec2(u_fx_size.xy);
     ivec2 r0 = max(ivec2(floor(vec2(t) * cell)) - 1, ivec2(0));
-    ivec2 r1 = min(ivec2(ceil(vec2(t + 1) * cell)) + 1, u_raster);
+    ivec2 r1 = min(ivec2(ceil(vec2(t + 1) * cell)) + 1, u_size);
     bool haze = u_hf.x > 0.0;
     int with_fog = 0, without_fog = 0;
     vec2 enter = vec2(3e38, 0.0), leave = vec2(3e38, 0.0), surface = vec2(3e38, 0.0);
@@ -70,7 +49,7 @@ float march(ivec2 t)
     for (int y = r0.y; y < r1.y; ++y)
         for (int x = r0.x; x < r1.x; ++x) {
             ivec2 px = ivec2(x, y);
-            float end = min(view_depth(px), u_fx_far);
+            float end = min(frame_depth(px), u_fx_far);
             float fog_end = end;
             deepest = max(deepest, end);
             if (u_fx_shell != 0) {
@@ -135,7 +114,8 @@ float march(ivec2 t)
     // (froxel_pixels.comp, u_stage 2): a fog thinner than the slices are deep (a blanket seen from
     // afar, 15 km off through slices hundreds of metres deep) that the froxels' density samples
     // missed in some tiles, whose neighbours missed it too (so the lookup across them looked
-    // smooth). With the eye outside the shell (u_fx_shell) only: the march then covers the
+    // smooth). Only a gross miss: the lookup's usual error (a few per cent) would send whole
+    // views to march for nothing. With the eye outside the shell (u_fx_shell) only: the march then covers the
     // pixel's stretch in the shell alone, finely; from inside it spreads its steps over the whole
     // ray, and the volume is the better of the two.
     return u_fx_shell != 0 ? -1.0 : 0.0;
@@ -150,9 +130,9 @@ void main()
     tile.w = march(t);
     imageStore(io_tiles, t, tile);
     if (tile.w < 0.0) {
-        uint i = atomicAdd(tr_listed, 1u);
+        uint i = atomicAdd(fm_listed, 1u);
         if (i % 64u == 0u)
-            atomicAdd(tr_dispatch.x, 1u);
-        tr_tiles[i] = uint(t.x) | uint(t.y) << 16;
+            atomicAdd(fm_dispatch.x, 1u);
+        fm_pixels[i] = uint(t.x) | uint(t.y) << 16;
     }
 }

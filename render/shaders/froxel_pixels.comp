@@ -18,7 +18,7 @@ layout(rgba32f, binding = 1) writeonly uniform image2D o_info;  // stage 0: the 
 // undecided (w = -1, listed in fm_pixels): the tile's central pixel marched against the volume's
 // lookup there, w = 1 where they differ by more than u_missed (in transmittance, or in radiance
 // relative to the tile's total), else 0. Here, in this program's one call of the march, so that
-// llvmpipe compiles the march once. Bound in every stage alike (FroxelPass::bind_split_inputs):
+// llvmpipe compiles the march once. Bound in every stage alike (FroxelPass::bind_stage_inputs):
 // llvmpipe compiles a variant of a program per set of bound images and textures.
 layout(rgba32f, binding = 2) uniform image2D io_tiles;
 uniform float u_missed;

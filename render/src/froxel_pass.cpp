@@ -63,6 +63,15 @@ std::vector<std::string_view> pixel_libraries(std::string_view stage)
     return files;
 }
 
+// Those of the classification (froxel_classify.comp): the frame's pixels and the list of the tiles
+// it leaves to the pixels' program (froxel_frame.glsl).
+std::vector<std::string_view> classify_libraries()
+{
+    std::vector<std::string_view> files = march_libraries("froxel_frame.glsl");
+    files.push_back("froxel_classify.comp");
+    return files;
+}
+
 // Those of the pass that finds the pixels whose samples see different fog (froxel_edges.comp).
 std::vector<std::string_view> edge_libraries()
 {
@@ -81,7 +90,7 @@ FroxelPass::FroxelPass()
       accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
-      integrate_(light_libraries("froxel_integrate.comp")), classify_(march_libraries("froxel_classify.comp")),
+      integrate_(light_libraries("froxel_integrate.comp")), classify_(classify_libraries()),
       pixels_(pixel_libraries("froxel_pixels.comp")), upsample_(pixel_libraries("froxel_upsample.comp")),
       apply_program_({"froxel_apply.comp"}), readback_({"froxel_frame.glsl", "froxel_readback.comp"}),
       edges_(edge_libraries())

@@ -139,7 +139,7 @@ private:
     bool run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out);
     //! The split pixels' inputs (their rays' bounds, the frame's samples where given) and the
     //! tiles on the units the pixels' program declares them: bound alike in each of its stages.
-    void bind_split_inputs(const PixelFog& out, const FrameSamples* samples) const;
+    void bind_stage_inputs(const PixelFog& out, const FrameSamples* samples) const;
     //! The classification's last test: the tiles it left undecided (w = -1) march their central
     //! pixel's ray in the pixels' program (froxel_pixels.comp's u_stage 2), and march where it
     //! and the volume's lookup differ by more than `missed`.

@@ -145,7 +145,7 @@ void FroxelPass::bind_pixel_program(const ShaderProgram& p, const FrameContext& 
 // in each of its stages: llvmpipe compiles a program's variant for each set of textures and images
 // bound to its units, and the marches and the split pixels' samples, the same program, each took
 // their own (about 1.5 s of a new user's first frame at 1280x720, or of the first after a change).
-void FroxelPass::bind_split_inputs(const PixelFog& out, const FrameSamples* samples) const
+void FroxelPass::bind_stage_inputs(const PixelFog& out, const FrameSamples* samples) const
 {
     glBindTextureUnit(unit_split_ray, out.split_ray.get());
     if (samples && samples->depth != 0 && samples->color != 0) {
@@ -179,7 +179,7 @@ void FroxelPass::run_tile_rays(const FrameContext& frame, GLuint depth_texture, 
     pixels.set("u_missed", missed);
     pixels.use();
     glBindTextureUnit(unit_frame_depth, depth_texture);
-    bind_split_inputs(applied_, samples);
+    bind_stage_inputs(applied_, samples);
     // Images of the formats the marches bind there (unwritten in this stage).
     glBindImageTexture(0, applied_.fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, applied_.info.back().get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
@@ -230,7 +230,7 @@ bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, con
     glProgramUniform2fv(pixels.id(), pixels.location("u_offsets"), 8, samples.offsets);
     pixels.use();
     glBindTextureUnit(unit_frame_depth, depth_texture);
-    bind_split_inputs(out, &samples);
+    bind_stage_inputs(out, &samples);
     glBindImageTexture(0, out.split_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, out.info.back().get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);  // unwritten here
     glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.split_list.get());
@@ -259,7 +259,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glNamedBufferSubData(list.get(), 0, sizeof header, &header);
     glBindTextureUnit(unit_frame_depth, depth_texture);
     const glm::ivec2 size(frame.width, frame.height);
-    bind_split_inputs(out, samples);
+    bind_stage_inputs(out, samples);
     // The grid at `spacing` into `image` (its points' info into `info`, 0: none) from the one at
     // twice it (`coarser`, its points' info `coarser_info`), listing into `list` the points that
     // march, then marching them.

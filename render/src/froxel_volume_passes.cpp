@@ -266,15 +266,9 @@ void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture, c
         return;  // the standard apply reads the volume everywhere; fog-aware, every pixel marches
     const ScopedPassTimer timed(timers_[classify]);
     const ShaderProgram& p = classify_.get(options_.height_fog.enabled());
-    classified_ = false;  // the apply's library: every pixel's taps still to be decided
-    bind_apply(p);
-    bind_light(p, frame);
+    classified_ = false;              // the apply's library: every pixel's taps still to be decided
+    bind_pixel_program(p, frame, 1);  // the frame's pixels (froxel_frame.glsl), its depth on unit 0
     classified_ = true;
-    p.set("u_depth", 0);
-    p.set("u_raster", glm::ivec2(frame.width, frame.height));
-    const glm::vec2 planes = depth_planes(frame);
-    p.set("u_near_plane", planes.x);
-    p.set("u_far_plane", planes.y);
     p.set("u_tolerance", classify_tolerance);
     p.set("u_edge_slices", classify_edge_slices);
     p.use();
