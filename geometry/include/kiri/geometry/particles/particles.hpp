@@ -64,7 +64,7 @@ struct ParticleOptions {
     double candidates = 5.0;
     //! Sweeps that even out the particles' spacing across the fog after the elimination
     //! (relax_particles.hpp); 0: the blue noise as eliminated.
-    int relax = 30;
+    int relax = 15;
     // The attenuation buffer and the billboards (render).
     int resolution = 128;
     bool half_float = true;  //!< storage of log Gamma
