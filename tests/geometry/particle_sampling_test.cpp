@@ -137,8 +137,8 @@ TEST(ParticleSampling, BlueNoise)
 // A blanket one particle deep (40 m of fog, particles ~100 m apart across it), seen from above:
 // its column's optical depth, the particles' footprints summed, at points of the inner square.
 // Blue noise still crowds and thins out; the relaxation's sweeps even it out towards a
-// lattice's (the spread of the columns 0.32 -> 0.21 in 15 sweeps, 0.18 in 30), and keep the density where it was (as many
-// particles in each half as before).
+// lattice's (the spread of the columns 0.32 -> 0.21 in 15 sweeps, 0.18 in 30), and keep the
+// density where it was (as many particles in each half as before).
 TEST(ParticleSampling, RelaxedParticlesEvenOutTheBlanketsColumns)
 {
     const Medium m = slab_medium(2000.0, 100.0, 140.0, true);
