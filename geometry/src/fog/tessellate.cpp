@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/core/error.hpp"
+#include "reference/parallel_rows.hpp"
 
 namespace kiri::geometry {
 namespace {
@@ -274,21 +275,30 @@ double tessellation_error(const BaseSurface& surface, const TriMesh& mesh)
     OpenMesh::VPropHandleT<int> pid;
     if (!mesh.get_property_handle(pid, patch_id_property) || !mesh.has_vertex_texcoords2D())
         throw InputError("", "mesh", "not a tessellation of a base surface (no patch ids or uv)");
+    // Ten points of the surface a triangle: on every core, in blocks of faces (the largest is
+    // the same in any order).
+    const int faces = int(mesh.n_faces()), block = 1024, blocks = (faces + block - 1) / block;
+    std::vector<double> largest(std::size_t(std::max(blocks, 0)), 0.0);
+    detail::for_rows_in_parallel(0, blocks, [&](auto next_block) {
+        for (int k = next_block(); k < blocks; k = next_block())
+            for (int i = k * block; i < std::min(faces, (k + 1) * block); ++i) {
+                glm::dvec2 uv[3];
+                glm::dvec3 p[3];
+                int c = 0, patch = -1;
+                for (auto v : mesh.fv_range(mesh.face_handle(i))) {
+                    const auto tc = mesh.texcoord2D(v);
+                    const auto q = mesh.point(v);
+                    uv[c] = {tc[0], tc[1]};
+                    p[c] = {q[0], q[1], q[2]};
+                    patch = mesh.property(pid, v);
+                    ++c;
+                }
+                largest[std::size_t(k)] = std::max(largest[std::size_t(k)], triangle_error(surface, patch, uv, p));
+            }
+    });
     double e = 0.0;
-    for (auto f : mesh.faces()) {
-        glm::dvec2 uv[3];
-        glm::dvec3 p[3];
-        int c = 0, patch = -1;
-        for (auto v : mesh.fv_range(f)) {
-            const auto tc = mesh.texcoord2D(v);
-            const auto q = mesh.point(v);
-            uv[c] = {tc[0], tc[1]};
-            p[c] = {q[0], q[1], q[2]};
-            patch = mesh.property(pid, v);
-            ++c;
-        }
-        e = std::max(e, triangle_error(surface, patch, uv, p));
-    }
+    for (const double b : largest)
+        e = std::max(e, b);
     return e;
 }
 
