@@ -6,7 +6,7 @@
 #include <glm/geometric.hpp>
 
 #include "kiri/geometry/core/error.hpp"
-#include "reference/parallel_rows.hpp"
+#include "core/parallel_rows.hpp"
 
 namespace kiri::geometry {
 namespace {

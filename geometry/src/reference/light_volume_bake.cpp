@@ -13,7 +13,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "reference/parallel_rows.hpp"
+#include "core/parallel_rows.hpp"
 #include "reference/path_tracer_core.hpp"
 
 namespace kiri::geometry {

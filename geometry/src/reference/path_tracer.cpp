@@ -10,7 +10,7 @@
 #include <glm/geometric.hpp>
 
 #include "reference/path_tracer_core.hpp"
-#include "reference/parallel_rows.hpp"
+#include "core/parallel_rows.hpp"
 #include "reference/terrain_shading.hpp"
 
 namespace kiri::geometry {

@@ -9,7 +9,7 @@
 #include <glm/geometric.hpp>
 
 #include "reference/fog_marcher.hpp"
-#include "reference/parallel_rows.hpp"
+#include "core/parallel_rows.hpp"
 
 namespace kiri::geometry {
 

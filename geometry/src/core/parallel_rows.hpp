@@ -1,5 +1,6 @@
 #pragma once
-// The CPU judges (reference ray marcher, path tracer) render an image's rows on every core.
+// Rows of work on every core: the CPU judges (reference ray marcher, path tracer, the light
+// volume's bake) render an image's rows, the tessellation measures its triangles.
 #include <algorithm>
 #include <atomic>
 #include <thread>
