@@ -129,10 +129,6 @@ void main()
     vec4 tile = imageLoad(io_tiles, t);
     tile.w = march(t);
     imageStore(io_tiles, t, tile);
-    if (tile.w < 0.0) {
-        uint i = atomicAdd(fm_listed, 1u);
-        if (i % 64u == 0u)
-            atomicAdd(fm_dispatch.x, 1u);
-        fm_pixels[i] = uint(t.x) | uint(t.y) << 16;
-    }
+    if (tile.w < 0.0)
+        fm_list(uint(t.x) | (uint(t.y) << 16), 64u);
 }

@@ -58,15 +58,6 @@ float fog_before(vec2 uv, float depth, out float t)
     return (enter + along) * depth / reach;
 }
 
-// Lists a pixel for its samples' marches: one invocation a sample (froxel_pixels.comp), so a
-// group of 64 takes 64 / u_samples pixels.
-void list_march(uint entry)
-{
-    uint i = atomicAdd(fm_listed, 1u);
-    if (i % uint(64 / u_samples) == 0u)
-        atomicAdd(fm_dispatch.x, 1u);
-    fm_pixels[i] = entry;
-}
 
 void main()
 {
@@ -148,7 +139,8 @@ void main()
                 shell = vec2(min(shell.x, nearest - 1.5 * under), 3e38);
                 atomicAdd(fm_sampled, 1u);
             }
-            list_march(uint(px.x) | (uint(px.y) << 16));
+            // One invocation a sample (froxel_pixels.comp): a group of 64 takes 64 / u_samples pixels.
+            fm_list(uint(px.x) | (uint(px.y) << 16), uint(64 / u_samples));
             imageStore(o_split_ray, px, vec4(shell, 0.0, 0.0));  // read only where the pixel is listed
         }
     }

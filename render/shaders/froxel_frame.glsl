@@ -45,3 +45,13 @@ layout(std430, binding = 0) buffer FrameMarches {
     uint fm_unused;
     uint fm_pixels[];
 };
+
+// Lists `entry` for a march whose groups of 64 invocations take `per_group` entries each,
+// counting the indirect dispatch's groups as the list grows.
+void fm_list(uint entry, uint per_group)
+{
+    uint i = atomicAdd(fm_listed, 1u);
+    if (i % per_group == 0u)
+        atomicAdd(fm_dispatch.x, 1u);
+    fm_pixels[i] = entry;
+}

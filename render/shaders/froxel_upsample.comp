@@ -133,10 +133,7 @@ void main()
             if (!all(frame_on_coarser(t, u_spacing)))  // not a coarser point's own pixel
                 atomicAdd(group_upsampled, 1u);
         } else {
-            uint i = atomicAdd(fm_listed, 1u);
-            if (i % 64u == 0u)
-                atomicAdd(fm_dispatch.x, 1u);
-            fm_pixels[i] = uint(t.x) | (uint(t.y) << 16);
+            fm_list(uint(t.x) | (uint(t.y) << 16), 64u);
         }
     }
     barrier();

@@ -32,6 +32,22 @@ struct MarchHeader {
 };
 static_assert(sizeof(MarchHeader) == 32);
 
+// A list of `entries` points after its header.
+Buffer make_march_list(std::size_t entries)
+{
+    Buffer list = make_buffer();
+    glNamedBufferStorage(list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * entries), nullptr,
+                         GL_DYNAMIC_STORAGE_BIT);
+    return list;
+}
+
+// The list emptied: no points, no groups to dispatch.
+void clear_march_list(const Buffer& list)
+{
+    const MarchHeader header;
+    glNamedBufferSubData(list.get(), 0, sizeof header, &header);
+}
+
 // Points across and down of the grid at `spacing` (froxel_frame.glsl's frame_grid).
 glm::ivec2 grid_points(const glm::ivec2& size, int spacing)
 {
@@ -75,16 +91,12 @@ void FroxelPass::PixelFog::resize(int w, int h)
     glTextureParameteri(split_ray.get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     split_fog = make_fog_image(size);
     // Each pixel is listed once at most.
-    split_list = make_buffer();
-    glNamedBufferStorage(split_list.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(w) * h),
-                         nullptr, GL_DYNAMIC_STORAGE_BIT);
+    split_list = make_march_list(std::size_t(w) * h);
     splits_run = false;
     // Refinement k lists points of the grid at half the spacing of grid k.
     for (std::size_t k = 0; k < sample_spacings.size(); ++k) {
         const glm::ivec2 n = grid_points(size, sample_spacings[k] / 2);
-        lists[k] = make_buffer();
-        glNamedBufferStorage(lists[k].get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(n.x) * n.y),
-                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        lists[k] = make_march_list(std::size_t(n.x) * n.y);
     }
 }
 
@@ -159,13 +171,10 @@ void FroxelPass::bind_tile_rays()
 {
     const int tiles = v_->size.x * v_->size.y;
     if (!tile_rays_ || tile_rays_capacity_ < tiles) {
-        tile_rays_ = make_buffer();
-        glNamedBufferStorage(tile_rays_.get(), GLsizeiptr(sizeof(MarchHeader) + sizeof(GLuint) * std::size_t(tiles)),
-                             nullptr, GL_DYNAMIC_STORAGE_BIT);
+        tile_rays_ = make_march_list(std::size_t(tiles));
         tile_rays_capacity_ = tiles;
     }
-    const MarchHeader header;
-    glNamedBufferSubData(tile_rays_.get(), 0, sizeof header, &header);
+    clear_march_list(tile_rays_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tile_rays_.get());
 }
 
@@ -202,8 +211,7 @@ bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, con
         !samples.offsets)
         return false;
     const int count = std::min(samples.count, 8);
-    const MarchHeader header;
-    glNamedBufferSubData(out.split_list.get(), 0, sizeof header, &header);
+    clear_march_list(out.split_list);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.split_list.get());
     // The pixels whose samples see different fog (two surfaces, or one fogged unevenly), listed
     // with bounds of their rays' stretch of the shell.
@@ -254,9 +262,8 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
     if (color_texture != 0 && tolerance > 0.0f)
         glCopyImageSubData(color_texture, GL_TEXTURE_2D, 0, 0, 0, 0, out.background.get(), GL_TEXTURE_2D, 0, 0, 0, 0,
                            frame.width, frame.height, 1);
-    const MarchHeader header;
     for (const Buffer& list : out.lists)
-        glNamedBufferSubData(list.get(), 0, sizeof header, &header);
+        clear_march_list(list);
     glBindTextureUnit(unit_frame_depth, depth_texture);
     const glm::ivec2 size(frame.width, frame.height);
     bind_stage_inputs(out, samples);
