@@ -8,7 +8,13 @@
 // diagonal over u_bend): a fog's shore or wall crosses the cell within metres, and interpolated
 // between the vertices the shade would spill over the sunlit ground beside it. Phase 2, per
 // texel of the fine map (u_fine samples a cell) in the cells around a marked vertex: tau_sun at
-// the mesh's ground there; ground_shade.glsl reads it in their triangles.
+// the mesh's ground there, the Medium's part and the height fog's; ground_shade.glsl reads it in
+// their triangles. Phase 3, per such texel out of the Medium's shade: the Medium's part carried
+// on below 0 as its neighbours' run (2 a - b from the texels a and b beyond it in a row or a
+// column), so that filtered between the texels it meets 0 where the shade ends. A fog's shore on
+// a slope or its wall casts a shade that grows along the ground at a steady rate from that
+// line; read as 0 beyond it, the filter drew the line at the next texel, and the shade spilled
+// over the sunlit ground up to a texel out (a dense fog's: nearly black).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };  // u_stride floats each, the position first
 layout(std430, binding = 1) buffer Shade { vec2 shade[]; };
@@ -16,7 +22,7 @@ layout(std430, binding = 2) buffer Refined {  // phase 1: the vertices marked (t
     uint refined;
     uint marked_vertices[];
 };
-layout(r32f, binding = 0) writeonly uniform image2D o_fine;
+layout(rg32f, binding = 0) uniform image2D io_fine;  // the Medium's tau_sun (signed: phase 3), the height fog's
 uniform vec3 u_sun_direction;
 uniform int u_vertices;
 uniform int u_stride;
@@ -71,6 +77,32 @@ void main()
         }
         return;
     }
+    if (u_phase == 3) {
+        int side = 2 * u_fine + 1;
+        if (id.y >= int(refined) || id.x >= side * side)
+            return;
+        int vertex = int(marked_vertices[id.y]);
+        ab = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine + ivec2(id.x % side, id.x / side);
+        ivec2 size = imageSize(io_fine);
+        if (any(lessThan(ab, ivec2(0))) || any(greaterThanEqual(ab, size)))
+            return;
+        vec2 own = imageLoad(io_fine, ab).rg;
+        if (own.r > 0.0)
+            return;
+        float carried = -3e38;  // the least shade beyond the line of those the runs give
+        const ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+        for (int k = 0; k < 4; ++k) {
+            ivec2 a = ab + steps[k], b = ab + 2 * steps[k];
+            if (any(lessThan(b, ivec2(0))) || any(greaterThanEqual(b, size)))
+                continue;
+            float ta = imageLoad(io_fine, a).r, tb = imageLoad(io_fine, b).r;
+            if (ta > 0.0 && tb > ta)  // written (the sentinel is negative) and growing away
+                carried = max(carried, 2.0 * ta - tb);
+        }
+        if (carried > -3e38)
+            imageStore(io_fine, ab, vec4(min(carried, 0.0), own.g, 0.0, 0.0));
+        return;
+    }
     if (u_phase == 2) {
         // id.y a marked vertex, id.x a texel of the fine map in the four cells around it (texel
         // (a, b) lies on the cells' corners at every u_fine-th texel). Neighbours marked both
@@ -89,8 +121,9 @@ void main()
         p = f.x >= f.y ? p00 + f.x * (p10 - p00) + f.y * (p11 - p10) : p00 + f.x * (p11 - p01) + f.y * (p01 - p00);
     }
     float tau = sun_optical_depth(p, u_sun_direction, 0.5);
+    float haze = v >= 0 ? 0.0 : height_fog_sun(p, u_sun_direction);
     if (v >= 0)
         shade[v] = vec2(tau, 0.0);
     else
-        imageStore(o_fine, ab, vec4(tau));
+        imageStore(io_fine, ab, vec4(tau - haze, haze, 0.0, 0.0));
 }

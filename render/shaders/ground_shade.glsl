@@ -3,7 +3,8 @@
 // vertices (refine > 0 at any of the triangle's corners): a fog's shore crossing a 75 m cell
 // within metres, interpolated, spilled its shade over the sunlit ground beside it (the wind
 // view: 4.4 % off the reference, with the fine map 2.8 %).
-uniform sampler2D u_gs_fine;  // tau_sun at u_gs_fine_scale samples a cell (linear filtering)
+uniform sampler2D u_gs_fine;  // tau_sun at u_gs_fine_scale samples a cell (linear filtering): the
+                              // Medium's part (below 0 beyond its shade: ground_shade.comp), the height fog's
 uniform vec2 u_gs_origin;     // the DEM's first sample (m)
 uniform vec2 u_gs_spacing;    // its spacing (m)
 uniform float u_gs_fine_scale;
@@ -13,5 +14,6 @@ float ground_sun_depth(vec3 p, vec2 shade)
     if (!(shade.y > 0.0))
         return shade.x;
     vec2 texel = (p.xy - u_gs_origin) / u_gs_spacing * u_gs_fine_scale + 0.5;
-    return textureLod(u_gs_fine, texel / vec2(textureSize(u_gs_fine, 0)), 0.0).r;
+    vec2 tau = textureLod(u_gs_fine, texel / vec2(textureSize(u_gs_fine, 0)), 0.0).rg;
+    return max(tau.r, 0.0) + tau.g;
 }

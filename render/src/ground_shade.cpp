@@ -121,7 +121,7 @@ bool GroundShade::update(const SunVolume* sun, const glm::vec3& sun_direction, G
         const glm::ivec2 size = (glm::ivec2(grid.nx, grid.ny) - 1) * fine_scale_ + 1;
         if (!fine_ || size != fine_size_) {
             fine_ = make_texture(GL_TEXTURE_2D);
-            glTextureStorage2D(fine_.get(), 1, GL_R32F, size.x, size.y);
+            glTextureStorage2D(fine_.get(), 1, GL_RG32F, size.x, size.y);
             glTextureParameteri(fine_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
             glTextureParameteri(fine_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
             glTextureParameteri(fine_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -132,7 +132,13 @@ bool GroundShade::update(const SunVolume* sun, const glm::vec3& sun_direction, G
         const int side = 2 * fine_scale_ + 1;
         const double texels = double(refined_) * double(side * side);
         p.set("u_sv_steps", std::clamp(int(fine_sample_budget / texels), min_fine_march_steps, fine_march_steps));
-        glBindImageTexture(0, fine_.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+        // Texels no marked vertex's cells hold stay below 0 (phase 3 carries no run from them).
+        const float unwritten[2] = {-1.0f, 0.0f};
+        glClearTexImage(fine_.get(), 0, GL_RG, GL_FLOAT, unwritten);
+        glBindImageTexture(0, fine_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
+        glDispatchCompute(groups(side * side), groups(refined_), 1);
+        glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        p.set("u_phase", 3);  // the Medium's part carried on below 0 beyond its shade
         glDispatchCompute(groups(side * side), groups(refined_), 1);
         glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     }

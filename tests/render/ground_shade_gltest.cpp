@@ -243,6 +243,70 @@ TEST_F(GroundShadeGl, AFogsWallWithinACellShadesTheGroundWhereTheWallStands)
     EXPECT_LT(worst, 0.12) << "at the wall's kink, between the fine map's samples (interpolated: 0.35)";
 }
 
+// A dense fog's shore on a slope: a lake of fog (0.3 per metre, 10 m of visibility) with a flat
+// top 43 m up over ground rising eastwards at 1 in 10 (z = 0.1 (x + 320), 17 samples 80 m apart),
+// the shore at x = 110 within a cell, the sun 30 degrees up in the east: under the fog the sun's
+// path leaves through the top, tau = sigma (43 - z) / sin(30 deg), growing by 0.06 a metre away
+// from the shore, and nothing shades the ground beyond it. Read as 0 on the shore's sunlit side,
+// tau filtered between the fine map's texels (27 m apart) spilled the fog's shade over the
+// sunlit ground up to a texel beyond the shore: there the Medium's part is carried on below 0.
+TEST_F(GroundShadeGl, ADenseFogsShoreOnASlopeShadesTheGroundUpToTheShore)
+{
+    constexpr double extinction = 0.3, top = 43.0, rise = 0.1, shore = top / rise - 320.0;
+    g::Heightfield hf;
+    hf.nx = hf.ny = 17;
+    hf.dx = hf.dy = 80.0;
+    hf.x0 = hf.y0 = -640.0;
+    hf.z.resize(std::size_t(hf.nx) * std::size_t(hf.ny));
+    hf.valid.assign(hf.z.size(), 1);
+    for (int j = 0; j < hf.ny; ++j)
+        for (int i = 0; i < hf.nx; ++i)
+            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] = rise * (hf.x_of(i) + 320.0);
+    const g::Terrain ramp(std::move(hf));
+    g::MediumGrid grid;
+    grid.nx = grid.ny = 3;
+    grid.dx = grid.dy = 640.0;
+    grid.x0 = grid.y0 = -640.0;
+    grid.floor.assign(9, -200.0);
+    grid.bottom.assign(9, -200.0);
+    grid.top.assign(9, top);
+    grid.coverage.assign(9, 1.0);
+    g::MediumOptions options;
+    options.extinction = extinction;
+    options.top_density = 1.0;
+    g::MediumDetail uniform;
+    uniform.detail = 0.0;
+    const g::Medium fog(std::move(grid), options, uniform);
+    constexpr double centre = shore, across = 240.0;
+    constexpr int size = 64;
+    int refined = 0;
+    const std::vector<double> got = sun_let_through_across(ramp, fog, centre, across, size, &refined);
+    double sum = 0.0, worst = 0.0, lit_sum = 0.0;
+    int lit = 0;
+    for (int x = 0; x < size; ++x) {
+        const double ground = centre + ((x + 0.5) / size - 0.5) * across;
+        const double z = rise * (ground + 320.0);
+        const double want = std::exp(-extinction * std::max(top - z, 0.0) / 0.5);
+        const double off = std::abs(got[std::size_t(x)] - want);
+        sum += off;
+        worst = std::max(worst, off);
+        if (ground > shore + 2.0) {
+            lit_sum += got[std::size_t(x)];
+            ++lit;
+        }
+    }
+    std::printf(
+        "    %d vertices refined; mean |dT| %.4f, worst %.4f; the sunlit ground beyond the shore lets %.4f through\n",
+        refined, sum / size, worst, lit_sum / std::max(lit, 1));
+    EXPECT_GT(refined, 0);
+    EXPECT_GT(lit, 20);
+    // Measured: 0.0009, 0.0051 and 1.0000; with tau read as 0 beyond the shore 0.0100, 0.149
+    // and 0.988.
+    EXPECT_LT(sum / size, 0.004) << "mean |dT| over the pixel columns";
+    EXPECT_LT(worst, 0.05) << "at the shore";
+    EXPECT_GT(lit_sum / std::max(lit, 1), 0.995) << "the sunlit ground beyond the shore keeps its sun";
+}
+
 // Beyond the DEM's edge the fog's wall shades the surround: a slab 60 m deep over the whole
 // DEM (5 x 5 samples 160 m apart), the sun 30 degrees up in the east, so the ground west of the
 // DEM lies in the wall's shadow up to 104 m out, where the sun's path passes over the wall's top
