@@ -96,6 +96,24 @@ void main()
             uv += u_offsets[sample_index] / vec2(u_size);
             depth = frame_view_depth(texelFetch(u_ms_depth, px, sample_index).r);
             shell = froxel_sample_stretch(px, u_offsets[sample_index], texelFetch(u_split_ray, px, 0).xy);
+            // Its own fog before its surface: the pixels around it may all see another surface
+            // (the nearer of two), or reach the fog's top farther on, and their stretches end
+            // before its fog or after its fog's sunlit skin, most of a dense fog's light (the dense
+            // lake from afar: 7 of its 20 pixels over 10 % off the reference). Begun earlier only
+            // where the fog missed so would be opaque and its steps stay denser than the skin: the
+            // estimate takes its column as level, and in thin fog the steps spread over air (the
+            // ridge through the blanket: 0.51 -> 0.58 % begun earlier wherever the estimate's
+            // entry lay before).
+            vec4 skin;
+            float through, sigma;
+            float under = fog_before(uv, depth, through, skin, sigma);
+            float entry = depth - under;  // where the ray meets the top of its fog
+            float start = depth - 1.5 * under;
+            if (under > 0.0 && sigma * (shell.x - entry) > 1.0 &&
+                sigma * (min(shell.y, depth) - start) > float(u_fx_pixel_steps))
+                shell.x = start;
+            if (under > 0.0 && shell.y < entry)
+                shell.y = depth;
         } else {
             depth = frame_depth(px);
             shell = u_fx_shell != 0 ? froxel_pixel_shell(px) : shell;

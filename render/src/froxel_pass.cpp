@@ -76,7 +76,16 @@ std::vector<std::string_view> classify_libraries()
 std::vector<std::string_view> edge_libraries()
 {
     std::vector<std::string_view> files = pixel_libraries("depth_samples.glsl");
-    files.push_back("froxel_edges.comp");
+    files.insert(files.end(), {"froxel_fog_before.glsl", "froxel_edges.comp"});
+    return files;
+}
+
+// Those of the pixels' marches (froxel_pixels.comp), whose split samples bound their own rays by
+// the fog before their surfaces.
+std::vector<std::string_view> split_libraries()
+{
+    std::vector<std::string_view> files = pixel_libraries("froxel_fog_before.glsl");
+    files.push_back("froxel_pixels.comp");
     return files;
 }
 
@@ -90,10 +99,9 @@ FroxelPass::FroxelPass()
       accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
-      integrate_(light_libraries("froxel_integrate.comp")), classify_(classify_libraries()),
-      pixels_(pixel_libraries("froxel_pixels.comp")), upsample_(pixel_libraries("froxel_upsample.comp")),
-      apply_program_({"froxel_apply.comp"}), readback_({"froxel_frame.glsl", "froxel_readback.comp"}),
-      edges_(edge_libraries())
+      integrate_(light_libraries("froxel_integrate.comp")), classify_(classify_libraries()), pixels_(split_libraries()),
+      upsample_(pixel_libraries("froxel_upsample.comp")), apply_program_({"froxel_apply.comp"}),
+      readback_({"froxel_frame.glsl", "froxel_readback.comp"}), edges_(edge_libraries())
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);
