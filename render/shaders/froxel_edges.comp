@@ -66,6 +66,7 @@ void main()
             float t[ds_max], lit[ds_max];
             vec4 skin[ds_max];
             float fogged = 0.0, sigma;
+            fog_before_pixel = px;
             for (int s = 0; s < ds_max && s < u_samples; ++s) {
                 vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
                 under = max(under, fog_before(uv, ds_view_depth(ds[s], u_near_plane, u_far_plane), t[s], skin[s], sigma));

@@ -11,6 +11,56 @@
 // not all the fog over its own column. The height fog's is its closed form from the eye to the
 // surface: a surface seen at a slant through its extent's wall (the DEM's edge) lies in haze on
 // one side of the wall and in none on the other, within one pixel.
+// The pixel whose samples the caller estimates (froxel_edges.comp; else none, (-1, -1)): where the
+// column at a sample's surface holds no fog, the fog may still lie before it in other columns (a
+// shore seen from afar beyond the lake its ray crossed: the dense lake's far shores, pixels one
+// sample of which is in fog and the rest not, left unsplit), so the ray is probed at four points
+// of the stretch the rays of the pixels around it spend in the Medium's shell.
+ivec2 fog_before_pixel = ivec2(-1);
+
+float fog_before_probed(vec3 ray, float depth, float haze, inout float t, inout vec4 skin, inout float sigma)
+{
+    if (fog_before_pixel.x < 0)
+        return 0.0;
+    vec2 shell = vec2(3e38, 0.0);
+    for (int y = -1; y <= 1; ++y)
+        for (int x = -1; x <= 1; ++x) {
+            vec2 s = froxel_pixel_shell(clamp(fog_before_pixel + ivec2(x, y), ivec2(0), u_size - 1));
+            if (s.y > s.x)
+                shell = vec2(min(shell.x, s.x), max(shell.y, s.y));
+        }
+    // The same points for every sample of the pixel (those before its surface): points spread
+    // over each sample's own stretch told samples of the same fog apart.
+    float a = max(shell.x, 0.0), b = shell.y;
+    if (!(b > a) || !(depth > a))
+        return 0.0;
+    const int probes = 4;
+    float inside = 0.0, coverage = 0.0, first = -1.0;
+    for (int k = 0; k < probes; ++k) {
+        float v = a + (float(k) + 0.5) / float(probes) * (b - a);
+        if (!(v < depth))
+            break;
+        vec3 x = u_fx_eye + ray * v;
+        if (!shell_covers(x.xy))
+            continue;
+        vec4 c = shell_column(x.xy);
+        if (x.z < c.z && x.z > c.x && c.w > 0.0) {
+            inside += 1.0;
+            coverage += c.w;
+            first = first < 0.0 ? v : first;
+        }
+    }
+    if (!(inside > 0.0))
+        return 0.0;
+    sigma = u_md_extinction * coverage / inside;
+    float along = inside / float(probes) * (b - a) * length(ray);
+    float fog = sigma * along;
+    t = exp(-fog - haze);
+    float entry = max(first - 0.5 * (b - a) / float(probes), a);
+    skin = vec4(u_fx_eye + ray * entry, 1.0 - exp(-fog));
+    return depth - entry;
+}
+
 float fog_before(vec2 uv, float depth, out float t, out vec4 skin, out float sigma)
 {
     vec3 ray = fx_ray(uv);
@@ -30,7 +80,7 @@ float fog_before(vec2 uv, float depth, out float t, out vec4 skin, out float sig
     vec4 c = shell_column(q.xy);  // floor, bottom, top, coverage
     float over = c.z > c.x ? c.z - q.z : 0.0;
     if (!(over > 0.0) || !(c.w > 0.0))
-        return 0.0;
+        return fog_before_probed(ray, depth, haze, t, skin, sigma);
     float along = min(over / max(back.z, 1e-3), leave - enter);
     sigma = u_md_extinction * c.w;
     float fog = sigma * along;

@@ -167,9 +167,9 @@ TEST(KiriBench, TheDenseLakeIsLitAlongItsSunlitSkin)
     }
     EXPECT_EQ(judged, 3);
     // And combined's p99 (views.md's last column, "mean / p99 %"): the shores' and the hills'
-    // shadows' pixels, where a sample's fog or its sunlit skin differs from the centre's. 10.6 %
-    // since the samples split by their fog's light and the ground's shade ends at the shore (19.5 %
-    // before).
+    // shadows' pixels, where a sample's fog or its sunlit skin differs from the centre's. 9.3 %
+    // since the samples split by their fog's light, the ground's shade ends at the shore and the
+    // fog before a far shore is probed along the samples' rays (19.5 % before): the goal's 10 %.
     std::istringstream table(kiri::test::read_all(dir / "views.md"));
     double p99 = -1.0;
     while (std::getline(table, line))
@@ -179,7 +179,7 @@ TEST(KiriBench, TheDenseLakeIsLitAlongItsSunlitSkin)
             p99 = std::stod(line.substr(slash + 1));
         }
     EXPECT_GT(p99, 0.0);
-    EXPECT_LT(p99, 12.0) << "combined's p99 over the dense lake, in per cent";
+    EXPECT_LT(p99, 10.0) << "combined's p99 over the dense lake, in per cent";
     fs::remove_all(dir);
 }
 

@@ -271,7 +271,9 @@ TEST_F(FroxelGl, ADenseFogsTopInAndOutOfTheHillsShadowsFogsEachSampleInItsOwnLig
     // fog before their surfaces (its transmittance) are alike, their light is not. Measured:
     // split by the transmittance alone, where the reference's footprint holds two surfaces or
     // its fog bends 1.61 % off the reference through its samples, the whole frame 1.57 % (p99
-    // 18.2 %); split by the light at the fog's top too 1.26 % (1.23 %, p99 15.6 %).
+    // 18.2 %); split by the light at the fog's top too 1.26 % (1.23 %, p99 15.6 %); and with the
+    // ground's shade ending at the shore and the fog before a sample probed in the columns its ray
+    // crosses, 0.86 % (0.84 %, p99 14.1 %).
     Camera c;
     c.position = {-2500.0, -2500.0, 1200.0};
     c.target = {200.0, 200.0, 60.0};
@@ -286,7 +288,7 @@ TEST_F(FroxelGl, ADenseFogsTopInAndOutOfTheHillsShadowsFogsEachSampleInItsOwnLig
         "mean %.4f; whole frame %.4f (p99 %.4f) over %d pixels\n",
         j.split, split.size(), judged, edge_mean, j.whole.mean_relative, j.whole.p99_relative, j.whole.fog_pixels);
     EXPECT_GT(judged, 2000);
-    EXPECT_LT(edge_mean, 0.014);
-    EXPECT_LT(j.whole.mean_relative, 0.014);
-    EXPECT_LT(j.whole.p99_relative, 0.17);
+    EXPECT_LT(edge_mean, 0.012);
+    EXPECT_LT(j.whole.mean_relative, 0.012);
+    EXPECT_LT(j.whole.p99_relative, 0.16);
 }
