@@ -225,6 +225,29 @@ g::Terrain egg_crate(double half)
     });
 }
 
+// The hills under `fog` from `c` at 96 x 54 (the froxels of `o`, reaching every distance), judged where the reference's footprint holds two
+// surfaces or its fog bends (through the frame's samples there): the whole frame, and the mean
+// over those pixels and how many.
+struct HillsJudged {
+    Judged frame;
+    double edge_mean = 0.0;
+    int judged = 0;
+};
+HillsJudged judge_hills(g::FroxelOptions o, const g::Medium& fog, const Camera& c)
+{
+    o.far = 0.0;
+    HillsJudged h{judge(egg_crate(3000.0), fog, o, c, 96, 54)};
+    const Judged& j = h.frame;
+    std::vector<std::size_t> split = j.depth_edges;
+    split.insert(split.end(), j.fog_edges.begin(), j.fog_edges.end());
+    std::tie(h.edge_mean, h.judged) = j.mean_over(split);
+    std::printf(
+        "    %d pixels split by the apply; %zu of the reference's with two surfaces or fog bending (%d judged): "
+        "mean %.4f; whole frame %.4f (p99 %.4f) over %d pixels\n",
+        j.split, split.size(), h.judged, h.edge_mean, j.whole.mean_relative, j.whole.p99_relative, j.whole.fog_pixels);
+    return h;
+}
+
 }  // namespace
 
 TEST_F(FroxelGl, AFlatFogTopCuttingHillsFromAfarFogsEachSampleAsFarAsItsOwnSurface)
@@ -244,21 +267,12 @@ TEST_F(FroxelGl, AFlatFogTopCuttingHillsFromAfarFogsEachSampleAsFarAsItsOwnSurfa
     Camera c;
     c.position = {-3500.0, -3500.0, 700.0};
     c.target = {1000.0, 1000.0, 60.0};
-    g::FroxelOptions o = small(24, 14, 32);
-    o.far = 0.0;
-    const Judged j = judge(egg_crate(3000.0), slab(-10.0, 100.0, 0.02, 3000.0), o, c, 96, 54);
-    std::vector<std::size_t> split = j.depth_edges;
-    split.insert(split.end(), j.fog_edges.begin(), j.fog_edges.end());
-    const auto [edge_mean, judged] = j.mean_over(split);
-    std::printf(
-        "    %d pixels split by the apply; %zu of the reference's with two surfaces or fog bending (%d judged): "
-        "mean %.4f; whole frame %.4f (p99 %.4f) over %d pixels\n",
-        j.split, split.size(), judged, edge_mean, j.whole.mean_relative, j.whole.p99_relative, j.whole.fog_pixels);
-    EXPECT_GT(j.split, 300);
-    EXPECT_GT(judged, 300);
-    EXPECT_LT(edge_mean, 0.02);
-    EXPECT_LT(j.whole.mean_relative, 0.02);
-    EXPECT_LT(j.whole.p99_relative, 0.15);
+    const HillsJudged h = judge_hills(small(24, 14, 32), slab(-10.0, 100.0, 0.02, 3000.0), c);
+    EXPECT_GT(h.frame.split, 300);
+    EXPECT_GT(h.judged, 300);
+    EXPECT_LT(h.edge_mean, 0.02);
+    EXPECT_LT(h.frame.whole.mean_relative, 0.02);
+    EXPECT_LT(h.frame.whole.p99_relative, 0.15);
 }
 
 TEST_F(FroxelGl, ADenseFogsTopInAndOutOfTheHillsShadowsFogsEachSampleInItsOwnLight)
@@ -277,18 +291,9 @@ TEST_F(FroxelGl, ADenseFogsTopInAndOutOfTheHillsShadowsFogsEachSampleInItsOwnLig
     Camera c;
     c.position = {-2500.0, -2500.0, 1200.0};
     c.target = {200.0, 200.0, 60.0};
-    g::FroxelOptions o = small(24, 14, 32);
-    o.far = 0.0;
-    const Judged j = judge(egg_crate(3000.0), slab(-10.0, 100.0, 0.3, 3000.0), o, c, 96, 54);
-    std::vector<std::size_t> split = j.depth_edges;
-    split.insert(split.end(), j.fog_edges.begin(), j.fog_edges.end());
-    const auto [edge_mean, judged] = j.mean_over(split);
-    std::printf(
-        "    %d pixels split by the apply; %zu of the reference's with two surfaces or fog bending (%d judged): "
-        "mean %.4f; whole frame %.4f (p99 %.4f) over %d pixels\n",
-        j.split, split.size(), judged, edge_mean, j.whole.mean_relative, j.whole.p99_relative, j.whole.fog_pixels);
-    EXPECT_GT(judged, 2000);
-    EXPECT_LT(edge_mean, 0.012);
-    EXPECT_LT(j.whole.mean_relative, 0.012);
-    EXPECT_LT(j.whole.p99_relative, 0.16);
+    const HillsJudged h = judge_hills(small(24, 14, 32), slab(-10.0, 100.0, 0.3, 3000.0), c);
+    EXPECT_GT(h.judged, 2000);
+    EXPECT_LT(h.edge_mean, 0.012);
+    EXPECT_LT(h.frame.whole.mean_relative, 0.012);
+    EXPECT_LT(h.frame.whole.p99_relative, 0.16);
 }

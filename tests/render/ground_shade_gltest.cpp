@@ -28,6 +28,17 @@ using kiri::render::SunLight;
 
 constexpr double sigma = 0.01, thickness = 100.0;  // the slab: 1/m, m
 
+// A Medium of `extinction` (1/m) on `grid`, even from its bottom to its top, without detail.
+g::Medium uniform_medium(g::MediumGrid grid, double extinction)
+{
+    g::MediumOptions options;
+    options.extinction = extinction;
+    options.top_density = 1.0;
+    g::MediumDetail uniform;
+    uniform.detail = 0.0;
+    return g::Medium(std::move(grid), options, uniform);
+}
+
 // The Medium on a grid of `spacing` metres over [-320, 320]^2, from the ground to `thickness`,
 // where `covered` says (coverage 1, else 0).
 template <class Covered>
@@ -46,12 +57,7 @@ g::Medium medium_where(double spacing, double extinction, Covered covered)
         for (int i = 0; i < grid.nx; ++i)
             grid.coverage[std::size_t(j) * std::size_t(grid.nx) + std::size_t(i)] =
                 covered(grid.x0 + i * spacing) ? 1.0 : 0.0;
-    g::MediumOptions options;
-    options.extinction = extinction;
-    options.top_density = 1.0;
-    g::MediumDetail uniform;
-    uniform.detail = 0.0;
-    return g::Medium(std::move(grid), options, uniform);
+    return uniform_medium(std::move(grid), extinction);
 }
 
 // A flat plain at z = 0 under a uniform slab from the ground to `thickness`, 640 m a side: away
@@ -271,12 +277,7 @@ TEST_F(GroundShadeGl, ADenseFogsShoreOnASlopeShadesTheGroundUpToTheShore)
     grid.bottom.assign(9, -200.0);
     grid.top.assign(9, top);
     grid.coverage.assign(9, 1.0);
-    g::MediumOptions options;
-    options.extinction = extinction;
-    options.top_density = 1.0;
-    g::MediumDetail uniform;
-    uniform.detail = 0.0;
-    const g::Medium fog(std::move(grid), options, uniform);
+    const g::Medium fog = uniform_medium(std::move(grid), extinction);
     constexpr double centre = shore, across = 240.0;
     constexpr int size = 64;
     int refined = 0;
@@ -329,12 +330,7 @@ TEST_F(GroundShadeGl, AFogsWallAtTheDemsEdgeShadesTheSurroundWhereItsShadowFalls
     grid.bottom.assign(n, 0.0);
     grid.top.assign(n, depth);
     grid.coverage.assign(n, 1.0);
-    g::MediumOptions options;
-    options.extinction = extinction;
-    options.top_density = 1.0;
-    g::MediumDetail uniform;
-    uniform.detail = 0.0;
-    const g::Medium fog(std::move(grid), options, uniform);
+    const g::Medium fog = uniform_medium(std::move(grid), extinction);
     constexpr double centre = edge - 100.0, across = 320.0;
     constexpr int size = 64;
     int refined = 0;
