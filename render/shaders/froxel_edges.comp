@@ -76,7 +76,7 @@ void main()
             float gap = largest_gap(t, u_samples, at);
             // Or by the fog's light where its transmittance is alike: a dense fog's sunlit skin
             // meeting the terrain's shadow within the pixel, every sample's fog opaque (the dense
-            // lake: 18 of its 54 pixels over 10 % off the reference, the centre's light for all).
+            // lake: 18 of its 67 pixels over 10 % off the reference, the centre's light for all).
             // (The share lit is at most the fog's share: the terrain's shadow looked up only where
             // that can pass the threshold.)
             bool by_light = false;

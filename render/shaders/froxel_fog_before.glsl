@@ -1,21 +1,23 @@
-// Library (the split pixels' programs: froxel_edges.comp, froxel_pixels.comp). The fog a ray through screen point uv crosses just before its surface at view depth `depth`:
-// the Medium's column where the ray, followed back from the surface, is over the grid (at the
-// surface, or where it crossed the grid's edge on its way to a surface beyond) taken as level,
-// the ray's length under its top within the grid (returned with the stretch beyond the grid, in
-// view depth), what that and the height fog let through (t), and where the ray meets the top of
-// the Medium's fog, its skin, whose light is most of a dense fog's, with the share of the view
-// that fog takes (skin: the point, the share), and its extinction there (sigma, 1/m). Meant
-// to tell the samples of one pixel apart and to bound each one's march, not to light them: the
-// march does that. The grid's edge is a wall of fog: a
-// sample on the ground beyond it saw the wall's fog, one just inside it only the wall's depth,
-// not all the fog over its own column. The height fog's is its closed form from the eye to the
-// surface: a surface seen at a slant through its extent's wall (the DEM's edge) lies in haze on
-// one side of the wall and in none on the other, within one pixel.
-// The pixel whose samples the caller estimates (froxel_edges.comp; else none, (-1, -1)): where the
-// column at a sample's surface holds no fog, the fog may still lie before it in other columns (a
-// shore seen from afar beyond the lake its ray crossed: the dense lake's far shores, pixels one
-// sample of which is in fog and the rest not, left unsplit), so the ray is probed at four points
-// of the stretch the rays of the pixels around it spend in the Medium's shell.
+// Library (the split pixels' programs: froxel_edges.comp, froxel_pixels.comp): fog_before, the
+// fog a ray through screen point uv crosses just before its surface at view depth `depth`. The
+// Medium's column where the ray, followed back from the surface, is over the grid (at the
+// surface, or where it crossed the grid's edge on its way to a surface beyond) is taken as
+// level: the ray's length under its top within the grid (returned with the stretch beyond the
+// grid, in view depth), what that and the height fog let through (t), where the ray meets the
+// top of that fog, its skin, whose light is most of a dense fog's, with the share of the view the
+// fog takes (skin: the point, the share), and its extinction there (sigma, 1/m). Meant to tell
+// the samples of one pixel apart and to bound each one's march, not to light them: the march
+// does that. The grid's edge is a wall of fog: a sample on the ground beyond it saw the wall's
+// fog, one just inside it only the wall's depth, not all the fog over its own column. The height
+// fog's is its closed form from the eye to the surface: a surface seen at a slant through its
+// extent's wall (the DEM's edge) lies in haze on one side of the wall and in none on the other,
+// within one pixel.
+
+// The pixel whose samples the caller estimates (froxel_edges.comp; else none, (-1, -1)): where
+// the column at a sample's surface holds no fog, the fog may still lie before it in other
+// columns (a shore seen from afar beyond the lake its ray crossed: the dense lake's far shores,
+// pixels one sample of which is in fog and the rest not, left unsplit), so the ray is probed at
+// four points of the stretch the rays of the pixels around it spend in the Medium's shell.
 ivec2 fog_before_pixel = ivec2(-1);
 
 float fog_before_probed(vec3 ray, float depth, float haze, inout float t, inout vec4 skin, inout float sigma)

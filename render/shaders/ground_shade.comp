@@ -82,7 +82,8 @@ void main()
         if (id.y >= int(refined) || id.x >= side * side)
             return;
         int vertex = int(marked_vertices[id.y]);
-        ab = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine + ivec2(id.x % side, id.x / side);
+        ivec2 local = ivec2(id.x % side, id.x / side), corner = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine;
+        ab = corner + local;
         ivec2 size = imageSize(io_fine);
         if (any(lessThan(ab, ivec2(0))) || any(greaterThanEqual(ab, size)))
             return;
@@ -92,11 +93,17 @@ void main()
         float carried = -3e38;  // the least shade beyond the line of those the runs give
         const ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
         for (int k = 0; k < 4; ++k) {
-            ivec2 a = ab + steps[k], b = ab + 2 * steps[k];
-            if (any(lessThan(b, ivec2(0))) || any(greaterThanEqual(b, size)))
+            // Runs within the vertex's own cells, which phase 2 wrote whole (beyond them a texel
+            // may be unwritten).
+            ivec2 b = local + 2 * steps[k];
+            if (any(lessThan(b, ivec2(0))) || any(greaterThanEqual(b, ivec2(side))) ||
+                any(greaterThanEqual(corner + b, size)) || any(lessThan(corner + b, ivec2(0))))
                 continue;
-            float ta = imageLoad(io_fine, a).r, tb = imageLoad(io_fine, b).r;
-            if (ta > 0.0 && tb > ta)  // written (the sentinel is negative) and growing away
+            float ta = imageLoad(io_fine, ab + steps[k]).r;
+            if (!(ta > 0.0))
+                continue;
+            float tb = imageLoad(io_fine, corner + b).r;
+            if (tb > ta)  // growing away from the line
                 carried = max(carried, 2.0 * ta - tb);
         }
         if (carried > -3e38)

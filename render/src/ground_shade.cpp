@@ -132,9 +132,6 @@ bool GroundShade::update(const SunVolume* sun, const glm::vec3& sun_direction, G
         const int side = 2 * fine_scale_ + 1;
         const double texels = double(refined_) * double(side * side);
         p.set("u_sv_steps", std::clamp(int(fine_sample_budget / texels), min_fine_march_steps, fine_march_steps));
-        // Texels no marked vertex's cells hold stay below 0 (phase 3 carries no run from them).
-        const float unwritten[2] = {-1.0f, 0.0f};
-        glClearTexImage(fine_.get(), 0, GL_RG, GL_FLOAT, unwritten);
         glBindImageTexture(0, fine_.get(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RG32F);
         glDispatchCompute(groups(side * side), groups(refined_), 1);
         glMemoryBarrier(GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
