@@ -37,7 +37,12 @@ float fog_before_probed(vec3 ray, float depth, float haze, inout float t, inout 
     if (!(b > a) || !(depth > a))
         return 0.0;
     const int probes = 4;
-    float inside = 0.0, coverage = 0.0, first = -1.0;
+    // Each probe in the fog stands for its share of the stretch, or for the ray's way across the
+    // column's depth there if that is shorter: a thin blanket crossed at a slant is no longer for
+    // a stretch of kilometres around it (read as the whole share, it split the default view's
+    // pixels twice as often for nothing).
+    float share = (b - a) / float(probes) * length(ray), slope = max(abs(normalize(ray).z), 1e-3);
+    float inside = 0.0, coverage = 0.0, first = -1.0, along = 0.0;
     for (int k = 0; k < probes; ++k) {
         float v = a + (float(k) + 0.5) / float(probes) * (b - a);
         if (!(v < depth))
@@ -49,13 +54,13 @@ float fog_before_probed(vec3 ray, float depth, float haze, inout float t, inout 
         if (x.z < c.z && x.z > c.x && c.w > 0.0) {
             inside += 1.0;
             coverage += c.w;
+            along += min(share, (c.z - c.x) / slope);
             first = first < 0.0 ? v : first;
         }
     }
     if (!(inside > 0.0))
         return 0.0;
     sigma = u_md_extinction * coverage / inside;
-    float along = inside / float(probes) * (b - a) * length(ray);
     float fog = sigma * along;
     t = exp(-fog - haze);
     float entry = max(first - 0.5 * (b - a) / float(probes), a);
