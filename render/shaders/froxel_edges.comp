@@ -66,7 +66,7 @@ void main()
             float t[ds_max], lit[ds_max];
             vec4 skin[ds_max];
             float fogged = 0.0, sigma;
-            fog_before_pixel = px;
+            fog_before_for_pixel(px);
             for (int s = 0; s < ds_max && s < u_samples; ++s) {
                 vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
                 under = max(under, fog_before(uv, ds_view_depth(ds[s], u_near_plane, u_far_plane), t[s], skin[s], sigma));
@@ -123,14 +123,9 @@ void main()
             // The rays' stretch of the shell: within those of the pixels around it (rasterised at
             // their centres); under a thread of fog narrower than a pixel none may have one, so
             // from the fog's top before the nearest surface on (3e38: each ray's end).
-            vec2 shell = vec2(3e38, 0.0);
-            if (u_fx_shell != 0)
-                for (int y = -1; y <= 1; ++y)
-                    for (int x = -1; x <= 1; ++x) {
-                        vec2 s = froxel_pixel_shell(clamp(px + ivec2(x, y), ivec2(0), u_size - 1));
-                        if (s.y > s.x)
-                            shell = vec2(min(shell.x, s.x), max(shell.y, s.y));
-                    }
+            if (fog_before_pixel != px)  // else known already where the samples' fog was probed
+                fog_before_for_pixel(px);
+            vec2 shell = u_fx_shell != 0 ? fog_before_pixels_shell() : vec2(3e38, 0.0);
             if (!two) {
                 float nearest = ds_view_depth(lo, u_near_plane, u_far_plane);
                 shell = vec2(min(shell.x, nearest - 1.5 * under), 3e38);

@@ -13,24 +13,44 @@
 // extent's wall (the DEM's edge) lies in haze on one side of the wall and in none on the other,
 // within one pixel.
 
-// The pixel whose samples the caller estimates (froxel_edges.comp; else none, (-1, -1)): where
-// the column at a sample's surface holds no fog, the fog may still lie before it in other
-// columns (a shore seen from afar beyond the lake its ray crossed: the dense lake's far shores,
-// pixels one sample of which is in fog and the rest not, left unsplit), so the ray is probed at
-// four points of the stretch the rays of the pixels around it spend in the Medium's shell.
+// The pixel whose samples the caller estimates (froxel_edges.comp, fog_before_for_pixel; else
+// none): where the column at a sample's surface holds no fog, the fog may still lie before it in
+// other columns (a shore seen from afar beyond the lake its ray crossed: the dense lake's far
+// shores, pixels one sample of which is in fog and the rest not, left unsplit), so the ray is
+// probed at four points of the stretch the rays of the pixels around it spend in the Medium's
+// shell, found once a pixel.
 ivec2 fog_before_pixel = ivec2(-1);
+vec2 fog_before_shell = vec2(3e38, 0.0);
+bool fog_before_shell_known = false;
+
+void fog_before_for_pixel(ivec2 px)
+{
+    fog_before_pixel = px;
+    fog_before_shell_known = false;
+}
+
+// The stretch of view depths over which the rays of the pixels around fog_before_pixel
+// (rasterised at their centres) are in the Medium's shell; (3e38, 0) where none is.
+vec2 fog_before_pixels_shell()
+{
+    if (!fog_before_shell_known) {
+        fog_before_shell = vec2(3e38, 0.0);
+        for (int y = -1; y <= 1; ++y)
+            for (int x = -1; x <= 1; ++x) {
+                vec2 s = froxel_pixel_shell(clamp(fog_before_pixel + ivec2(x, y), ivec2(0), u_size - 1));
+                if (s.y > s.x)
+                    fog_before_shell = vec2(min(fog_before_shell.x, s.x), max(fog_before_shell.y, s.y));
+            }
+        fog_before_shell_known = true;
+    }
+    return fog_before_shell;
+}
 
 float fog_before_probed(vec3 ray, float depth, float haze, inout float t, inout vec4 skin, inout float sigma)
 {
     if (fog_before_pixel.x < 0)
         return 0.0;
-    vec2 shell = vec2(3e38, 0.0);
-    for (int y = -1; y <= 1; ++y)
-        for (int x = -1; x <= 1; ++x) {
-            vec2 s = froxel_pixel_shell(clamp(fog_before_pixel + ivec2(x, y), ivec2(0), u_size - 1));
-            if (s.y > s.x)
-                shell = vec2(min(shell.x, s.x), max(shell.y, s.y));
-        }
+    vec2 shell = fog_before_pixels_shell();
     // The same points for every sample of the pixel (those before its surface): points spread
     // over each sample's own stretch told samples of the same fog apart.
     float a = max(shell.x, 0.0), b = shell.y;
@@ -39,8 +59,8 @@ float fog_before_probed(vec3 ray, float depth, float haze, inout float t, inout 
     const int probes = 4;
     // Each probe in the fog stands for its share of the stretch, or for the ray's way across the
     // column's depth there if that is shorter: a thin blanket crossed at a slant is no longer for
-    // a stretch of kilometres around it (read as the whole share, it split the default view's
-    // pixels twice as often for nothing).
+    // a stretch of kilometres around it (read as the whole share, the dense lake 9.3 % p99
+    // against 9.2 %).
     float share = (b - a) / float(probes) * length(ray), slope = max(abs(normalize(ray).z), 1e-3);
     float inside = 0.0, coverage = 0.0, first = -1.0, along = 0.0;
     for (int k = 0; k < probes; ++k) {

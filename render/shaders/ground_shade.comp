@@ -48,6 +48,20 @@ float medium_through(int i, int j)
     return exp(-max(shade[v].x - height_fog_sun(position(v), u_sun_direction), 0.0));
 }
 
+// Phases 2 and 3: id.y a marked vertex, id.x a texel of the fine map in the four cells around it
+// (2 u_fine + 1 a side); the block's first texel and this one's place in it, false past the ends.
+bool fine_block_texel(ivec2 id, out ivec2 corner, out ivec2 local)
+{
+    int side = 2 * u_fine + 1;
+    corner = local = ivec2(0);
+    if (id.y >= int(refined) || id.x >= side * side)
+        return false;
+    int vertex = int(marked_vertices[id.y]);
+    corner = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine;
+    local = ivec2(id.x % side, id.x / side);
+    return true;
+}
+
 void main()
 {
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
@@ -79,10 +93,9 @@ void main()
     }
     if (u_phase == 3) {
         int side = 2 * u_fine + 1;
-        if (id.y >= int(refined) || id.x >= side * side)
+        ivec2 corner, local;
+        if (!fine_block_texel(id, corner, local))
             return;
-        int vertex = int(marked_vertices[id.y]);
-        ivec2 local = ivec2(id.x % side, id.x / side), corner = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine;
         ab = corner + local;
         ivec2 size = imageSize(io_fine);
         if (any(lessThan(ab, ivec2(0))) || any(greaterThanEqual(ab, size)))
@@ -111,14 +124,12 @@ void main()
         return;
     }
     if (u_phase == 2) {
-        // id.y a marked vertex, id.x a texel of the fine map in the four cells around it (texel
-        // (a, b) lies on the cells' corners at every u_fine-th texel). Neighbours marked both
+        // Texel (a, b) lies on the cells' corners at every u_fine-th texel. Neighbours marked both
         // write their shared texels, with the same value.
-        int side = 2 * u_fine + 1;
-        if (id.y >= int(refined) || id.x >= side * side)
+        ivec2 corner, local;
+        if (!fine_block_texel(id, corner, local))
             return;
-        int vertex = int(marked_vertices[id.y]);
-        ab = (ivec2(vertex % u_grid.x, vertex / u_grid.x) - 1) * u_fine + ivec2(id.x % side, id.x / side);
+        ab = corner + local;
         ivec2 cell = ab / u_fine;
         // The ground as the mesh draws it: two triangles a cell, split along (i, j)-(i + 1, j + 1).
         ivec2 c = min(cell, u_grid.xy - 2);
