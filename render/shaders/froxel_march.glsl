@@ -90,81 +90,91 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
     vec4 j0 = vec4(0.0), j1 = j0;  // J's two parts (medium_light_parts_at) at the ends of four steps
     vec4 js0 = j0, js1 = j0;       // and at the ends of the step, where the four are refined
     float t0 = 0.0, t1 = 0.0, ts0 = 0.0, ts1 = 0.0;  // their optical depths towards the sun
+    if (with_medium)
+        j1 = medium_light_parts_at(u_fx_eye + ray * a, u_fx_eye, 0.5, t1);
     bool refined = false;
     float visible_d0 = -1.0;       // the terrain's visibility of the sun at d0 where the step before took it
-    for (int k = 0; k < n && d0 < stop; ++k) {
-        float d1 = min(fx_slice_depth(float(k + 1) / float(n), vec2(a, b)), stop);
-        // J at the start (the first step) and at the end of the next four steps, and where the
-        // sun's share changes by more than froxel_refine_light over them, at the end of each
-        // step; one call in a loop the compiler keeps, so that the light is inlined once.
-        for (int m = with_medium && k % 4 == 0 ? (k == 0 ? 0 : 1) : 2; m < 3; ++m) {
-            if (m == 2 && !(with_medium && refined && k % 4 != 3 && k + 1 < n))
-                break;
-            float at = m == 0 ? a : d1;
-            if (m == 1)
-                at = min(fx_slice_depth(float(min(k + 4, n)) / float(n), vec2(a, b)), stop);
+    // Each pass lights one point and takes the steps that point completes: the end of the next
+    // four steps (all four, unless the sun's share changes by more than froxel_refine_light over
+    // them), or in four so refined the end of the next step (that step, and the four's last,
+    // which ends where they do). llvmpipe runs a branch's code whether any lane takes it or not,
+    // and a loop's body at least once: the light called in each step, for the ends of four, ran
+    // in every step (the marches took 30 % longer).
+    int k = 0, group_end = 0;  // the next step, the end of its four
+    while (k < n && d0 < stop) {
+        bool group_start = k == group_end;
+        if (with_medium) {
+            if (group_start)
+                group_end = min(k + 4, n);
+            float at = min(fx_slice_depth(float(group_start ? group_end : k + 1) / float(n), vec2(a, b)), stop);
             float t;
             vec4 j = medium_light_parts_at(u_fx_eye + ray * at, u_fx_eye, 0.5, t);
-            if (m == 2) {
-                js1 = j;
-                ts1 = t;
-            } else {
+            if (group_start) {
                 j0 = j1;
                 j1 = j;
                 t0 = t1;
                 t1 = t;
                 refined = abs(j1.a - j0.a) > froxel_refine_light * max(j0.a, j1.a) || abs(t1 - t0) > froxel_refine_tau;
                 js0 = j0;
-                js1 = j1;
                 ts0 = t0;
+            } else {
+                js1 = j;
+                ts1 = t;
+            }
+        } else {
+            group_end = n;
+        }
+        int last = !refined ? group_end : (group_start ? (group_end == k + 1 ? group_end : k)
+                                                        : (k + 2 == group_end ? group_end : k + 1));
+        for (; k < last && d0 < stop; ++k) {
+            float d1 = min(fx_slice_depth(float(k + 1) / float(n), vec2(a, b)), stop);
+            if (refined && k + 1 == group_end) {
+                js1 = j1;  // the step ends where the four do
                 ts1 = t1;
             }
-        }
-        if (refined && (k % 4 == 3 || k + 1 >= n)) {
-            js1 = j1;  // the step ends where the four do
-            ts1 = t1;
-        }
-        vec3 q0 = u_fx_eye + ray * d0, q1 = u_fx_eye + ray * d1;
+            vec3 q0 = u_fx_eye + ray * d0, q1 = u_fx_eye + ray * d1;
 #if FROXEL_HEIGHT_FOG
-        float haze = height_fog_segment(q0, q1);
+            float haze = height_fog_segment(q0, q1);
 #else
-        const float haze = 0.0;
+            const float haze = 0.0;
 #endif
-        float medium = with_medium ? froxel_step_depth(q0, q1, (d1 - d0) * stretch) : 0.0;
-        float visible_d1 = -1.0;
-        if (haze + medium > 0.0) {
-            float through = exp(-(haze + medium));
-            float opacity = fog.a * (1.0 - through) / (haze + medium);  // per unit of optical depth
-            if (medium > 0.0) {
-                float span = float(min(4, n - (k / 4) * 4));
-                vec4 parts = refined ? 0.5 * (js0 + js1) : mix(j0, j1, (float(k % 4) + 0.5) / span);
-                // Where tau_sun changes by more than froxel_light_tau between the lit points, the
-                // sun's share from tau_sun, which is linear between them (exact under a flat top),
-                // not the share drawn linear: the fitted model's rises over the first optical depth
-                // towards the sun and falls after it, and drawn linear between lit points four
-                // steps apart its hump was lost (a dense blanket from above 8 % too dark).
-                if (refined || abs(t1 - t0) > froxel_light_tau) {
-                    vec2 tau = refined ? vec2(ts0, ts1)
-                                       : mix(vec2(t0), vec2(t1), vec2(float(k % 4), float(k % 4 + 1)) / span);
-                    float air = exp(-distance(0.5 * (q0 + q1), u_fx_eye) * u_air.w);
-                    parts.a = abs(tau.y - tau.x) > 0.1
-                        ? sun_share_over_step(ray / stretch, air, tau.x, tau.y, haze + medium)
-                        : air * medium_sun_share(0, ray / stretch, 0.5 * (tau.x + tau.y));
+            float medium = with_medium ? froxel_step_depth(q0, q1, (d1 - d0) * stretch) : 0.0;
+            float visible_d1 = -1.0;
+            if (haze + medium > 0.0) {
+                float through = exp(-(haze + medium));
+                float opacity = fog.a * (1.0 - through) / (haze + medium);  // per unit of optical depth
+                if (medium > 0.0) {
+                    float span = float(min(4, n - (k / 4) * 4));
+                    vec4 parts = refined ? 0.5 * (js0 + js1) : mix(j0, j1, (float(k % 4) + 0.5) / span);
+                    // Where tau_sun changes by more than froxel_light_tau between the lit points,
+                    // the sun's share from tau_sun, which is linear between them (exact under a
+                    // flat top), not the share drawn linear: the fitted model's rises over the
+                    // first optical depth towards the sun and falls after it, and drawn linear
+                    // between lit points four steps apart its hump was lost (a dense blanket from
+                    // above 8 % too dark).
+                    if (refined || abs(t1 - t0) > froxel_light_tau) {
+                        vec2 tau = refined ? vec2(ts0, ts1)
+                                           : mix(vec2(t0), vec2(t1), vec2(float(k % 4), float(k % 4 + 1)) / span);
+                        float air = exp(-distance(0.5 * (q0 + q1), u_fx_eye) * u_air.w);
+                        parts.a = abs(tau.y - tau.x) > 0.1
+                            ? sun_share_over_step(ray / stretch, air, tau.x, tau.y, haze + medium)
+                            : air * medium_sun_share(0, ray / stretch, 0.5 * (tau.x + tau.y));
+                    }
+                    // The terrain's visibility of the sun along the step, not at the lit points.
+                    float visible = parts.a > 0.0 ? segment_visibility(q0, q1, visible_d0, visible_d1) : 0.0;
+                    fog.rgb += opacity * medium * medium_light_from_parts(parts, visible);
                 }
-                // The terrain's visibility of the sun along the step, not at the lit points.
-                float visible = parts.a > 0.0 ? segment_visibility(q0, q1, visible_d0, visible_d1) : 0.0;
-                fog.rgb += opacity * medium * medium_light_from_parts(parts, visible);
-            }
 #if FROXEL_HEIGHT_FOG
-            if (haze > 0.0)
-                haze_run_step(h, opacity * haze, q0, q1, haze);
+                if (haze > 0.0)
+                    haze_run_step(h, opacity * haze, q0, q1, haze);
 #endif
-            fog.a *= through;
+                fog.a *= through;
+            }
+            visible_d0 = visible_d1;
+            d0 = d1;
+            js0 = js1;
+            ts0 = ts1;
         }
-        visible_d0 = visible_d1;
-        d0 = d1;
-        js0 = js1;
-        ts0 = ts1;
     }
 }
 
