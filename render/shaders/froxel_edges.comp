@@ -52,6 +52,10 @@ void main()
         return;
     float lo, hi, centre;
     float marches = 0.0;  // 1: the samples march
+    // The pixels' shell around it, for the probes and the split's bounds: once, here (llvmpipe
+    // runs its loop in each call, known or not).
+    fog_before_for_pixel(px);
+    fog_before_pixels_shell();
     if (u_samples > 1) {
         bool two = ds_read(u_ms_depth, px, u_near_plane, u_far_plane, lo, hi, centre);
         uint other = 0u;    // the other side's samples, a bit each
@@ -65,13 +69,27 @@ void main()
         if (u_fog_split > 0.0 && (u_fx_shell != 0 || u_hf.x > 0.0) && hi < 1.0) {
             float t[ds_max], lit[ds_max];
             vec4 skin[ds_max];
+            float haze[ds_max];
             float fogged = 0.0, sigma;
-            fog_before_for_pixel(px);
+            uint probed = 0u;  // the samples whose fog before them is probed, a bit each
             for (int s = 0; s < ds_max && s < u_samples; ++s) {
                 vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
-                under = max(under, fog_before(uv, ds_view_depth(ds[s], u_near_plane, u_far_plane), t[s], skin[s], sigma));
-                fogged = max(fogged, skin[s].w);
+                bool probe;
+                under = max(under, fog_before_column(uv, ds_view_depth(ds[s], u_near_plane, u_far_plane), t[s], skin[s],
+                                                     sigma, haze[s], probe));
+                probed |= probe ? 1u << s : 0u;
             }
+            // Only those samples probed, one a pass (llvmpipe runs the probes once a pass of a
+            // loop whatever its lanes need: each sample's call of fog_before ran them).
+            while (probed != 0u) {
+                int s = findLSB(probed);
+                probed &= probed - 1u;
+                vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
+                under = max(under, fog_before_probed(fx_ray(uv), ds_view_depth(ds[s], u_near_plane, u_far_plane), haze[s],
+                                                     t[s], skin[s], sigma));
+            }
+            for (int s = 0; s < ds_max && s < u_samples; ++s)
+                fogged = max(fogged, skin[s].w);
             float at, at_lit;
             float gap = largest_gap(t, u_samples, at);
             // Or by the fog's light where its transmittance is alike: a dense fog's sunlit skin
@@ -123,8 +141,6 @@ void main()
             // The rays' stretch of the shell: within those of the pixels around it (rasterised at
             // their centres); under a thread of fog narrower than a pixel none may have one, so
             // from the fog's top before the nearest surface on (3e38: each ray's end).
-            if (fog_before_pixel != px)  // else known already where the samples' fog was probed
-                fog_before_for_pixel(px);
             vec2 shell = u_fx_shell != 0 ? fog_before_pixels_shell() : vec2(3e38, 0.0);
             if (!two) {
                 float nearest = ds_view_depth(lo, u_near_plane, u_far_plane);

@@ -88,14 +88,20 @@ float fog_before_probed(vec3 ray, float depth, float haze, inout float t, inout 
     return depth - entry;
 }
 
-float fog_before(vec2 uv, float depth, out float t, out vec4 skin, out float sigma)
+// fog_before where the column at the surface holds fog; else (`probe` true) what the height fog
+// alone lets through (t), with its optical depth (`haze`), for fog_before_probed: a caller with
+// several samples probes only those that need it (llvmpipe runs a branch's code whether any lane
+// takes it or not, so each sample's call of fog_before ran the probes).
+float fog_before_column(vec2 uv, float depth, out float t, out vec4 skin, out float sigma, out float haze,
+                        out bool probe)
 {
     vec3 ray = fx_ray(uv);
     vec3 p = u_fx_eye + ray * depth;
-    float haze = height_fog_segment(u_fx_eye, p);
+    haze = height_fog_segment(u_fx_eye, p);
     t = exp(-haze);
     skin = vec4(0.0);
     sigma = 0.0;
+    probe = false;
     if (u_fx_shell == 0)
         return 0.0;
     float reach = length(ray) * depth;  // the eye's distance: the ray is no longer
@@ -106,12 +112,22 @@ float fog_before(vec2 uv, float depth, out float t, out vec4 skin, out float sig
     vec3 q = p + back * enter;
     vec4 c = shell_column(q.xy);  // floor, bottom, top, coverage
     float over = c.z > c.x ? c.z - q.z : 0.0;
-    if (!(over > 0.0) || !(c.w > 0.0))
-        return fog_before_probed(ray, depth, haze, t, skin, sigma);
+    if (!(over > 0.0) || !(c.w > 0.0)) {
+        probe = true;
+        return 0.0;
+    }
     float along = min(over / max(back.z, 1e-3), leave - enter);
     sigma = u_md_extinction * c.w;
     float fog = sigma * along;
     t = exp(-fog - haze);
     skin = vec4(q + back * along, 1.0 - exp(-fog));
     return (enter + along) * depth / reach;
+}
+
+float fog_before(vec2 uv, float depth, out float t, out vec4 skin, out float sigma)
+{
+    float haze;
+    bool probe;
+    float under = fog_before_column(uv, depth, t, skin, sigma, haze, probe);
+    return probe ? fog_before_probed(fx_ray(uv), depth, haze, t, skin, sigma) : under;
 }
