@@ -2,21 +2,18 @@
 // Pass 1: the extinction of the Medium and of the height fog per froxel: the mean of u_samples
 // samples spread evenly over the froxel's depth on the tile's central ray (the ray whose ground
 // the apply knows), and where in the slice the extinction sits (its weighted mean position).
-// Not jittered: the density is exact each frame, only the lighting is filtered over time.
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+// Not jittered: the density is exact each frame, only the lighting is filtered over time. Over
+// the froxels of the tiles with fog (froxel_fog_tiles.glsl); the others are cleared to 0.
+layout(local_size_x = 64) in;
 layout(rgba16f, binding = 0) writeonly uniform image3D o_density;
 uniform int u_samples;
 
 void main()
 {
-    ivec3 id = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(id, u_fx_size)))
+    ivec3 id = ft_froxel();
+    if (id.z >= u_fx_size.z)
         return;
     vec2 range = fx_tile_range(id.xy);
-    if (!(range.y > range.x)) {
-        imageStore(o_density, id, vec4(0.0));
-        return;
-    }
     vec2 uv = (vec2(id.xy) + 0.5) / vec2(u_fx_size.xy);
     float d0 = fx_slice_depth(float(id.z) / float(u_fx_size.z), range);
     float d1 = fx_slice_depth(float(id.z + 1) / float(u_fx_size.z), range);

@@ -9,7 +9,7 @@
 // integrated and marched, at its own points (froxel_integrate.comp, froxel_march.glsl): a haze
 // tens of metres deep changes its light within a froxel, and one J for both media let the
 // haze's light stand for the Medium's where a froxel held both.
-layout(local_size_x = 8, local_size_y = 8, local_size_z = 1) in;
+layout(local_size_x = 64) in;  // over the froxels of the tiles with fog (froxel_fog_tiles.glsl)
 layout(rgba16f, binding = 0) writeonly uniform image3D o_light;
 uniform sampler3D u_density;
 uniform vec3 u_jitter;
@@ -18,8 +18,8 @@ uniform int u_whole_tiles;    // light every froxel of a tile with fog, not only
 
 void main()
 {
-    ivec3 id = ivec3(gl_GlobalInvocationID);
-    if (any(greaterThanEqual(id, u_fx_size)))
+    ivec3 id = ft_froxel();
+    if (id.z >= u_fx_size.z)
         return;
     vec4 density = texelFetch(u_density, id, 0);
     vec2 range = fx_tile_range(id.xy);

@@ -47,6 +47,13 @@ std::vector<std::string_view> light_libraries(std::string_view stage)
             "terrain_shadow.glsl", "light_volume.glsl",  "froxel_light.glsl", stage};
 }
 
+// `files`, then a pass over the froxels of the tiles with fog (froxel_fog_tiles.glsl, among them).
+std::vector<std::string_view> fog_tiles_libraries(std::vector<std::string_view> files, std::string_view stage)
+{
+    files.push_back(stage);
+    return files;
+}
+
 // The libraries of a program that marches pixels' rays (froxel_march.glsl), then its stage file.
 std::vector<std::string_view> march_libraries(std::string_view stage)
 {
@@ -93,9 +100,11 @@ std::vector<std::string_view> split_libraries()
 
 FroxelPass::FroxelPass()
     : v_(std::make_unique<Volumes>()),
+      fog_tiles_({"froxel_common.glsl", "froxel_fog_tiles.glsl", "froxel_fog_tiles.comp"}),
       density_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
-                "froxel_medium.glsl", "froxel_density.comp"}),
-      lighting_(light_libraries("froxel_lighting.comp")), temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
+                "froxel_medium.glsl", "froxel_fog_tiles.glsl", "froxel_density.comp"}),
+      lighting_(fog_tiles_libraries(light_libraries("froxel_fog_tiles.glsl"), "froxel_lighting.comp")),
+      temporal_({"froxel_common.glsl", "froxel_temporal.comp"}),
       accumulate_({"froxel_common.glsl", "froxel_accumulate.comp"}),
       opaque_({"fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl", "height_fog.glsl",
                "froxel_medium.glsl", "froxel_opaque.comp"}),
@@ -225,6 +234,9 @@ void FroxelPass::update(const FrameContext& frame, const TerrainPass& terrain, G
         }
         glTextureParameteri(v_->light.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(v_->light.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        v_->fog_tiles = make_buffer();
+        glNamedBufferStorage(v_->fog_tiles.get(), GLsizeiptr(sizeof(glm::uvec4) + sizeof(GLuint) * size.x * size.y),
+                             nullptr, GL_DYNAMIC_STORAGE_BIT);
         v_->size = size;
         stats_.size = size;
         history_valid_ = false;

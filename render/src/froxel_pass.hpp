@@ -98,7 +98,7 @@ private:
         std::vector<std::string_view> files_;
         std::unique_ptr<ShaderProgram> programs_[2];
     };
-    ShaderProgram density_, lighting_, temporal_, accumulate_, opaque_;
+    ShaderProgram fog_tiles_, density_, lighting_, temporal_, accumulate_, opaque_;
     HazeVariants integrate_, classify_, pixels_, upsample_;
     ShaderProgram apply_program_, readback_, edges_;
     // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the grids of
@@ -212,6 +212,7 @@ private:
     void advance_view(const FrameContext& frame);
     void run_tiles(const FrameContext& frame, GLuint depth_texture);
     void run_density();
+    void list_fog_tiles();  // the tiles with fog, for the passes over their froxels alone
     void run_lighting(const FrameContext& frame, const Jitter& jitter);
     //! A still's k-th lighting sample into the mean of the first k (froxel_accumulate.comp).
     void run_accumulate(int history, bool history_valid, int into, float weight);

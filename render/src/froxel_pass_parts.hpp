@@ -41,6 +41,7 @@ enum Stage {
 struct FroxelPass::Volumes {
     glm::ivec3 size{0};
     Texture density, light, resolved[2], integrated, tiles[2];
+    Buffer fog_tiles;  // the tiles with fog and the dispatch over their froxels (froxel_fog_tiles.glsl)
 };
 
 }  // namespace kiri::render::detail

@@ -48,6 +48,18 @@ void dispatch_volume(const glm::ivec3& size, int depth)
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
+// One invocation per froxel of the tiles with fog (froxel_fog_tiles.glsl: listed, with the
+// dispatch, in `list`), then the barrier that lets the next pass read what it wrote.
+void dispatch_fog_tiles(const Buffer& list)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list.get());
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list.get());
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 }  // namespace
 
 void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, bool still, const FrameSamples* samples)
@@ -146,12 +158,26 @@ void FroxelPass::run_tiles(const FrameContext& frame, GLuint depth_texture)
 void FroxelPass::run_density()
 {
     const ScopedPassTimer timed(timers_[density]);
+    list_fog_tiles();
     bind_layout(density_);
     medium_gpu_.bind(density_, options_.height_fog, unit_medium);
     density_.set("u_samples", options_.density_samples);
     density_.use();
+    const glm::vec4 none(0.0f);
+    glClearTexImage(v_->density.get(), 0, GL_RGBA, GL_FLOAT, &none);
     glBindImageTexture(0, v_->density.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatch_volume(v_->size, v_->size.z);
+    dispatch_fog_tiles(v_->fog_tiles);
+}
+
+void FroxelPass::list_fog_tiles()
+{
+    const glm::uvec4 groups(0u, GLuint((v_->size.z + 63) / 64), 1u, 0u);
+    glNamedBufferSubData(v_->fog_tiles.get(), 0, sizeof groups, &groups);
+    bind_layout(fog_tiles_);
+    fog_tiles_.use();
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, v_->fog_tiles.get());
+    glDispatchCompute(GLuint((v_->size.x + 7) / 8), GLuint((v_->size.y + 7) / 8), 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 void FroxelPass::bind_light(const ShaderProgram& p, const FrameContext& frame) const
@@ -202,8 +228,10 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
     lighting_.set("u_whole_tiles", int(options_.fog_aware));
     lighting_.use();
     glBindTextureUnit(unit_density, v_->density.get());
+    const glm::vec4 none(0.0f, 0.0f, 0.0f, -1.0f);  // no light: the froxels of tiles without fog
+    glClearTexImage(v_->light.get(), 0, GL_RGBA, GL_FLOAT, &none);
     glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatch_volume(v_->size, v_->size.z);
+    dispatch_fog_tiles(v_->fog_tiles);
 }
 
 void FroxelPass::run_accumulate(int history, bool history_valid, int into, float weight)
