@@ -111,16 +111,22 @@ vec4 medium_light_parts_at(vec3 p, vec3 eye, float sun_jitter)
 // e^-tau_sun, so the share times e^(rise u) (rise: tau_sun's gain over the step) is smooth, and
 // is integrated against e^(-(depth + rise) u) by that weight's two-point Gauss rule
 // (exp_weight_gauss_rule, fog_lighting.glsl): single scattering exactly, the skin under a flat
-// top s / (1 + the view's rate of descent over the sun's).
+// top s / (1 + the view's rate of descent over the sun's). Where tau_sun changes by no more than
+// 0.1 over the step, the share at its middle. One call of the share a pass of one loop, the
+// rule's two nodes or the middle: llvmpipe runs a branch's code whether any lane takes it or not,
+// so the middle's own call ran in every step too.
 float sun_share_over_step(vec3 ray, float air, float tau0, float tau1, float depth)
 {
+    bool nodes = abs(tau1 - tau0) > 0.1;
     float rise = max(tau1 - tau0, 0.0);
     vec2 u, w;
     exp_weight_gauss_rule(depth + rise, u, w);
     float mean = 0.0;
-    for (int i = 0; i < 2; ++i)
-        mean += w[i] * medium_sun_share(0, ray, mix(tau0, tau1, u[i])) * exp(rise * u[i]);
-    return air * mean * fog_exp_mean(depth + rise) / fog_exp_mean(depth);
+    for (int i = 0; i < (nodes ? 2 : 1); ++i) {
+        float share = medium_sun_share(0, ray, nodes ? mix(tau0, tau1, u[i]) : 0.5 * (tau0 + tau1));
+        mean += nodes ? w[i] * share * exp(rise * u[i]) : share;
+    }
+    return nodes ? air * mean * fog_exp_mean(depth + rise) / fog_exp_mean(depth) : air * mean;
 }
 
 // The terrain's visibility of the sun for the Medium's light at p (medium_lit_point).

@@ -156,9 +156,7 @@ void froxel_march(inout vec4 fog, inout HazeRuns h, vec2 uv, float a, float b, i
                         vec2 tau = refined ? vec2(ts0, ts1)
                                            : mix(vec2(t0), vec2(t1), vec2(float(k % 4), float(k % 4 + 1)) / span);
                         float air = exp(-distance(0.5 * (q0 + q1), u_fx_eye) * u_air.w);
-                        parts.a = abs(tau.y - tau.x) > 0.1
-                            ? sun_share_over_step(ray / stretch, air, tau.x, tau.y, haze + medium)
-                            : air * medium_sun_share(0, ray / stretch, 0.5 * (tau.x + tau.y));
+                        parts.a = sun_share_over_step(ray / stretch, air, tau.x, tau.y, haze + medium);
                     }
                     // The terrain's visibility of the sun along the step, not at the lit points.
                     float visible = parts.a > 0.0 ? segment_visibility(q0, q1, visible_d0, visible_d1) : 0.0;
