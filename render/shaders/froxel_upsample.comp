@@ -1,7 +1,7 @@
 #version 450 core
 // The fog-aware apply's fog for every point of the grid at u_spacing (frame_grid: every fourth
 // or second pixel of every fourth or second row, or every pixel), into o_fog: the volume's
-// lookup where its slices resolve the fog (froxel_resolved); the coarser grid's own
+// lookup where its slices resolve the fog (froxel_resolved; listed for froxel_lookup.comp); the coarser grid's own
 // (u_fx_samples: froxel_pixels.comp stage 0 at every eighth pixel, or this pass at every fourth
 // or second) at its points; the mean of the coarser points around a point where they agree; the
 // rest are listed to march their own rays (froxel_pixels.comp stage 1), one invocation each.
@@ -25,6 +25,13 @@ uniform int u_fx_write_info;     // this grid's points' frame_point_info into o_
 uniform float u_fx_upsample;     // the tolerance; 0: none, every pixel the volume does not resolve marches
 uniform sampler2D u_background;  // the frame's linear radiance before the fog
 shared uint group_upsampled;
+// The points the volume's lookup resolves, listed for froxel_lookup.comp (FrameMarches' layout).
+layout(std430, binding = 1) buffer FrameLookups {
+    uvec4 fl_dispatch;  // groups of 64
+    uint fl_listed;
+    uint fl_unused[3];
+    uint fl_points[];
+};
 
 // How far a pixel's depths may lie outside the range of its samples' (relative).
 const float depth_margin = 0.02;
@@ -127,7 +134,10 @@ void main()
         }
         vec4 fog;
         if (u_fx_apply != 2 || froxel_resolved(px, uv, depth)) {
-            imageStore(o_fog, t, froxel_fog_at(uv, depth));
+            uint i = atomicAdd(fl_listed, 1u);
+            if (i % 64u == 0u)
+                atomicAdd(fl_dispatch.x, 1u);
+            fl_points[i] = uint(t.x) | (uint(t.y) << 16);
         } else if (froxel_upsampled(t, px, depth, own, fog)) {
             imageStore(o_fog, t, fog);
             if (!all(frame_on_coarser(t, u_spacing)))  // not a coarser point's own pixel

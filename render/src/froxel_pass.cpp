@@ -110,7 +110,8 @@ FroxelPass::FroxelPass()
                "froxel_medium.glsl", "froxel_opaque.comp"}),
       integrate_(light_libraries("froxel_integrate.comp")), classify_(classify_libraries()), pixels_(split_libraries()),
       upsample_(pixel_libraries("froxel_upsample.comp")), apply_program_({"froxel_apply.comp"}),
-      readback_({"froxel_frame.glsl", "froxel_readback.comp"}), edges_(edge_libraries())
+      readback_({"froxel_frame.glsl", "froxel_readback.comp"}), edges_(edge_libraries()),
+      lookup_(pixel_libraries("froxel_lookup.comp"))
 {
     for (const char* name : stage_names)
         timers_.emplace_back(name);

@@ -100,7 +100,7 @@ private:
     };
     ShaderProgram fog_tiles_, density_, lighting_, temporal_, accumulate_, opaque_;
     HazeVariants integrate_, classify_, pixels_, upsample_;
-    ShaderProgram apply_program_, readback_, edges_;
+    ShaderProgram apply_program_, readback_, edges_, lookup_;
     // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the grids of
     // samples and what their points are judged by, the fog, the lists of the points that march
     // (one per refinement) and their counts, the frame before its fog.
@@ -114,6 +114,7 @@ private:
         Texture fog, background;
         // The points each refinement (spacings 4, 2, 1) left to march, and its counts.
         std::array<Buffer, sample_spacings.size()> lists;
+        Buffer lookups;  // a refinement's points that read the volume (froxel_lookup.comp)
         // Pixels whose samples see two surfaces, or one fogged unevenly (froxel_edges.comp): split
         // (1 where their samples march), bounds of their rays' stretch of the shell, the mean of
         // their samples' fog over the resolved colour; the list of them.

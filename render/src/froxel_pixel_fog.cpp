@@ -92,6 +92,7 @@ void FroxelPass::PixelFog::resize(int w, int h)
     split_fog = make_fog_image(size);
     // Each pixel is listed once at most.
     split_list = make_march_list(std::size_t(w) * h);
+    lookups = make_march_list(std::size_t(w) * h);
     splits_run = false;
     // Refinement k lists points of the grid at half the spacing of grid k.
     for (std::size_t k = 0; k < sample_spacings.size(); ++k) {
@@ -272,6 +273,8 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
     // march, then marching them.
     const auto refine = [&](int spacing, GLuint coarser, GLuint coarser_info, GLuint image, GLuint info, GLuint list) {
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
+        clear_march_list(out.lookups);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.lookups.get());
         const ShaderProgram& upsample = upsample_.get(haze);
         bind_pixel_program(upsample, frame, spacing);
         upsample.set("u_fx_samples", unit_samples);
@@ -289,9 +292,21 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glBindImageTexture(1, info != 0 ? info : coarser_info, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
         const glm::ivec2 n = grid_points(size, spacing);
         glDispatchCompute(GLuint((n.x + 31) / 32), GLuint((n.y + 7) / 8), 1);
-        if (!marching)
-            return;
         glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, 0);
+        // The points the volume resolves read it (froxel_lookup.comp).
+        bind_pixel_program(lookup_, frame, spacing);
+        lookup_.use();
+        glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.lookups.get());
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.lookups.get());
+        glDispatchComputeIndirect(0);
+        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
+        if (!marching) {
+            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+            return;
+        }
         const ShaderProgram& pixels = pixels_.get(haze);
         bind_pixel_program(pixels, frame, spacing);
         pixels.set("u_stage", 1);
