@@ -114,8 +114,16 @@ float lv_floor_at(vec2 xy)
 // (geometry::shell_height, LightVolume::column_scale); 0 outside the Medium's grid, and outside
 // its column unless `into_column` (a layer's surface stands for the slab of fog under it and
 // may lie on or a little above the top: it takes the column's nearest light).
+// LIGHT_VOLUME 0: the variant of a froxel program for a Medium whose model is not baked
+// (FroxelPass::Variants): llvmpipe runs a branch's code whether any lane takes it or not.
+#ifndef LIGHT_VOLUME
+#define LIGHT_VOLUME 1
+#endif
 float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
 {
+#if !LIGHT_VOLUME
+    return 0.0;
+#endif
     if (u_lv_on == 0 || !shell_covers(p.xy))
         return 0.0;
     vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage

@@ -117,12 +117,13 @@ FroxelPass::FroxelPass()
         timers_.emplace_back(name);
 }
 
-const ShaderProgram& FroxelPass::HazeVariants::get(bool height_fog)
+const ShaderProgram& FroxelPass::Variants::get(bool height_fog, bool light_volume)
 {
-    std::unique_ptr<ShaderProgram>& p = programs_[height_fog ? 1 : 0];
+    std::unique_ptr<ShaderProgram>& p = programs_[(height_fog ? 1 : 0) + (light_volume ? 2 : 0)];
     if (!p)
-        p = std::make_unique<ShaderProgram>(
-            files_, height_fog ? "#define FROXEL_HEIGHT_FOG 1\n" : "#define FROXEL_HEIGHT_FOG 0\n");
+        p = std::make_unique<ShaderProgram>(files_,
+                                            std::string("#define FROXEL_HEIGHT_FOG ") + (height_fog ? "1" : "0") +
+                                                "\n#define LIGHT_VOLUME " + (light_volume ? "1" : "0") + "\n");
     return *p;
 }
 

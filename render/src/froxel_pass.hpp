@@ -86,20 +86,27 @@ public:
 private:
     struct Volumes;
     std::unique_ptr<Volumes> v_;
-    // A program in two variants, with the height fog's code (FROXEL_HEIGHT_FOG 1) and without:
-    // on llvmpipe that code, never run in a scene without one, made the apply 1.7 times as slow.
-    // Each built on first use.
-    class HazeVariants {
+    // A program in variants with the height fog's code (FROXEL_HEIGHT_FOG 1) or without, and
+    // with the baked light's lookup (LIGHT_VOLUME 1, a Medium whose model is `baked`) or without:
+    // llvmpipe runs a branch's code whether any lane takes it or not, and the height fog's code,
+    // never run in a scene without one, made the apply 1.7 times as slow; the baked light's took
+    // the default still's marches and split pixels 80-90 ms each. Each built on first use
+    // (program()).
+    class Variants {
     public:
-        explicit HazeVariants(std::vector<std::string_view> files) : files_(std::move(files)) {}
-        const ShaderProgram& get(bool height_fog);
+        explicit Variants(std::vector<std::string_view> files) : files_(std::move(files)) {}
+        const ShaderProgram& get(bool height_fog, bool light_volume);
 
     private:
         std::vector<std::string_view> files_;
-        std::unique_ptr<ShaderProgram> programs_[2];
+        std::unique_ptr<ShaderProgram> programs_[4];
     };
-    ShaderProgram fog_tiles_, density_, lighting_, temporal_, accumulate_, opaque_;
-    HazeVariants integrate_, classify_, pixels_, upsample_;
+    //! The variant of `v` for this scene's height fog and Medium.
+    const ShaderProgram& program(Variants& v) { return v.get(options_.height_fog.enabled(), baked_light()); }
+    ShaderProgram fog_tiles_, density_;
+    Variants lighting_;
+    ShaderProgram temporal_, accumulate_, opaque_;
+    Variants integrate_, classify_, pixels_, upsample_;
     ShaderProgram apply_program_, readback_, edges_, lookup_;
     // The fog-aware apply's fog per pixel of a frame (froxel_pixel_fog.cpp): the grids of
     // samples and what their points are judged by, the fog, the lists of the points that march

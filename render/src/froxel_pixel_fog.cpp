@@ -183,7 +183,7 @@ void FroxelPass::run_tile_rays(const FrameContext& frame, GLuint depth_texture, 
                                float missed)
 {
     applied_.resize(frame.width, frame.height);
-    const ShaderProgram& pixels = pixels_.get(options_.height_fog.enabled());
+    const ShaderProgram& pixels = program(pixels_);
     bind_pixel_program(pixels, frame, 1);
     pixels.set("u_stage", 2);
     pixels.set("u_missed", missed);
@@ -231,7 +231,7 @@ bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, con
                     GL_TEXTURE_FETCH_BARRIER_BIT);
     // Their samples' marches, each along its own ray to its own surface (froxel_pixels.comp's
     // stage 1 with u_split), their mean into out.split_fog.
-    const ShaderProgram& pixels = pixels_.get(options_.height_fog.enabled());
+    const ShaderProgram& pixels = program(pixels_);
     bind_pixel_program(pixels, frame, 1);
     pixels.set("u_stage", 1);
     pixels.set("u_split", 1);
@@ -255,7 +255,6 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
                                const FrameSamples* samples)
 {
     out.resize(frame.width, frame.height);
-    const bool haze = options_.height_fog.enabled();
     const bool marching = visible_ && apply_ && options_.fog_aware;
     const float tolerance = marching ? upsample_tolerance() : 0.0f;
     // The frame before its fog, which only the means are judged over: for this run and a later
@@ -275,7 +274,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
         clear_march_list(out.lookups);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, out.lookups.get());
-        const ShaderProgram& upsample = upsample_.get(haze);
+        const ShaderProgram& upsample = program(upsample_);
         bind_pixel_program(upsample, frame, spacing);
         upsample.set("u_fx_samples", unit_samples);
         upsample.set("u_fx_sample_info", unit_sample_info);
@@ -307,7 +306,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
             glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
             return;
         }
-        const ShaderProgram& pixels = pixels_.get(haze);
+        const ShaderProgram& pixels = program(pixels_);
         bind_pixel_program(pixels, frame, spacing);
         pixels.set("u_stage", 1);
         pixels.use();
@@ -321,7 +320,7 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         // The coarsest grid's points march (or read the volume); every finer grid's points take
         // the mean of the coarser points around them where they agree, else march.
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.lists[0].get());
-        const ShaderProgram& pixels = pixels_.get(haze);
+        const ShaderProgram& pixels = program(pixels_);
         const int coarsest = sample_spacings[0];
         bind_pixel_program(pixels, frame, coarsest);
         pixels.set("u_stage", 0);

@@ -220,13 +220,14 @@ void FroxelPass::bind_light(const ShaderProgram& p, const FrameContext& frame) c
 
 void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
 {
-    bind_layout(lighting_);
-    bind_light(lighting_, frame);
-    lighting_.set("u_density", unit_density);
-    lighting_.set("u_jitter", jitter.froxel);
-    lighting_.set("u_sun_jitter", jitter.sun);
-    lighting_.set("u_whole_tiles", int(options_.fog_aware));
-    lighting_.use();
+    const ShaderProgram& lighting = program(lighting_);
+    bind_layout(lighting);
+    bind_light(lighting, frame);
+    lighting.set("u_density", unit_density);
+    lighting.set("u_jitter", jitter.froxel);
+    lighting.set("u_sun_jitter", jitter.sun);
+    lighting.set("u_whole_tiles", int(options_.fog_aware));
+    lighting.use();
     glBindTextureUnit(unit_density, v_->density.get());
     const glm::vec4 none(0.0f, 0.0f, 0.0f, -1.0f);  // no light: the froxels of tiles without fog
     glClearTexImage(v_->light.get(), 0, GL_RGBA, GL_FLOAT, &none);
@@ -271,7 +272,7 @@ void FroxelPass::run_integrate(const FrameContext& frame)
 {
     const GLuint lit = options_.temporal ? v_->resolved[current_].get() : v_->light.get();
     const ScopedPassTimer timed(timers_[integrate]);
-    const ShaderProgram& p = integrate_.get(options_.height_fog.enabled());
+    const ShaderProgram& p = program(integrate_);
     bind_layout(p);
     bind_light(p, frame);  // the height fog's light
     p.set("u_light", unit_light);
@@ -293,7 +294,7 @@ void FroxelPass::run_classify(const FrameContext& frame, GLuint depth_texture, c
     if (!classified_)
         return;  // the standard apply reads the volume everywhere; fog-aware, every pixel marches
     const ScopedPassTimer timed(timers_[classify]);
-    const ShaderProgram& p = classify_.get(options_.height_fog.enabled());
+    const ShaderProgram& p = program(classify_);
     classified_ = false;              // the apply's library: every pixel's taps still to be decided
     bind_pixel_program(p, frame, 1);  // the frame's pixels (froxel_frame.glsl), its depth on unit 0
     classified_ = true;
