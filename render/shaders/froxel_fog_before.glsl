@@ -124,10 +124,12 @@ float fog_before_column(vec2 uv, float depth, out float t, out vec4 skin, out fl
     return (enter + along) * depth / reach;
 }
 
+// fog_before_column alone: the split samples' marches bound their stretch by it
+// (froxel_pixels.comp); the probes tell samples apart (froxel_edges.comp), and compiled into the
+// marches' program they ran in every sample's invocation on llvmpipe without a pixel to probe.
 float fog_before(vec2 uv, float depth, out float t, out vec4 skin, out float sigma)
 {
     float haze;
     bool probe;
-    float under = fog_before_column(uv, depth, t, skin, sigma, haze, probe);
-    return probe ? fog_before_probed(fx_ray(uv), depth, haze, t, skin, sigma) : under;
+    return fog_before_column(uv, depth, t, skin, sigma, haze, probe);
 }
