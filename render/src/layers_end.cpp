@@ -70,21 +70,23 @@ void LayersEnd::draw(const Inputs& in)
 {
     if (!heights_ || !in.sun)
         return;
-    std::unique_ptr<ShaderProgram>& slot = in.fog ? fog_program_ : program_;
-    if (!slot)
-        slot = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "medium_shell.glsl", "light_volume.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-            "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
-            in.fog ? "froxel_apply.glsl" : "froxel_fog_none.glsl", "layers_light.glsl", "fullscreen.vert",
-            "layers_end.frag"});
-    const ShaderProgram& p = *slot;
     const geometry::LayerOptions& o = in.options;
+    const bool baked = o.optics.multiple_scattering == geometry::MultipleScattering::baked && in.light_volume &&
+        in.light_volume->ready();
+    std::unique_ptr<ShaderProgram>& slot = programs_[in.fog ? 1 : 0][baked ? 1 : 0];
+    if (!slot)
+        slot = std::make_unique<ShaderProgram>(
+            std::vector<std::string_view>{"medium_shell.glsl", "light_volume.glsl", "fog_partition.glsl",
+                                          "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
+                                          "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
+                                          in.fog ? "froxel_apply.glsl" : "froxel_fog_none.glsl", "layers_light.glsl",
+                                          "fullscreen.vert", "layers_end.frag"},
+            light_volume_preamble(baked));
+    const ShaderProgram& p = *slot;
     if (in.fog)
         in.fog->bind_apply(p);
     bind_terrain_shadow(p, in.shadow);
     in.sun->bind(p, end_unit_sun, end_sun_march_steps);
-    const bool baked = o.optics.multiple_scattering == geometry::MultipleScattering::baked && in.light_volume &&
-        in.light_volume->ready();
     if (in.light_volume)
         in.light_volume->bind(p, end_unit_baked, baked);
     else

@@ -42,7 +42,7 @@ public:
 private:
     Texture heights_;
     glm::vec4 rect_{0.0f};
-    std::unique_ptr<ShaderProgram> program_, fog_program_;
+    std::unique_ptr<ShaderProgram> programs_[2][2];  // [froxel fog][the baked light], built on first use
     VertexArray empty_vao_;
 };
 

@@ -51,10 +51,7 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : program_({"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "froxel_common.glsl",
-                "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl",
-                "sun_volume.glsl", "froxel_fog_none.glsl", "layers_light.glsl", "layers.frag"}),
-      composite_({"depth_samples.glsl", "fullscreen.vert", "layers_composite.frag"}),
+    : composite_({"depth_samples.glsl", "fullscreen.vert", "layers_composite.frag"}),
       depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
 {}
@@ -304,20 +301,33 @@ void LayersPass::update_lod(const FrameContext& frame, int target_height)
     near_reach_ = -1.0;  // the near triangles come from the new list
 }
 
+const ShaderProgram& LayersPass::stack_program(bool froxel_fog, bool baked)
+{
+    std::unique_ptr<ShaderProgram>& p = programs_[froxel_fog ? 1 : 0][baked ? 1 : 0];
+    if (!p)
+        p = std::make_unique<ShaderProgram>(
+            std::vector<std::string_view>{"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl",
+                                          "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
+                                          "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
+                                          froxel_fog ? "froxel_apply.glsl" : "froxel_fog_none.glsl",
+                                          "layers_light.glsl", "layers.frag"},
+            light_volume_preamble(baked));
+    return *p;
+}
+
 void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsigned resolved_depth)
 {
     update_lod(frame, target_height);
+    const auto& o = options_;
+    // The baked multiple scattering: the moments, and the Medium's columns they follow.
+    const bool medium = o.shading == geometry::LayerShading::medium;
+    const bool baked = medium && o.optics.multiple_scattering == geometry::MultipleScattering::baked && light_volume_ &&
+        light_volume_->ready();
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
-    if (fog_ && !fog_program_)
-        fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl", "froxel_common.glsl",
-            "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl",
-            "sun_volume.glsl", "froxel_apply.glsl", "layers_light.glsl", "layers.frag"});
-    const ShaderProgram& p = fog_ ? *fog_program_ : program_;
+    const ShaderProgram& p = stack_program(fog_ != nullptr, baked);
     if (fog_)
         fog_->bind_apply(p);
     bind_terrain_shadow(p, shadow_);
-    const auto& o = options_;
     const glm::dvec3 eye(frame.eye);
     const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
@@ -356,11 +366,7 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     p.set("u_opacity", float(o.opacity));
     p.set("u_ground_fade", float(o.ground_fade));
     set_layers_light_uniforms(p, o, frame, noise_shift_);
-    const bool medium = o.shading == geometry::LayerShading::medium;
     p.set("u_medium", int(medium));
-    // The baked multiple scattering: the moments, and the Medium's columns they follow.
-    const bool baked = medium && o.optics.multiple_scattering == geometry::MultipleScattering::baked && light_volume_ &&
-        light_volume_->ready();
     // The volume's own copy of the Medium's grid, after bind_apply: the froxels bind theirs only
     // where they apply fog, and their apply's lookups in these programs do not read it.
     // Per fragment within the distance where the spacing narrows, L0 = divisor r0 ([Thesis] 2.8):

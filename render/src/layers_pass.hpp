@@ -78,8 +78,11 @@ public:
     void set_light_volume(const LightVolumeTexture* volume) { light_volume_ = volume; }
 
 private:
-    ShaderProgram program_, composite_, depth_max_;
-    mutable std::unique_ptr<ShaderProgram> fog_program_;
+    ShaderProgram composite_, depth_max_;
+    //! The stack's program, with froxel fog (froxel_apply.glsl) or none, with the baked light or
+    //! without (light_volume_preamble), each built on first use.
+    const ShaderProgram& stack_program(bool froxel_fog, bool baked);
+    std::unique_ptr<ShaderProgram> programs_[2][2];
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
     const SunVolume* sun_ = nullptr;

@@ -17,11 +17,7 @@ namespace {
 constexpr int unit_baked_moments = 20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
 }  // namespace
 
-ParticlesPass::ParticlesPass()
-    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "particle_light.glsl", "terrain_shadow.glsl",
-                "froxel_fog_none.glsl", "medium_shell.glsl", "height_fog.glsl", "light_volume.glsl", "particles.vert",
-                "particles.frag"}),
-      composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
+ParticlesPass::ParticlesPass() : composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
 bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
@@ -204,19 +200,27 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     const geometry::LightGrid& g = buffer_.grid();
     const glm::dmat4 inverse_view = glm::inverse(frame.view);
     const glm::vec2 planes = depth_planes(frame);
-    // With froxel fog, the variant that reads it at each billboard's depth (froxel_apply.glsl).
-    if (fog_ && !fog_program_)
-        fog_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
-            "particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
-            "particle_light.glsl", "terrain_shadow.glsl", "medium_shell.glsl", "height_fog.glsl", "froxel_medium.glsl",
-            "froxel_apply.glsl", "light_volume.glsl", "particles.vert", "particles.frag"});
-    const ShaderProgram& p = fog_ ? *fog_program_ : program_;
-    if (fog_)
-        fog_->bind_apply(p);
-    bind_terrain_shadow(p, shadow_);
     // The baked multiple scattering at each billboard's centre (particles.vert): the moments and
     // the Medium's columns they follow. The renderer gives a volume for the model `baked` alone.
     const bool baked = light_volume_ && light_volume_->ready();
+    // With froxel fog, the variant that reads it at each billboard's depth (froxel_apply.glsl).
+    std::unique_ptr<ShaderProgram>& slot = programs_[fog_ ? 1 : 0][baked ? 1 : 0];
+    if (!slot)
+        slot = std::make_unique<ShaderProgram>(
+            fog_ ? std::vector<std::string_view>{"particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl",
+                                                 "fog_lighting.glsl", "particle_light.glsl", "terrain_shadow.glsl",
+                                                 "medium_shell.glsl", "height_fog.glsl", "froxel_medium.glsl",
+                                                 "froxel_apply.glsl", "light_volume.glsl", "particles.vert",
+                                                 "particles.frag"}
+                 : std::vector<std::string_view>{"particle_footprint.glsl", "fog_lighting.glsl", "particle_light.glsl",
+                                                 "terrain_shadow.glsl", "froxel_fog_none.glsl", "medium_shell.glsl",
+                                                 "height_fog.glsl", "light_volume.glsl", "particles.vert",
+                                                 "particles.frag"},
+            light_volume_preamble(baked));
+    const ShaderProgram& p = *slot;
+    if (fog_)
+        fog_->bind_apply(p);
+    bind_terrain_shadow(p, shadow_);
     // The volume's own copy of the Medium's grid, after bind_apply: the froxels bind theirs only
     // where they apply fog, and their apply's lookups in these programs do not read it.
     if (light_volume_)

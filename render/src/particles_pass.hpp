@@ -59,8 +59,10 @@ public:
     bool last_light_rebuilt() const { return last_light_rebuilt_; }
 
 private:
-    ShaderProgram program_, composite_;
-    std::unique_ptr<ShaderProgram> fog_program_;  // the variant reading the froxel fog, built on first use
+    ShaderProgram composite_;
+    //! The billboards' program, reading the froxel fog (froxel_apply.glsl) or not, with the baked
+    //! light or without (light_volume_preamble), each built on first use.
+    std::unique_ptr<ShaderProgram> programs_[2][2];
     const LightVolumeTexture* light_volume_ = nullptr;
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
