@@ -36,6 +36,18 @@ enum Stage {
     stage_count
 };
 
+// A dispatch whose groups a list's header counts (the list bound as the program's storage
+// buffer 0 meanwhile), then the barrier that lets the next pass read what it wrote.
+inline void dispatch_listed(GLuint list)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list);
+    glDispatchComputeIndirect(0);
+    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+}
+
 }  // namespace froxel_parts
 
 struct FroxelPass::Volumes {

@@ -193,12 +193,7 @@ void FroxelPass::run_tile_rays(const FrameContext& frame, GLuint depth_texture, 
     // Images of the formats the marches bind there (unwritten in this stage).
     glBindImageTexture(0, applied_.fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, applied_.info.back().get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, tile_rays_.get());
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, tile_rays_.get());
-    glDispatchComputeIndirect(0);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+    dispatch_listed(tile_rays_.get());
 }
 
 bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, const FrameSamples& samples, PixelFog& out)

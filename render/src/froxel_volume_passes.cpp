@@ -48,18 +48,6 @@ void dispatch_volume(const glm::ivec3& size, int depth)
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
 }
 
-// One invocation per froxel of the tiles with fog (froxel_fog_tiles.glsl: listed, with the
-// dispatch, in `list`), then the barrier that lets the next pass read what it wrote.
-void dispatch_fog_tiles(const Buffer& list)
-{
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list.get());
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list.get());
-    glDispatchComputeIndirect(0);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-}
-
 }  // namespace
 
 void FroxelPass::run_passes(const FrameContext& frame, GLuint depth_texture, bool still, const FrameSamples* samples)
@@ -166,7 +154,7 @@ void FroxelPass::run_density()
     const glm::vec4 none(0.0f);
     glClearTexImage(v_->density.get(), 0, GL_RGBA, GL_FLOAT, &none);
     glBindImageTexture(0, v_->density.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatch_fog_tiles(v_->fog_tiles);
+    dispatch_listed(v_->fog_tiles.get());  // the froxels of the tiles with fog
 }
 
 void FroxelPass::list_fog_tiles()
@@ -232,7 +220,7 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
     const glm::vec4 none(0.0f, 0.0f, 0.0f, -1.0f);  // no light: the froxels of tiles without fog
     glClearTexImage(v_->light.get(), 0, GL_RGBA, GL_FLOAT, &none);
     glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
-    dispatch_fog_tiles(v_->fog_tiles);
+    dispatch_listed(v_->fog_tiles.get());  // the froxels of the tiles with fog
 }
 
 void FroxelPass::run_accumulate(int history, bool history_valid, int into, float weight)
