@@ -62,6 +62,18 @@ bool fine_block_texel(ivec2 id, out ivec2 corner, out ivec2 local)
     return true;
 }
 
+// Whether phase 2 wrote fine texel t: it lies in the four cells around a marked vertex (phase 1
+// marks them in `shade`, y = 1).
+bool fine_written(ivec2 t)
+{
+    ivec2 lo = max((t + u_fine - 1) / u_fine - 1, ivec2(1)), hi = min(t / u_fine + 1, u_grid.xy - 2);
+    bool written = false;
+    for (int j = lo.y; j <= hi.y; ++j)
+        for (int i = lo.x; i <= hi.x; ++i)
+            written = written || shade[mesh_vertex(i, j)].y > 0.0;
+    return written;
+}
+
 void main()
 {
     ivec2 id = ivec2(gl_GlobalInvocationID.xy);
@@ -92,7 +104,6 @@ void main()
         return;
     }
     if (u_phase == 3) {
-        int side = 2 * u_fine + 1;
         ivec2 corner, local;
         if (!fine_block_texel(id, corner, local))
             return;
@@ -106,16 +117,18 @@ void main()
         float carried = -3e38;  // the least shade beyond the line of those the runs give
         const ivec2 steps[4] = ivec2[4](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
         for (int k = 0; k < 4; ++k) {
-            // Runs within the vertex's own cells, which phase 2 wrote whole (beyond them a texel
-            // may be unwritten).
-            ivec2 b = local + 2 * steps[k];
-            if (any(lessThan(b, ivec2(0))) || any(greaterThanEqual(b, ivec2(side))) ||
-                any(greaterThanEqual(corner + b, size)) || any(lessThan(corner + b, ivec2(0))))
+            // Runs over texels phase 2 wrote (beyond the marked vertices' cells a texel may be
+            // unwritten): any marked vertex's, not only this block's, so that a texel two marked
+            // vertices' blocks share gets the same value from either (read within its own block
+            // alone, each wrote its own, and the picture changed from run to run).
+            ivec2 b = ab + 2 * steps[k];
+            if (any(greaterThanEqual(b, size)) || any(lessThan(b, ivec2(0))) || !fine_written(ab + steps[k]) ||
+                !fine_written(b))
                 continue;
             float ta = imageLoad(io_fine, ab + steps[k]).r;
             if (!(ta > 0.0))
                 continue;
-            float tb = imageLoad(io_fine, corner + b).r;
+            float tb = imageLoad(io_fine, b).r;
             if (tb > ta)  // growing away from the line
                 carried = max(carried, 2.0 * ta - tb);
         }
