@@ -1,9 +1,9 @@
 #version 450 core
 // The fog-aware apply's fog for every point of the grid at u_spacing (frame_grid: every fourth
 // or second pixel of every fourth or second row, or every pixel), into o_fog: the volume's
-// lookup where its slices resolve the fog (froxel_resolved; listed for froxel_lookup.comp); the coarser grid's own
-// (u_fx_samples: froxel_pixels.comp stage 0 at every eighth pixel, or this pass at every fourth
-// or second) at its points; the mean of the coarser points around a point where they agree; the
+// lookup where its slices resolve the fog (froxel_resolved; those points listed for
+// froxel_lookup.comp); the coarser grid's own (u_fx_samples: froxel_pixels.comp stage 0 at every
+// eighth pixel, or this pass at every fourth or second) at its points; the mean of the coarser points around a point where they agree; the
 // rest are listed to march their own rays (froxel_pixels.comp stage 1), one invocation each.
 //
 // The samples (the coarser points) around a pixel stand for it (froxel_upsampled) when its surface's depth and its
