@@ -123,7 +123,7 @@ const ShaderProgram& FroxelPass::Variants::get(bool height_fog, bool light_volum
     if (!p)
         p = std::make_unique<ShaderProgram>(files_,
                                             std::string("#define FROXEL_HEIGHT_FOG ") + (height_fog ? "1" : "0") +
-                                                "\n#define LIGHT_VOLUME " + (light_volume ? "1" : "0") + "\n");
+                                                "\n" + std::string(light_volume_preamble(light_volume)));
     return *p;
 }
 

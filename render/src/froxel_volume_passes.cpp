@@ -151,8 +151,11 @@ void FroxelPass::run_density()
     medium_gpu_.bind(density_, options_.height_fog, unit_medium);
     density_.set("u_samples", options_.density_samples);
     density_.use();
-    const glm::vec4 none(0.0f);
-    glClearTexImage(v_->density.get(), 0, GL_RGBA, GL_FLOAT, &none);
+    // The froxels of the tiles without fog: no fog, and no light (the lighting passes, one or a
+    // still's two, write the listed tiles' alone).
+    const glm::vec4 no_fog(0.0f), no_light(0.0f, 0.0f, 0.0f, -1.0f);
+    glClearTexImage(v_->density.get(), 0, GL_RGBA, GL_FLOAT, &no_fog);
+    glClearTexImage(v_->light.get(), 0, GL_RGBA, GL_FLOAT, &no_light);
     glBindImageTexture(0, v_->density.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch_listed(v_->fog_tiles.get());  // the froxels of the tiles with fog
 }
@@ -217,8 +220,6 @@ void FroxelPass::run_lighting(const FrameContext& frame, const Jitter& jitter)
     lighting.set("u_whole_tiles", int(options_.fog_aware));
     lighting.use();
     glBindTextureUnit(unit_density, v_->density.get());
-    const glm::vec4 none(0.0f, 0.0f, 0.0f, -1.0f);  // no light: the froxels of tiles without fog
-    glClearTexImage(v_->light.get(), 0, GL_RGBA, GL_FLOAT, &none);
     glBindImageTexture(0, v_->light.get(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_RGBA16F);
     dispatch_listed(v_->fog_tiles.get());  // the froxels of the tiles with fog
 }

@@ -16,6 +16,7 @@
 #include "kiri/geometry/volume/height_fog.hpp"
 #include "kiri/render/camera.hpp"
 #include "kiri/render/renderer.hpp"
+#include "geometry/fog_test_terrains.hpp"
 #include "render/render_fixture.hpp"
 
 namespace {
@@ -259,16 +260,8 @@ TEST_F(GroundShadeGl, AFogsWallWithinACellShadesTheGroundWhereTheWallStands)
 TEST_F(GroundShadeGl, ADenseFogsShoreOnASlopeShadesTheGroundUpToTheShore)
 {
     constexpr double extinction = 0.3, top = 43.0, rise = 0.1, shore = top / rise - 320.0;
-    g::Heightfield hf;
-    hf.nx = hf.ny = 17;
-    hf.dx = hf.dy = 80.0;
-    hf.x0 = hf.y0 = -640.0;
-    hf.z.resize(std::size_t(hf.nx) * std::size_t(hf.ny));
-    hf.valid.assign(hf.z.size(), 1);
-    for (int j = 0; j < hf.ny; ++j)
-        for (int i = 0; i < hf.nx; ++i)
-            hf.z[std::size_t(j) * std::size_t(hf.nx) + std::size_t(i)] = rise * (hf.x_of(i) + 320.0);
-    const g::Terrain ramp(std::move(hf));
+    const g::Terrain ramp(kiri::test::make_heightfield(17, 17, 80.0, -640.0, -640.0,
+                                                       [](double x, double) { return rise * (x + 320.0); }));
     g::MediumGrid grid;
     grid.nx = grid.ny = 3;
     grid.dx = grid.dy = 640.0;
