@@ -38,6 +38,9 @@ uniform float u_extinction;      // sigma_t (1/m) at density 1
 uniform float u_top_loss;        // 1 - top_density
 uniform float u_thickness;       // T0 (m)
 uniform float u_lv_per_fragment; // metres from the eye within which the baked light is per fragment
+#ifndef LAYERS_BAKED_PER_FRAGMENT
+#define LAYERS_BAKED_PER_FRAGMENT 1
+#endif
 uniform int u_md_extent;         // 1: the Medium's grid is bound (medium_shell.glsl), its coverage is where the fog is
 uniform int u_sun_lookup;        // 1: tau_sun from the sun volume (sun_volume.glsl), at u_sv_direction
 uniform vec3 u_sv_direction;
@@ -208,12 +211,17 @@ void main()
         // towards the eye, not hidden by the terrain's shadow: from the vertices (layers.vert),
         // but near the eye, where a triangle spans a wide angle of directions towards it, per
         // fragment.
+        // LAYERS_BAKED_PER_FRAGMENT 0: no layer comes that near the eye (LayersPass::stack_program).
         if (u_lv_on != 0)
             radiance += u_albedo * u_sun_radiance *
+#if LAYERS_BAKED_PER_FRAGMENT
                 (dist < u_lv_per_fragment
                      ? lv_in_scattered_at(u_eye + view * (entry + emission_centroid(path, sigma * path)), -view,
                                           u_anisotropy, true)
                      : v_baked);
+#else
+                v_baked;
+#endif
     } else {
         a = v_alpha * u_opacity * tex.a * detail;
         a = 1.0 - pow(max(1.0 - a, 0.0), v_exponent);

@@ -6,11 +6,12 @@
 // on a regular grid, h = (z - floor) / (top - floor) of the Medium's column (its top raised to the
 // height fog's where that is higher, its floor lowered to the ground where the height fog lies
 // under it: LightVolume::shell) in nz levels.
-// Stored in a 2D array texture, layer q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F,
-// linear in x and y, clamped to the edge: the CPU's trilinear between cell centres, the levels
-// blended here). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
+// Stored in a 3D texture, slice q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F, linear,
+// clamped to the edge: the CPU's trilinear between cell centres, each group of moments read
+// within its own nz slices: one filtered read where two of a 2D array's layers took twice the
+// time). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
 uniform int u_lv_on;
-uniform sampler2DArray u_lv_moments;
+uniform sampler3D u_lv_moments;
 uniform vec4 u_lv_rect;            // x0, y0, 1 / (nx dx), 1 / (ny dy)
 uniform int u_lv_levels;           // nz
 uniform int u_lv_bands;            // [1, 8]
@@ -25,50 +26,109 @@ uniform ivec2 u_lv_floors_n;
 uniform float u_lv_norms[64];
 
 const int lv_max_bands = 8;
+const int lv_moment_texels = lv_max_bands * lv_max_bands / 4;  // 4 moments a texel
 
-// g^l Y_lm(d) at [l (l + 1) + m] for l < bands (geometry::LightVolume::phase_weights): the real
-// orthonormal harmonics by the recurrences of geometry::real_spherical_harmonics (no
-// Condon-Shortley phase; sin^m(theta) (cos, sin)(m phi) as (u.x + i u.y)^m).
-void lv_phase_weights(vec3 d, float g, int bands, out float w[lv_max_bands * lv_max_bands])
+// Y_lm(u) of a unit direction u for l < lv_max_bands at [l (l + 1) + m], 4 a vec4 as the texture
+// holds the moments: the real orthonormal harmonics by the recurrences of
+// geometry::real_spherical_harmonics (no Condon-Shortley phase; sin^m(theta) (cos, sin)(m phi) as
+// (u.x + i u.y)^m), spelled out. Written as loops over the bands, their array indexed by the
+// loops' counters was kept in memory by llvmpipe, and the harmonics took more of a march with the
+// baked light than its texture reads (that march twice one without the baked light).
+void lv_harmonics(vec3 u, out vec4 w[lv_moment_texels])
 {
-    for (int q = 0; q < lv_max_bands * lv_max_bands; ++q)
-        w[q] = 0.0;
-    float len = length(d);
-    vec3 u = len > 0.0 ? d / len : vec3(0.0, 0.0, 1.0);
     float x = clamp(u.z, -1.0, 1.0);
+    vec2 e1 = u.xy;  // (u.x + i u.y)^m as (re, im)
+    vec2 e2 = vec2(e1.x * u.x - e1.y * u.y, e1.x * u.y + e1.y * u.x);
+    vec2 e3 = vec2(e2.x * u.x - e2.y * u.y, e2.x * u.y + e2.y * u.x);
+    vec2 e4 = vec2(e3.x * u.x - e3.y * u.y, e3.x * u.y + e3.y * u.x);
+    vec2 e5 = vec2(e4.x * u.x - e4.y * u.y, e4.x * u.y + e4.y * u.x);
+    vec2 e6 = vec2(e5.x * u.x - e5.y * u.y, e5.x * u.y + e5.y * u.x);
+    vec2 e7 = vec2(e6.x * u.x - e6.y * u.y, e6.x * u.y + e6.y * u.x);
+    float p0_0 = 1.0;
+    float p1_0 = x * 1.0 * p0_0;
+    float p2_0 = (3.0 * x * p1_0 - 1.0 * p0_0) / 2.0;
+    float p3_0 = (5.0 * x * p2_0 - 2.0 * p1_0) / 3.0;
+    float p4_0 = (7.0 * x * p3_0 - 3.0 * p2_0) / 4.0;
+    float p5_0 = (9.0 * x * p4_0 - 4.0 * p3_0) / 5.0;
+    float p6_0 = (11.0 * x * p5_0 - 5.0 * p4_0) / 6.0;
+    float p7_0 = (13.0 * x * p6_0 - 6.0 * p5_0) / 7.0;
+    float p1_1 = 1.0;
+    float p2_1 = x * 3.0 * p1_1;
+    float p3_1 = (5.0 * x * p2_1 - 3.0 * p1_1) / 2.0;
+    float p4_1 = (7.0 * x * p3_1 - 4.0 * p2_1) / 3.0;
+    float p5_1 = (9.0 * x * p4_1 - 5.0 * p3_1) / 4.0;
+    float p6_1 = (11.0 * x * p5_1 - 6.0 * p4_1) / 5.0;
+    float p7_1 = (13.0 * x * p6_1 - 7.0 * p5_1) / 6.0;
+    float p2_2 = 3.0;
+    float p3_2 = x * 5.0 * p2_2;
+    float p4_2 = (7.0 * x * p3_2 - 5.0 * p2_2) / 2.0;
+    float p5_2 = (9.0 * x * p4_2 - 6.0 * p3_2) / 3.0;
+    float p6_2 = (11.0 * x * p5_2 - 7.0 * p4_2) / 4.0;
+    float p7_2 = (13.0 * x * p6_2 - 8.0 * p5_2) / 5.0;
+    float p3_3 = 15.0;
+    float p4_3 = x * 7.0 * p3_3;
+    float p5_3 = (9.0 * x * p4_3 - 7.0 * p3_3) / 2.0;
+    float p6_3 = (11.0 * x * p5_3 - 8.0 * p4_3) / 3.0;
+    float p7_3 = (13.0 * x * p6_3 - 9.0 * p5_3) / 4.0;
+    float p4_4 = 105.0;
+    float p5_4 = x * 9.0 * p4_4;
+    float p6_4 = (11.0 * x * p5_4 - 9.0 * p4_4) / 2.0;
+    float p7_4 = (13.0 * x * p6_4 - 10.0 * p5_4) / 3.0;
+    float p5_5 = 945.0;
+    float p6_5 = x * 11.0 * p5_5;
+    float p7_5 = (13.0 * x * p6_5 - 11.0 * p5_5) / 2.0;
+    float p6_6 = 10395.0;
+    float p7_6 = x * 13.0 * p6_6;
+    float p7_7 = 135135.0;
+    w[0] = vec4(u_lv_norms[0] * p0_0, u_lv_norms[9] * p1_1 * e1.y, u_lv_norms[8] * p1_0, u_lv_norms[9] * p1_1 * e1.x);
+    w[1] = vec4(u_lv_norms[18] * p2_2 * e2.y, u_lv_norms[17] * p2_1 * e1.y, u_lv_norms[16] * p2_0, u_lv_norms[17] * p2_1 * e1.x);
+    w[2] = vec4(u_lv_norms[18] * p2_2 * e2.x, u_lv_norms[27] * p3_3 * e3.y, u_lv_norms[26] * p3_2 * e2.y, u_lv_norms[25] * p3_1 * e1.y);
+    w[3] = vec4(u_lv_norms[24] * p3_0, u_lv_norms[25] * p3_1 * e1.x, u_lv_norms[26] * p3_2 * e2.x, u_lv_norms[27] * p3_3 * e3.x);
+    w[4] = vec4(u_lv_norms[36] * p4_4 * e4.y, u_lv_norms[35] * p4_3 * e3.y, u_lv_norms[34] * p4_2 * e2.y, u_lv_norms[33] * p4_1 * e1.y);
+    w[5] = vec4(u_lv_norms[32] * p4_0, u_lv_norms[33] * p4_1 * e1.x, u_lv_norms[34] * p4_2 * e2.x, u_lv_norms[35] * p4_3 * e3.x);
+    w[6] = vec4(u_lv_norms[36] * p4_4 * e4.x, u_lv_norms[45] * p5_5 * e5.y, u_lv_norms[44] * p5_4 * e4.y, u_lv_norms[43] * p5_3 * e3.y);
+    w[7] = vec4(u_lv_norms[42] * p5_2 * e2.y, u_lv_norms[41] * p5_1 * e1.y, u_lv_norms[40] * p5_0, u_lv_norms[41] * p5_1 * e1.x);
+    w[8] = vec4(u_lv_norms[42] * p5_2 * e2.x, u_lv_norms[43] * p5_3 * e3.x, u_lv_norms[44] * p5_4 * e4.x, u_lv_norms[45] * p5_5 * e5.x);
+    w[9] = vec4(u_lv_norms[54] * p6_6 * e6.y, u_lv_norms[53] * p6_5 * e5.y, u_lv_norms[52] * p6_4 * e4.y, u_lv_norms[51] * p6_3 * e3.y);
+    w[10] = vec4(u_lv_norms[50] * p6_2 * e2.y, u_lv_norms[49] * p6_1 * e1.y, u_lv_norms[48] * p6_0, u_lv_norms[49] * p6_1 * e1.x);
+    w[11] = vec4(u_lv_norms[50] * p6_2 * e2.x, u_lv_norms[51] * p6_3 * e3.x, u_lv_norms[52] * p6_4 * e4.x, u_lv_norms[53] * p6_5 * e5.x);
+    w[12] = vec4(u_lv_norms[54] * p6_6 * e6.x, u_lv_norms[63] * p7_7 * e7.y, u_lv_norms[62] * p7_6 * e6.y, u_lv_norms[61] * p7_5 * e5.y);
+    w[13] = vec4(u_lv_norms[60] * p7_4 * e4.y, u_lv_norms[59] * p7_3 * e3.y, u_lv_norms[58] * p7_2 * e2.y, u_lv_norms[57] * p7_1 * e1.y);
+    w[14] = vec4(u_lv_norms[56] * p7_0, u_lv_norms[57] * p7_1 * e1.x, u_lv_norms[58] * p7_2 * e2.x, u_lv_norms[59] * p7_3 * e3.x);
+    w[15] = vec4(u_lv_norms[60] * p7_4 * e4.x, u_lv_norms[61] * p7_5 * e5.x, u_lv_norms[62] * p7_6 * e6.x, u_lv_norms[63] * p7_7 * e7.x);
+}
+
+// g^l Y_lm(d) (geometry::LightVolume::phase_weights) for l < bands, 0 past them.
+void lv_phase_weights(vec3 d, float g, int bands, out vec4 w[lv_moment_texels])
+{
+    float len = length(d);
+    lv_harmonics(len > 0.0 ? d / len : vec3(0.0, 0.0, 1.0), w);
     float lobe = clamp(g, -0.999, 0.999);
-    float pmm = 1.0, re = 1.0, im = 0.0;
-    for (int m = 0; m < bands; ++m) {
-        if (m > 0)
-            pmm *= 2.0 * float(m) - 1.0;
-        // P_l^m for l = m, m + 1, ...: p0 = P_(l-2), p1 = P_(l-1)
-        float p1 = pmm, p0 = 0.0;
-        float gl = 1.0;  // g^l from l = m (pow is undefined for g < 0)
-        for (int i = 0; i < m; ++i)
-            gl *= lobe;
-        for (int l = m; l < bands; ++l) {
-            float p = p1;
-            if (l == m + 1)
-                p = x * (2.0 * float(m) + 1.0) * pmm;
-            else if (l > m + 1)
-                p = ((2.0 * float(l) - 1.0) * x * p1 - float(l + m - 1) * p0) / float(l - m);
-            if (l > m) {
-                p0 = p1;
-                p1 = p;
-            }
-            float a = u_lv_norms[l * lv_max_bands + m] * p * gl;
-            if (m == 0) {
-                w[l * (l + 1)] = a;
-            } else {
-                w[l * (l + 1) + m] = a * re;
-                w[l * (l + 1) - m] = a * im;
-            }
-            gl *= lobe;
-        }
-        float r = re * u.x - im * u.y;
-        im = re * u.y + im * u.x;
-        re = r;
-    }
+    float gl[lv_max_bands];  // g^l (pow is undefined for g < 0)
+    gl[0] = 1.0;
+    gl[1] = bands > 1 ? gl[0] * lobe : 0.0;
+    gl[2] = bands > 2 ? gl[1] * lobe : 0.0;
+    gl[3] = bands > 3 ? gl[2] * lobe : 0.0;
+    gl[4] = bands > 4 ? gl[3] * lobe : 0.0;
+    gl[5] = bands > 5 ? gl[4] * lobe : 0.0;
+    gl[6] = bands > 6 ? gl[5] * lobe : 0.0;
+    gl[7] = bands > 7 ? gl[6] * lobe : 0.0;
+    w[0] *= vec4(gl[0], gl[1], gl[1], gl[1]);
+    w[1] *= vec4(gl[2], gl[2], gl[2], gl[2]);
+    w[2] *= vec4(gl[2], gl[3], gl[3], gl[3]);
+    w[3] *= vec4(gl[3], gl[3], gl[3], gl[3]);
+    w[4] *= vec4(gl[4], gl[4], gl[4], gl[4]);
+    w[5] *= vec4(gl[4], gl[4], gl[4], gl[4]);
+    w[6] *= vec4(gl[4], gl[5], gl[5], gl[5]);
+    w[7] *= vec4(gl[5], gl[5], gl[5], gl[5]);
+    w[8] *= vec4(gl[5], gl[5], gl[5], gl[5]);
+    w[9] *= vec4(gl[6], gl[6], gl[6], gl[6]);
+    w[10] *= vec4(gl[6], gl[6], gl[6], gl[6]);
+    w[11] *= vec4(gl[6], gl[6], gl[6], gl[6]);
+    w[12] *= vec4(gl[6], gl[7], gl[7], gl[7]);
+    w[13] *= vec4(gl[7], gl[7], gl[7], gl[7]);
+    w[14] *= vec4(gl[7], gl[7], gl[7], gl[7]);
+    w[15] *= vec4(gl[7], gl[7], gl[7], gl[7]);
 }
 
 // The light scattered at least once towards `towards` by fog of anisotropy g at (x, y) and
@@ -79,19 +139,18 @@ float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
     if (u_lv_on == 0 || !(h >= 0.0) || !(scale > 0.0))
         return 0.0;
     int bands = clamp(u_lv_bands, 1, lv_max_bands);
-    float w[lv_max_bands * lv_max_bands];
+    vec4 w[lv_moment_texels];
     lv_phase_weights(towards, g, bands, w);
     vec2 st = (xy - u_lv_rect.xy) * u_lv_rect.zw;
     float kz = clamp(clamp(h, 0.0, 1.0) * float(u_lv_levels) - 0.5, 0.0, float(u_lv_levels - 1));
-    int k0 = int(floor(kz));
-    int k1 = min(k0 + 1, u_lv_levels - 1);
-    float fz = kz - float(k0);
+    float depth = float((bands * bands + 3) / 4 * u_lv_levels);  // the texture's slices
+    // Every group, at constant indices (the weights past the bands are 0, their reads clamped to
+    // the last slice).
     float sum = 0.0;
-    for (int q = 0; 4 * q < bands * bands; ++q) {
-        vec4 a = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k0)), 0.0);
-        vec4 b = textureLod(u_lv_moments, vec3(st, float(q * u_lv_levels + k1)), 0.0);
-        sum += dot(mix(a, b, fz), vec4(w[4 * q], w[4 * q + 1], w[4 * q + 2], w[4 * q + 3]));
-    }
+#define LV_TERM(q) sum += dot(textureLod(u_lv_moments, vec3(st, (float(q * u_lv_levels) + kz + 0.5) / depth), 0.0), w[q])
+    LV_TERM(0); LV_TERM(1); LV_TERM(2); LV_TERM(3); LV_TERM(4); LV_TERM(5); LV_TERM(6); LV_TERM(7);
+    LV_TERM(8); LV_TERM(9); LV_TERM(10); LV_TERM(11); LV_TERM(12); LV_TERM(13); LV_TERM(14); LV_TERM(15);
+#undef LV_TERM
     return max(sum * scale, 0.0);
 }
 

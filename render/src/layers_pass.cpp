@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -39,6 +40,21 @@ constexpr int layers_unit_ground_depth = 24;
 constexpr int layers_unit_sun = 25;  // 25, 26, 27: sun_volume.glsl's in layers.frag
 // Steps of the sun's march where a fragment lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
+
+// Whether a layer of the stack of layers 0..top over `base` (layer i at most i r0 over it, r0 =
+// thickness / count, enlarged about its centre by at most 1 + top rate) comes within `reach` of
+// the eye: the base's bounds grown so.
+bool stack_within(const geometry::LayerBase& base, const geometry::LayerOptions& o, int top, const glm::dvec3& eye,
+                  double reach)
+{
+    const double rise = double(top) * o.thickness / double(std::max(o.count, 1));
+    const double grow = o.enlargement ? double(top) * o.enlargement_rate : 0.0;
+    const glm::dvec2 c = base.centre;
+    const glm::dvec2 lo = glm::min(glm::dvec2(base.min), c + (1.0 + grow) * (glm::dvec2(base.min) - c));
+    const glm::dvec2 hi = glm::max(glm::dvec2(base.max), c + (1.0 + grow) * (glm::dvec2(base.max) - c));
+    const glm::dvec3 nearest = glm::clamp(eye, glm::dvec3(lo, base.min.z), glm::dvec3(hi, base.max.z + rise));
+    return glm::distance(nearest, eye) < reach;
+}
 
 void set_sampling(GLuint texture, GLint filter)
 {
@@ -301,9 +317,9 @@ void LayersPass::update_lod(const FrameContext& frame, int target_height)
     near_reach_ = -1.0;  // the near triangles come from the new list
 }
 
-const ShaderProgram& LayersPass::stack_program(bool froxel_fog, bool baked)
+const ShaderProgram& LayersPass::stack_program(bool froxel_fog, int baked)
 {
-    std::unique_ptr<ShaderProgram>& p = programs_[froxel_fog ? 1 : 0][baked ? 1 : 0];
+    std::unique_ptr<ShaderProgram>& p = programs_[froxel_fog ? 1 : 0][std::clamp(baked, 0, 2)];
     if (!p)
         p = std::make_unique<ShaderProgram>(
             std::vector<std::string_view>{"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl",
@@ -311,7 +327,8 @@ const ShaderProgram& LayersPass::stack_program(bool froxel_fog, bool baked)
                                           "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
                                           froxel_fog ? "froxel_apply.glsl" : "froxel_fog_none.glsl",
                                           "layers_light.glsl", "layers.frag"},
-            light_volume_preamble(baked));
+            std::string(light_volume_preamble(baked > 0)) +
+                (baked == 2 ? "" : "#define LAYERS_BAKED_PER_FRAGMENT 0\n"));
     return *p;
 }
 
@@ -323,23 +340,26 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     const bool medium = o.shading == geometry::LayerShading::medium;
     const bool baked = medium && o.optics.multiple_scattering == geometry::MultipleScattering::baked && light_volume_ &&
         light_volume_->ready();
-    // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl).
-    const ShaderProgram& p = stack_program(fog_ != nullptr, baked);
+    const glm::dvec3 eye(frame.eye);
+    const int top = geometry::layers_for_eye(*base_, options_, eye);
+    // L0 = divisor r0 ([Thesis] 2.8), within which the spacing narrows, and the flat radius within
+    // which it has reached its floor T0 / max_count, L0 count / max_count.
+    const double reach = o.spacing_divisor * o.thickness / std::max(o.count, 1);
+    const double flat = reach * double(std::max(o.count, 1)) / double(std::max(o.max_count, 1));
+    // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl); with
+    // the baked light per fragment only where a layer comes within L0 of the eye (llvmpipe runs a
+    // branch's code in every fragment: the lookup cost the default view's layers 40 % more).
+    const int baked_variant = !baked ? 0 : (stack_within(*base_, o, top, eye, 1.01 * reach) ? 2 : 1);
+    const ShaderProgram& p = stack_program(fog_ != nullptr, baked_variant);
     if (fog_)
         fog_->bind_apply(p);
     bind_terrain_shadow(p, shadow_);
-    const glm::dvec3 eye(frame.eye);
-    const int top = geometry::layers_for_eye(*base_, options_, eye);
     last_layers_ = top;
     last_triangles_ = int(drawn_triangles().size() / 3);
     const geometry::LayerStackUnder at_eye = geometry::layer_stack_under(*base_, options_, eye);
     const int under = std::isfinite(eye.z) ? geometry::layers_under_eye(at_eye, options_, eye, top) : 0;
     p.set("u_view_projection", frame.view_projection);
     set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, under);
-    // L0 = divisor r0 ([Thesis] 2.8), within which the spacing narrows, and the flat radius within
-    // which it has reached its floor T0 / max_count, L0 count / max_count.
-    const double reach = o.spacing_divisor * o.thickness / std::max(o.count, 1);
-    const double flat = reach * double(std::max(o.count, 1)) / double(std::max(o.max_count, 1));
     // Where the eye's rays start: the space between the layers either side of it, which they
     // leave within about the flat radius (without the narrowing, about L0).
     const EyeInStack in_stack{under >= 1 && under <= top, at_eye.base_z, at_eye.spacing,

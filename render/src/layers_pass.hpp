@@ -79,10 +79,11 @@ public:
 
 private:
     ShaderProgram composite_, depth_max_;
-    //! The stack's program, with froxel fog (froxel_apply.glsl) or none, with the baked light or
-    //! without (light_volume_preamble), each built on first use.
-    const ShaderProgram& stack_program(bool froxel_fog, bool baked);
-    std::unique_ptr<ShaderProgram> programs_[2][2];
+    //! The stack's program, with froxel fog (froxel_apply.glsl) or none, and without the baked
+    //! light (light_volume_preamble), with it from the vertices, or with it per fragment near the
+    //! eye too (`baked` 0, 1, 2), each built on first use.
+    const ShaderProgram& stack_program(bool froxel_fog, int baked);
+    std::unique_ptr<ShaderProgram> programs_[2][3];
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
     const SunVolume* sun_ = nullptr;

@@ -23,7 +23,7 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
         return;
     const geometry::LightVolume& v = *volume_;
     const int moments = v.bands * v.bands, groups = (moments + 3) / 4;
-    // Layer q nz + k: moments 4q .. 4q + 3 of level k, rows of cells (i, j); the last group's
+    // Slice q nz + k: moments 4q .. 4q + 3 of level k, rows of cells (i, j); the last group's
     // unused channels 0.
     std::vector<float> texels(std::size_t(groups) * v.nz * v.ny * v.nx * 4, 0.0f);
     for (int k = 0; k < v.nz; ++k)
@@ -35,14 +35,16 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
                     texels[((layer * v.ny + j) * v.nx + i) * 4 + q % 4] = float(m[q]);
                 }
             }
-    texture_ = make_texture(GL_TEXTURE_2D_ARRAY);
+    texture_ = make_texture(GL_TEXTURE_3D);
     glTextureStorage3D(texture_.get(), 1, GL_RGBA32F, v.nx, v.ny, groups * v.nz);
     glTextureSubImage3D(texture_.get(), 0, 0, 0, 0, v.nx, v.ny, groups * v.nz, GL_RGBA, GL_FLOAT, texels.data());
-    // Linear between cell centres in x and y, clamped to the outer ones (LightVolume::moments_at).
+    // Linear between cell centres, clamped to the outer ones (LightVolume::moments_at); between
+    // levels too, the lookup reading within a group's nz slices only.
     glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
     if (v.floor_nx >= 2 && v.floor_ny >= 2 && v.floors.size() == std::size_t(v.floor_nx) * v.floor_ny) {
         const std::vector<float> floors(v.floors.begin(), v.floors.end());
         floors_ = make_texture(GL_TEXTURE_2D);

@@ -1,7 +1,7 @@
 #pragma once
 // The baked light-transport volume (kiri/geometry/medium/light_volume.hpp) on the GPU, for the
 // lighting model's `baked` multiple scattering in the renderers (light_volume.glsl): its moments
-// in a 2D array texture of RGBA32F, layer q nz + k holding moments 4q .. 4q + 3 of level k, and
+// in a 3D texture of RGBA32F, slice q nz + k holding moments 4q .. 4q + 3 of level k, and
 // the cells' floors under a height fog in a 2D texture, uploaded when the volume changes. Without a volume the lookups give 0 (single scattering).
 #include <memory>
 #include <vector>

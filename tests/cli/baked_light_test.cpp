@@ -21,14 +21,14 @@ namespace {
 
 const fs::path data = fs::path(KIRI_DATA_DIR);
 
-// The default scene with the given multiple scattering, written beside the temporary files.
-std::string scene_with(const std::string& model)
+// A shipped scene (the default) with the given multiple scattering, written beside the temporary files.
+std::string scene_with(const std::string& model, const std::string& name = "jacksboro")
 {
-    std::ifstream in(data / "scenes/jacksboro.json");
+    std::ifstream in(data / ("scenes/" + name + ".json"));
     nlohmann::json scene = nlohmann::json::parse(in);
     scene["terrain"]["path"] = fs::absolute(data / "terrains/jacksboro_fault_dem.tif").string();
     scene["medium"]["multiple_scattering"] = model;
-    const fs::path file = kiri::test::temp_path("baked_light_" + model + ".json");
+    const fs::path file = kiri::test::temp_path("baked_light_" + name + "_" + model + ".json");
     std::ofstream(file) << scene.dump(1);
     return file.string();
 }
@@ -37,11 +37,13 @@ struct Judged {
     double baked = 0.0, without = 0.0;  // mean errors against the baked reference
 };
 
-Judged judge(const std::string& mode, bool height_fog)
+// From the scene `name`'s camera `camera` ("": its first).
+Judged judge(const std::string& mode, bool height_fog, const std::string& name = "jacksboro",
+             const std::string& camera = "")
 {
-    const std::string baked = scene_with("baked"), none = scene_with("none");
-    const std::string size = "--width 64 --height 36";
-    const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(baked, "", 64, 36, height_fog);
+    const std::string baked = scene_with("baked", name), none = scene_with("none", name);
+    const std::string size = "--width 64 --height 36" + (camera.empty() ? std::string() : " --camera " + camera);
+    const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(baked, camera, 64, 36, height_fog);
     const kiri::render::RadianceImage bare = kiri::test::render_radiance(baked, "terrain", size);
     const auto error = [&](const std::string& scene) {
         const kiri::render::FogError e =
@@ -50,8 +52,8 @@ Judged judge(const std::string& mode, bool height_fog)
         return e.mean_relative;
     };
     Judged j{error(baked), error(none)};
-    std::printf("    %s against the baked reference: with the volume %.4f, without it %.4f\n", mode.c_str(), j.baked,
-                j.without);
+    std::printf("    %s from %s %s against the baked reference: with the volume %.4f, without it %.4f\n", mode.c_str(),
+                name.c_str(), camera.c_str(), j.baked, j.without);
     fs::remove(baked);
     fs::remove(none);
     return j;
@@ -65,6 +67,17 @@ TEST(KiriBakedLight, TheLayersReadTheVolume)
     // Measured 0.079 (without the volume 0.240); 0.098 with the photons drawn along the sunlight and
     // 0.102 with the cells down to the ground under the height fog (the bake's noise moves it).
     EXPECT_LT(j.baked, 0.12);
+    EXPECT_GT(j.without, 2.0 * j.baked);
+}
+
+TEST(KiriBakedLight, TheLayersAroundAnEyeInsideTheFogReadTheVolumeAtEachFragment)
+{
+    // Near the eye a triangle spans a wide angle of directions towards it, so there the layers
+    // look the baked light up per fragment (the variant of their program for an eye within L0 of
+    // a layer), not from the vertices.
+    const Judged j = judge("layers", false, "jacksboro_descent", "descent_3_inside");
+    // Measured 0.029 (without the volume 0.179); from the vertices alone 0.047.
+    EXPECT_LT(j.baked, 0.038);
     EXPECT_GT(j.without, 2.0 * j.baked);
 }
 
