@@ -64,6 +64,12 @@ std::optional<double> HeightfieldRay::grid_hit(const glm::dvec3& o, const glm::d
     std::optional<double> hit;
     bool under = under_at_entry;
     walk_grid(frame_, o, d, t0, t1, [&](int i, int j, double ta, double tb) {
+        // Above the cell's highest corner over all of [ta, tb]: above its two triangles too.
+        if (!under &&
+            std::min(o.z + d.z * ta, o.z + d.z * tb) >
+                std::max(std::max(ground_.sample(i, j), ground_.sample(i + 1, j)),
+                         std::max(ground_.sample(i, j + 1), ground_.sample(i + 1, j + 1))))
+            return true;
         const double xi = hf_.x_of(i), yj = hf_.y_of(j);
         // Ray height above the terrain, piecewise linear in t with a kink where the ray
         // crosses the cell's diagonal s = r.
