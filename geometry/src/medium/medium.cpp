@@ -51,6 +51,9 @@ Medium::Medium(MediumGrid grid, const MediumOptions& options, const MediumDetail
     }
     if (hi < lo)  // no fog anywhere: an empty box at the grid's centre
         lo = hi = 0.0;
+    corners_.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+        corners_[k] = {grid_.floor[k], grid_.bottom[k], grid_.top[k], grid_.coverage[k]};
     bounds_.min = {grid_.x0, grid_.y0, lo};
     bounds_.max = {grid_.x0 + (grid_.nx - 1) * grid_.dx, grid_.y0 + (grid_.ny - 1) * grid_.dy, hi};
 }
@@ -63,14 +66,12 @@ MediumColumn Medium::column(double x, double y) const
     const double gy = std::clamp((y - grid_.y0) / grid_.dy, 0.0, double(grid_.ny - 1));
     const int i = std::min(int(gx), grid_.nx - 2), j = std::min(int(gy), grid_.ny - 2);
     const double fx = gx - i, fy = gy - j;
-    const std::size_t k = std::size_t(j) * grid_.nx + i;
-    auto lerp = [&](const std::vector<double>& v) {
-        const double a = v[k] + (v[k + 1] - v[k]) * fx;
-        const double b = v[k + grid_.nx] + (v[k + grid_.nx + 1] - v[k + grid_.nx]) * fx;
-        return a + (b - a) * fy;
-    };
+    const glm::dvec4* c = &corners_[std::size_t(j) * grid_.nx + i];
+    const glm::dvec4 a = c[0] + (c[1] - c[0]) * fx;
+    const glm::dvec4 b = c[grid_.nx] + (c[grid_.nx + 1] - c[grid_.nx]) * fx;
+    const glm::dvec4 v = a + (b - a) * fy;
     const bool outside = x < grid_.x0 || y < grid_.y0 || x > bounds_.max.x || y > bounds_.max.y;
-    return {lerp(grid_.floor), lerp(grid_.bottom), lerp(grid_.top), outside ? 0.0 : lerp(grid_.coverage)};
+    return {v.x, v.y, v.z, outside ? 0.0 : v.w};
 }
 
 double Medium::detail_factor(double x, double y, double h) const
