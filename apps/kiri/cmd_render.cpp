@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -83,6 +84,12 @@ void run(const RenderArgs& a)
 {
     const auto start = std::chrono::steady_clock::now();
     check_output_file(a.out);
+    // The format is the name's: any other ending would get a PNG's bytes under it.
+    if (const std::string ending = std::filesystem::path(a.out).extension().string();
+        !render::is_exr_path(a.out) && !render::is_png_path(a.out))
+        throw IoError(a.out, "",
+                      (ending.empty() ? std::string("has no ending") : "ends in " + ending) +
+                          ": kiri render writes a .png (tone-mapped) or an .exr (linear radiance)");
     const geometry::Scene given = geometry::load_scene_or_dem(a.scene);
     const bool cpu = a.mode == "reference" || a.mode == "path";  // the CPU judges: slow, no GL
     if (a.black_ground && !cpu)

@@ -22,12 +22,20 @@ constexpr const char* channels[4] = {"R", "G", "B", "A"};
 
 }  // namespace
 
-bool is_exr_path(const std::filesystem::path& path)
+namespace {
+
+std::string lower_extension(const std::filesystem::path& path)
 {
     std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return ext == ".exr";
+    return ext;
 }
+
+}  // namespace
+
+bool is_exr_path(const std::filesystem::path& path) { return lower_extension(path) == ".exr"; }
+
+bool is_png_path(const std::filesystem::path& path) { return lower_extension(path) == ".png"; }
 
 void write_exr_atomic(const std::filesystem::path& path, const RadianceImage& image)
 {

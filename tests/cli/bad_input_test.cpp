@@ -108,6 +108,27 @@ TEST_F(BadInput, UnwritableOutputPath)
     EXPECT_NE(r.err.find("is a folder"), std::string::npos) << r.err;
 }
 
+TEST_F(BadInput, AnOutputNameOfAnotherFormatIsRefused)
+{
+    // A PNG's bytes under a .pfm or .jpg name would pass for a file of that format.
+    const fs::path scene = fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json";
+    for (const char* name : {"frame.pfm", "frame.jpg", "frame"}) {
+        const fs::path target = dir_ / name;
+        const RunResult r = run_kiri("render " + scene.string() + " -o " + target.string() + " --width 32 --height 18");
+        EXPECT_EQ(r.exit_code, 2) << name;
+        EXPECT_EQ(r.error_lines(), 1) << r.err;
+        EXPECT_NE(r.err.find(target.string() + ": "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find(".png"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(target)) << name;
+    }
+    // Either ending in any case is taken.
+    const fs::path upper = dir_ / "frame.PNG";
+    EXPECT_EQ(run_kiri("render " + scene.string() + " -o " + upper.string() + " --width 32 --height 18 --mode terrain")
+                  .exit_code,
+              0);
+    EXPECT_TRUE(fs::exists(upper));
+}
+
 TEST_F(BadInput, UsageErrorsExitWithTwo)
 {
     RunResult r = run_kiri("render");

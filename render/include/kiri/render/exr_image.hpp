@@ -17,5 +17,7 @@ void write_exr_atomic(const std::filesystem::path& path, const RadianceImage& im
 RadianceImage read_exr(const std::filesystem::path& path);
 //! Whether `path` names an OpenEXR file (its extension is .exr, in any case).
 bool is_exr_path(const std::filesystem::path& path);
+//! Whether `path` names a PNG file (its extension is .png, in any case).
+bool is_png_path(const std::filesystem::path& path);
 
 }  // namespace kiri::render
