@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "kiri/render/exr_image.hpp"
 #include "preview_app.hpp"
 
 int main(int argc, char** argv)
@@ -46,6 +47,10 @@ int main(int argc, char** argv)
     }
     if (args.scripted() != !args.screenshot.empty()) {
         std::fprintf(stderr, "kiri-preview: --frames and --screenshot go together\n");
+        return 2;
+    }
+    if (!args.screenshot.empty() && !kiri::render::is_png_path(args.screenshot)) {
+        std::fprintf(stderr, "kiri-preview: %s: --screenshot writes a PNG: name it .png\n", args.screenshot.c_str());
         return 2;
     }
     if (!args.scripted() && (!args.save.empty() || !args.camera_path.empty() || args.moving)) {

@@ -468,4 +468,12 @@ TEST(KiriPreview, ScriptedOptionsAreCheckedBeforeAnyWindow)
     EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --save x.json"), 2);    // not scripted
     EXPECT_EQ(exit_code(shell_quote(scene_path()) + " --view sideways"), 2);  // unknown view
     EXPECT_EQ(exit_code("--help"), 0);
+    // A screenshot under another format's name is refused before the display is looked for.
+    const fs::path err = kiri::test::temp_path("preview_screenshot_name.txt");
+    const std::string command = "env -u DISPLAY " + shell_quote(KIRI_PREVIEW) + " " + shell_quote(scene_path()) +
+        " --frames 3 --screenshot shot.jpg > /dev/null 2> " + err.string();
+    EXPECT_EQ(WEXITSTATUS(std::system(command.c_str())), 2);
+    const std::string said = kiri::test::read_all(err);
+    EXPECT_NE(said.find("shot.jpg: --screenshot writes a PNG"), std::string::npos) << said;
+    fs::remove(err);
 }
