@@ -8,8 +8,8 @@
 // under it: LightVolume::shell) in nz levels.
 // Stored in a 3D texture, slice q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F, linear,
 // clamped to the edge: the CPU's trilinear between cell centres, each group of moments read
-// within its own nz slices: one filtered read where two of a 2D array's layers took twice the
-// time). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
+// within its own nz slices: one filtered read of both levels, where a 2D array's layers took two
+// reads and a blend). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
 uniform int u_lv_on;
 uniform sampler3D u_lv_moments;
 uniform vec4 u_lv_rect;            // x0, y0, 1 / (nx dx), 1 / (ny dy)
