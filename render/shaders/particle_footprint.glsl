@@ -77,6 +77,7 @@ struct GpuParticle {
     vec4 position_radius;
     vec4 optics;  // tau, albedo, the billboard's gain on tau (particle_gpu.hpp's seen_gain), the
                   // fog's floor where it floats above the ground, relative to the centre (or -1e30)
+    vec4 floor_slope;  // that floor's plane's dz/dx, dz/dy through it at the particle's centre
 };
 
 // The attenuation buffer's grid (light_grid.hpp) in voxel units.

@@ -15,7 +15,8 @@ flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
 flat in float v_seen_tau;  // tau with the particle's mass in the ground added (particles.vert)
-flat in float v_floor;     // the fog's floor under it, relative to u_centre; below -1e29: none
+flat in float v_floor;
+flat in vec2 v_floor_slope;     // the fog's floor under it, relative to u_centre; below -1e29: none
 flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale, widened)
 flat in float v_depth_radius;      // the ball's extent along the rays
 flat in vec2 v_centre_ndc;         // the centre on the screen (normalised device coordinates)
@@ -67,12 +68,17 @@ void main()
     line_over_rect(u_eye - u_centre, cut_ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
     // And above the fog's floor where the fog floats over the ground (a blanket's bottom): seen
     // from under the blanket, a particle's ball below it would veil the clear air.
+    // The floor's plane slopes with the blanket's bottom (a level plane under its lowest point
+    // left slivers of the balls, which level rays under the bottom crossed by the hundred).
     if (v_floor > -1e29) {
-        float above = u_eye.z - u_centre.z - v_floor;  // the eye over the floor's plane
-        if (cut_ray.z > 0.0)
-            t0 = max(t0, -above / cut_ray.z);
-        else if (cut_ray.z < 0.0)
-            t1 = min(t1, -above / cut_ray.z);
+        // The eye over the plane (v_centre: the particle's centre from the eye), and the rate at
+        // which the ray rises over it.
+        float above = u_eye.z - u_centre.z - v_floor + dot(v_floor_slope, v_centre.xy);
+        float rise = cut_ray.z - dot(v_floor_slope, cut_ray.xy);
+        if (rise > 0.0)
+            t0 = max(t0, -above / rise);
+        else if (rise < 0.0)
+            t1 = min(t1, -above / rise);
         else if (above < 0.0)
             t1 = t0;
     }

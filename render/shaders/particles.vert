@@ -23,7 +23,8 @@ flat out ivec4 v_window;
 flat out uint v_table;
 flat out vec3 v_optics;  // radius, tau, albedo
 flat out float v_seen_tau;  // tau as the billboard draws it: with the part in the ground added
-flat out float v_floor;     // the fog's floor under it (relative to u_centre), below -1e29: none
+flat out float v_floor;
+flat out vec2 v_floor_slope;  // its plane's dz/dx, dz/dy     // the fog's floor under it (relative to u_centre), below -1e29: none
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
 flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
 uniform vec3 u_eye;
@@ -90,6 +91,7 @@ void main()
     v_optics = vec3(p.w, particles[id].optics.xy);
     v_seen_tau = particles[id].optics.x * particles[id].optics.z / (widen * widen);
     v_floor = particles[id].optics.w;
+    v_floor_slope = particles[id].floor_slope.xy;
     v_fog = froxel_fog(corner_world);
     // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
     // may stand out of the Medium's shell, where the volume holds nothing.

@@ -181,6 +181,8 @@ FogError compare_frames(const RadianceImage& with_fog, const RadianceImage& with
             : reference_luminance(ref, k, y_bg, without_sun ? luminance_at(*without_sun, k) : -1.0);
         if (!(std::abs(y_ref - y_bg) > 0.01 * y_ref))
             continue;  // the fog hardly shows here
+        if (!(y_ref > 0.0))
+            continue;  // black in the reference (its fog's shade over more than this frame's ground): no relative error
         const double y_gpu = luminance_at(with_fog, k);
         errors.push_back(std::abs(y_gpu - y_ref) / y_ref);
         if (signed_error)

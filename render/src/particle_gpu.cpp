@@ -50,7 +50,8 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
         const double tau = std::isfinite(p.optical_depth) ? p.optical_depth : 1e30;
         out.particles[slot] = {{float(q.x), float(q.y), float(q.z), float(p.radius)},
                                {float(tau), float(p.albedo), float(seen_gain(p)),
-                                float(std::isfinite(p.floor) ? p.floor - out.centre.z : -no_floor)}};
+                                float(std::isfinite(p.floor) ? p.floor - out.centre.z : -no_floor)},
+                               {float(p.floor_slope.x), float(p.floor_slope.y), 0.0f, 0.0f}};
         out.index[slot] = std::uint32_t(k);
     }
     return out;

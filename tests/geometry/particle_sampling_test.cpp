@@ -287,6 +287,7 @@ TEST(ParticleSampling, PlyExport)
     ParticleCloud c = sample_particles(slab_medium(), options(50));
     c.particles[1].above_ground = 0.625;  // as set_above_ground leaves them
     c.particles[1].floor = 412.5;
+    c.particles[1].floor_slope = {0.125, -0.25};
     const std::filesystem::path path = kiri::test::temp_path("particles_test.ply");
     write_particles_ply(path.string(), c);
     std::ifstream in(path, std::ios::binary);
@@ -295,17 +296,21 @@ TEST(ParticleSampling, PlyExport)
     ASSERT_NE(end, std::string::npos);
     EXPECT_NE(text.find("element vertex 50\n"), std::string::npos);
     EXPECT_NE(text.find("property float optical_depth\n"), std::string::npos);
-    EXPECT_NE(text.find("property float above_ground\nproperty float floor\n"), std::string::npos);
-    ASSERT_EQ(text.size(), end + 11 + 50 * 8 * sizeof(float));
-    float v[8];
-    std::memcpy(v, text.data() + end + 11 + 8 * sizeof(float), sizeof v);  // the second particle
+    EXPECT_NE(text.find("property float above_ground\nproperty float floor\nproperty float floor_dzdx\n"
+                        "property float floor_dzdy\n"),
+              std::string::npos);
+    ASSERT_EQ(text.size(), end + 11 + 50 * 10 * sizeof(float));
+    float v[10];
+    std::memcpy(v, text.data() + end + 11 + 10 * sizeof(float), sizeof v);  // the second particle
     EXPECT_EQ(v[0], float(c.particles[1].position.x));
     EXPECT_EQ(v[2], float(c.particles[1].position.z));
     EXPECT_EQ(v[3], float(c.particles[1].radius));
     EXPECT_EQ(v[4], float(c.particles[1].optical_depth));
     EXPECT_EQ(v[6], 0.625f);
     EXPECT_EQ(v[7], 412.5f);
-    float first[8];  // no floor under the first: the lowest float, finite
+    EXPECT_EQ(v[8], 0.125f);
+    EXPECT_EQ(v[9], -0.25f);
+    float first[10];  // no floor under the first: the lowest float, finite
     std::memcpy(first, text.data() + end + 11, sizeof first);
     EXPECT_EQ(first[6], 1.0f);
     EXPECT_EQ(first[7], std::numeric_limits<float>::lowest());

@@ -221,8 +221,8 @@ TEST(Pipeline, ParticlesKnowTheShareOfTheirMassAboveTheGround)
     EXPECT_GT(spilt, 3);
     EXPECT_GT(on_ground, 0.99 * double(products.particles->particles.size()));
 
-    // A blanket floats over the ground: its particles know its lowest floor over their disc (no
-    // fog lies below it there), and their share above that plane.
+    // A blanket floats over the ground: its particles know the plane of its floor over their disc
+    // (fitted to the floor there), and their share above that plane.
     Scene blanket = small_scene();
     blanket.particles.count = 3000;
     blanket.particles.radius_min = blanket.particles.radius_max = 60.0;
@@ -234,8 +234,23 @@ TEST(Pipeline, ParticlesKnowTheShareOfTheirMassAboveTheGround)
         if (!std::isfinite(q.floor))
             continue;
         ++floating;
-        EXPECT_LE(q.floor, under.floor);
+        // The plane follows the floor: within a metre of it at the centre and half the radius out.
+        EXPECT_NEAR(q.floor, under.floor, 1.0);
+        for (int a = 0; a < 8; ++a) {
+            const glm::dvec2 d = 0.5 * q.radius * glm::dvec2(std::cos(a * M_PI / 4.0), std::sin(a * M_PI / 4.0));
+            const MediumColumn c = b.medium->column(q.position.x + d.x, q.position.y + d.y);
+            if (c.coverage > 0.0) {
+                EXPECT_NEAR(q.floor + glm::dot(q.floor_slope, d), c.floor, 1.0);
+            }
+        }
         EXPECT_GT(q.floor, b.terrain->height(q.position.x, q.position.y) + 0.2 * q.radius);
+        const double above = footprint_share_above(q.position, q.radius, [&](double x, double y) {
+            const MediumColumn c = b.medium->column(x, y);
+            const double plane = q.floor + glm::dot(q.floor_slope, glm::dvec2(x, y) - glm::dvec2(q.position));
+            const double at = std::max(c.top - c.floor >= q.radius ? b.terrain->height(x, y) : -HUGE_VAL, plane);
+            return c.coverage > 0.0 ? at : std::nan("");
+        });
+        EXPECT_EQ(q.above_ground, above);
         cut += q.above_ground < 0.95;
     }
     EXPECT_GT(floating, 1000);

@@ -38,10 +38,12 @@ void write_particles_ply(const std::string& path, const ParticleCloud& cloud)
                << "property float x\nproperty float y\nproperty float z\n"
                << "comment above_ground: the share of the ball's mass above the ground (the rest is in "
                   "it: a renderer that hides the ground draws optical_depth / above_ground above it)\n"
-               << "comment floor: the lowest floor of a blanket of fog under the particle (no fog below "
-                  "it there), or the lowest float where none\n"
+               << "comment floor: where a blanket of fog floats over the ground under the particle, the "
+                  "height at the centre of its floor's plane, fitted over the particle's disc, or the "
+                  "lowest float where none; floor_dzdx, floor_dzdy: that plane's slope\n"
                << "property float radius\nproperty float optical_depth\nproperty float albedo\n"
-               << "property float above_ground\nproperty float floor\n"
+               << "property float above_ground\nproperty float floor\nproperty float floor_dzdx\n"
+               << "property float floor_dzdy\n"
                << "end_header\n";
         out << header.str();
         for (const Particle& p : cloud.particles) {
@@ -53,6 +55,8 @@ void write_particles_ply(const std::string& path, const ParticleCloud& cloud)
             put(out, float(p.albedo));
             put(out, float(p.above_ground));
             put(out, std::isfinite(p.floor) ? float(p.floor) : std::numeric_limits<float>::lowest());
+            put(out, float(p.floor_slope.x));
+            put(out, float(p.floor_slope.y));
         }
         out.close();
         if (!out) {

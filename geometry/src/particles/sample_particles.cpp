@@ -283,22 +283,54 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
 
 namespace {
 
-// The lowest floor of the Medium's fog over a particle's disc (its centre and two rings of 16):
-// no fog lies below it there, wherever a blanket's bottom slopes within the disc; +inf over no fog.
-double lowest_floor(const Medium& medium, const Particle& p)
+// The plane of the Medium's floor over a particle's disc: fitted by least squares to the floors of
+// the fog's columns at its centre and two rings of 16 (level with fewer than 8 of them). A
+// blanket's bottom slopes within a disc 300 m across: a level plane under its lowest point left
+// slivers of the balls under the bottom, which level rays from under the blanket crossed by the
+// hundred (the frame bench's valley view, the particles 31.7 % off the reference; 3.7 % so).
+// Lowered under every sample too, it left most of them (4.5 % lowered by half of that).
+// The plane's height at the centre (+inf over no fog) and its slope.
+std::pair<double, glm::dvec2> floor_plane(const Medium& medium, const Particle& p)
 {
-    const MediumColumn under = medium.column(p.position.x, p.position.y);
-    double lowest = under.coverage > 0.0 ? under.floor : std::numeric_limits<double>::infinity();
+    std::vector<glm::dvec3> at;  // offsets from the centre, and the floor there
+    const auto take = [&](double dx, double dy) {
+        const MediumColumn c = medium.column(p.position.x + dx, p.position.y + dy);
+        if (c.coverage > 0.0)
+            at.emplace_back(dx, dy, c.floor);
+    };
+    take(0.0, 0.0);
     for (int a = 0; a < 16; ++a) {
         const double phi = 2.0 * std::numbers::pi * a / 16.0;
-        for (double x : {0.5, 1.0}) {
-            const MediumColumn c =
-                medium.column(p.position.x + x * p.radius * std::cos(phi), p.position.y + x * p.radius * std::sin(phi));
-            if (c.coverage > 0.0)
-                lowest = std::min(lowest, c.floor);
-        }
+        for (double x : {0.5, 1.0})
+            take(x * p.radius * std::cos(phi), x * p.radius * std::sin(phi));
     }
-    return lowest;
+    if (at.empty())
+        return {std::numeric_limits<double>::infinity(), glm::dvec2(0.0)};
+    glm::dvec2 slope(0.0);
+    double mean = 0.0;
+    for (const glm::dvec3& q : at)
+        mean += q.z;
+    mean /= double(at.size());
+    if (at.size() >= 8) {  // z = mean + slope . (d - dm): the normal equations of the slope
+        glm::dvec2 dm(0.0);
+        for (const glm::dvec3& q : at)
+            dm += glm::dvec2(q);
+        dm /= double(at.size());
+        double sxx = 0.0, sxy = 0.0, syy = 0.0, sxz = 0.0, syz = 0.0;
+        for (const glm::dvec3& q : at) {
+            const glm::dvec2 d = glm::dvec2(q) - dm;
+            sxx += d.x * d.x;
+            sxy += d.x * d.y;
+            syy += d.y * d.y;
+            sxz += d.x * (q.z - mean);
+            syz += d.y * (q.z - mean);
+        }
+        const double det = sxx * syy - sxy * sxy;
+        if (det > 1e-9 * (sxx * syy + 1e-30))
+            slope = {(sxz * syy - syz * sxy) / det, (syz * sxx - sxz * sxy) / det};
+        mean -= glm::dot(slope, dm);  // the plane's height at the centre
+    }
+    return {mean, slope};
 }
 
 }  // namespace
@@ -314,17 +346,18 @@ void set_above_ground(ParticleCloud& cloud, const Medium& medium, const std::fun
             // bottom): the billboard cuts the ball at its plane, as the terrain cuts it where the
             // fog lies on the ground (there the floor is the ground's grid, a little off the
             // terrain between its samples, and a plane through it would cut the slopes).
-            const double lowest = lowest_floor(medium, p);
-            p.floor = std::isfinite(lowest) && lowest > ground(p.position.x, p.position.y) + 0.2 * p.radius
-                ? lowest
-                : -std::numeric_limits<double>::infinity();
+            const auto [floor, slope] = floor_plane(medium, p);
+            const bool floats = std::isfinite(floor) && floor > ground(p.position.x, p.position.y) + 0.2 * p.radius;
+            p.floor = floats ? floor : -std::numeric_limits<double>::infinity();
+            p.floor_slope = floats ? slope : glm::dvec2(0.0);
             p.above_ground = footprint_share_above(p.position, p.radius, [&](double x, double y) {
                 // What the billboard cuts over the fog's columns: the floor's plane, and the
                 // terrain where the fog is as thick as the particle's radius.
                 const MediumColumn c = medium.column(x, y);
                 if (!(c.coverage > 0.0))
                     return std::nan("");
-                const double cut = std::max(c.top - c.floor >= p.radius ? ground(x, y) : -HUGE_VAL, p.floor);
+                const double plane = p.floor + glm::dot(p.floor_slope, glm::dvec2(x, y) - glm::dvec2(p.position));
+                const double cut = std::max(c.top - c.floor >= p.radius ? ground(x, y) : -HUGE_VAL, plane);
                 return std::isfinite(cut) ? cut : std::nan("");
             });
         }

@@ -29,11 +29,12 @@ struct Particle {
     //! ground, where no ray sees it, so a billboard draws its visible part with tau_k / this
     //! (docs/particles.md, "The mass in the ground"). 1: wholly above, or no terrain known.
     double above_ground = 1.0;
-    //! Where the fog floats above the ground under the particle (a blanket's bottom), its lowest
-    //! floor over the particle's disc, metres: no fog lies below it there, so a billboard draws
-    //! only the part of the ball above that plane (the terrain cuts the ball itself). -inf: the
-    //! fog lies on the ground there.
+    //! Where the fog floats above the ground under the particle (a blanket's bottom), the plane of
+    //! that floor over the particle's disc: its height at the centre, metres, and its slope
+    //! (dz/dx, dz/dy), fitted to the floor there. A billboard draws only the part of the ball above
+    //! that plane (the terrain cuts the ball itself). floor -inf: the fog lies on the ground there.
     double floor = -std::numeric_limits<double>::infinity();
+    glm::dvec2 floor_slope{0.0};
 };
 
 //! How the attenuation buffer's voxel grid is oriented (light_grid.hpp). Its columns always run
