@@ -237,11 +237,7 @@ bool FroxelPass::run_splits(const FrameContext& frame, GLuint depth_texture, con
     bind_stage_inputs(out, &samples);
     glBindImageTexture(0, out.split_fog.get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
     glBindImageTexture(1, out.info.back().get(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);  // unwritten here
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.split_list.get());
-    glDispatchComputeIndirect(0);
-    glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, 0);
+    dispatch_listed(out.split_list.get());
     out.splits_run = true;
     return true;
 }
@@ -292,24 +288,15 @@ void FroxelPass::run_pixel_fog(const FrameContext& frame, GLuint depth_texture, 
         bind_pixel_program(lookup_, frame, spacing);
         lookup_.use();
         glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, out.lookups.get());
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, out.lookups.get());
-        glDispatchComputeIndirect(0);
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, list);
-        if (!marching) {
-            glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        dispatch_listed(out.lookups.get());
+        if (!marching)
             return;
-        }
         const ShaderProgram& pixels = program(pixels_);
         bind_pixel_program(pixels, frame, spacing);
         pixels.set("u_stage", 1);
         pixels.use();
         glBindImageTexture(0, image, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA32F);
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, list);
-        glDispatchComputeIndirect(0);
-        glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
-        glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
+        dispatch_listed(list);
     };
     if (tolerance > 0.0f) {
         // The coarsest grid's points march (or read the volume); every finer grid's points take
