@@ -75,9 +75,12 @@ float footprint_log_gain(float rho, float radius, float tau, float albedo, float
 // centre and radius; optical depth and albedo.
 struct GpuParticle {
     vec4 position_radius;
-    vec4 optics;  // tau, albedo, the billboard's gain on tau (particle_gpu.hpp's seen_gain), the
-                  // fog's floor where it floats above the ground, relative to the centre (or -1e30)
-    vec4 floor_slope;  // that floor's plane's dz/dx, dz/dy through it at the particle's centre
+    vec4 optics;  // tau, albedo, the billboard's gain on tau (particle_gpu.hpp's seen_gain), 0
+    // The fog's floor where it floats above the ground and its top: each plane's height at the
+    // particle's centre relative to the cloud's centre (or -1e30 and 1e30: none) and its dz/dx,
+    // dz/dy.
+    vec4 floor_plane;
+    vec4 top_plane;
 };
 
 // The attenuation buffer's grid (light_grid.hpp) in voxel units.

@@ -14,9 +14,9 @@ flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
 flat in vec3 v_optics;  // radius, tau, albedo
-flat in float v_seen_tau;  // tau with the particle's mass in the ground added (particles.vert)
-flat in float v_floor;
-flat in vec2 v_floor_slope;     // the fog's floor under it, relative to u_centre; below -1e29: none
+flat in float v_seen_tau;  // tau with the mass in the ground or cut off at a plane added (particles.vert)
+flat in vec3 v_floor_plane;  // the fog's floor under it (particles.vert); below -1e29: none
+flat in vec3 v_top_plane;    // the fog's top over it; over 1e29: none
 flat in float v_footprint_radius;  // the radius drawn (particles.vert's u_radius_scale, widened)
 flat in float v_depth_radius;      // the ball's extent along the rays
 flat in vec2 v_centre_ndc;         // the centre on the screen (normalised device coordinates)
@@ -41,6 +41,23 @@ float linear_depth(float d)
 {
     float z = d * 2.0 - 1.0;
     return 2.0 * u_near * u_far / (u_far + u_near - z * (u_far - u_near));
+}
+
+// Clips the ray's span [t0, t1] to the side of a plane the fog lies on: over it (side 1, a
+// floor) or under it (side -1, a top). The plane: its height at the particle's centre relative
+// to u_centre, and its dz/dx, dz/dy.
+void clip_to_plane(vec3 plane, float side, vec3 ray, inout float t0, inout float t1)
+{
+    // The eye over the plane (v_centre: the particle's centre from the eye), and the rate at
+    // which the ray rises over it, both towards the fog's side.
+    float above = side * (u_eye.z - u_centre.z - plane.x + dot(plane.yz, v_centre.xy));
+    float rise = side * (ray.z - dot(plane.yz, ray.xy));
+    if (rise > 0.0)
+        t0 = max(t0, -above / rise);
+    else if (rise < 0.0)
+        t1 = min(t1, -above / rise);
+    else if (above < 0.0)
+        t1 = t0;
 }
 
 void main()
@@ -70,18 +87,12 @@ void main()
     // from under the blanket, a particle's ball below it would veil the clear air.
     // The floor's plane slopes with the blanket's bottom (a level plane under its lowest point
     // left slivers of the balls, which level rays under the bottom crossed by the hundred).
-    if (v_floor > -1e29) {
-        // The eye over the plane (v_centre: the particle's centre from the eye), and the rate at
-        // which the ray rises over it.
-        float above = u_eye.z - u_centre.z - v_floor + dot(v_floor_slope, v_centre.xy);
-        float rise = cut_ray.z - dot(v_floor_slope, cut_ray.xy);
-        if (rise > 0.0)
-            t0 = max(t0, -above / rise);
-        else if (rise < 0.0)
-            t1 = min(t1, -above / rise);
-        else if (above < 0.0)
-            t1 = t0;
-    }
+    if (v_floor_plane.x > -1e29)
+        clip_to_plane(v_floor_plane, 1.0, cut_ray, t0, t1);
+    // And under the fog's top: seen level, a ball standing out of a lake's top veiled the far
+    // shore (the part cut off is given back to the rest, as the ground's: seen_gain).
+    if (v_top_plane.x < 1e29)
+        clip_to_plane(v_top_plane, -1.0, cut_ray, t0, t1);
     float cut_along = widened ? length(v_centre) : along;
     float share = footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
     float alpha = 1.0 - exp(-v_seen_tau * footprint_profile(x) * share);

@@ -22,9 +22,11 @@ flat out vec4 v_grid_visible;  // the particle's record (particle_light.glsl)
 flat out ivec4 v_window;
 flat out uint v_table;
 flat out vec3 v_optics;  // radius, tau, albedo
-flat out float v_seen_tau;  // tau as the billboard draws it: with the part in the ground added
-flat out float v_floor;
-flat out vec2 v_floor_slope;  // its plane's dz/dx, dz/dy     // the fog's floor under it (relative to u_centre), below -1e29: none
+flat out float v_seen_tau;  // tau as the billboard draws it: with the part in the ground or cut off at a plane added
+// The planes of the fog's floor under it (where the fog floats over the ground; below -1e29:
+// none) and of its top (over 1e29: none): height at its centre relative to u_centre, dz/dx, dz/dy.
+flat out vec3 v_floor_plane;
+flat out vec3 v_top_plane;
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
 flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
 uniform vec3 u_eye;
@@ -90,8 +92,8 @@ void main()
     v_table = particle_lights[id].offset.x;
     v_optics = vec3(p.w, particles[id].optics.xy);
     v_seen_tau = particles[id].optics.x * particles[id].optics.z / (widen * widen);
-    v_floor = particles[id].optics.w;
-    v_floor_slope = particles[id].floor_slope.xy;
+    v_floor_plane = particles[id].floor_plane.xyz;
+    v_top_plane = particles[id].top_plane.xyz;
     v_fog = froxel_fog(corner_world);
     // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
     // may stand out of the Medium's shell, where the volume holds nothing.

@@ -49,9 +49,11 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
         const glm::dvec3 q = p.position - out.centre;
         const double tau = std::isfinite(p.optical_depth) ? p.optical_depth : 1e30;
         out.particles[slot] = {{float(q.x), float(q.y), float(q.z), float(p.radius)},
-                               {float(tau), float(p.albedo), float(seen_gain(p)),
-                                float(std::isfinite(p.floor) ? p.floor - out.centre.z : -no_floor)},
-                               {float(p.floor_slope.x), float(p.floor_slope.y), 0.0f, 0.0f}};
+                               {float(tau), float(p.albedo), float(seen_gain(p)), 0.0f},
+                               {float(std::isfinite(p.floor) ? p.floor - out.centre.z : -no_plane),
+                                float(p.floor_slope.x), float(p.floor_slope.y), 0.0f},
+                               {float(std::isfinite(p.top) ? p.top - out.centre.z : no_plane), float(p.top_slope.x),
+                                float(p.top_slope.y), 0.0f}};
         out.index[slot] = std::uint32_t(k);
     }
     return out;
@@ -121,6 +123,11 @@ std::uint64_t hash_particles(const geometry::ParticleCloud& cloud)
         mix(p.albedo);
         mix(p.above_ground);
         mix(p.floor);
+        mix(p.floor_slope.x);
+        mix(p.floor_slope.y);
+        mix(p.top);
+        mix(p.top_slope.x);
+        mix(p.top_slope.y);
     }
     return h;
 }

@@ -17,12 +17,13 @@ namespace kiri::render::detail {
 //! cloud's centre (float keeps millimetres over 100 km).
 struct GpuParticle {
     float position_radius[4];  // x, y, z - centre, radius (m)
-    float optics[4];           // tau (opaque: 1e30), albedo, seen_gain, the floor's z - centre (or -no_floor)
-    float floor_slope[4];      // the floor's plane's dz/dx, dz/dy; 0, 0
+    float optics[4];           // tau (opaque: 1e30), albedo, seen_gain, 0
+    float floor_plane[4];      // the floor's plane's z - centre (or -no_plane) and dz/dx, dz/dy; 0
+    float top_plane[4];        // the top's plane's z - centre (or no_plane) and dz/dx, dz/dy; 0
 };
-//! The GPU's "no floor" (particles.frag takes a floor below -1e29 as none).
-constexpr float no_floor = 1e30f;
-static_assert(sizeof(GpuParticle) == 48);
+//! The GPU's "no plane" (particles.frag takes a floor below -1e29 and a top above 1e29 as none).
+constexpr float no_plane = 1e30f;
+static_assert(sizeof(GpuParticle) == 64);
 
 //! The particles sorted into 64 buckets of radius (counting sort, O(N)): the lanes of the
 //! deposit's SIMD batches then loop over footprints of about the same size.

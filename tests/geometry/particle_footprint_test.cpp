@@ -184,3 +184,44 @@ TEST(ParticleFootprint, ShareAboveTheGroundIsTheBallsMassOverIt)
     EXPECT_EQ(footprint_share_above(centre, 0.0, [&](double, double) { return centre.z + r; }), 1.0);
     EXPECT_EQ(footprint_share_above({std::nan(""), 0.0, 0.0}, r, [](double, double) { return 0.0; }), 1.0);
 }
+
+TEST(ParticleFootprint, ShareBetweenAFloorAndATopIsTheBallsMassBetweenThem)
+{
+    // Between level planes zb r and zt r from the centre, by horizontal slices as above (an
+    // independent route): a fog lake's top over the particle, a blanket's floor under it.
+    const double s = footprint_sigma, e0 = std::exp(-1.0 / (2.0 * s * s));
+    const auto slice = [&](double z) {
+        return 2.0 * std::numbers::pi * (s * s * (std::exp(-z * z / (2.0 * s * s)) - e0) - 0.5 * e0 * (1.0 - z * z));
+    };
+    const auto integral = [&](double a, double b) {  // Simpson's rule
+        const int n = 4000;
+        double sum = 0.0;
+        for (int k = 0; k <= n; ++k)
+            sum += (k == 0 || k == n ? 1.0 : k % 2 ? 4.0 : 2.0) * slice(a + (b - a) * k / n);
+        return sum * (b - a) / (3.0 * n);
+    };
+    const glm::dvec3 centre(-300.0, 75.0, 480.0);
+    const double r = 60.0, nan = std::nan("");
+    const auto between = [&](double lo, double hi) {
+        return footprint_share_between(centre, r, [&](double, double) { return std::pair{lo, hi}; });
+    };
+    for (const auto& [zb, zt] : {std::pair{-0.8, 0.2}, {-0.3, 0.4}, {0.1, 0.6}, {-1.0, -0.4}}) {
+        EXPECT_NEAR(between(centre.z + zb * r, centre.z + zt * r), integral(zb, zt) / integral(-1.0, 1.0), 2e-3)
+            << zb << " .. " << zt;
+    }
+    // A top through the centre halves it, and a top alone is the ground's complement.
+    EXPECT_NEAR(between(nan, centre.z), 0.5, 1e-12);
+    EXPECT_NEAR(between(nan, centre.z + 0.3 * r),
+                1.0 - footprint_share_above(centre, r, [&](double, double) { return centre.z + 0.3 * r; }), 1e-12);
+    // No bounds: the whole; a top under the floor: none.
+    EXPECT_EQ(between(nan, nan), 1.0);
+    EXPECT_EQ(between(centre.z + 0.2 * r, centre.z - 0.2 * r), 0.0);
+    // A top sloping through the centre halves it too, whatever its slope.
+    for (double slope : {0.2, 1.5})
+        EXPECT_NEAR(footprint_share_between(centre, r,
+                                            [&](double x, double) {
+                                                return std::pair{nan, centre.z + slope * (x - centre.x)};
+                                            }),
+                    0.5, 1e-12)
+            << slope;
+}

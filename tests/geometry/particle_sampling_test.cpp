@@ -288,6 +288,8 @@ TEST(ParticleSampling, PlyExport)
     c.particles[1].above_ground = 0.625;  // as set_above_ground leaves them
     c.particles[1].floor = 412.5;
     c.particles[1].floor_slope = {0.125, -0.25};
+    c.particles[1].top = 480.25;
+    c.particles[1].top_slope = {-0.5, 0.0625};
     const std::filesystem::path path = kiri::test::temp_path("particles_test.ply");
     write_particles_ply(path.string(), c);
     std::ifstream in(path, std::ios::binary);
@@ -297,11 +299,12 @@ TEST(ParticleSampling, PlyExport)
     EXPECT_NE(text.find("element vertex 50\n"), std::string::npos);
     EXPECT_NE(text.find("property float optical_depth\n"), std::string::npos);
     EXPECT_NE(text.find("property float above_ground\nproperty float floor\nproperty float floor_dzdx\n"
-                        "property float floor_dzdy\n"),
+                        "property float floor_dzdy\nproperty float top\nproperty float top_dzdx\n"
+                        "property float top_dzdy\n"),
               std::string::npos);
-    ASSERT_EQ(text.size(), end + 11 + 50 * 10 * sizeof(float));
-    float v[10];
-    std::memcpy(v, text.data() + end + 11 + 10 * sizeof(float), sizeof v);  // the second particle
+    ASSERT_EQ(text.size(), end + 11 + 50 * 13 * sizeof(float));
+    float v[13];
+    std::memcpy(v, text.data() + end + 11 + 13 * sizeof(float), sizeof v);  // the second particle
     EXPECT_EQ(v[0], float(c.particles[1].position.x));
     EXPECT_EQ(v[2], float(c.particles[1].position.z));
     EXPECT_EQ(v[3], float(c.particles[1].radius));
@@ -310,10 +313,14 @@ TEST(ParticleSampling, PlyExport)
     EXPECT_EQ(v[7], 412.5f);
     EXPECT_EQ(v[8], 0.125f);
     EXPECT_EQ(v[9], -0.25f);
-    float first[10];  // no floor under the first: the lowest float, finite
+    EXPECT_EQ(v[10], 480.25f);
+    EXPECT_EQ(v[11], -0.5f);
+    EXPECT_EQ(v[12], 0.0625f);
+    float first[13];  // no floor under the first: the lowest float, finite; no top: the largest
     std::memcpy(first, text.data() + end + 11, sizeof first);
     EXPECT_EQ(first[6], 1.0f);
     EXPECT_EQ(first[7], std::numeric_limits<float>::lowest());
+    EXPECT_EQ(first[10], std::numeric_limits<float>::max());
     EXPECT_FALSE(std::filesystem::exists(path.string() + ".tmp"));
     std::filesystem::remove(path);
     EXPECT_THROW(write_particles_ply("/nonexistent/dir/p.ply", c), kiri::IoError);

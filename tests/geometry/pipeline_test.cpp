@@ -3,11 +3,14 @@
 // products, and the targets of the render modes get what they draw and nothing more.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <concepts>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <vector>
 
 #include <glm/geometric.hpp>
 
@@ -209,7 +212,7 @@ TEST(Pipeline, ParticlesKnowTheShareOfTheirMassAboveTheGround)
                 std::max(c.top - c.floor >= q.radius ? products.terrain->height(x, y) : -HUGE_VAL, q.floor);
             return c.coverage > 0.0 && std::isfinite(cut) ? cut : std::nan("");
         });
-        EXPECT_EQ(q.above_ground, above);
+        EXPECT_LE(q.above_ground, above);  // and under the top (ParticlesKnowThePlaneOfTheFogsTopOverThem)
         on_ground += q.floor == -std::numeric_limits<double>::infinity();  // a fill lies on the ground
         buried += above < 0.95;
         // Over thin fog (a shore) a particle reaching into the ground keeps its mass as it is.
@@ -250,11 +253,68 @@ TEST(Pipeline, ParticlesKnowTheShareOfTheirMassAboveTheGround)
             const double at = std::max(c.top - c.floor >= q.radius ? b.terrain->height(x, y) : -HUGE_VAL, plane);
             return c.coverage > 0.0 ? at : std::nan("");
         });
-        EXPECT_EQ(q.above_ground, above);
-        cut += q.above_ground < 0.95;
+        EXPECT_LE(q.above_ground, above);
+        cut += above < 0.95;
     }
     EXPECT_GT(floating, 1000);
     EXPECT_GT(cut, 100);
+}
+
+TEST(Pipeline, ParticlesKnowThePlaneOfTheFogsTopOverThem)
+{
+    // A fill's flat top, and a blanket's rolling one: each particle knows the plane fitted to the
+    // top over its disc, and the share of its mass under it and over the ground (or the floor).
+    Pipeline p;
+    Scene fill = load_scene(fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_fill.json");
+    fill.particles.count = 2000;
+    Scene blanket = small_scene();
+    blanket.particles.count = 3000;
+    blanket.particles.radius_min = blanket.particles.radius_max = 60.0;
+    const std::array<Scene, 2> scenes{fill, blanket};
+    for (const Scene& s : scenes) {
+        const PipelineProducts products = p.run(s, with_particles);
+        ASSERT_TRUE(products.particles && products.medium && products.terrain);
+        int cut = 0;
+        std::vector<double> diffs;
+        for (const Particle& q : products.particles->particles) {
+            ASSERT_TRUE(std::isfinite(q.top));
+            // What the plane cuts off is the ball's mass over the top itself, column by column,
+            // within a few per cent of the ball (a rolling top bends away from any plane).
+            const auto share_under = [&](const std::function<double(double, double)>& top) {
+                return footprint_share_between(q.position, q.radius, [&](double x, double y) {
+                    return std::pair{std::nan(""), top(x, y)};
+                });
+            };
+            const double plane = share_under([&](double x, double y) {
+                return q.top + glm::dot(q.top_slope, glm::dvec2(x, y) - glm::dvec2(q.position));
+            });
+            const double top = share_under([&](double x, double y) {
+                const MediumColumn c = products.medium->column(x, y);
+                return c.coverage > 0.0 ? c.top : std::nan("");
+            });
+            diffs.push_back(std::abs(plane - top));
+            cut += plane < 0.95;
+            const double within = footprint_share_between(q.position, q.radius, [&](double x, double y) {
+                const MediumColumn c = products.medium->column(x, y);
+                if (!(c.coverage > 0.0))
+                    return std::pair{std::nan(""), std::nan("")};
+                const glm::dvec2 d = glm::dvec2(x, y) - glm::dvec2(q.position);
+                const double floor = std::max(c.top - c.floor >= q.radius ? products.terrain->height(x, y) : -HUGE_VAL,
+                                              q.floor + glm::dot(q.floor_slope, d));
+                return std::pair{std::isfinite(floor) ? floor : std::nan(""), q.top + glm::dot(q.top_slope, d)};
+            });
+            EXPECT_EQ(q.above_ground, within);
+        }
+        // Nine in ten within 5 % of the ball (the fill's: measured 2.8 %, its worst 30 % at a shore,
+        // where a plane cannot follow where the top ends).
+        std::sort(diffs.begin(), diffs.end());
+        EXPECT_LT(diffs[diffs.size() * 9 / 10], 0.05);
+        EXPECT_LT(diffs[diffs.size() / 2], 0.01);
+        // The fill is as thin as its particles are wide: the top cuts most of them (1,365 of 2,000).
+        if (&s == &scenes[0]) {
+            EXPECT_GT(cut, int(products.particles->particles.size()) / 2);
+        }
+    }
 }
 
 TEST(Pipeline, TheParticleCountResamplesOnlyTheParticles)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "kiri/geometry/particles/particles.hpp"
@@ -86,15 +87,23 @@ double footprint_ray_share(double x, double radius, double u0, double u1)
 double footprint_share_above(const glm::dvec3& centre, double radius,
                              const std::function<double(double, double)>& ground)
 {
+    return footprint_share_between(centre, radius, [&](double x, double y) {
+        return std::pair{ground(x, y), std::numeric_limits<double>::quiet_NaN()};
+    });
+}
+
+double footprint_share_between(const glm::dvec3& centre, double radius,
+                               const std::function<std::pair<double, double>(double, double)>& slab)
+{
     if (!(radius > 0.0) || !std::isfinite(radius) || !std::isfinite(centre.x) || !std::isfinite(centre.y) ||
         !std::isfinite(centre.z))
         return 1.0;
     // Rings at the midpoints of 8 equal steps of x = rho / r, 12 angles each (turned half a step
     // every other ring); a column at x holds 2 chord_integral(x, w) over its half chord w, and
-    // the part of it above z_b (metres from the centre over r) chord_integral(x, w) -
-    // chord_integral(x, clamp(z_b, -w, w)).
+    // the part of it between z_b and z_t (metres from the centre over r, each clamped to
+    // [-w, w]) chord_integral(x, z_t) - chord_integral(x, z_b).
     constexpr int rings = 8, angles = 12;
-    double whole = 0.0, above = 0.0;
+    double whole = 0.0, within = 0.0;
     for (int i = 0; i < rings; ++i) {
         const double x = (i + 0.5) / rings, w = std::sqrt(1.0 - x * x);
         const double half_column = chord_integral(x, w);
@@ -102,13 +111,15 @@ double footprint_share_above(const glm::dvec3& centre, double radius,
             continue;
         for (int k = 0; k < angles; ++k) {
             const double phi = 2.0 * std::numbers::pi * (k + 0.5 * (i % 2)) / angles;
-            const double h = ground(centre.x + radius * x * std::cos(phi), centre.y + radius * x * std::sin(phi));
-            const double z = std::isnan(h) ? -w : std::clamp((h - centre.z) / radius, -w, w);
+            const auto [lo, hi] = slab(centre.x + radius * x * std::cos(phi), centre.y + radius * x * std::sin(phi));
+            const double zb = std::isnan(lo) ? -w : std::clamp((lo - centre.z) / radius, -w, w);
+            const double zt = std::isnan(hi) ? w : std::clamp((hi - centre.z) / radius, -w, w);
             whole += x * 2.0 * half_column;
-            above += x * (half_column - chord_integral(x, z));
+            if (zt > zb)
+                within += x * (chord_integral(x, zt) - chord_integral(x, zb));
         }
     }
-    return whole > 0.0 ? std::clamp(above / whole, 0.0, 1.0) : 1.0;
+    return whole > 0.0 ? std::clamp(within / whole, 0.0, 1.0) : 1.0;
 }
 
 double forward_scattering_fraction(double g, double solid_angle)

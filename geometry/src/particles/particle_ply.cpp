@@ -36,14 +36,18 @@ void write_particles_ply(const std::string& path, const ParticleCloud& cloud)
                << "comment anisotropy " << cloud.anisotropy << "\n"
                << "element vertex " << cloud.particles.size() << "\n"
                << "property float x\nproperty float y\nproperty float z\n"
-               << "comment above_ground: the share of the ball's mass above the ground (the rest is in "
-                  "it: a renderer that hides the ground draws optical_depth / above_ground above it)\n"
+               << "comment above_ground: the share of the ball's mass above the ground (or the floor) and "
+                  "under the top (the rest is in the ground or outside the fog: a renderer that hides the "
+                  "ground and cuts the ball at both planes draws optical_depth / above_ground within)\n"
                << "comment floor: where a blanket of fog floats over the ground under the particle, the "
                   "height at the centre of its floor's plane, fitted over the particle's disc, or the "
                   "lowest float where none; floor_dzdx, floor_dzdy: that plane's slope\n"
+               << "comment top: the height at the centre of the plane of the fog's top, fitted over the "
+                  "particle's disc, or the largest float where none; top_dzdx, top_dzdy: its slope\n"
                << "property float radius\nproperty float optical_depth\nproperty float albedo\n"
                << "property float above_ground\nproperty float floor\nproperty float floor_dzdx\n"
-               << "property float floor_dzdy\n"
+               << "property float floor_dzdy\nproperty float top\nproperty float top_dzdx\n"
+               << "property float top_dzdy\n"
                << "end_header\n";
         out << header.str();
         for (const Particle& p : cloud.particles) {
@@ -57,6 +61,9 @@ void write_particles_ply(const std::string& path, const ParticleCloud& cloud)
             put(out, std::isfinite(p.floor) ? float(p.floor) : std::numeric_limits<float>::lowest());
             put(out, float(p.floor_slope.x));
             put(out, float(p.floor_slope.y));
+            put(out, std::isfinite(p.top) ? float(p.top) : std::numeric_limits<float>::max());
+            put(out, float(p.top_slope.x));
+            put(out, float(p.top_slope.y));
         }
         out.close();
         if (!out) {

@@ -17,6 +17,7 @@
 //! log G is clamped at min_log_gain, so an opaque black particle gives a finite value, never -inf.
 #include <cmath>
 #include <functional>
+#include <utility>
 
 #include <glm/vec3.hpp>
 
@@ -53,5 +54,10 @@ double footprint_ray_share(double x, double radius, double u0, double u1);
 //! disc counts, not only the height under the centre). NaN heights count as no ground.
 double footprint_share_above(const glm::dvec3& centre, double radius,
                              const std::function<double(double, double)>& ground);
+//! The share of the particle's mass between z = slab(x, y).first and .second (below and above,
+//! each column split in closed form at both, by the same quadrature): footprint_share_above with
+//! a ceiling too. NaN bounds count as none; a column whose ceiling is under its floor holds none.
+double footprint_share_between(const glm::dvec3& centre, double radius,
+                               const std::function<std::pair<double, double>(double, double)>& slab);
 
 }  // namespace kiri::geometry

@@ -25,9 +25,11 @@ struct Particle {
     double radius = 1.0;         //!< metres: the footprint is zero beyond it
     double optical_depth = 0.5;  //!< tau_k: optical depth of the ray through the centre (may be +inf: opaque)
     double albedo = 0.99;        //!< a_k in [0, 1]
-    //! The share of its mass above the terrain (footprint_share_above): the rest lies in the
-    //! ground, where no ray sees it, so a billboard draws its visible part with tau_k / this
-    //! (docs/particles.md, "The mass in the ground"). 1: wholly above, or no terrain known.
+    //! The share of its mass that a billboard draws (footprint_share_between): above the terrain
+    //! (or the blanket's floor, below) and under the fog's top (above). The rest lies in the
+    //! ground, where no ray sees it, or over the top and under the floor, where the fog has none,
+    //! so a billboard draws its visible part with tau_k / this (docs/particles.md, "The mass in
+    //! the ground"). 1: wholly within, or no terrain and no fog known.
     double above_ground = 1.0;
     //! Where the fog floats above the ground under the particle (a blanket's bottom), the plane of
     //! that floor over the particle's disc: its height at the centre, metres, and its slope
@@ -35,6 +37,11 @@ struct Particle {
     //! that plane (the terrain cuts the ball itself). floor -inf: the fog lies on the ground there.
     double floor = -std::numeric_limits<double>::infinity();
     glm::dvec2 floor_slope{0.0};
+    //! The plane of the fog's top over the particle's disc, fitted to the top there as the floor's
+    //! is: a billboard draws only the part of the ball under it (a ball near a fog lake's flat top
+    //! stood out of it, a veil over the far shore seen level). top +inf: no fog over the disc.
+    double top = std::numeric_limits<double>::infinity();
+    glm::dvec2 top_slope{0.0};
 };
 
 //! How the attenuation buffer's voxel grid is oriented (light_grid.hpp). Its columns always run
