@@ -349,69 +349,77 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     // With froxel fog, the variant that reads it at each layer's depth (froxel_apply.glsl); with
     // the baked light per fragment only where a layer comes within L0 of the eye (llvmpipe runs a
     // branch's code in every fragment: the lookup cost the default view's layers 40 % more).
-    const int baked_variant = !baked ? 0 : (stack_within(*base_, o, top, eye, 1.01 * reach) ? 2 : 1);
-    const ShaderProgram& p = stack_program(fog_ != nullptr, baked_variant);
-    if (fog_)
-        fog_->bind_apply(p);
-    bind_terrain_shadow(p, shadow_);
+    // With the eye within L0 of the stack, the triangles within L0 of it are drawn with the
+    // per-fragment variant and the rest with the per-vertex one (every fragment of a program pays
+    // for its code: the ridge camera's layers pass 1.84x `fitted`'s with the one program).
+    const bool split = baked && stack_within(*base_, o, top, eye, 1.01 * reach);
+    const ShaderProgram& p = stack_program(fog_ != nullptr, baked ? 1 : 0);
+    const ShaderProgram& near_program = stack_program(fog_ != nullptr, split ? 2 : (baked ? 1 : 0));
     last_layers_ = top;
     last_triangles_ = int(drawn_triangles().size() / 3);
     const geometry::LayerStackUnder at_eye = geometry::layer_stack_under(*base_, options_, eye);
     const int under = std::isfinite(eye.z) ? geometry::layers_under_eye(at_eye, options_, eye, top) : 0;
-    p.set("u_view_projection", frame.view_projection);
-    set_layer_stack_uniforms(p, o, base_->centre, frame.eye, top, under);
     // Where the eye's rays start: the space between the layers either side of it, which they
     // leave within about the flat radius (without the narrowing, about L0).
     const EyeInStack in_stack{under >= 1 && under <= top, at_eye.base_z, at_eye.spacing,
                               o.narrowing ? 4.0 * flat : 2.0 * reach};
-    set_eye_in_stack_uniforms(p, in_stack);
     // The fog before the terrain in the slabs the rays end in: the farthest piece of each ray,
-    // drawn first. The medium shading over a Medium (its grid, its tau_sun).
-    // The layers' slabs then end where their rays meet the terrain (the frame's depth).
+    // drawn first, by a pass that binds its own textures. The medium shading over a Medium (its
+    // grid, its tau_sun). The layers' slabs then end where their rays meet the terrain (the
+    // frame's depth).
     const bool stretch = resolved_depth != 0 && o.shading == geometry::LayerShading::medium && sun_ && sun_->medium();
-    p.set("u_stretch_pass", int(stretch));
-    if (stretch) {
+    if (stretch)
         end_.draw({o, frame, noise_shift_, in_stack, noise_.get(), resolved_depth, fog_, shadow_, sun_, light_volume_});
-        // After the stretch pass, which binds its own textures.
-        p.set("u_frame_depth", layers_unit_ground_depth);
-        p.set("u_target_size", glm::vec2(float(low_width_), float(low_height_)));
-        p.set("u_inverse_view_projection", frame.inverse_view_projection);
-        glBindTextureUnit(layers_unit_ground_depth, resolved_depth);
-    }
-    p.set("u_atlas", 0);
-    p.set("u_heights", 1);
-    p.set("u_noise", 2);
-    p.set("u_height_rect", height_rect_);
-    p.set("u_height_texels", height_texels_);
-    p.set("u_opacity", float(o.opacity));
-    p.set("u_ground_fade", float(o.ground_fade));
-    set_layers_light_uniforms(p, o, frame, noise_shift_);
-    p.set("u_medium", int(medium));
-    // The volume's own copy of the Medium's grid, after bind_apply: the froxels bind theirs only
-    // where they apply fog, and their apply's lookups in these programs do not read it.
-    // Per fragment within the distance where the spacing narrows, L0 = divisor r0 ([Thesis] 2.8):
-    // there the full-level triangles near the eye span wide angles; per vertex beyond.
-    p.set("u_lv_per_fragment", float(reach));
-    if (light_volume_)
-        light_volume_->bind(p, layers_unit_baked_moments, baked);
-    else
-        LightVolumeTexture{}.bind(p, layers_unit_baked_moments, false);
-    // tau_sun per fragment from the sun volume (before the grid's binding below, which points
-    // u_md_grid at the same grid on another unit); without one, the slab above each layer.
     const bool sun_lookup = sun_ && sun_->ready() && o.shading == geometry::LayerShading::medium;
-    if (sun_lookup)
-        sun_->bind(p, layers_unit_sun, sun_march_steps);
-    p.set("u_sv_volume", layers_unit_sun + 2);  // its sampler on a unit of its own, bound or not
-    p.set("u_sun_lookup", int(sun_lookup));
-    p.set("u_sv_direction", sun_march_direction(frame.sun_direction));
-    // The Medium's coverage, where the medium shading's fog is (after the baked light's binding of
-    // the same grid on the same unit).
-    p.set("u_md_extent", int(medium && sun_ && sun_->bind_grid(p, layers_unit_baked_moments + 1)));
-    set_partition_uniforms(p, frame);
-    p.use();
-    glBindTextureUnit(0, atlas_.get());
-    glBindTextureUnit(1, heights_.get());
-    glBindTextureUnit(2, noise_.get());
+    // Each program's uniforms and textures (the units are the same for both).
+    const auto prepare = [&](const ShaderProgram& q) {
+        if (fog_)
+            fog_->bind_apply(q);
+        bind_terrain_shadow(q, shadow_);
+        q.set("u_view_projection", frame.view_projection);
+        set_layer_stack_uniforms(q, o, base_->centre, frame.eye, top, under);
+        set_eye_in_stack_uniforms(q, in_stack);
+        q.set("u_stretch_pass", int(stretch));
+        if (stretch) {
+            q.set("u_frame_depth", layers_unit_ground_depth);
+            q.set("u_target_size", glm::vec2(float(low_width_), float(low_height_)));
+            q.set("u_inverse_view_projection", frame.inverse_view_projection);
+            glBindTextureUnit(layers_unit_ground_depth, resolved_depth);
+        }
+        q.set("u_atlas", 0);
+        q.set("u_heights", 1);
+        q.set("u_noise", 2);
+        q.set("u_height_rect", height_rect_);
+        q.set("u_height_texels", height_texels_);
+        q.set("u_opacity", float(o.opacity));
+        q.set("u_ground_fade", float(o.ground_fade));
+        set_layers_light_uniforms(q, o, frame, noise_shift_);
+        q.set("u_medium", int(medium));
+        // The volume's own copy of the Medium's grid, after bind_apply: the froxels bind theirs
+        // only where they apply fog, and their apply's lookups in these programs do not read it.
+        // Per fragment within the distance where the spacing narrows, L0 = divisor r0 ([Thesis]
+        // 2.8): there the full-level triangles near the eye span wide angles; per vertex beyond.
+        q.set("u_lv_per_fragment", float(reach));
+        if (light_volume_)
+            light_volume_->bind(q, layers_unit_baked_moments, baked);
+        else
+            LightVolumeTexture{}.bind(q, layers_unit_baked_moments, false);
+        // tau_sun per fragment from the sun volume (before the grid's binding below, which points
+        // u_md_grid at the same grid on another unit); without one, the slab above each layer.
+        if (sun_lookup)
+            sun_->bind(q, layers_unit_sun, sun_march_steps);
+        q.set("u_sv_volume", layers_unit_sun + 2);  // its sampler on a unit of its own, bound or not
+        q.set("u_sun_lookup", int(sun_lookup));
+        q.set("u_sv_direction", sun_march_direction(frame.sun_direction));
+        // The Medium's coverage, where the medium shading's fog is (after the baked light's binding
+        // of the same grid on the same unit).
+        q.set("u_md_extent", int(medium && sun_ && sun_->bind_grid(q, layers_unit_baked_moments + 1)));
+        set_partition_uniforms(q, frame);
+        q.use();
+        glBindTextureUnit(0, atlas_.get());
+        glBindTextureUnit(1, heights_.get());
+        glBindTextureUnit(2, noise_.get());
+    };
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_FALSE);
@@ -426,31 +434,47 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     // (layers.vert); each run is cut where its layers change from every triangle to the near
     // ones: the same fragments in the same order, those skipped had zero opacity.
     const int everywhere = std::min(top, o.count);
+    const ShaderProgram* current = &p;
     auto draw = [&](int first_instance, int instances, GLuint indices, GLsizei count) {
         if (instances <= 0 || count <= 0)
             return;
-        p.set("u_first_instance", first_instance);
+        current->set("u_first_instance", first_instance);
         glVertexArrayElementBuffer(vao_.get(), indices);
         glDrawElementsInstanced(GL_TRIANGLES, count, GL_UNSIGNED_INT, nullptr, instances);
     };
     // Layers 0..top in the order `order` (layers.vert's u_under): those over the eye's layer top
     // down, then those under it bottom up; layers 0..e of the triangles `all`, the rest of `near`.
     const auto run = [&](int order, int e, GLuint all, GLsizei all_count, GLuint near, GLsizei near_count) {
-        p.set("u_under", order);
+        current->set("u_under", order);
         const int over = top + 1 - order;
         draw(0, top - std::max(order, e + 1) + 1, near, near_count);                 // over: top..e + 1
         draw(top - std::min(e, top), std::min(e, top) - order + 1, all, all_count);  // over: e..order
         draw(over, std::min(order - 1, e) + 1, all, all_count);                      // under: 0..e
         draw(over + e + 1, order - 1 - e, near, near_count);                         // under: e + 1..order - 1
     };
+    const auto use = [&](const ShaderProgram& q) {
+        prepare(q);
+        current = &q;
+    };
     const GLuint all = lod_active_ ? lod_indices_.get() : indices_.get();
     const GLsizei all_count = lod_active_ ? lod_count_ : index_count_;
-    if (!o.narrowing) {
-        run(under, top, all, all_count, all, all_count);
-    } else if (top == everywhere) {
-        // No column within L0 of the eye (the count grows only there), so none within the flat
-        // radius either: every layer is far, drawn as the cones below, without sorting triangles.
-        run(under > 0 ? top + 1 : 0, top, all, all_count, all, all_count);
+    const GLuint none = 0;
+    if (split)
+        update_near(eye, reach, flat);
+    use(p);
+    if (!o.narrowing || top == everywhere) {
+        // Without the narrowing every layer covers every triangle. With it but no column within
+        // L0 of the eye (the count grows only there), none within the flat radius either: every
+        // layer is far, drawn as the cones below, without sorting triangles. Split, the far
+        // triangles first, then those within L0 of the eye: nearer along every ray.
+        const int order = o.narrowing && under > 0 ? top + 1 : (o.narrowing ? 0 : under);
+        if (!split) {
+            run(order, top, all, all_count, all, all_count);
+        } else {
+            run(order, top, far_rest_.get(), far_rest_count_, far_rest_.get(), far_rest_count_);
+            use(near_program);
+            run(order, top, near_all_.get(), near_all_count_, near_all_.get(), near_all_count_);
+        }
     } else {
         // The narrowing spaces the layers by r0 L / L0 within L0 of the eye, down to its floor
         // T0 / max_count within L0 count / max_count: there the layers are flat, and a ray from
@@ -458,9 +482,17 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
         // highest (bottom first). Further out each layer is a cone rising away from the eye, which
         // every ray from an eye over the base meets from the highest down (bottom first), and from
         // one under the base from the lowest up. The flat triangles are nearer along every ray
-        // from the eye: the cones are drawn first, then the flat part.
+        // from the eye: the cones are drawn first, then the flat part; split, the far cones before
+        // the near ones.
         update_near(eye, reach, flat);
-        run(under > 0 ? top + 1 : 0, everywhere, all_rest_.get(), all_rest_count_, near_rest_.get(), near_rest_count_);
+        const int cones = under > 0 ? top + 1 : 0;
+        if (!split) {
+            run(cones, everywhere, all_rest_.get(), all_rest_count_, near_rest_.get(), near_rest_count_);
+        } else {
+            run(cones, everywhere, far_rest_.get(), far_rest_count_, none, 0);
+            use(near_program);
+            run(cones, everywhere, near_rest_.get(), near_rest_count_, near_rest_.get(), near_rest_count_);
+        }
         run(under, top, flat_.get(), flat_count_, flat_.get(), flat_count_);
     }
     glVertexArrayElementBuffer(vao_.get(), indices_.get());
@@ -481,16 +513,18 @@ void LayersPass::update_near(const glm::dvec3& eye, double reach, double flat)
         near[v] = glm::dot(d, d) < reach2;
         flat_at[v] = glm::dot(d, d) < flat2;
     }
-    std::vector<std::uint32_t> flat_list, near_rest, all_rest;
+    std::vector<std::uint32_t> flat_list, near_rest, all_rest, far_rest, near_all;
     for (std::size_t t = 0; t + 2 < all.size(); t += 3) {
         const std::uint32_t a = all[t], b = all[t + 1], c = all[t + 2];
+        const bool is_near = near[a] || near[b] || near[c];
+        if (is_near || flat_at[a] || flat_at[b] || flat_at[c])
+            near_all.insert(near_all.end(), {a, b, c});
         if (flat_at[a] || flat_at[b] || flat_at[c]) {
             flat_list.insert(flat_list.end(), {a, b, c});
             continue;
         }
         all_rest.insert(all_rest.end(), {a, b, c});
-        if (near[a] || near[b] || near[c])
-            near_rest.insert(near_rest.end(), {a, b, c});
+        (is_near ? near_rest : far_rest).insert((is_near ? near_rest : far_rest).end(), {a, b, c});
     }
     const auto upload = [](Buffer& buffer, GLsizei& count, const std::vector<std::uint32_t>& indices) {
         buffer = make_buffer();
@@ -501,6 +535,8 @@ void LayersPass::update_near(const glm::dvec3& eye, double reach, double flat)
     upload(flat_, flat_count_, flat_list);
     upload(near_rest_, near_rest_count_, near_rest);
     upload(all_rest_, all_rest_count_, all_rest);
+    upload(far_rest_, far_rest_count_, far_rest);
+    upload(near_all_, near_all_count_, near_all);
     near_eye_ = eye;
     near_reach_ = reach;
     near_flat_ = flat;

@@ -107,9 +107,10 @@ private:
     // they are drawn for the triangles near it alone (near_eye_ of the eye it was built for).
     // The triangles where the narrowing has reached its floor (within `flat` of the eye, the
     // layers flat there) are drawn apart, last (flat_); near_rest_ and all_rest_ are the near
-    // triangles and all of them without those.
-    Buffer flat_, near_rest_, all_rest_;
-    GLsizei flat_count_ = 0, near_rest_count_ = 0, all_rest_count_ = 0;
+    // triangles and all of them without those. far_rest_: all_rest_ without the near ones, and
+    // near_all_: the near ones with the flat ones (where the baked light is drawn per fragment).
+    Buffer flat_, near_rest_, all_rest_, far_rest_, near_all_;
+    GLsizei flat_count_ = 0, near_rest_count_ = 0, all_rest_count_ = 0, far_rest_count_ = 0, near_all_count_ = 0;
     glm::dvec3 near_eye_{HUGE_VAL};
     double near_reach_ = -1.0, near_flat_ = -1.0;
     void update_near(const glm::dvec3& eye, double reach, double flat);
