@@ -111,25 +111,21 @@ Agreement transmittance_agreement(const glm::dvec3& centre, double radius, doubl
                     start = std::max(start, std::min(a, b));
                     end = std::min(end, std::max(a, b));
                 }
-            // Above the fog's floor: z(t) >= floor + slope . (xy(t) - centre.xy), the eye `above`
-            // over that plane and the ray rising over it at `rise`.
-            const double above = cam.position.z - floor - glm::dot(plane, glm::dvec2(cam.position - centre));
-            const double rise = ray.z - glm::dot(plane, glm::dvec2(ray));
-            if (rise > 0.0)
-                start = std::max(start, -above / rise);
-            else if (rise < 0.0)
-                end = std::min(end, -above / rise);
-            else if (above < 0.0)
-                end = start;
-            // Under the top's plane: the eye `under` it, the ray falling under it at `fall`.
-            const double under = top + glm::dot(top_slope, glm::dvec2(cam.position - centre)) - cam.position.z;
-            const double fall = glm::dot(top_slope, glm::dvec2(ray)) - ray.z;
-            if (fall > 0.0)
-                start = std::max(start, -under / fall);
-            else if (fall < 0.0)
-                end = std::min(end, -under / fall);
-            else if (under < 0.0)
-                end = start;
+            // The part of the ray on the fog's side of a plane: the eye `inside` by that much, the
+            // ray going further in at `rate`.
+            const auto keep = [&](double inside, double rate) {
+                if (rate > 0.0)
+                    start = std::max(start, -inside / rate);
+                else if (rate < 0.0)
+                    end = std::min(end, -inside / rate);
+                else if (inside < 0.0)
+                    end = start;
+            };
+            // Above the fog's floor, z(t) >= floor + slope . (xy(t) - centre.xy), and under its top.
+            keep(cam.position.z - floor - glm::dot(plane, glm::dvec2(cam.position - centre)),
+                 ray.z - glm::dot(plane, glm::dvec2(ray)));
+            keep(top + glm::dot(top_slope, glm::dvec2(cam.position - centre)) - cam.position.z,
+                 glm::dot(top_slope, glm::dvec2(ray)) - ray.z);
             const glm::dvec3 to_centre = centre - cam.position;
             const double along = glm::dot(to_centre, ray);
             const double rho = std::sqrt(std::max(glm::dot(to_centre, to_centre) - along * along, 0.0));
