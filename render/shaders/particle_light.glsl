@@ -17,7 +17,7 @@ uniform int u_self_table;  // 0: the table is missing (too large), the gains are
 // self_log_gamma - kOwnShare own_column_log_gain (particle_footprint.glsl), the column gains read
 // from the table. The read holds the own cylinder from the particle's depth on; the billboard
 // takes kOwnShare of its footprint's column instead (billboard_log_gamma).
-float table_own_excess(vec3 g, vec3 self_grid, ivec4 window, uint offset)
+float table_own_excess(vec3 g, vec3 self_grid, ivec4 window, uint offset, float own_share)
 {
     vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y), tz = linear_taps(g.z, u_grid_size.z);
     float sum = 0.0;
@@ -29,29 +29,45 @@ float table_own_excess(vec3 g, vec3 self_grid, ivec4 window, uint offset)
                 continue;  // beyond the particle's radius: no deposit
             float gain = self_gains[offset + uint(local.y * window.z + local.x)];
             if (gain != 0.0)
-                sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * (self_depth_weight(c, self_grid, tz) - kOwnShare) * gain;
+                sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * (self_depth_weight(c, self_grid, tz) - own_share) * gain;
         }
     return sum;
 }
 
 // log Gamma at grid point g on a particle's billboard (its record's self_grid, window and offset;
 // optics radius, tau, albedo), attenuation_cpu.hpp's billboard_log_gamma: the trilinear read less
-// the particle's own cylinder, plus kOwnShare of its footprint's column. The particle stands for
+// the particle's own cylinder, plus own_share (own_share_at) of its footprint's column. The particle stands for
 // the Medium around it, whose neighbourhood the blue-noise sampler left about one particle short,
 // half of it towards the sun (docs/particles.md, "Lit as the Medium").
-float billboard_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, ivec4 window, uint offset, vec3 optics)
+float billboard_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, ivec4 window, uint offset, vec3 optics,
+                          float own_share)
 {
     float raw = texture(log_gamma, g / vec3(u_grid_size)).r;
-    float excess = u_self_table != 0 ? table_own_excess(g, self_grid, window, offset)
-                                     : self_log_gamma(g, self_grid, optics) - kOwnShare * own_column_log_gain(g, self_grid, optics);
+    float excess = u_self_table != 0 ? table_own_excess(g, self_grid, window, offset, own_share)
+                                     : self_log_gamma(g, self_grid, optics) - own_share * own_column_log_gain(g, self_grid, optics);
     return clamp(raw - excess, kMinLogGamma, 0.0);
 }
+
+
 
 uniform float u_anisotropy;
 uniform vec3 u_sun_direction;
 uniform vec3 u_sun_radiance;
 uniform vec3 u_ambient;
 uniform int u_octaves;
+
+// geometry::billboard_own_share_at: kOwnShare where the ray towards the sun (u_sun_direction) from
+// `relative` stays in the fog for a radius, less where it leaves by the top sooner. top_plane:
+// the top's height at the centre and its dz/dx, dz/dy (over 1e29: none); all relative to the
+// cloud's centre.
+float own_share_at(vec3 relative, vec3 centre, float radius, vec3 top_plane)
+{
+    if (!(top_plane.x < 1e29) || !(radius > 0.0))
+        return kOwnShare;
+    float under = top_plane.x + dot(top_plane.yz, relative.xy - centre.xy) - relative.z;
+    float rise = u_sun_direction.z - dot(top_plane.yz, u_sun_direction.xy);
+    return rise > 0.0 ? kOwnShare * clamp(under / rise / radius, 0.0, 1.0) : kOwnShare;
+}
 
 // The radiance a particle of albedo `albedo` scatters towards the eye at a point where the sun
 // is seen through log_gamma (Gamma stands for exp(-tau_sun)) and the terrain's visibility

@@ -105,7 +105,8 @@ void main()
     vec3 relative = u_eye - u_centre + ray * t;
     float log_gamma = 0.0;
     if (u_lit != 0)
-        log_gamma = billboard_log_gamma(u_log_gamma, grid_of(relative), v_grid_visible.xyz, v_window, v_table, v_optics);
+        log_gamma = billboard_log_gamma(u_log_gamma, grid_of(relative), v_grid_visible.xyz, v_window, v_table, v_optics,
+                                        own_share_at(relative, u_eye - u_centre + v_centre, v_optics.x, v_top_plane));
     vec3 radiance = particle_radiance(log_gamma, dot(ray, u_sun_direction), v_optics.z, v_grid_visible.w);
     // The baked multiple scattering, not hidden by the terrain's shadow (particles.vert).
     radiance += clamp(v_optics.z, 0.0, 1.0) * v_baked * u_sun_radiance;

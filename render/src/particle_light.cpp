@@ -112,6 +112,7 @@ std::vector<glm::vec2> ParticleLight::sample_log_gamma(const geometry::ParticleC
     glNamedBufferStorage(out.get(), GLsizeiptr(n * sizeof(glm::vec2)), nullptr, 0);
     set_grid_uniforms(*sample_, buffer.grid(), cloud.forward_scattering, buffer.particle_centre());
     sample_->set("u_self_table", int(has_table()));
+    sample_->set("u_sun_direction", glm::vec3(buffer.grid().light));  // own_share_at's
     sample_->set("u_log_gamma", 0);
     glProgramUniform1ui(sample_->id(), sample_->location("u_count"), GLuint(n));
     sample_->use();

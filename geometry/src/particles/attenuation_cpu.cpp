@@ -1,5 +1,7 @@
 #include "kiri/geometry/particles/attenuation_cpu.hpp"
 
+#include <glm/geometric.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -100,10 +102,22 @@ double own_column_log_gain(const LightGrid& g, const Particle& self, double forw
     return own_read_log_gain(g, self, forward, q, true);
 }
 
+double billboard_own_share_at(const Particle& self, const glm::dvec3& light, const glm::dvec3& q)
+{
+    if (!std::isfinite(self.top) || !(self.radius > 0.0))
+        return billboard_own_share;
+    // q under the top's plane by `under`, the ray towards the sun rising over it at `rise`.
+    const double under = self.top + glm::dot(self.top_slope, glm::dvec2(q - self.position)) - q.z;
+    const double rise = light.z - glm::dot(self.top_slope, glm::dvec2(light));
+    if (!(rise > 0.0))
+        return billboard_own_share;
+    return billboard_own_share * std::clamp(under / rise / self.radius, 0.0, 1.0);
+}
+
 double billboard_log_gamma(const AttenuationVolume& v, const Particle& self, double forward, const glm::dvec3& q)
 {
     const double log_gamma = sample_log_gamma(v, q) - self_log_gamma(v.grid, self, forward, q) +
-        billboard_own_share * own_column_log_gain(v.grid, self, forward, q);
+        billboard_own_share_at(self, v.grid.light, q) * own_column_log_gain(v.grid, self, forward, q);
     return std::clamp(log_gamma, min_log_gamma, 0.0);
 }
 

@@ -55,8 +55,14 @@ double particle_gamma(const AttenuationVolume& volume, const ParticleCloud& clou
 //! neighbourhood holds about one particle less than the Medium would (a hyperuniform set), half of
 //! it towards the sun. The particle's own mass, spread as its footprint, makes that up.
 inline constexpr double billboard_own_share = 0.5;
+//! That share at point q of particle `self`'s billboard, the sun towards `light` (unit): the part
+//! missing towards the sun lies within about a radius of the particle, so where the ray towards
+//! the sun leaves the fog by its top sooner (`Particle::top`'s plane), less of it: the share times
+//! that distance over the radius, at most 1. Near a fog lake's top the whole share lit the skin as
+//! if under a third of an optical depth of fog, where the Medium has almost none.
+double billboard_own_share_at(const Particle& self, const glm::dvec3& light, const glm::dvec3& q);
 //! log Gamma at point q of particle `self`'s billboard, as particles.frag reads it: the read less
-//! its own cylinder, plus billboard_own_share of its footprint's column, in [min_log_gamma, 0]
+//! its own cylinder, plus billboard_own_share_at of its footprint's column, in [min_log_gamma, 0]
 //! (docs/particles.md, "Lit as the Medium").
 double billboard_log_gamma(const AttenuationVolume& volume, const Particle& self, double forward, const glm::dvec3& q);
 
