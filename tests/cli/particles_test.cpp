@@ -20,6 +20,22 @@ namespace {
 
 const std::string default_scene = (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json").string();
 
+// `kiri render --mode particles` of a scene's camera at width x height against the CPU reference,
+// each over the bare terrain's frame; printed with `what`.
+kiri::render::FogError particles_against_reference(const std::string& scene, const std::string& camera, int width,
+                                                   int height, const char* what)
+{
+    const std::string args =
+        "--width " + std::to_string(width) + " --height " + std::to_string(height) + " --camera " + camera;
+    const kiri::render::RadianceImage fog = kiri::test::render_radiance(scene, "particles", args);
+    const kiri::render::RadianceImage bare = kiri::test::render_radiance(scene, "terrain", args);
+    const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(scene, camera, width, height, false);
+    const kiri::render::FogError e = kiri::render::compare_frames(fog, bare, reference);
+    std::printf("    %s: %d fog pixels, mean error %.4f, p99 %.3f\n", what, e.fog_pixels, e.mean_relative,
+                e.p99_relative);
+    return e;
+}
+
 }  // namespace
 
 TEST(KiriParticles, RenderDrawsLitParticleFog)
@@ -57,15 +73,9 @@ TEST(KiriParticles, FromUnderTheBlanketLevelRaysCrossNoBallsBelowItsFloor)
         {{"name", "valley"}, {"position", {8197, -9020, 544}}, {"target", {7049, -6248, 484}}, {"fov", 60}});
     const fs::path file = kiri::test::temp_path("particles_valley.json");
     std::ofstream(file) << scene.dump(1);
-    const std::string args = "--width 160 --height 90 --camera valley";
-    const kiri::render::RadianceImage fog = kiri::test::render_radiance(file.string(), "particles", args);
-    const kiri::render::RadianceImage bare = kiri::test::render_radiance(file.string(), "terrain", args);
-    const kiri::geometry::ReferenceImage reference =
-        kiri::test::scene_reference(file.string(), "valley", 160, 90, false);
+    const kiri::render::FogError e =
+        particles_against_reference(file.string(), "valley", 160, 90, "from under the blanket");
     fs::remove(file);
-    const kiri::render::FogError e = kiri::render::compare_frames(fog, bare, reference);
-    std::printf("    from under the blanket: %d fog pixels, mean error %.4f, p99 %.3f\n", e.fog_pixels, e.mean_relative,
-                e.p99_relative);
     EXPECT_GT(e.fog_pixels, 160 * 90 / 3);
     // Measured 0.174 (p99 1.38); cut at the level plane under the lowest floor, 0.453 (p99 7.06).
     EXPECT_LT(e.mean_relative, 0.25);
@@ -77,13 +87,7 @@ TEST(KiriParticles, FromAShoreLevelRaysSeeNoBallsOverTheLakesTop)
     // shore. Balls near the top stood out of it, and rays passing over the top to the far shore
     // crossed their upper parts: a bright veil over the shore, the frame's worst pixels.
     const std::string fill = (fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_fill.json").string();
-    const std::string args = "--width 96 --height 54 --camera valley";
-    const kiri::render::RadianceImage fog = kiri::test::render_radiance(fill, "particles", args);
-    const kiri::render::RadianceImage bare = kiri::test::render_radiance(fill, "terrain", args);
-    const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(fill, "valley", 96, 54, false);
-    const kiri::render::FogError e = kiri::render::compare_frames(fog, bare, reference);
-    std::printf("    from the fill's shore: %d fog pixels, mean error %.4f, p99 %.3f\n", e.fog_pixels, e.mean_relative,
-                e.p99_relative);
+    const kiri::render::FogError e = particles_against_reference(fill, "valley", 96, 54, "from the fill's shore");
     EXPECT_GT(e.fog_pixels, 96 * 54 / 4);
     // Measured p99 0.62 (mean 0.085); without the cut at the top's plane, 1.37.
     EXPECT_LT(e.p99_relative, 0.8);
