@@ -33,9 +33,13 @@ void main()
     if (id >= u_count)
         return;
     GpuParticle particle = particles[id];
-    float r = particle.position_radius.w, tau = particle.optics.x;
+    // tau with the mass cut off by the ground and the fog's floor and top given back (seen_gain);
+    // a ball such a plane cuts has each column cut too (column_plane_share).
+    float r = particle.position_radius.w, tau = particle.optics.x * particle.optics.z;
     if (!(r > 0.0) || !(tau > 0.0))
         return;
+    Ball ball = ball_of(particle);
+    bool cut = planes_cut(ball);
     float ac = clamp(particle.optics.y, 0.0, 1.0) * clamp(u_forward, 0.0, 1.0);
     vec3 g = grid_of(particle.position_radius.xyz);
     vec4 p_grid = vec4(g, shadow_grid(g).z);  // gx, gy, gz, gw0
@@ -73,6 +77,11 @@ void main()
             float t1 = i + 1 <= z ? max(A * e - B, 0.0) : 0.0;
             e *= step;
             step *= q;
+            if (cut) {
+                vec2 offset = vec2((float(i) + 0.5 - p_grid.x) * u_grid_voxel.x, dy * u_grid_voxel.y);
+                t0 *= column_plane_share(offset, ball);
+                t1 *= column_plane_share(offset + vec2(u_grid_voxel.x, 0.0), ball);
+            }
             float k0 = ceil(start), k1 = ceil(start - u_grid_shear_cells.x);
             start -= 2.0 * u_grid_shear_cells.x;
             vec2 t = vec2(t0, t1);
@@ -96,6 +105,8 @@ void main()
             if (k >= float(u_grid_size.z))
                 continue;
             float t = max(A * e - B, 0.0);
+            if (cut)
+                t *= column_plane_share(vec2((float(i) + 0.5 - p_grid.x) * u_grid_voxel.x, dy * u_grid_voxel.y), ball);
             float fixed_g = thin ? t * (taylor.x + t * (taylor.y + t * (taylor.z + t * taylor.w)))
                                  : clamp(log(ac + b * exp(-t)), kMinLogGain, 0.0) * u_scale;
             int quantum = int(floor(fixed_g + 0.5));

@@ -16,5 +16,5 @@ void main()
         return;
     GpuParticle p = particles[id];
     vec3 g = grid_of(p.position_radius.xyz);
-    gammas[id] = particle_gamma(u_log_gamma, g, shadow_grid(g), vec3(p.position_radius.w, p.optics.xy));
+    gammas[id] = particle_gamma(u_log_gamma, g, shadow_grid(g), ball_of(p));
 }

@@ -75,7 +75,7 @@ float footprint_log_gain(float rho, float radius, float tau, float albedo, float
 // centre and radius; optical depth and albedo.
 struct GpuParticle {
     vec4 position_radius;
-    vec4 optics;  // tau, albedo, the billboard's gain on tau (particle_gpu.hpp's seen_gain), 0
+    vec4 optics;  // tau, albedo, the billboard's and the light's gain on tau (seen_gain), 0
     // The fog's floor where it floats above the ground and its top: each plane's height at the
     // particle's centre relative to the cloud's centre (or -1e30 and 1e30: none) and its dz/dx,
     // dz/dy.
@@ -89,6 +89,70 @@ uniform ivec3 u_grid_size;
 uniform vec3 u_grid_voxel;        // du, dv, dw (metres)
 uniform vec2 u_grid_shear_cells;  // a du / dw, b dv / dw
 uniform float u_forward;          // p(l,l) / 4pi
+uniform vec3 u_grid_u_axis;       // the grid's axes in the world: across the light (u, v) and
+uniform vec3 u_grid_v_axis;       // towards the sun (LightGrid::u_axis, v_axis, light)
+uniform vec3 u_grid_light;
+
+// A particle as the light's columns see it: its ball cut at the planes of the fog's floor and
+// top, the mass cut off there and in the ground given back to the rest (column_log_gain).
+struct Ball {
+    vec3 centre;       // relative to the cloud's centre
+    vec3 optics;       // radius, tau times its gain (GpuParticle.optics.z), albedo
+    vec3 floor_plane;  // as GpuParticle's: below -1e29 none
+    vec3 top_plane;    // over 1e29 none
+};
+Ball ball_of(GpuParticle p)
+{
+    return Ball(p.position_radius.xyz, vec3(p.position_radius.w, p.optics.x * p.optics.z, p.optics.y),
+                p.floor_plane.xyz, p.top_plane.xyz);
+}
+// Whether a plane cuts the ball (side 1: a floor, the fog over it; -1: a top).
+bool plane_cuts(vec3 plane, float side, Ball b)
+{
+    return side * (b.centre.z - plane.x) < b.optics.x * sqrt(1.0 + dot(plane.yz, plane.yz));
+}
+bool planes_cut(Ball b)
+{
+    return (b.floor_plane.x > -1e29 && plane_cuts(b.floor_plane, 1.0, b)) ||
+        (b.top_plane.x < 1e29 && plane_cuts(b.top_plane, -1.0, b));
+}
+// Clips the span [u0, u1] (metres towards the sun from the column's point nearest the centre,
+// `offset` from it) to the plane's fog side, as particles.frag clips a view ray.
+void clip_column(vec3 plane, float side, vec3 offset, vec3 centre, inout vec2 span)
+{
+    float above = side * (centre.z + offset.z - plane.x - dot(plane.yz, offset.xy));
+    float rise = side * (u_grid_light.z - dot(plane.yz, u_grid_light.xy));
+    if (rise > 0.0)
+        span.x = max(span.x, -above / rise);
+    else if (rise < 0.0)
+        span.y = min(span.y, -above / rise);
+    else if (above < 0.0)
+        span.y = -1e30;
+}
+// The share of the ball's column at `offset` (metres across the light from its axis, along the
+// grid's u and v) between its planes.
+float column_plane_share(vec2 offset, Ball b)
+{
+    bool floor_cut = b.floor_plane.x > -1e29, top_cut = b.top_plane.x < 1e29;
+    if (!floor_cut && !top_cut)
+        return 1.0;
+    vec3 o = offset.x * u_grid_u_axis + offset.y * u_grid_v_axis;
+    vec2 span = vec2(-1e30, 1e30);
+    if (floor_cut)
+        clip_column(b.floor_plane, 1.0, o, b.centre, span);
+    if (top_cut)
+        clip_column(b.top_plane, -1.0, o, b.centre, span);
+    return footprint_ray_share(length(offset) / b.optics.x, b.optics.x, span.x, span.y);
+}
+// log G of the ball's footprint in the light column at `offset` (column_log_gain).
+float column_log_gain(vec2 offset, Ball b)
+{
+    float rho = length(offset);
+    if (!(rho < b.optics.x))
+        return 0.0;
+    float share = column_plane_share(offset, b);
+    return share > 0.0 ? footprint_log_gain(rho, b.optics.x, b.optics.y * share, b.optics.z, u_forward) : 0.0;
+}
 
 vec3 grid_of(vec3 relative) { return (u_to_grid * vec4(relative, 1.0)).xyz; }
 // A particle's (gx, gy, gw0): gw0 is its depth before the shear, where its shadow starts in
@@ -105,11 +169,10 @@ vec3 linear_taps(float g, int n)
 }
 
 // The log gain of a particle's footprint in light column c (its deposit there): the particle at
-// grid coordinates (gx, gy) with shadow-start depth gw0 (before the shear), radius, tau, albedo.
-float column_self_log_gain(ivec2 c, vec3 self_grid, vec3 self_optics)
+// grid coordinates (gx, gy) with shadow-start depth gw0 (before the shear).
+float column_self_log_gain(ivec2 c, vec3 self_grid, Ball self_ball)
 {
-    float rho = length((vec2(c) + 0.5 - self_grid.xy) * u_grid_voxel.xy);
-    return rho < self_optics.x ? footprint_log_gain(rho, self_optics.x, self_optics.y, self_optics.z, u_forward) : 0.0;
+    return column_log_gain((vec2(c) + 0.5 - self_grid.xy) * u_grid_voxel.xy, self_ball);
 }
 
 // The share of column c's deposit that a trilinear read with depth taps tz takes: the read's
@@ -123,14 +186,14 @@ float self_depth_weight(ivec2 c, vec3 self_grid, vec3 tz)
 
 // What the trilinear read at grid point g holds of a particle's own cylinder (its deposit in the
 // read's four columns, weighted as the filter weighs them).
-float self_log_gamma(vec3 g, vec3 self_grid, vec3 self_optics)
+float self_log_gamma(vec3 g, vec3 self_grid, Ball self_ball)
 {
     vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y), tz = linear_taps(g.z, u_grid_size.z);
     float sum = 0.0;
     for (int dj = 0; dj < 2; ++dj)
         for (int di = 0; di < 2; ++di) {
             ivec2 c = ivec2(di == 0 ? tx.x : tx.y, dj == 0 ? ty.x : ty.y);
-            float gain = column_self_log_gain(c, self_grid, self_optics);
+            float gain = column_self_log_gain(c, self_grid, self_ball);
             if (gain != 0.0)
                 sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * self_depth_weight(c, self_grid, tz) * gain;
         }
@@ -139,28 +202,28 @@ float self_log_gamma(vec3 g, vec3 self_grid, vec3 self_optics)
 
 // own_column_log_gain (attenuation_cpu.hpp): the particle's footprint in the read's four columns,
 // weighted as the read weighs them, over the whole column (as if its shadow started before g).
-float own_column_log_gain(vec3 g, vec3 self_grid, vec3 self_optics)
+float own_column_log_gain(vec3 g, vec3 self_grid, Ball self_ball)
 {
     vec3 tx = linear_taps(g.x, u_grid_size.x), ty = linear_taps(g.y, u_grid_size.y);
     float sum = 0.0;
     for (int dj = 0; dj < 2; ++dj)
         for (int di = 0; di < 2; ++di) {
             ivec2 c = ivec2(di == 0 ? tx.x : tx.y, dj == 0 ? ty.x : ty.y);
-            sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * column_self_log_gain(c, self_grid, self_optics);
+            sum += (di == 0 ? 1.0 - tx.z : tx.z) * (dj == 0 ? 1.0 - ty.z : ty.z) * column_self_log_gain(c, self_grid, self_ball);
         }
     return sum;
 }
 
-// log Gamma at grid point g for the particle described by self_grid / self_optics (it does not
+// log Gamma at grid point g for the particle described by self_grid / self_ball (it does not
 // shade itself, Harris's particle at its centre): trilinear log Gamma - its own part.
-float particle_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, vec3 self_optics)
+float particle_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, Ball self_ball)
 {
     float raw = texture(log_gamma, g / vec3(u_grid_size)).r;
-    return clamp(raw - self_log_gamma(g, self_grid, self_optics), kMinLogGamma, 0.0);
+    return clamp(raw - self_log_gamma(g, self_grid, self_ball), kMinLogGamma, 0.0);
 }
-float particle_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, vec3 self_optics)
+float particle_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, Ball self_ball)
 {
-    return exp(particle_log_gamma(log_gamma, g, self_grid, self_optics));
+    return exp(particle_log_gamma(log_gamma, g, self_grid, self_ball));
 }
 
 // Henyey-Greenstein (1/sr), g clamped to [-0.999, 0.999].

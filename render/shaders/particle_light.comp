@@ -26,8 +26,9 @@ void main()
         return;
     ivec4 w = particle_lights[id].window;
     uint offset = particle_lights[id].offset.x;
+    Ball ball = ball_of(p);
     for (int j = 0; j < w.w; ++j)
         for (int i = 0; i < w.z; ++i)
             self_gains[offset + uint(j * w.z + i)] =
-                column_self_log_gain(ivec2(w.x + i, w.y + j), self_grid, vec3(p.position_radius.w, p.optics.xy));
+                column_self_log_gain(ivec2(w.x + i, w.y + j), self_grid, ball);
 }

@@ -35,16 +35,22 @@ float table_own_excess(vec3 g, vec3 self_grid, ivec4 window, uint offset, float 
 }
 
 // log Gamma at grid point g on a particle's billboard (its record's self_grid, window and offset;
-// optics radius, tau, albedo), attenuation_cpu.hpp's billboard_log_gamma: the trilinear read less
+// its ball), attenuation_cpu.hpp's billboard_log_gamma: the trilinear read less
 // the particle's own cylinder, plus own_share (own_share_at) of its footprint's column. The particle stands for
 // the Medium around it, whose neighbourhood the blue-noise sampler left about one particle short,
 // half of it towards the sun (docs/particles.md, "Lit as the Medium").
-float billboard_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, ivec4 window, uint offset, vec3 optics,
+float billboard_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, ivec4 window, uint offset, Ball self_ball,
                           float own_share)
 {
     float raw = texture(log_gamma, g / vec3(u_grid_size)).r;
+#ifdef KIRI_SELF_TABLE
+    // The table is there (the particles' program is compiled so): on a CPU rasteriser the other
+    // branch's eight footprint gains would run for every fragment, masked or not.
+    float excess = table_own_excess(g, self_grid, window, offset, own_share);
+#else
     float excess = u_self_table != 0 ? table_own_excess(g, self_grid, window, offset, own_share)
-                                     : self_log_gamma(g, self_grid, optics) - own_share * own_column_log_gain(g, self_grid, optics);
+                                     : self_log_gamma(g, self_grid, self_ball) - own_share * own_column_log_gain(g, self_grid, self_ball);
+#endif
     return clamp(raw - excess, kMinLogGamma, 0.0);
 }
 

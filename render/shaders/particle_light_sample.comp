@@ -20,12 +20,13 @@ void main()
     uint k = floatBitsToUint(q.w);
     GpuParticle p = particles[k];
     ParticleLightRecord record = particle_lights[k];
-    vec3 g = grid_of(q.xyz), optics = vec3(p.position_radius.w, p.optics.xy);
+    vec3 g = grid_of(q.xyz);
+    Ball ball = ball_of(p);
     float own_share = own_share_at(q.xyz, p.position_radius.xyz, p.position_radius.w, p.top_plane.xyz);
     float by_table =
-        billboard_log_gamma(u_log_gamma, g, record.grid_visible.xyz, record.window, record.offset.x, optics, own_share);
+        billboard_log_gamma(u_log_gamma, g, record.grid_visible.xyz, record.window, record.offset.x, ball, own_share);
     float raw = texture(u_log_gamma, g / vec3(u_grid_size)).r;
     vec3 self_grid = shadow_grid(grid_of(p.position_radius.xyz));
-    float direct = clamp(raw - self_log_gamma(g, self_grid, optics) + own_share * own_column_log_gain(g, self_grid, optics), kMinLogGamma, 0.0);
+    float direct = clamp(raw - self_log_gamma(g, self_grid, ball) + own_share * own_column_log_gain(g, self_grid, ball), kMinLogGamma, 0.0);
     results[id] = vec2(by_table, direct);
 }

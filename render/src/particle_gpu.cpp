@@ -9,10 +9,7 @@
 
 namespace kiri::render::detail {
 
-double seen_gain(const geometry::Particle& p)
-{
-    return 1.0 / std::clamp(std::isnan(p.above_ground) ? 1.0 : p.above_ground, min_above_ground, 1.0);
-}
+double seen_gain(const geometry::Particle& p) { return geometry::mass_gain(p.above_ground); }
 
 GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
 {
@@ -28,7 +25,8 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
         if (std::isfinite(p.radius))
             r_max = std::max(r_max, p.radius);
         out.strongest_log_gain_sum +=
-            std::min(std::isfinite(p.optical_depth) ? std::max(p.optical_depth, 0.0) : 1e300, -geometry::min_log_gain);
+            std::min(std::isfinite(p.optical_depth) ? std::max(p.optical_depth, 0.0) * seen_gain(p) : 1e300,
+                     -geometry::min_log_gain);
     }
     out.centre = 0.5 * (lo + hi);
     constexpr int buckets = 64;
@@ -62,7 +60,8 @@ GpuParticles gpu_particles(const geometry::ParticleCloud& cloud)
 double packed_fixed_point_scale(const geometry::ParticleCloud& cloud, const geometry::LightGrid& g)
 {
     // Bounds per slice and block of 8 x 8 columns: the particles whose shadow can start in that
-    // slice inside that block, each at most min(tau, 16) and half a unit of rounding per voxel.
+    // slice inside that block, each at most min(tau seen_gain, 16) and half a unit of rounding
+    // per voxel.
     constexpr int block = 8;
     const int nz = g.size[2], bx = (g.size[0] + block - 1) / block, by = (g.size[1] + block - 1) / block;
     std::vector<double> bound(std::size_t(nz) * bx * by, 0.0), count(bound.size(), 0.0);
@@ -82,7 +81,7 @@ double packed_fixed_point_scale(const geometry::ParticleCloud& cloud, const geom
         const int j0 = int(std::clamp(std::floor((q.y - rv - 1.0) / block), 0.0, double(by - 1)));
         const int j1 = int(std::clamp(std::floor((q.y + rv + 1.0) / block), 0.0, double(by - 1)));
         const double strongest =
-            std::min(std::isfinite(p.optical_depth) ? p.optical_depth : 1e300, -geometry::min_log_gain);
+            std::min(std::isfinite(p.optical_depth) ? p.optical_depth * seen_gain(p) : 1e300, -geometry::min_log_gain);
         for (int k = k0; k <= k1; ++k)
             for (int j = j0; j <= j1; ++j)
                 for (int i = i0; i <= i1; ++i) {
@@ -152,6 +151,9 @@ void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& 
                 glm::vec2(float(g.shear_u * g.voxel.x / g.voxel.z), float(g.shear_v * g.voxel.y / g.voxel.z)));
     program.set("u_forward", float(forward));
     program.set("u_to_grid", glm::mat4(relative_to_grid(g, centre)));
+    program.set("u_grid_u_axis", glm::vec3(g.u_axis));
+    program.set("u_grid_v_axis", glm::vec3(g.v_axis));
+    program.set("u_grid_light", glm::vec3(g.light));
 }
 
 }  // namespace kiri::render::detail

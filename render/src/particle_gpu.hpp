@@ -17,7 +17,7 @@ namespace kiri::render::detail {
 //! cloud's centre (float keeps millimetres over 100 km).
 struct GpuParticle {
     float position_radius[4];  // x, y, z - centre, radius (m)
-    float optics[4];           // tau (opaque: 1e30), albedo, seen_gain, 0
+    float optics[4];           // tau (opaque: 1e30), albedo, seen_gain (the billboard's and the light's gain on tau), 0
     float floor_plane[4];      // the floor's plane's z - centre (or -no_plane) and dz/dx, dz/dy; 0
     float top_plane[4];        // the top's plane's z - centre (or no_plane) and dz/dx, dz/dy; 0
 };
@@ -31,25 +31,23 @@ struct GpuParticles {
     glm::dvec3 centre{0.0};
     std::vector<GpuParticle> particles;   //!< in the sorted order
     std::vector<std::uint32_t> index;     //!< cloud index of each
-    double strongest_log_gain_sum = 0.0;  //!< sum of min(tau, 16): bounds every column's |sum of log G|
+    double strongest_log_gain_sum = 0.0;  //!< sum of min(tau seen_gain, 16): bounds every column's |sum of log G|
 };
 GpuParticles gpu_particles(const geometry::ParticleCloud& cloud);
-//! The share of a particle's mass above the ground that its billboard draws the whole of: below
-//! it the visible remnant of a buried particle would turn into a dense speck.
-constexpr double min_above_ground = 0.25;
-//! What a billboard multiplies tau by: 1 / above_ground (clamped to [min_above_ground, 1]), so
-//! the part of the particle no ray sees in the ground adds to the part it sees.
+//! What a billboard and the light's columns multiply tau by: geometry::mass_gain(above_ground),
+//! so the part of the particle in the ground or beyond a plane adds to the part that is drawn.
 double seen_gain(const geometry::Particle& p);
 //! The fixed-point scale (units per 1.0 of |log G|) of the packed deposit, two columns to a
 //! 32-bit word: the largest for which no voxel's sum of rounded magnitudes can pass 65535 (per
-//! slice, the particles whose shadow can start there, each adding at most min(tau, 16) and half a
+//! slice, the particles whose shadow can start there, each adding at most min(tau seen_gain, 16) and half a
 //! unit of rounding). 0 when none works.
 double packed_fixed_point_scale(const geometry::ParticleCloud& cloud, const geometry::LightGrid& grid);
 //! A 64-bit hash of every particle's data and the cloud's constants: equal clouds, equal hash.
 std::uint64_t hash_particles(const geometry::ParticleCloud& cloud);
 //! World (relative to `centre`) -> grid coordinates in voxels, in double.
 glm::dmat4 relative_to_grid(const geometry::LightGrid& grid, const glm::dvec3& centre);
-//! u_grid_size, u_grid_voxel, u_grid_shear_cells, u_forward and u_to_grid of particle_footprint.glsl.
+//! u_grid_size, u_grid_voxel, u_grid_shear_cells, u_forward, u_to_grid and the grid's axes of
+//! particle_footprint.glsl.
 void set_grid_uniforms(const ShaderProgram& program, const geometry::LightGrid& grid, double forward,
                        const glm::dvec3& centre);
 

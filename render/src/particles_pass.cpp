@@ -1,6 +1,7 @@
 #include "particles_pass.hpp"
 
 #include <algorithm>
+#include <string>
 #include <array>
 #include <cmath>
 
@@ -204,7 +205,9 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     // the Medium's columns they follow. The renderer gives a volume for the model `baked` alone.
     const bool baked = light_volume_ && light_volume_->ready();
     // With froxel fog, the variant that reads it at each billboard's depth (froxel_apply.glsl).
-    std::unique_ptr<ShaderProgram>& slot = programs_[fog_ ? 1 : 0][baked ? 1 : 0];
+    // With the gain table (nearly always), the variant that reads it alone.
+    const bool table = light_.has_table();
+    std::unique_ptr<ShaderProgram>& slot = programs_[fog_ ? 1 : 0][baked ? 1 : 0][table ? 1 : 0];
     if (!slot)
         slot = std::make_unique<ShaderProgram>(
             fog_ ? std::vector<std::string_view>{"particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl",
@@ -216,7 +219,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
                                                  "terrain_shadow.glsl", "froxel_fog_none.glsl", "medium_shell.glsl",
                                                  "height_fog.glsl", "light_volume.glsl", "particles.vert",
                                                  "particles.frag"},
-            light_volume_preamble(baked));
+            std::string(light_volume_preamble(baked)) + (table ? "#define KIRI_SELF_TABLE\n" : ""));
     const ShaderProgram& p = *slot;
     if (fog_)
         fog_->bind_apply(p);

@@ -61,8 +61,9 @@ public:
 private:
     ShaderProgram composite_;
     //! The billboards' program, reading the froxel fog (froxel_apply.glsl) or not, with the baked
-    //! light or without (light_volume_preamble), each built on first use.
-    std::unique_ptr<ShaderProgram> programs_[2][2];
+    //! light or without (light_volume_preamble), reading the own gains from the table alone or
+    //! computing them where it is missing: [fog][baked][table], each built on first use.
+    std::unique_ptr<ShaderProgram> programs_[2][2][2];
     const LightVolumeTexture* light_volume_ = nullptr;
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;

@@ -30,57 +30,70 @@ class ParticleLightGl : public kiri::test::GlTest {};
 TEST_F(ParticleLightGl, TableReadsWhatTheFullSelfShadowReads)
 {
     // Radius 30 m in a 32^3 grid over a 150 m ball: every footprint spans several columns, the
-    // light is oblique (a sheared or tilted grid), R32F.
-    const g::ParticleCloud c = kiri::test::ball_cloud(400, 150.0, 30.0, 0.5);
-    AttenuationBuffer b;
-    b.set_particles(c);
-    kiri::render::AttenuationOptions o;
-    o.resolution = 32;
-    o.half_float = false;
-    ASSERT_TRUE(b.update({0.3, -0.5, 0.8}, o));
-    ParticleLight light;
-    ASSERT_TRUE(light.update(c, b, nullptr));
-    ASSERT_TRUE(light.has_table());
-    EXPECT_FALSE(light.update(c, b, nullptr));  // nothing changed
-
-    // On each billboard: its centre and eight points at 0.3 and 0.7 of its radius, across the
-    // light's columns.
-    const std::vector<std::uint32_t>& index = b.particle_order();
-    std::vector<glm::vec3> points;
-    std::vector<std::uint32_t> slots;
-    const glm::dvec3 across[4] = {{1, 0, 0}, {0, 1, 0}, {0.6, 0.0, 0.8}, {-0.48, 0.6, 0.64}};
-    for (std::uint32_t k = 0; k < index.size(); ++k) {
-        const g::Particle& p = c.particles[index[k]];
-        points.push_back(glm::vec3(p.position - b.particle_centre()));
-        slots.push_back(k);
-        for (const glm::dvec3& a : across)
-            for (double s : {0.3, -0.7}) {
-                points.push_back(glm::vec3(p.position + s * p.radius * a - b.particle_centre()));
-                slots.push_back(k);
+    // light is oblique (a sheared or tilted grid), R32F. Then the same balls cut at a tilted
+    // top's plane and a floor's through the cloud: their own columns cut as their deposits are.
+    for (const bool cut : {false, true}) {
+        SCOPED_TRACE(cut ? "cut at planes" : "whole balls");
+        g::ParticleCloud c = kiri::test::ball_cloud(400, 150.0, 30.0, 0.5);
+        if (cut)
+            for (std::size_t k = 0; k < c.particles.size(); ++k) {
+                g::Particle& p = c.particles[k];
+                p.top_slope = glm::dvec2(0.15, -0.1);
+                p.top = 1060.0 + glm::dot(p.top_slope, glm::dvec2(p.position));
+                p.above_ground = k % 2 ? 1.0 : 0.6;  // the share drawn, its cut given back
+                if (k % 3 == 0)
+                    p.floor = 920.0;
             }
+        AttenuationBuffer b;
+        b.set_particles(c);
+        kiri::render::AttenuationOptions o;
+        o.resolution = 32;
+        o.half_float = false;
+        ASSERT_TRUE(b.update({0.3, -0.5, 0.8}, o));
+        ParticleLight light;
+        ASSERT_TRUE(light.update(c, b, nullptr));
+        ASSERT_TRUE(light.has_table());
+        EXPECT_FALSE(light.update(c, b, nullptr));  // nothing changed
+
+        // On each billboard: its centre and eight points at 0.3 and 0.7 of its radius, across the
+        // light's columns.
+        const std::vector<std::uint32_t>& index = b.particle_order();
+        std::vector<glm::vec3> points;
+        std::vector<std::uint32_t> slots;
+        const glm::dvec3 across[4] = {{1, 0, 0}, {0, 1, 0}, {0.6, 0.0, 0.8}, {-0.48, 0.6, 0.64}};
+        for (std::uint32_t k = 0; k < index.size(); ++k) {
+            const g::Particle& p = c.particles[index[k]];
+            points.push_back(glm::vec3(p.position - b.particle_centre()));
+            slots.push_back(k);
+            for (const glm::dvec3& a : across)
+                for (double s : {0.3, -0.7}) {
+                    points.push_back(glm::vec3(p.position + s * p.radius * a - b.particle_centre()));
+                    slots.push_back(k);
+                }
+        }
+        const std::vector<glm::vec2> read = light.sample_log_gamma(c, b, points, slots);
+        ASSERT_EQ(read.size(), points.size());
+        const g::AttenuationVolume cpu = g::build_attenuation_cpu(c, b.grid());
+        double worst_table = 0.0, worst_cpu = 0.0, self_sum = 0.0, excess_sum = 0.0;
+        for (std::size_t q = 0; q < points.size(); ++q) {
+            // The same float operations on the same numbers, the gains read instead of computed.
+            worst_table = std::max(worst_table, double(std::abs(read[q].x - read[q].y)));
+            const g::Particle& p = c.particles[index[slots[q]]];
+            const glm::dvec3 world = glm::dvec3(points[q]) + b.particle_centre();
+            const double self = g::self_log_gamma(b.grid(), p, c.forward_scattering, world);
+            const double twin = g::billboard_log_gamma(cpu, p, c.forward_scattering, world);
+            worst_cpu = std::max(worst_cpu, std::abs(read[q].x - twin));
+            self_sum += self;
+            excess_sum += std::abs(
+                self - g::billboard_own_share * g::own_column_log_gain(b.grid(), p, c.forward_scattering, world));
+        }
+        EXPECT_LT(worst_table, 1e-5);
+        // The buffer's fixed-point rounding (BufferEqualsItsCpuTwin) and float against double.
+        EXPECT_LT(worst_cpu, 60.0 / b.fixed_point_scale() + 1e-4);
+        EXPECT_LT(self_sum / double(points.size()), -0.05);  // the own cylinder is there to take out
+        // and the share of the own column to put back differs from it (points up-sun of the centre)
+        EXPECT_GT(excess_sum / double(points.size()), 0.02);
     }
-    const std::vector<glm::vec2> read = light.sample_log_gamma(c, b, points, slots);
-    ASSERT_EQ(read.size(), points.size());
-    const g::AttenuationVolume cpu = g::build_attenuation_cpu(c, b.grid());
-    double worst_table = 0.0, worst_cpu = 0.0, self_sum = 0.0, excess_sum = 0.0;
-    for (std::size_t q = 0; q < points.size(); ++q) {
-        // The same float operations on the same numbers, the gains read instead of computed.
-        worst_table = std::max(worst_table, double(std::abs(read[q].x - read[q].y)));
-        const g::Particle& p = c.particles[index[slots[q]]];
-        const glm::dvec3 world = glm::dvec3(points[q]) + b.particle_centre();
-        const double self = g::self_log_gamma(b.grid(), p, c.forward_scattering, world);
-        const double twin = g::billboard_log_gamma(cpu, p, c.forward_scattering, world);
-        worst_cpu = std::max(worst_cpu, std::abs(read[q].x - twin));
-        self_sum += self;
-        excess_sum +=
-            std::abs(self - g::billboard_own_share * g::own_column_log_gain(b.grid(), p, c.forward_scattering, world));
-    }
-    EXPECT_LT(worst_table, 1e-5);
-    // The buffer's fixed-point rounding (BufferEqualsItsCpuTwin) and float against double.
-    EXPECT_LT(worst_cpu, 60.0 / b.fixed_point_scale() + 1e-4);
-    EXPECT_LT(self_sum / double(points.size()), -0.05);  // the own cylinder is there to take out
-    // and the share of the own column to put back differs from it (points up-sun of the centre)
-    EXPECT_GT(excess_sum / double(points.size()), 0.02);
 }
 
 // A ball of particles 400 m over flat ground, and an eye inside it.

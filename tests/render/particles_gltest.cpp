@@ -72,6 +72,53 @@ TEST_F(ParticlesGl, BufferEqualsItsCpuTwin)
     EXPECT_EQ(b.texture_bytes(), 32u * 32u * 32u * 2u);
 }
 
+TEST_F(ParticlesGl, BallsCutAtTheFogsFloorAndTopDepositAsTheCpuTwinDoes)
+{
+    // Every ball knows a tilted top's plane and some a floor's, both through the cloud: the
+    // deposit cuts each column at them and gives the cut mass back (seen_gain), in both the
+    // packed layout (thin particles) and the 32-bit one, and each particle's read takes its own
+    // cut cylinder out (particle_gamma).
+    const glm::dvec3 light(0.3, -0.5, 0.8);
+    for (const double tau : {0.05, 0.5}) {
+        g::ParticleCloud c = kiri::test::ball_cloud(1500, 200.0, 35.0, tau);
+        for (std::size_t k = 0; k < c.particles.size(); ++k) {
+            g::Particle& p = c.particles[k];
+            p.top_slope = glm::dvec2(0.15, -0.1);
+            p.top = 1060.0 + glm::dot(p.top_slope, glm::dvec2(p.position));
+            p.above_ground = k % 2 ? 1.0 : 0.6;  // the share drawn, its cut given back
+            if (k % 3 == 0) {
+                p.floor_slope = glm::dvec2(-0.1, 0.2);
+                p.floor = 900.0 + glm::dot(p.floor_slope, glm::dvec2(p.position));
+            }
+        }
+        AttenuationBuffer b;
+        b.set_particles(c);
+        ASSERT_TRUE(b.update(light, options(48)));
+        EXPECT_EQ(b.packed_deposit(), tau < 0.1);
+        const g::AttenuationVolume cpu = g::build_attenuation_cpu(c, b.grid());
+        const std::vector<float> gpu = b.read_log_gamma();
+        ASSERT_EQ(gpu.size(), cpu.log_gamma.size());
+        double worst = 0.0;
+        for (std::size_t i = 0; i < gpu.size(); ++i)
+            worst = std::max(worst, double(std::abs(gpu[i] - cpu.log_gamma[i])));
+        EXPECT_LT(worst, 400.0 / b.fixed_point_scale() + 1e-4) << tau;
+        const std::vector<float> gamma = b.gamma_at_particles();
+        for (std::size_t k = 0; k < c.particles.size(); ++k)
+            ASSERT_NEAR(gamma[k], g::particle_gamma(cpu, c, k), 30.0 / b.fixed_point_scale() + 1e-4) << tau << " " << k;
+        // The planes matter: the same balls uncut give another buffer.
+        g::ParticleCloud uncut = c;
+        for (g::Particle& p : uncut.particles) {
+            p.top = HUGE_VAL;
+            p.floor = -HUGE_VAL;
+        }
+        const g::AttenuationVolume plain = g::build_attenuation_cpu(uncut, b.grid());
+        double moved = 0.0;
+        for (std::size_t i = 0; i < gpu.size(); ++i)
+            moved = std::max(moved, double(std::abs(plain.log_gamma[i] - cpu.log_gamma[i])));
+        EXPECT_GT(moved, 100.0 * worst + 0.01) << tau;
+    }
+}
+
 TEST_F(ParticlesGl, PackedDepositEqualsTheCpuTwinAndTheOrderDoesNotMatter)
 {
     // Many thin particles: the deposit packs two columns to a word.

@@ -23,6 +23,37 @@ Taps taps(double g, int n)
 
 }  // namespace
 
+double column_log_gain(const LightGrid& g, const Particle& p, double forward, double du, double dv)
+{
+    const double rho = std::sqrt(du * du + dv * dv);
+    if (!(rho < p.radius))
+        return 0.0;
+    // The column: p's centre + offset + u light, u metres towards the sun. Each plane keeps the
+    // part of it on the fog's side (side 1: over a floor; -1: under a top), as particles.frag
+    // clips a ray.
+    const glm::dvec3 offset = du * g.u_axis + dv * g.v_axis;
+    double u0 = -HUGE_VAL, u1 = HUGE_VAL;
+    const auto clip = [&](double z, const glm::dvec2& slope, double side) {
+        if (!std::isfinite(z))
+            return;
+        const double above = side * (p.position.z + offset.z - z - glm::dot(slope, glm::dvec2(offset)));
+        const double rise = side * (g.light.z - glm::dot(slope, glm::dvec2(g.light)));
+        if (rise > 0.0)
+            u0 = std::max(u0, -above / rise);
+        else if (rise < 0.0)
+            u1 = std::min(u1, -above / rise);
+        else if (above < 0.0)
+            u1 = -HUGE_VAL;
+    };
+    clip(p.floor, p.floor_slope, 1.0);
+    clip(p.top, p.top_slope, -1.0);
+    const double share =
+        u0 == -HUGE_VAL && u1 == HUGE_VAL ? 1.0 : footprint_ray_share(rho / p.radius, p.radius, u0, u1);
+    if (!(share > 0.0))
+        return 0.0;
+    return footprint_log_gain(rho, p.radius, p.optical_depth * mass_gain(p.above_ground) * share, p.albedo, forward);
+}
+
 AttenuationVolume build_attenuation_cpu(const ParticleCloud& cloud, const LightGrid& grid)
 {
     AttenuationVolume v{grid, {}};
@@ -78,14 +109,13 @@ double own_read_log_gain(const LightGrid& g, const Particle& self, double forwar
         for (int di = 0; di < 2; ++di) {
             const int i = di ? x.b : x.a, j = dj ? y.b : y.a;
             const double du = g.column_u(i) - s.x, dv = g.column_v(j) - s.y;
-            const double rho = std::sqrt(du * du + dv * dv);
-            if (!(rho < self.radius))
+            const double log_g = column_log_gain(g, self, forward, du, dv);
+            if (log_g == 0.0)
                 continue;
             const int start = std::max(g.shadow_start(s.z, i, j), 0);
             // Depth taps at or beyond the start hold the particle (the prefix sum).
             const double depth = whole_column ? 1.0 : (z.a >= start ? 1.0 - z.t : 0.0) + (z.b >= start ? z.t : 0.0);
-            sum += (di ? x.t : 1.0 - x.t) * (dj ? y.t : 1.0 - y.t) * depth *
-                footprint_log_gain(rho, self.radius, self.optical_depth, self.albedo, forward);
+            sum += (di ? x.t : 1.0 - x.t) * (dj ? y.t : 1.0 - y.t) * depth * log_g;
         }
     return sum;
 }

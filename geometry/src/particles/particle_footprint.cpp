@@ -122,6 +122,8 @@ double footprint_share_between(const glm::dvec3& centre, double radius,
     return whole > 0.0 ? std::clamp(within / whole, 0.0, 1.0) : 1.0;
 }
 
+double mass_gain(double share) { return 1.0 / std::clamp(std::isnan(share) ? 1.0 : share, min_share_drawn, 1.0); }
+
 double forward_scattering_fraction(double g, double solid_angle)
 {
     const double omega = std::clamp(std::isfinite(solid_angle) ? solid_angle : 0.0, 0.0, 4.0 * std::numbers::pi);

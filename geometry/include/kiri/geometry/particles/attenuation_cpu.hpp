@@ -35,8 +35,18 @@ struct AttenuationVolume {
 //! Builds the buffer in double, stored as float.
 AttenuationVolume build_attenuation_cpu(const ParticleCloud& cloud, const LightGrid& grid);
 
+//! log G of particle p's footprint in the light column (du, dv) metres across the light from its
+//! axis: the ball's column there between the planes of the fog's floor and top
+//! (footprint_ray_share along the light), its optical depth times mass_gain(p.above_ground), so
+//! the mass the ground and the planes cut off shades the fog as the rest (the billboard draws it
+//! so too). A lake's skin lay in the shadow columns of the balls under it, whose upper parts
+//! stood out of the lake: read a third of an optical depth deep where the Medium has none; and
+//! the quarter of the lake's mass in the ground shaded nothing above it (docs/particles.md).
+double column_log_gain(const LightGrid& grid, const Particle& p, double forward, double du, double dv);
+
 //! The voxels of particle p's footprint: calls fn(i, j, k, log_g) for every column (i, j) within
-//! its radius whose shadow starts inside the grid (k = max(shadow_start, 0)).
+//! its radius whose shadow starts inside the grid (k = max(shadow_start, 0)), log_g its
+//! column_log_gain.
 template <typename Fn>
 void for_each_deposit(const LightGrid& grid, const Particle& p, double forward, Fn&& fn);
 

@@ -29,7 +29,7 @@ void for_each_deposit(const LightGrid& grid, const Particle& p, double forward, 
             const int k = grid.shadow_start(q.z, i, j);
             if (k >= grid.size[2])
                 continue;
-            fn(i, j, std::max(k, 0), footprint_log_gain(rho, r, p.optical_depth, p.albedo, forward));
+            fn(i, j, std::max(k, 0), column_log_gain(grid, p, forward, du, dv));
         }
     }
 }

@@ -60,4 +60,11 @@ double footprint_share_above(const glm::dvec3& centre, double radius,
 double footprint_share_between(const glm::dvec3& centre, double radius,
                                const std::function<std::pair<double, double>(double, double)>& slab);
 
+//! The least share of a particle's mass that is drawn as the whole of it: below it the visible
+//! remnant of a particle cut by the ground or a plane would turn into a dense speck.
+constexpr double min_share_drawn = 0.25;
+//! What a particle's optical depth is multiplied by where only `share` of its mass is drawn, so
+//! that the part cut off adds to the rest: 1 / share, clamped to [min_share_drawn, 1] (NaN: 1).
+double mass_gain(double share);
+
 }  // namespace kiri::geometry
