@@ -6,7 +6,7 @@
 struct ParticleLightRecord {
     vec4 grid_visible;  // shadow_grid of the centre (gx, gy, gw0); the terrain's visibility at the centre
     ivec4 window;       // first light column (i, j) of the gain table, columns along i and j
-    uvec4 offset;       // x: the table's first entry
+    uvec4 offset;       // x: the table's first entry; y: the bits of the particle's own share (particle_light.comp)
 };
 layout(std430, binding = 4) buffer ParticleLights { ParticleLightRecord particle_lights[]; };
 layout(std430, binding = 5) buffer SelfGains { float self_gains[]; };
@@ -62,17 +62,17 @@ uniform vec3 u_sun_radiance;
 uniform vec3 u_ambient;
 uniform int u_octaves;
 
-// geometry::billboard_own_share_at: kOwnShare where the ray towards the sun (u_sun_direction) from
-// `relative` stays in the fog for a radius, less where it leaves by the top sooner. top_plane:
-// the top's height at the centre and its dz/dx, dz/dy (over 1e29: none); all relative to the
-// cloud's centre.
-float own_share_at(vec3 relative, vec3 centre, float radius, vec3 top_plane)
+// geometry::billboard_own_share_at: the particle's share (kOwnShare, or its own measured by
+// particle_light.comp) where the ray towards the sun (u_sun_direction) from `relative` stays in
+// the fog for a radius, less where it leaves by the top sooner. top_plane: the top's height at
+// the centre and its dz/dx, dz/dy (over 1e29: none); all relative to the cloud's centre.
+float own_share_at(vec3 relative, vec3 centre, float radius, vec3 top_plane, float share)
 {
     if (!(top_plane.x < 1e29) || !(radius > 0.0))
-        return kOwnShare;
+        return share;
     float under = top_plane.x + dot(top_plane.yz, relative.xy - centre.xy) - relative.z;
     float rise = u_sun_direction.z - dot(top_plane.yz, u_sun_direction.xy);
-    return rise > 0.0 ? kOwnShare * clamp(under / rise / radius, 0.0, 1.0) : kOwnShare;
+    return rise > 0.0 ? share * clamp(under / rise / radius, 0.0, 1.0) : share;
 }
 
 // The radiance a particle of albedo `albedo` scatters towards the eye at a point where the sun

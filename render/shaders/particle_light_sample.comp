@@ -22,7 +22,8 @@ void main()
     ParticleLightRecord record = particle_lights[k];
     vec3 g = grid_of(q.xyz);
     Ball ball = ball_of(p);
-    float own_share = own_share_at(q.xyz, p.position_radius.xyz, p.position_radius.w, p.top_plane.xyz);
+    float own_share = own_share_at(q.xyz, p.position_radius.xyz, p.position_radius.w, p.top_plane.xyz,
+                                   uintBitsToFloat(record.offset.y));
     float by_table =
         billboard_log_gamma(u_log_gamma, g, record.grid_visible.xyz, record.window, record.offset.x, ball, own_share);
     float raw = texture(u_log_gamma, g / vec3(u_grid_size)).r;

@@ -13,6 +13,7 @@ flat in vec3 v_centre;
 flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
+flat in float v_own_share;
 flat in vec3 v_optics;  // radius, tau times its gain (seen_gain), albedo
 flat in float v_seen_tau;  // tau with the mass in the ground or cut off at a plane added (particles.vert)
 flat in vec3 v_floor_plane;  // the fog's floor under it (particles.vert); below -1e29: none
@@ -107,7 +108,7 @@ void main()
     if (u_lit != 0) {
         Ball ball = Ball(u_eye - u_centre + v_centre, v_optics, v_floor_plane, v_top_plane);
         log_gamma = billboard_log_gamma(u_log_gamma, grid_of(relative), v_grid_visible.xyz, v_window, v_table, ball,
-                                        own_share_at(relative, ball.centre, v_optics.x, v_top_plane));
+                                        own_share_at(relative, ball.centre, v_optics.x, v_top_plane, v_own_share));
     }
     vec3 radiance = particle_radiance(log_gamma, dot(ray, u_sun_direction), v_optics.z, v_grid_visible.w);
     // The baked multiple scattering, not hidden by the terrain's shadow (particles.vert).

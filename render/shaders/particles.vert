@@ -21,6 +21,7 @@ flat out vec3 v_centre;  // the particle's centre, from the eye
 flat out vec4 v_grid_visible;  // the particle's record (particle_light.glsl)
 flat out ivec4 v_window;
 flat out uint v_table;
+flat out float v_own_share;  // the share of its own column that shades it (particle_light.comp)
 flat out vec3 v_optics;  // radius, tau times its gain (seen_gain), albedo
 flat out float v_seen_tau;  // tau as the billboard draws it: with the part in the ground or cut off at a plane added
 // The planes of the fog's floor under it (where the fog floats over the ground; below -1e29:
@@ -90,6 +91,7 @@ void main()
     v_grid_visible = particle_lights[id].grid_visible;
     v_window = particle_lights[id].window;
     v_table = particle_lights[id].offset.x;
+    v_own_share = uintBitsToFloat(particle_lights[id].offset.y);
     v_optics = vec3(p.w, particles[id].optics.x * particles[id].optics.z, particles[id].optics.y);
     v_seen_tau = particles[id].optics.x * particles[id].optics.z / (widen * widen);
     v_floor_plane = particles[id].floor_plane.xyz;

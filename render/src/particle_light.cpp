@@ -12,32 +12,41 @@
 #include "kiri/render/attenuation.hpp"
 #include "particle_gpu.hpp"
 #include "shadow_map_pass.hpp"
+#include "sun_volume.hpp"
 
 namespace kiri::render::detail {
 
 namespace {
+
+constexpr int light_unit_sun = 12;         // and 13, 14: SunVolume::bind's
+constexpr int light_sun_march_steps = 64;  // where the sun volume cannot be read
 
 //! particle_light.glsl's ParticleLightRecord (std430): grid_visible is written by the compute
 //! pass, the window and the offset by the CPU.
 struct Record {
     float grid_visible[4];    // the particle's shadow_grid (gx, gy, gw0), terrain visibility at its centre
     std::int32_t window[4];   // first column i, j; columns along i, j
-    std::uint32_t offset[4];  // its first entry in the gain table; 0, 0, 0
+    std::uint32_t offset[4];  // its first entry in the gain table; its own share (float bits, the pass's); 0, 0
 };
 static_assert(sizeof(Record) == 48);
 
 }  // namespace
 
 ParticleLight::ParticleLight()
-    : program_({"particle_footprint.glsl", "fog_lighting.glsl", "terrain_shadow.glsl", "particle_light.glsl",
-                "particle_light.comp"})
+    : program_({"particle_footprint.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
+                "terrain_shadow.glsl", "medium_shell.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl",
+                "sun_volume.glsl", "particle_light.glsl", "particle_light.comp"})
 {}
 
 bool ParticleLight::update(const geometry::ParticleCloud& cloud, const AttenuationBuffer& buffer,
-                           const ShadowMapPass* shadow)
+                           const ShadowMapPass* shadow, const SunVolume* sun)
 {
     const int shadow_updates = shadow ? shadow->updates() : -1;
-    if (buffer.rebuild_count() == buffer_builds_ && shadow == shadow_ && shadow_updates == shadow_updates_ && records_)
+    if (sun && !sun->medium())
+        sun = nullptr;
+    const int sun_updates = sun ? sun->updates() : -1;
+    if (buffer.rebuild_count() == buffer_builds_ && shadow == shadow_ && shadow_updates == shadow_updates_ &&
+        sun == sun_ && sun_updates == sun_updates_ && records_)
         return false;
     const geometry::LightGrid& grid = buffer.grid();
     const std::vector<std::uint32_t>& index = buffer.particle_order();
@@ -75,6 +84,15 @@ bool ParticleLight::update(const geometry::ParticleCloud& cloud, const Attenuati
     set_grid_uniforms(program_, grid, cloud.forward_scattering, buffer.particle_centre());
     bind_terrain_shadow(program_, shadow);
     program_.set("u_centre", glm::vec3(buffer.particle_centre()));
+    // The own share measured against the Medium (particle_light.comp): the buffer at the centre,
+    // the Medium's optical depth towards the sun from the sun volume.
+    program_.set("u_calibrate", int(sun != nullptr));
+    program_.set("u_sun_direction", glm::vec3(grid.light));
+    program_.set("u_sun_march", sun_march_direction(glm::vec3(grid.light)));
+    program_.set("u_log_gamma", 0);
+    glBindTextureUnit(0, buffer.texture());
+    if (sun)
+        sun->bind(program_, light_unit_sun, light_sun_march_steps);
     program_.set("u_self_table", int(has_table()));
     glProgramUniform1ui(program_.id(), program_.location("u_count"), GLuint(n));
     program_.use();
@@ -86,6 +104,8 @@ bool ParticleLight::update(const geometry::ParticleCloud& cloud, const Attenuati
     buffer_builds_ = buffer.rebuild_count();
     shadow_ = shadow;
     shadow_updates_ = shadow_updates;
+    sun_ = sun;
+    sun_updates_ = sun_updates;
     ++rebuilds_;
     return true;
 }

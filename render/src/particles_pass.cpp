@@ -188,7 +188,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (!has_particles())
         return false;
     const bool rebuilt = buffer_.update(glm::dvec3(frame.sun_direction), style_.buffer);
-    last_light_rebuilt_ = light_.update(*cloud_, buffer_, shadow_);
+    last_light_rebuilt_ = light_.update(*cloud_, buffer_, shadow_, sun_);
     sort(frame);
     const int scale = std::max(style_.near_scale, 1);
     ensure_target(frame.width, frame.height, scale);

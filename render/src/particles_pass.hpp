@@ -16,6 +16,7 @@
 namespace kiri::render::detail {
 
 class LightVolumeTexture;
+class SunVolume;
 
 //! Particle clouds: the attenuation buffer (rebuilt only when the sun, the particles or the
 //! buffer's options change) and the billboards, sorted back to front on the CPU when the eye
@@ -35,10 +36,13 @@ public:
     const ParticleLight& light() const { return light_; }
     //! Froxel fog to read at each billboard's depth (null: none; drawn after its apply) and the
     //! sun's shadow map of the terrain (null: no terrain shadows), for the frame.
-    void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow)
+    //! The froxel fog, the terrain's shadow map and the sun volume (the Medium's optical depth
+    //! towards the sun, which each particle's light is measured against) of the frame; any null.
+    void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow, const SunVolume* sun = nullptr)
     {
         fog_ = fog;
         shadow_ = shadow;
+        sun_ = sun;
     }
     //! For frames drawn at `scale` of the still's size (the preview while the view moves): every
     //! k-th billboard, k the largest power of two no larger than 1 / (2 scale) (1 from a half
@@ -67,6 +71,7 @@ private:
     const LightVolumeTexture* light_volume_ = nullptr;
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
+    const SunVolume* sun_ = nullptr;
     VertexArray vao_;
     AttenuationBuffer buffer_;
     ParticleLight light_;  // what each billboard's light needs of its particle alone

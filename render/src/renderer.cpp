@@ -396,7 +396,7 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     const bool layers_multisampled = r.layers_multisampled && !fog;
     r.layers.set_fog(fog, shadow, sun_volume);
     r.layers.set_light_volume(&r.light_volume);
-    r.particles.set_fog(fog, shadow);
+    r.particles.set_fog(fog, shadow, sun_volume);
     r.particles.set_light_volume(&r.light_volume);
     r.targets.bind_for_drawing();
     {

@@ -8,15 +8,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
 #include "geometry/particle_test_clouds.hpp"
 #include "kiri/geometry/particles/attenuation_cpu.hpp"
+#include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/render/attenuation.hpp"
 #include "kiri/render/renderer.hpp"
 #include "particle_light.hpp"
+#include "sun_volume.hpp"
 #include "render/render_fixture.hpp"
 
 namespace {
@@ -94,6 +97,80 @@ TEST_F(ParticleLightGl, TableReadsWhatTheFullSelfShadowReads)
         // and the share of the own column to put back differs from it (points up-sun of the centre)
         EXPECT_GT(excess_sum / double(points.size()), 0.02);
     }
+}
+
+TEST_F(ParticleLightGl, BillboardsInAFogAParticleDeepReadTheMediumsOpticalDepthAtTheirCentres)
+{
+    // A uniform slab 120 m deep, its particles 100 m across (a valley lake's are as large as it is
+    // deep): the buffer's read at a centre falls short of the Medium's optical depth towards the
+    // sun by more than half the particle's own column, what the blue-noise sampler keeps empty
+    // around it. Measured against the Medium through the sun volume, each particle's own share
+    // makes it up (particle_light.comp); the CPU twin agrees (calibrated_own_share).
+    const double sigma = 0.02, bottom = 100.0, top = 220.0, side = 3000.0;
+    const g::Medium m = kiri::test::slab_medium(side, bottom, top, true, sigma);
+    g::ParticleOptions o;
+    o.count = 3000;
+    g::ParticleCloud c = g::sample_particles(m, o);
+    for (g::Particle& p : c.particles) {
+        p.top = top;
+        p.floor = bottom;
+        p.above_ground = g::footprint_share_between(p.position, p.radius, [&](double, double) {
+            return std::pair{bottom, top};
+        });
+    }
+    const glm::dvec3 sun = glm::normalize(glm::dvec3(0.6, 0.8, 1.1));
+    AttenuationBuffer b;
+    b.set_particles(c);
+    kiri::render::AttenuationOptions ao;
+    ao.resolution = 96;
+    ao.half_float = false;
+    ASSERT_TRUE(b.update(sun, ao));
+    kiri::render::detail::SunVolume volume;
+    volume.set(&m, {});
+    volume.update(glm::vec3(sun));
+    ASSERT_TRUE(volume.ready());
+    const g::AttenuationVolume cpu = g::build_attenuation_cpu(c, b.grid());
+    const std::vector<std::uint32_t>& index = b.particle_order();
+    std::vector<glm::vec3> points;
+    std::vector<std::uint32_t> slots;
+    for (std::uint32_t k = 0; k < index.size(); ++k) {
+        const g::Particle& p = c.particles[index[k]];
+        if (std::max(std::abs(p.position.x), std::abs(p.position.y)) > 0.5 * side - 500.0)
+            continue;  // the sun's path leaves through the top
+        points.push_back(glm::vec3(p.position - b.particle_centre()));
+        slots.push_back(k);
+    }
+    ASSERT_GT(points.size(), 500u);
+    double medium = 0.0, fixed = 0.0, measured = 0.0, twin = 0.0, worst_twin = 0.0;
+    for (const bool calibrate : {false, true}) {
+        ParticleLight light;
+        ASSERT_TRUE(light.update(c, b, nullptr, calibrate ? &volume : nullptr));
+        const std::vector<glm::vec2> read = light.sample_log_gamma(c, b, points, slots);
+        ASSERT_EQ(read.size(), points.size());
+        for (std::size_t q = 0; q < points.size(); ++q) {
+            const g::Particle& p = c.particles[index[slots[q]]];
+            const double tau = sigma * (top - p.position.z) / sun.z;
+            (calibrate ? measured : fixed) -= read[q].x;
+            if (!calibrate) {
+                medium += tau;
+                continue;
+            }
+            const double share = g::calibrated_own_share(cpu, p, c.forward_scattering, tau);
+            const double cpu_read = g::billboard_log_gamma(cpu, p, c.forward_scattering, p.position, share);
+            twin -= cpu_read;
+            worst_twin = std::max(worst_twin, std::abs(cpu_read - read[q].x) / std::max(tau, 0.1));
+        }
+    }
+    const double n = double(points.size());
+    std::printf(
+        "    at the centres: the Medium %.4f; the billboards %.4f (half the own column: %.4f); the CPU twin "
+        "%.4f, worst %.4f\n",
+        medium / n, measured / n, fixed / n, twin / n, worst_twin);
+    EXPECT_LT(std::abs(fixed / medium - 1.0), 0.2);
+    EXPECT_GT(std::abs(fixed / medium - 1.0), 0.05);
+    EXPECT_NEAR(measured / medium, 1.0, 0.02);
+    EXPECT_NEAR(twin / medium, 1.0, 0.01);
+    EXPECT_LT(worst_twin, 0.05);
 }
 
 // A ball of particles 400 m over flat ground, and an eye inside it.

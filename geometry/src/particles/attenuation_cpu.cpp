@@ -132,23 +132,36 @@ double own_column_log_gain(const LightGrid& g, const Particle& self, double forw
     return own_read_log_gain(g, self, forward, q, true);
 }
 
-double billboard_own_share_at(const Particle& self, const glm::dvec3& light, const glm::dvec3& q)
+double billboard_own_share_at(const Particle& self, const glm::dvec3& light, const glm::dvec3& q, double share)
 {
     if (!std::isfinite(self.top) || !(self.radius > 0.0))
-        return billboard_own_share;
+        return share;
     // q under the top's plane by `under`, the ray towards the sun rising over it at `rise`.
     const double under = self.top + glm::dot(self.top_slope, glm::dvec2(q - self.position)) - q.z;
     const double rise = light.z - glm::dot(self.top_slope, glm::dvec2(light));
     if (!(rise > 0.0))
-        return billboard_own_share;
-    return billboard_own_share * std::clamp(under / rise / self.radius, 0.0, 1.0);
+        return share;
+    return share * std::clamp(under / rise / self.radius, 0.0, 1.0);
 }
 
-double billboard_log_gamma(const AttenuationVolume& v, const Particle& self, double forward, const glm::dvec3& q)
+double billboard_log_gamma(const AttenuationVolume& v, const Particle& self, double forward, const glm::dvec3& q,
+                           double share)
 {
     const double log_gamma = sample_log_gamma(v, q) - self_log_gamma(v.grid, self, forward, q) +
-        billboard_own_share_at(self, v.grid.light, q) * own_column_log_gain(v.grid, self, forward, q);
+        billboard_own_share_at(self, v.grid.light, q, share) * own_column_log_gain(v.grid, self, forward, q);
     return std::clamp(log_gamma, min_log_gamma, 0.0);
+}
+
+double calibrated_own_share(const AttenuationVolume& v, const Particle& self, double forward, double tau_sun)
+{
+    const glm::dvec3& c = self.position;
+    const double others =
+        std::clamp(sample_log_gamma(v, c) - self_log_gamma(v.grid, self, forward, c), min_log_gamma, 0.0);
+    const double own =
+        own_column_log_gain(v.grid, self, forward, c) * billboard_own_share_at(self, v.grid.light, c, 1.0);
+    if (!(own < -1e-4) || !std::isfinite(tau_sun))
+        return billboard_own_share;
+    return std::clamp((-tau_sun - others) / own, 0.0, max_own_share);
 }
 
 double particle_gamma(const AttenuationVolume& v, const ParticleCloud& cloud, std::size_t k)

@@ -65,16 +65,27 @@ double particle_gamma(const AttenuationVolume& volume, const ParticleCloud& clou
 //! neighbourhood holds about one particle less than the Medium would (a hyperuniform set), half of
 //! it towards the sun. The particle's own mass, spread as its footprint, makes that up.
 inline constexpr double billboard_own_share = 0.5;
-//! That share at point q of particle `self`'s billboard, the sun towards `light` (unit): the part
-//! missing towards the sun lies within about a radius of the particle, so where the ray towards
-//! the sun leaves the fog by its top sooner (`Particle::top`'s plane), less of it: the share times
-//! that distance over the radius, at most 1. Near a fog lake's top the whole share lit the skin as
-//! if under a third of an optical depth of fog, where the Medium has almost none.
-double billboard_own_share_at(const Particle& self, const glm::dvec3& light, const glm::dvec3& q);
+//! A share (billboard_own_share, or the particle's calibrated_own_share) at point q of particle
+//! `self`'s billboard, the sun towards `light` (unit): the part missing towards the sun lies
+//! within about a radius of the particle, so where the ray towards the sun leaves the fog by its
+//! top sooner (`Particle::top`'s plane), less of it: the share times that distance over the
+//! radius, at most 1. Near a fog lake's top the whole share lit the skin as if under a third of
+//! an optical depth of fog, where the Medium has almost none.
+double billboard_own_share_at(const Particle& self, const glm::dvec3& light, const glm::dvec3& q,
+                              double share = billboard_own_share);
 //! log Gamma at point q of particle `self`'s billboard, as particles.frag reads it: the read less
-//! its own cylinder, plus billboard_own_share_at of its footprint's column, in [min_log_gamma, 0]
-//! (docs/particles.md, "Lit as the Medium").
-double billboard_log_gamma(const AttenuationVolume& volume, const Particle& self, double forward, const glm::dvec3& q);
+//! its own cylinder, plus billboard_own_share_at (of `share`) of its footprint's column, in
+//! [min_log_gamma, 0] (docs/particles.md, "Lit as the Medium").
+double billboard_log_gamma(const AttenuationVolume& volume, const Particle& self, double forward, const glm::dvec3& q,
+                           double share = billboard_own_share);
+//! The most of its own column a particle's calibrated share counts.
+inline constexpr double max_own_share = 4.0;
+//! The share of its own column that makes particle `self`'s billboard read the Medium's optical
+//! depth towards the sun, `tau_sun`, at its centre: half its column made the missing
+//! neighbourhood up in a deep slab, two or three times that in fog a particle or two deep (a
+//! valley lake) and under the froxels' share of the fog in combined mode. In [0, max_own_share];
+//! billboard_own_share where its own column is too thin to measure by (particle_light.comp).
+double calibrated_own_share(const AttenuationVolume& volume, const Particle& self, double forward, double tau_sun);
 
 }  // namespace kiri::geometry
 
