@@ -41,6 +41,19 @@ Score score(const ParticleCloud& c, const glm::dvec3& light, int resolution, Lig
     return s;
 }
 
+// The particles told the fog's level top (as the pipeline tells them the plane fitted to it) and
+// the share of each ball under it (Particle::above_ground).
+ParticleCloud knowing_the_top(ParticleCloud c, double top)
+{
+    for (Particle& p : c.particles) {
+        p.top = top;
+        p.above_ground = footprint_share_between(p.position, p.radius, [&](double, double) {
+            return std::pair{std::numeric_limits<double>::quiet_NaN(), top};
+        });
+    }
+    return c;
+}
+
 }  // namespace
 
 TEST(LightGrid, EnclosesTheCloudWithColumnsAlongTheLight)
@@ -212,13 +225,7 @@ TEST(AttenuationCpu, BillboardsUnderTheFogsTopTakeLessOfTheirOwnShare)
     const Medium m = kiri::test::slab_medium(side, 100.0, top, true, sigma);
     ParticleOptions o;
     o.count = 6000;
-    ParticleCloud c = sample_particles(m, o);
-    for (Particle& p : c.particles) {
-        p.top = top;
-        p.above_ground = footprint_share_between(p.position, p.radius, [&](double, double) {
-            return std::pair{std::numeric_limits<double>::quiet_NaN(), top};
-        });
-    }
+    const ParticleCloud c = knowing_the_top(sample_particles(m, o), top);
     const glm::dvec3 light = glm::normalize(glm::dvec3(0.6, 0.8, 0.5));
     const AttenuationVolume v = build_attenuation_cpu(c, make_light_grid(c, light, {128}));
     double medium = 0.0, with_top = 0.0, without = 0.0;
@@ -373,13 +380,7 @@ TEST(AttenuationCpu, UnderASlabsTopTheBufferReadsTheMediumsOpticalDepth)
     ParticleOptions o;
     o.count = 6000;
     const ParticleCloud plain = sample_particles(m, o);
-    ParticleCloud cut = plain;
-    for (Particle& p : cut.particles) {
-        p.top = top;
-        p.above_ground = footprint_share_between(p.position, p.radius, [&](double, double) {
-            return std::pair{std::numeric_limits<double>::quiet_NaN(), top};
-        });
-    }
+    const ParticleCloud cut = knowing_the_top(plain, top);
     const glm::dvec3 light = glm::normalize(glm::dvec3(0.6, 0.8, 0.5));
     const AttenuationVolume v_plain = build_attenuation_cpu(plain, make_light_grid(plain, light, {128}));
     const AttenuationVolume v_cut = build_attenuation_cpu(cut, make_light_grid(cut, light, {128}));
