@@ -42,7 +42,7 @@ void main()
         float others = particle_log_gamma(u_log_gamma, g, self_grid, ball);
         float own = own_column_log_gain(g, self_grid, ball) *
             own_share_at(p.position_radius.xyz, p.position_radius.xyz, p.position_radius.w, p.top_plane.xyz, 1.0);
-        if (own < -1e-4)
+        if (own < -1e-4 && tau >= 0.0 && tau < 1e30)  // not where the march gave no number
             share = clamp((-tau - others) / own, 0.0, kMaxOwnShare);
     }
     particle_lights[id].offset.y = floatBitsToUint(share);

@@ -159,7 +159,7 @@ double calibrated_own_share(const AttenuationVolume& v, const Particle& self, do
         std::clamp(sample_log_gamma(v, c) - self_log_gamma(v.grid, self, forward, c), min_log_gamma, 0.0);
     const double own =
         own_column_log_gain(v.grid, self, forward, c) * billboard_own_share_at(self, v.grid.light, c, 1.0);
-    if (!(own < -1e-4) || !std::isfinite(tau_sun))
+    if (!(own < -1e-4) || !(tau_sun >= 0.0 && tau_sun < 1e30))
         return billboard_own_share;
     return std::clamp((-tau_sun - others) / own, 0.0, max_own_share);
 }
