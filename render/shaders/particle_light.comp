@@ -11,7 +11,8 @@
 // optical depth towards the sun by about the mass of that empty neighbourhood towards the sun.
 // Half its own column made that up in a deep slab; in fog a particle or two deep (a valley
 // lake), 2 to 3 times that. With a Medium, the share is measured: the one that makes the read at
-// the centre the Medium's optical depth (sun_volume.glsl), within [0, kMaxOwnShare].
+// the centre the Medium's optical depth (sun_volume.glsl), within [kMinOwnShare, kMaxOwnShare]:
+// below 0 where the footprints of the balls up-sun already read more than the Medium there.
 layout(local_size_x = 64) in;
 
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
@@ -20,7 +21,8 @@ uniform vec3 u_centre;
 uniform sampler3D u_log_gamma;  // the attenuation buffer
 uniform int u_calibrate;        // 1: a Medium to measure the own share against (sun_volume.glsl bound)
 uniform vec3 u_sun_march;       // the sun's direction as the marches take it (sun_march_direction)
-const float kMaxOwnShare = 4.0;  // geometry::max_own_share
+const float kMinOwnShare = -1.0;  // geometry::min_own_share
+const float kMaxOwnShare = 4.0;   // geometry::max_own_share
 
 void main()
 {
@@ -43,7 +45,7 @@ void main()
         float own = own_column_log_gain(g, self_grid, ball) *
             own_share_at(p.position_radius.xyz, p.position_radius.xyz, p.position_radius.w, p.top_plane.xyz, 1.0);
         if (own < -1e-4 && tau >= 0.0 && tau < 1e30)  // not where the march gave no number
-            share = clamp((-tau - others) / own, 0.0, kMaxOwnShare);
+            share = clamp((-tau - others) / own, kMinOwnShare, kMaxOwnShare);
     }
     particle_lights[id].offset.y = floatBitsToUint(share);
     if (u_self_table == 0)

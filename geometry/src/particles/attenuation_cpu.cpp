@@ -161,7 +161,7 @@ double calibrated_own_share(const AttenuationVolume& v, const Particle& self, do
         own_column_log_gain(v.grid, self, forward, c) * billboard_own_share_at(self, v.grid.light, c, 1.0);
     if (!(own < -1e-4) || !(tau_sun >= 0.0 && tau_sun < 1e30))
         return billboard_own_share;
-    return std::clamp((-tau_sun - others) / own, 0.0, max_own_share);
+    return std::clamp((-tau_sun - others) / own, min_own_share, max_own_share);
 }
 
 double particle_gamma(const AttenuationVolume& v, const ParticleCloud& cloud, std::size_t k)

@@ -78,12 +78,14 @@ double billboard_own_share_at(const Particle& self, const glm::dvec3& light, con
 //! [min_log_gamma, 0] (docs/particles.md, "Lit as the Medium").
 double billboard_log_gamma(const AttenuationVolume& volume, const Particle& self, double forward, const glm::dvec3& q,
                            double share = billboard_own_share);
-//! The most of its own column a particle's calibrated share counts.
-inline constexpr double max_own_share = 4.0;
+//! The bounds of a particle's calibrated share of its own column: below 0 it takes part of its
+//! column out where the footprints of the particles up-sun already read more than the Medium.
+inline constexpr double min_own_share = -1.0, max_own_share = 4.0;
 //! The share of its own column that makes particle `self`'s billboard read the Medium's optical
 //! depth towards the sun, `tau_sun`, at its centre: half its column made the missing
 //! neighbourhood up in a deep slab, two or three times that in fog a particle or two deep (a
-//! valley lake) and under the froxels' share of the fog in combined mode. In [0, max_own_share];
+//! valley lake) and under the froxels' share of the fog in combined mode. In [min_own_share,
+//! max_own_share];
 //! billboard_own_share where its own column is too thin to measure by (particle_light.comp).
 double calibrated_own_share(const AttenuationVolume& volume, const Particle& self, double forward, double tau_sun);
 
