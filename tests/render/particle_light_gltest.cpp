@@ -101,7 +101,7 @@ TEST_F(ParticleLightGl, TableReadsWhatTheFullSelfShadowReads)
 
 TEST_F(ParticleLightGl, BillboardsInAFogAParticleDeepReadTheMediumsOpticalDepthAtTheirCentres)
 {
-    // A uniform slab 120 m deep, its particles 100 m across (a valley lake's are as large as it is
+    // A uniform slab 120 m deep, its particles of about 100 m radius (a valley lake's are as large as it is
     // deep): the buffer's read at a centre falls short of the Medium's optical depth towards the
     // sun by more than half the particle's own column, what the blue-noise sampler keeps empty
     // around it. Measured against the Medium through the sun volume, each particle's own share
