@@ -116,12 +116,15 @@ bool planes_cut(Ball b)
     return (b.floor_plane.x > -1e29 && plane_cuts(b.floor_plane, 1.0, b)) ||
         (b.top_plane.x < 1e29 && plane_cuts(b.top_plane, -1.0, b));
 }
-// Clips the span [u0, u1] (metres towards the sun from the column's point nearest the centre,
-// `offset` from it) to the plane's fog side, as particles.frag clips a view ray.
-void clip_column(vec3 plane, float side, vec3 offset, vec3 centre, inout vec2 span)
+// Clips the span [span.x, span.y] of the line point + t dir (t in metres) to the side of a plane
+// the fog lies on: over it (side 1, a floor) or under it (side -1, a top). The plane: its height
+// at the particle's centre and its dz/dx, dz/dy; `height` the point's z, `offset` the point's
+// (x, y) less the centre's, all relative to the cloud's centre. A light column through a ball
+// (column_plane_share) and a view ray through a billboard (particles.frag) are cut alike.
+void clip_line_to_plane(vec3 plane, float side, float height, vec2 offset, vec3 dir, inout vec2 span)
 {
-    float above = side * (centre.z + offset.z - plane.x - dot(plane.yz, offset.xy));
-    float rise = side * (u_grid_light.z - dot(plane.yz, u_grid_light.xy));
+    float above = side * (height - plane.x - dot(plane.yz, offset));
+    float rise = side * (dir.z - dot(plane.yz, dir.xy));
     if (rise > 0.0)
         span.x = max(span.x, -above / rise);
     else if (rise < 0.0)
@@ -139,9 +142,9 @@ float column_plane_share(vec2 offset, Ball b)
     vec3 o = offset.x * u_grid_u_axis + offset.y * u_grid_v_axis;
     vec2 span = vec2(-1e30, 1e30);
     if (floor_cut)
-        clip_column(b.floor_plane, 1.0, o, b.centre, span);
+        clip_line_to_plane(b.floor_plane, 1.0, b.centre.z + o.z, o.xy, u_grid_light, span);
     if (top_cut)
-        clip_column(b.top_plane, -1.0, o, b.centre, span);
+        clip_line_to_plane(b.top_plane, -1.0, b.centre.z + o.z, o.xy, u_grid_light, span);
     return footprint_ray_share(length(offset) / b.optics.x, b.optics.x, span.x, span.y);
 }
 // log G of the ball's footprint in the light column at `offset` (column_log_gain).

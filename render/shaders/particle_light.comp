@@ -30,7 +30,7 @@ void main()
     if (id >= u_count)
         return;
     GpuParticle p = particles[id];
-    vec3 self_grid = shadow_grid(grid_of(p.position_radius.xyz));
+    vec3 g = grid_of(p.position_radius.xyz), self_grid = shadow_grid(g);
     // The exponential map alone (terrain_shadow.glsl): bound by the sharp map as the froxels and
     // the layers are, the particles inside the canyon's fog went from 4.2 to 8.0 % off the
     // reference, darker where they were already 3 % too dark.
@@ -39,7 +39,6 @@ void main()
     Ball ball = ball_of(p);
     float share = kOwnShare;
     if (u_calibrate != 0) {
-        vec3 g = grid_of(p.position_radius.xyz);
         float tau = medium_sun_optical_depth(p.position_radius.xyz + u_centre, u_sun_march, 0.5);
         float others = particle_log_gamma(u_log_gamma, g, self_grid, ball);
         float own = own_column_log_gain(g, self_grid, ball) *

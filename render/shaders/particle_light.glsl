@@ -54,8 +54,6 @@ float billboard_log_gamma(sampler3D log_gamma, vec3 g, vec3 self_grid, ivec4 win
     return clamp(raw - excess, kMinLogGamma, 0.0);
 }
 
-
-
 uniform float u_anisotropy;
 uniform vec3 u_sun_direction;
 uniform vec3 u_sun_radiance;

@@ -13,7 +13,7 @@ flat in vec3 v_centre;
 flat in vec4 v_grid_visible;
 flat in ivec4 v_window;
 flat in uint v_table;
-flat in float v_own_share;
+flat in float v_own_share;  // the share of its own column that shades it (particles.vert)
 flat in vec3 v_optics;  // radius, tau times its gain (seen_gain), albedo
 flat in float v_seen_tau;  // tau with the mass in the ground or cut off at a plane added (particles.vert)
 flat in vec3 v_floor_plane;  // the fog's floor under it (particles.vert); below -1e29: none
@@ -44,23 +44,6 @@ float linear_depth(float d)
     return 2.0 * u_near * u_far / (u_far + u_near - z * (u_far - u_near));
 }
 
-// Clips the ray's span [t0, t1] to the side of a plane the fog lies on: over it (side 1, a
-// floor) or under it (side -1, a top). The plane: its height at the particle's centre relative
-// to u_centre, and its dz/dx, dz/dy.
-void clip_to_plane(vec3 plane, float side, vec3 ray, inout float t0, inout float t1)
-{
-    // The eye over the plane (v_centre: the particle's centre from the eye), and the rate at
-    // which the ray rises over it, both towards the fog's side.
-    float above = side * (u_eye.z - u_centre.z - plane.x + dot(plane.yz, v_centre.xy));
-    float rise = side * (ray.z - dot(plane.yz, ray.xy));
-    if (rise > 0.0)
-        t0 = max(t0, -above / rise);
-    else if (rise < 0.0)
-        t1 = min(t1, -above / rise);
-    else if (above < 0.0)
-        t1 = t0;
-}
-
 void main()
 {
     // The ray through this fragment and where it passes the particle: its distance rho from the
@@ -88,12 +71,17 @@ void main()
     // from under the blanket, a particle's ball below it would veil the clear air.
     // The floor's plane slopes with the blanket's bottom (a level plane under its lowest point
     // left slivers of the balls, which level rays under the bottom crossed by the hundred).
+    // The ray from the eye (v_centre: the particle's centre from the eye), clipped as
+    // particle_footprint.glsl's clip_line_to_plane clips a line.
+    vec2 span = vec2(t0, t1);
     if (v_floor_plane.x > -1e29)
-        clip_to_plane(v_floor_plane, 1.0, cut_ray, t0, t1);
+        clip_line_to_plane(v_floor_plane, 1.0, u_eye.z - u_centre.z, -v_centre.xy, cut_ray, span);
     // And under the fog's top: seen level, a ball standing out of a lake's top veiled the far
     // shore (the part cut off is given back to the rest, as the ground's: seen_gain).
     if (v_top_plane.x < 1e29)
-        clip_to_plane(v_top_plane, -1.0, cut_ray, t0, t1);
+        clip_line_to_plane(v_top_plane, -1.0, u_eye.z - u_centre.z, -v_centre.xy, cut_ray, span);
+    t0 = span.x;
+    t1 = span.y;
     float cut_along = widened ? length(v_centre) : along;
     float share = footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
     float alpha = 1.0 - exp(-v_seen_tau * footprint_profile(x) * share);

@@ -1,9 +1,9 @@
 #include "particles_pass.hpp"
 
 #include <algorithm>
-#include <string>
 #include <array>
 #include <cmath>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>

@@ -34,10 +34,10 @@ public:
     bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth);
     const AttenuationBuffer& buffer() const { return buffer_; }
     const ParticleLight& light() const { return light_; }
-    //! Froxel fog to read at each billboard's depth (null: none; drawn after its apply) and the
-    //! sun's shadow map of the terrain (null: no terrain shadows), for the frame.
-    //! The froxel fog, the terrain's shadow map and the sun volume (the Medium's optical depth
-    //! towards the sun, which each particle's light is measured against) of the frame; any null.
+    //! For the frame: froxel fog to read at each billboard's depth (null: none; drawn after its
+    //! apply), the sun's shadow map of the terrain (null: no terrain shadows) and the sun volume
+    //! (the Medium's optical depth towards the sun, which each particle's light is measured
+    //! against; null: the fixed share).
     void set_fog(const FroxelPass* fog, const ShadowMapPass* shadow, const SunVolume* sun = nullptr)
     {
         fog_ = fog;
