@@ -23,6 +23,7 @@ flat in float v_depth_radius;      // the ball's extent along the rays
 flat in vec2 v_centre_ndc;         // the centre on the screen (normalised device coordinates)
 in vec4 v_fog;
 flat in float v_baked;
+flat in vec3 v_baked_slope;
 uniform sampler3D u_log_gamma;
 uniform sampler2D u_depth;       // the terrain's depth, full resolution
 uniform vec2 u_depth_scale;      // its pixels per pixel of this target (the near target's are coarser)
@@ -99,8 +100,16 @@ void main()
                                         own_share_at(relative, ball.centre, v_optics.x, v_top_plane, v_own_share));
     }
     vec3 radiance = particle_radiance(log_gamma, dot(ray, u_sun_direction), v_optics.z, v_grid_visible.w);
-    // The baked multiple scattering, not hidden by the terrain's shadow (particles.vert).
-    radiance += clamp(v_optics.z, 0.0, 1.0) * v_baked * u_sun_radiance;
+    // The baked multiple scattering, not hidden by the terrain's shadow: the particle's, at the
+    // lit point's height (particle_baked.comp).
+    float baked = clamp(v_baked + v_baked_slope.x * (ray.z * t - v_centre.z), v_baked_slope.y, v_baked_slope.z);
+#ifdef KIRI_BAKED_PER_FRAGMENT
+    // A ball around the eye spans every direction and the whole depth of its fog: the volume is
+    // read at each fragment's lit point (outside the shell, where it holds nothing, as above).
+    float here = lv_in_scattered_at(u_eye + ray * t, -ray, u_anisotropy, false);
+    baked = here > 0.0 ? here : baked;
+#endif
+    radiance += clamp(v_optics.z, 0.0, 1.0) * baked * u_sun_radiance;
     float haze = 1.0 - exp(-t * u_haze_density);
     radiance = mix(radiance, u_sky_horizon, haze);
     // The froxel fog in front of this billboard (read at its corners, particles.vert), as the

@@ -11,6 +11,9 @@
 // agreement with the reference fell by 0.5 to 2 points.
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 layout(std430, binding = 2) readonly buffer Order { uint order[]; };
+#if LIGHT_VOLUME
+layout(std430, binding = 3) readonly buffer BakedLights { vec4 baked_lights[]; };  // particle_baked.comp
+#endif
 uniform uint u_first;  // of the sorted billboards, the first this draw takes
 uniform mat4 u_view_projection;
 uniform vec3 u_centre;  // the cloud's centre (positions are relative to it)
@@ -29,7 +32,10 @@ flat out float v_seen_tau;  // tau as the billboard draws it: with the part in t
 flat out vec3 v_floor_plane;
 flat out vec3 v_top_plane;
 out vec4 v_fog;  // the froxel fog in front of the corner: in-scattered light, transmittance
-flat out float v_baked;  // the baked light scattered at least once towards the eye, at the centre
+// The baked light scattered at least once towards the eye, at the centre, and its change with
+// height (particle_baked.comp).
+flat out float v_baked;
+flat out vec3 v_baked_slope;  // d/dz, and the range it is extrapolated within
 uniform vec3 u_eye;
 // A frame drawn small draws every k-th billboard, sqrt(k) times as wide with the same optical
 // depth: the same optical mass and cover (ParticlesPass::set_resolution); sqrt(k) here, 1 else.
@@ -97,7 +103,12 @@ void main()
     v_floor_plane = particles[id].floor_plane.xyz;
     v_top_plane = particles[id].top_plane.xyz;
     v_fog = froxel_fog(corner_world);
-    // The baked multiple scattering (light_volume.glsl) at the billboard's centre: its corners
-    // may stand out of the Medium's shell, where the volume holds nothing.
-    v_baked = u_lv_on != 0 ? lv_in_scattered_at(centre_world, -from_eye / max(d, 1e-6), u_anisotropy, false) : 0.0;
+    // The baked multiple scattering, read once a particle (particle_baked.comp).
+#if LIGHT_VOLUME
+    vec4 baked = u_lv_on != 0 ? baked_lights[id] : vec4(0.0);
+#else
+    vec4 baked = vec4(0.0);
+#endif
+    v_baked = baked.x;
+    v_baked_slope = baked.yzw;
 }

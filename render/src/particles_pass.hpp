@@ -64,10 +64,19 @@ public:
 
 private:
     ShaderProgram composite_;
-    //! The billboards' program, reading the froxel fog (froxel_apply.glsl) or not, with the baked
-    //! light or without (light_volume_preamble), reading the own gains from the table alone or
-    //! computing them where it is missing: [fog][baked][table], each built on first use.
-    std::unique_ptr<ShaderProgram> programs_[2][2][2];
+    //! The billboards' program, reading the froxel fog (froxel_apply.glsl) or not, without the
+    //! baked light (light_volume_preamble), with it per particle, or with it per fragment too (the
+    //! billboards around the eye), reading the own gains from the table alone or computing them
+    //! where it is missing: [fog][baked][table], each built on first use.
+    std::unique_ptr<ShaderProgram> programs_[2][3][2];
+    //! The baked light each particle's billboard takes towards the eye (particle_baked.comp).
+    std::unique_ptr<ShaderProgram> baked_program_;
+    Buffer baked_lights_;
+    std::size_t baked_capacity_ = 0;
+    //! Of the billboards sorted far to near, the first whose ball can hold the eye (its centre
+    //! within the largest radius of it in depth).
+    std::size_t around_first() const;
+    void update_baked_lights(const FrameContext& frame);
     const LightVolumeTexture* light_volume_ = nullptr;
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
@@ -87,9 +96,12 @@ private:
     glm::vec3 sorted_eye_{1e30f}, sorted_forward_{0.0f};
     glm::dmat4 sorted_projection_{0.0};
     glm::dvec3 lo_{0.0}, hi_{0.0};
-    double smallest_radius_ = 0.0;
-    Framebuffer fbo_, near_fbo_;
-    Texture color_, near_color_;  // the near target: near_scale_ times coarser a side, bilinear
+    double smallest_radius_ = 0.0, largest_radius_ = 0.0;
+    Framebuffer fbo_, near_fbo_, around_fbo_;
+    // The near target: near_scale_ times coarser a side, bilinear; the target of the billboards
+    // around the eye (around_first) twice as coarse again: each spans the whole screen, and with
+    // the baked light reads it at every fragment.
+    Texture color_, near_color_, around_color_;
     int width_ = 0, height_ = 0, near_scale_ = 0;
     Query fragments_query_;
     int last_near_ = 0;
