@@ -1,11 +1,12 @@
 #version 450 core
 // The baked multiple scattering (light_volume.glsl) each billboard takes towards the eye, once a
-// frame, for the billboards drawn: at its particle's centre, and how it changes with height across the ball. A ball is
-// 250 to 500 m across and the baked light falls towards the fog's floor and the terrain's shade
-// within it: read at the centre alone, the billboards drew it flat (inside the descent's fog
-// 21.5 % off the baked reference, from the ridge 4.7 %). Read at half the radius above and below
-// the centre (one-sided where one of them lies outside the shell, which the volume does not
-// cover), the slope is what particles.frag extrapolates to each fragment's lit point.
+// frame for the billboards drawn: at its particle's centre, and how it changes with height across
+// the ball. A ball is 250 to 500 m across and the baked light falls towards the fog's floor and
+// the terrain's shade within it: read at the centre alone, the billboards drew it flat (inside
+// the descent's fog 21.5 % off the baked reference, from the ridge 4.7 %). Read at half the
+// radius above and below the centre (one-sided where one of them lies outside the shell, which
+// the volume does not cover), the slope is what particles.frag extrapolates to each fragment's
+// lit point.
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer Particles { GpuParticle particles[]; };
 layout(std430, binding = 2) readonly buffer Order { uint order[]; };  // the billboards drawn

@@ -50,6 +50,19 @@ void set_partition_uniforms(const Program& program, const FrameContext& frame)
     program.set("u_partition_depth", frame.partition_depth);
 }
 
+//! Sets the frame's eye, sun, sky and air uniforms of `program` (the terrain's and the
+//! particles' programs read them alike).
+template <class Program>
+void set_light_uniforms(const Program& program, const FrameContext& frame)
+{
+    program.set("u_eye", frame.eye);
+    program.set("u_sun_direction", frame.sun_direction);
+    program.set("u_sun_radiance", frame.sun_radiance);
+    program.set("u_ambient", frame.ambient);
+    program.set("u_sky_horizon", frame.sky_horizon);
+    program.set("u_haze_density", frame.haze_density);
+}
+
 //! Builds the frame's context; near and far planes are fitted to the scene's bounds so that
 //! depth precision is spent where the scene is (the camera's own planes are the fallback).
 //! `scene_min`, `scene_max`: everything drawn (the clip planes); `terrain_across`: the diagonal

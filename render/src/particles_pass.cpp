@@ -307,12 +307,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         p.set("u_far", planes.y);
         p.set("u_soft_edge", float(style_.soft_edge));
         p.set("u_anisotropy", float(cloud_->anisotropy));
-        p.set("u_eye", frame.eye);
-        p.set("u_sun_direction", frame.sun_direction);
-        p.set("u_sun_radiance", frame.sun_radiance);
-        p.set("u_ambient", frame.ambient);
-        p.set("u_sky_horizon", frame.sky_horizon);
-        p.set("u_haze_density", frame.haze_density);
+        set_light_uniforms(p, frame);
         p.set("u_octaves", std::clamp(cloud_->scattering_octaves, 0, 8));
         p.set("u_radius_scale", float(std::sqrt(double(share_))));
         p.use();

@@ -265,12 +265,7 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow, c
     if (refined)
         shade_.bind_fine(p, fine_shade_unit);
     p.set("u_view_projection", frame.view_projection);
-    p.set("u_eye", frame.eye);
-    p.set("u_sun_direction", frame.sun_direction);
-    p.set("u_sun_radiance", frame.sun_radiance);
-    p.set("u_ambient", frame.ambient);
-    p.set("u_sky_horizon", frame.sky_horizon);
-    p.set("u_haze_density", frame.haze_density);
+    set_light_uniforms(p, frame);
     set_shown_samples(p, frame, samples);
     set_ground_uniforms(p);
     p.use();
