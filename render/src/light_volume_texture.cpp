@@ -17,6 +17,7 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
     if (volume == volume_)
         return;
     volume_ = std::move(volume);
+    ++updates_;
     texture_ = {};
     floors_ = {};
     if (!volume_)

@@ -29,6 +29,8 @@ public:
     //! The moments are there (the lookups at a point also need the Medium's grid: bind).
     bool ready() const { return volume_ != nullptr && texture_; }
     const geometry::LightVolume* volume() const { return volume_.get(); }
+    //! How many volumes were uploaded: what was read from the last one is stale once it moves.
+    int updates() const { return updates_; }
     //! Sets light_volume.glsl's uniforms on a program and binds the moments to `unit`, and
     //! medium_shell.glsl's (the Medium's grid) to `unit + 1` when `with_grid` (a program that
     //! has the Medium's grid bound already, the froxels', says false), the cells' floors
@@ -52,6 +54,7 @@ private:
     Texture texture_;
     Texture floors_;  // R32F, floor_nx x floor_ny; none without floors
     FroxelMedium grid_;
+    int updates_ = 0;
     mutable std::unique_ptr<ShaderProgram> probe_;
 };
 

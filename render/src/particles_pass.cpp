@@ -149,6 +149,8 @@ std::size_t ParticlesPass::around_first() const
 
 void ParticlesPass::update_baked_lights(const FrameContext& frame)
 {
+    if (baked_sort_ == sorts_ && baked_volume_updates_ == light_volume_->updates())
+        return;  // the same billboards, eye and volume
     if (!baked_program_)
         baked_program_ = std::make_unique<ShaderProgram>(std::initializer_list<std::string_view>{
             "particle_footprint.glsl", "medium_shell.glsl", "light_volume.glsl", "particle_baked.comp"});
@@ -171,6 +173,8 @@ void ParticlesPass::update_baked_lights(const FrameContext& frame)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, baked_lights_.get());
     glDispatchCompute(GLuint((order_cpu_.size() + 63) / 64), 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    baked_sort_ = sorts_;
+    baked_volume_updates_ = light_volume_->updates();
 }
 
 std::uint64_t ParticlesPass::last_fragments() const
@@ -221,6 +225,7 @@ void ParticlesPass::sort(const FrameContext& frame)
     });
     if (!order_cpu_.empty())
         glNamedBufferSubData(order_.get(), 0, GLsizeiptr(order_cpu_.size() * sizeof(std::uint32_t)), order_cpu_.data());
+    ++sorts_;
     sorted_eye_ = frame.eye;
     sorted_forward_ = forward;
     sorted_projection_ = frame.projection;

@@ -69,10 +69,13 @@ private:
     //! billboards around the eye), reading the own gains from the table alone or computing them
     //! where it is missing: [fog][baked][table], each built on first use.
     std::unique_ptr<ShaderProgram> programs_[2][3][2];
-    //! The baked light each particle's billboard takes towards the eye (particle_baked.comp).
+    //! The baked light each particle's billboard takes towards the eye (particle_baked.comp), read
+    //! again when the order or the volume changed.
     std::unique_ptr<ShaderProgram> baked_program_;
     Buffer baked_lights_;
     std::size_t baked_capacity_ = 0;
+    // What the baked lights were read for: the order's sort and the volume's upload (-1: none).
+    int baked_sort_ = -1, baked_volume_updates_ = -1;
     //! Of the billboards sorted far to near, the first whose ball can hold the eye (its centre
     //! within the largest radius of it in depth).
     std::size_t around_first() const;
@@ -95,6 +98,7 @@ private:
     std::vector<float> keys_;
     glm::vec3 sorted_eye_{1e30f}, sorted_forward_{0.0f};
     glm::dmat4 sorted_projection_{0.0};
+    int sorts_ = 0;  // times the order was made
     glm::dvec3 lo_{0.0}, hi_{0.0};
     double smallest_radius_ = 0.0, largest_radius_ = 0.0;
     Framebuffer fbo_, near_fbo_, around_fbo_;
