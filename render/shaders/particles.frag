@@ -37,6 +37,7 @@ uniform vec3 u_centre;  // the cloud's centre
 uniform vec4 u_fog_xy;  // the (x, y) rectangle that holds the fog (min, max), relative to u_centre
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
+uniform float u_near_field;      // metres from the eye the near field covers (0: none)
 out vec4 o_color;
 
 float linear_depth(float d)
@@ -81,7 +82,8 @@ void main()
     // shore (the part cut off is given back to the rest, as the ground's: seen_gain).
     if (v_top_plane.x < 1e29)
         clip_line_to_plane(v_top_plane, -1.0, u_eye.z - u_centre.z, -v_centre.xy, cut_ray, span);
-    t0 = span.x;
+    // And beyond the near field (particles_near.frag marches the Medium itself within it).
+    t0 = max(span.x, u_near_field);
     t1 = span.y;
     float cut_along = widened ? length(v_centre) : along;
     float share = footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);

@@ -8,14 +8,19 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
+#include "kiri/geometry/medium/fog_lighting.hpp"
 #include "light_volume_texture.hpp"
 #include "particle_gpu.hpp"
+#include "shadow_map_pass.hpp"
+#include "sun_volume.hpp"
 
 namespace kiri::render::detail {
 namespace {
 // The baked light's Medium grid and moments, apart from every other sampler of the billboards'
 // programs (the froxel apply's among them).
 constexpr int unit_baked_moments = 20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
+// The near field's sun volume: the Medium's grid, its noise, the volume (SunVolume::bind).
+constexpr int unit_near_sun = 12;  // 12, 13, 14
 }  // namespace
 
 ParticlesPass::ParticlesPass() : composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
@@ -94,26 +99,29 @@ namespace {
 
 int near_size(int full, int scale) { return std::max(1, (full + scale - 1) / scale); }
 
+// A half-float colour target of w x h, read back bilinearly by the composite.
+void make_target(Texture& color, Framebuffer& fbo, int w, int h)
+{
+    color = make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(color.get(), 1, GL_RGBA16F, w, h);
+    glTextureParameteri(color.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(color.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(color.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(color.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    fbo = make_framebuffer();
+    glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, color.get(), 0);
+}
+
 }  // namespace
 
 void ParticlesPass::ensure_target(int width, int height, int near_scale)
 {
     if (width == width_ && height == height_ && near_scale == near_scale_ && fbo_)
         return;
-    const auto target = [](Texture& color, Framebuffer& fbo, int w, int h) {
-        color = make_texture(GL_TEXTURE_2D);
-        glTextureStorage2D(color.get(), 1, GL_RGBA16F, w, h);
-        glTextureParameteri(color.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(color.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(color.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(color.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        fbo = make_framebuffer();
-        glNamedFramebufferTexture(fbo.get(), GL_COLOR_ATTACHMENT0, color.get(), 0);
-    };
-    target(color_, fbo_, width, height);
+    make_target(color_, fbo_, width, height);
     if (near_scale > 1) {
-        target(near_color_, near_fbo_, near_size(width, near_scale), near_size(height, near_scale));
-        target(around_color_, around_fbo_, near_size(width, 2 * near_scale), near_size(height, 2 * near_scale));
+        make_target(near_color_, near_fbo_, near_size(width, near_scale), near_size(height, near_scale));
+        make_target(around_color_, around_fbo_, near_size(width, 2 * near_scale), near_size(height, 2 * near_scale));
     }
     width_ = width;
     height_ = height;
@@ -175,6 +183,103 @@ void ParticlesPass::update_baked_lights(const FrameContext& frame)
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     baked_sort_ = sorts_;
     baked_volume_updates_ = light_volume_->updates();
+}
+
+double ParticlesPass::near_field_reach(const FrameContext& frame) const
+{
+    // Under froxel fog the froxels draw the fog near the eye (combined mode); the march needs the
+    // Medium and its sun volume, and particles that carry its optics (a "particles" section with
+    // its own extinction or albedo draws a fog the Medium is not).
+    if (fog_ || !sun_ || !sun_->ready() || !sun_->medium() || !(style_.near_field > 0.0) || style_.near_field_steps < 1)
+        return 0.0;
+    const geometry::MediumOptions& optics = sun_->medium()->options();
+    if (cloud_->extinction != optics.extinction || cloud_->albedo != optics.albedo)
+        return 0.0;
+    const double reach = style_.near_field * largest_radius_ * std::sqrt(double(share_));
+    // Only where a ball can reach within it of the eye: the eye within `reach` of the box that
+    // holds every ball.
+    const glm::dvec3 eye(frame.eye);
+    const glm::dvec3 outside = glm::max(glm::max(lo_ - eye, eye - hi_), glm::dvec3(0.0));
+    return glm::length(outside) < reach ? reach : 0.0;
+}
+
+void ParticlesPass::draw_near_field(const FrameContext& frame, double reach, bool baked, unsigned resolved_fbo,
+                                    unsigned resolved_depth)
+{
+    // At the near billboards' resolution (smooth at that scale as they are: the fog within a few
+    // hundred metres of the eye), then laid over the frame like them; keeping 320 x 180 texels at
+    // least, as the layers' reduced target does (on a small frame a coarser one blurs the ground's
+    // silhouettes within the reach over a wide angle: the canyon from inside its fog at 160 x 90
+    // 1.67 % off the reference at full resolution, 2.79 % at half).
+    int scale = std::max(near_scale_, 1);
+    while (scale > 1 && (frame.width / scale < 320 || frame.height / scale < 180))
+        --scale;
+    const int w = near_size(frame.width, scale), h = near_size(frame.height, scale);
+    std::unique_ptr<ShaderProgram>& slot = near_programs_[baked ? 1 : 0];
+    if (!slot)
+        slot = std::make_unique<ShaderProgram>(
+            std::vector<std::string_view>{
+                "fullscreen.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
+                "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "terrain_shadow.glsl",
+                "light_volume.glsl", "froxel_light.glsl", "particles_near.frag"},
+            std::string(light_volume_preamble(baked)));
+    const ShaderProgram& p = *slot;
+    const geometry::Medium& medium = *sun_->medium();
+    // The Medium as the sun volume holds it (its grid and noise too), without the height fog:
+    // the particles draw the Medium alone, and light it through the Medium alone.
+    sun_->bind(p, unit_near_sun, 64, true);
+    FroxelMedium::bind_height_fog(p, geometry::HeightFog{});
+    if (light_volume_)
+        light_volume_->bind(p, unit_baked_moments, baked, false);
+    else
+        LightVolumeTexture{}.bind(p, unit_baked_moments, false, false);
+    bind_terrain_shadow(p, shadow_);
+    p.set("u_partitioned", 0);
+    p.set("u_fx_eye", frame.eye);
+    p.set("u_fx_forward", glm::vec3(frame.ray_forward));
+    p.set("u_fx_right", glm::vec3(frame.ray_right));
+    p.set("u_fx_up", glm::vec3(frame.ray_up));
+    p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
+    p.set("u_sun_radiance", frame.sun_radiance);
+    p.set("u_ambient", frame.ambient);
+    p.set("u_air", glm::vec4(frame.sky_horizon, frame.haze_density));
+    p.set("u_albedo", glm::vec2(float(medium.options().albedo), 0.0f));
+    p.set("u_anisotropy", glm::vec2(float(medium.options().anisotropy), 0.0f));
+    p.set("u_fog_shadows", 1);
+    p.set("u_octaves", geometry::shader_octaves(medium.options()));
+    const glm::vec2 planes = depth_planes(frame);
+    p.set("u_near", planes.x);
+    p.set("u_far", planes.y);
+    p.set("u_depth", 1);
+    p.set("u_depth_scale", glm::vec2(float(frame.width) / float(w), float(frame.height) / float(h)));
+    p.set("u_reach", float(reach));
+    p.set("u_steps", style_.near_field_steps);
+    p.use();
+    glBindTextureUnit(1, resolved_depth);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    if (scale > 1) {
+        if (near_field_size_ != glm::ivec2(w, h) || !near_field_fbo_) {
+            make_target(near_field_color_, near_field_fbo_, w, h);
+            near_field_size_ = glm::ivec2(w, h);
+        }
+        const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+        glClearNamedFramebufferfv(near_field_fbo_.get(), GL_COLOR, 0, clear);
+        glBindFramebuffer(GL_FRAMEBUFFER, near_field_fbo_.get());
+    } else {
+        glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
+    }
+    glViewport(0, 0, w, h);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (scale > 1) {
+        composite_.use();
+        composite_.set("u_particles", 0);
+        composite_.set("u_inv_size", glm::vec2(1.0f / float(frame.width), 1.0f / float(frame.height)));
+        glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
+        glViewport(0, 0, frame.width, frame.height);
+        glBindTextureUnit(0, near_field_color_.get());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
 }
 
 std::uint64_t ParticlesPass::last_fragments() const
@@ -262,6 +367,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     const bool table = light_.has_table();
     if (baked)
         update_baked_lights(frame);
+    const double near_reach = near_field_reach(frame);
     const auto program = [&](bool per_fragment) -> const ShaderProgram& {
         std::unique_ptr<ShaderProgram>& slot =
             programs_[fog_ ? 1 : 0][baked ? 1 + int(per_fragment) : 0][table ? 1 : 0];
@@ -315,6 +421,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         set_light_uniforms(p, frame);
         p.set("u_octaves", std::clamp(cloud_->scattering_octaves, 0, 8));
         p.set("u_radius_scale", float(std::sqrt(double(share_))));
+        p.set("u_near_field", float(near_reach));
         p.use();
         glBindTextureUnit(0, buffer_.texture());
         glBindTextureUnit(1, resolved_depth);
@@ -385,6 +492,9 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         glBindTextureUnit(0, around_color_.get());
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
+    // The near field lies in front of every billboard: over all of them.
+    if (near_reach > 0.0)
+        draw_near_field(frame, near_reach, baked, resolved_fbo, resolved_depth);
     glDisable(GL_BLEND);
     glDepthMask(GL_TRUE);
     return rebuilt;

@@ -69,6 +69,13 @@ private:
     //! billboards around the eye), reading the own gains from the table alone or computing them
     //! where it is missing: [fog][baked][table], each built on first use.
     std::unique_ptr<ShaderProgram> programs_[2][3][2];
+    //! The near field's march (particles_near.frag), without the baked light and with it.
+    std::unique_ptr<ShaderProgram> near_programs_[2];
+    //! The near field's reach for this frame: metres along each ray, 0 where there is none (under
+    //! froxel fog, without a Medium, or with the eye farther than it from every ball).
+    double near_field_reach(const FrameContext& frame) const;
+    void draw_near_field(const FrameContext& frame, double reach, bool baked, unsigned resolved_fbo,
+                         unsigned resolved_depth);
     //! The baked light each particle's billboard takes towards the eye (particle_baked.comp), read
     //! again when the order or the volume changed.
     std::unique_ptr<ShaderProgram> baked_program_;
@@ -106,6 +113,10 @@ private:
     // around the eye (around_first) twice as coarse again: each spans the whole screen, and with
     // the baked light reads it at every fragment.
     Texture color_, near_color_, around_color_;
+    // The near field (particles_near.frag), at the near target's resolution or finer.
+    Framebuffer near_field_fbo_;
+    Texture near_field_color_;
+    glm::ivec2 near_field_size_{0};
     int width_ = 0, height_ = 0, near_scale_ = 0;
     Query fragments_query_;
     int last_near_ = 0;

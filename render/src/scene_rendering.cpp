@@ -98,6 +98,7 @@ ParticleStyle particle_style(const geometry::ParticleOptions& o)
     s.soft_edge = o.soft_edge;
     s.near_scale = o.near_scale;
     s.near_pixels = o.near_pixels;
+    s.near_field = o.near_field;
     return s;
 }
 

@@ -55,6 +55,7 @@ bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* clou
     changed |= edit("soft edge (m)", o, o.soft_edge, "%.0f");
     changed |= edit("near: coarser by", o, o.near_scale);
     changed |= edit("near: from radius (px)", o, o.near_pixels, "%.0f");
+    changed |= edit("near field (radii)", o, o.near_field, "%.1f");
     if (cloud)
         ImGui::TextDisabled("%zu particles, spacing %.0f m", cloud->particles.size(), cloud->spacing);
     if (buffer.rebuild_count() > 0) {

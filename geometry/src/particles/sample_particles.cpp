@@ -268,6 +268,8 @@ ParticleCloud sample_particles(const Medium& medium, const ParticleOptions& opti
     // Every particle carries the same share of the extinction integral (the candidates were
     // drawn in proportion to the density): tau r^2 footprint_area = extinction * integral / count.
     const double carried = extinction * integral / double(kept.size());
+    cloud.extinction = extinction;
+    cloud.albedo = albedo;
     cloud.particles.reserve(kept.size());
     for (std::size_t k = 0; k < kept.size(); ++k) {
         const std::size_t i = kept[k];

@@ -28,6 +28,7 @@ ParticlesInput particles_input(std::uint64_t medium, ParticleSet set, const Part
     in.options.soft_edge = defaults.soft_edge;
     in.options.near_scale = defaults.near_scale;
     in.options.near_pixels = defaults.near_pixels;
+    in.options.near_field = defaults.near_field;
     return in;
 }
 

@@ -58,6 +58,12 @@ struct ParticleStyle {
     //! Billboards whose particle lies wholly outside the view are not drawn (the picture is the
     //! same; false draws every one, for tests and benches).
     bool cull_outside_view = true;
+    //! The near field, with the particles alone (not under froxel fog): within `near_field`
+    //! times the largest radius of the eye, the Medium itself is marched along each ray in
+    //! `near_field_steps` steps and the billboards draw their balls from there on (a few balls
+    //! around the eye are each a blot over a large part of the frame). 0: none.
+    double near_field = 2.5;
+    int near_field_steps = 32;
 };
 
 struct PassTime {

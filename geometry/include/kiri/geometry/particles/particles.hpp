@@ -82,6 +82,9 @@ struct ParticleOptions {
     double soft_edge = 0.0;
     int near_scale = 2;        //!< the near billboards' target is this many times coarser a side
     double near_pixels = 6.0;  //!< from this radius on screen (pixels) a billboard is near
+    //! With the particles alone, the Medium itself is marched within this many times the largest
+    //! radius of the eye, and the billboards draw the fog from there on (0: none).
+    double near_field = 2.5;
     bool operator==(const ParticleOptions&) const = default;
 };
 
@@ -184,6 +187,12 @@ void visit_fields(O& o, V&& v)
        .range = greater_than(0),
        .doc = "near: every billboard from here on spans at least this radius on screen",
        .widget = closed(4, 256)});
+    v(o.near_field,
+      {.key = "near_field",
+       .range = closed(0, 100),
+       .doc = "the particles alone: within this many largest radii of the eye the Medium itself is marched (0: "
+              "billboards to the eye)",
+       .widget = closed(0, 8)});
 }
 
 //! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.
@@ -195,6 +204,9 @@ struct ParticleCloud {
     //! beam (Harris's forward-scattering term), in [0, 1].
     double forward_scattering = 0.2;
     double anisotropy = 0.8;  //!< Henyey-Greenstein g towards the eye (the Medium's)
+    //! The extinction at full density (1/m) and the albedo the particles carry: the Medium's,
+    //! unless the "particles" section sets its own.
+    double extinction = 0.0, albedo = 0.0;
     //! The (x, y) rectangle that holds the fog (the Medium's grid): no footprint reaches beyond
     //! it, so the fog's wall at a grid's edge stays sharp. Infinite: no such bound.
     glm::dvec2 fog_xy_min{-std::numeric_limits<double>::infinity()},
