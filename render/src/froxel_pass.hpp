@@ -41,6 +41,13 @@ namespace kiri::render::detail {
 class TerrainPass;
 class SunVolume;
 
+//! froxel_light.glsl's uniforms for a frame: the sun (as the marches take its direction), the sky,
+//! the air, each medium's albedo and anisotropy (the Medium, null: none; the height fog) and the
+//! lighting model, the fog's own shadow on or off. The froxels and the particles' near field light
+//! the fog with the one code.
+void set_medium_light_uniforms(const ShaderProgram& p, const FrameContext& frame, const geometry::Medium* medium,
+                               const geometry::HeightFog& haze, bool fog_shadows);
+
 class FroxelPass {
 public:
     FroxelPass();

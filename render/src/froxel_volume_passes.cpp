@@ -171,6 +171,21 @@ void FroxelPass::list_fog_tiles()
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
+void set_medium_light_uniforms(const ShaderProgram& p, const FrameContext& frame, const geometry::Medium* medium,
+                               const geometry::HeightFog& haze, bool fog_shadows)
+{
+    p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
+    p.set("u_sun_radiance", frame.sun_radiance);
+    p.set("u_ambient", frame.ambient);
+    p.set("u_air", glm::vec4(frame.sky_horizon, frame.haze_density));
+    const double albedo = medium ? medium->options().albedo : 0.0, g = medium ? medium->options().anisotropy : 0.0;
+    p.set("u_albedo", glm::vec2(float(albedo), float(haze.albedo)));
+    p.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
+    p.set("u_fog_shadows", int(fog_shadows));
+    p.set("u_octaves",
+          geometry::shader_octaves(geometry::multiple_scattering_of(medium), geometry::scattering_octaves_of(medium)));
+}
+
 void FroxelPass::bind_light(const ShaderProgram& p, const FrameContext& frame) const
 {
     const geometry::FroxelOptions& o = options_;
@@ -186,17 +201,7 @@ void FroxelPass::bind_light(const ShaderProgram& p, const FrameContext& frame) c
     }
     medium_gpu_.bind(p, haze, unit_medium);
     bind_terrain_shadow(p, shadow_);
-    p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
-    p.set("u_sun_radiance", frame.sun_radiance);
-    p.set("u_ambient", frame.ambient);
-    p.set("u_air", glm::vec4(frame.sky_horizon, frame.haze_density));
-    const double albedo = medium_ ? medium_->options().albedo : 0.0, g = medium_ ? medium_->options().anisotropy : 0.0;
-    p.set("u_albedo", glm::vec2(float(albedo), float(haze.albedo)));
-    p.set("u_anisotropy", glm::vec2(float(g), float(haze.anisotropy)));
-    p.set("u_fog_shadows", int(o.fog_shadows));
-    p.set(
-        "u_octaves",
-        geometry::shader_octaves(geometry::multiple_scattering_of(medium_), geometry::scattering_octaves_of(medium_)));
+    set_medium_light_uniforms(p, frame, medium_, haze, o.fog_shadows);
     // The baked multiple scattering, with the Medium's model `baked` only (others draw theirs).
     // The Medium's grid is bound already (medium_gpu_ above): the same Medium's.
     if (light_volume_)

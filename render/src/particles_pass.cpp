@@ -8,7 +8,6 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
-#include "kiri/geometry/medium/fog_lighting.hpp"
 #include "light_volume_texture.hpp"
 #include "particle_gpu.hpp"
 #include "shadow_map_pass.hpp"
@@ -224,7 +223,6 @@ void ParticlesPass::draw_near_field(const FrameContext& frame, double reach, boo
                 "light_volume.glsl", "froxel_light.glsl", "particles_near.frag"},
             std::string(light_volume_preamble(baked)));
     const ShaderProgram& p = *slot;
-    const geometry::Medium& medium = *sun_->medium();
     // The Medium as the sun volume holds it (its grid and noise too), without the height fog:
     // the particles draw the Medium alone, and light it through the Medium alone.
     sun_->bind(p, unit_near_sun, 64, true);
@@ -239,14 +237,7 @@ void ParticlesPass::draw_near_field(const FrameContext& frame, double reach, boo
     p.set("u_fx_forward", glm::vec3(frame.ray_forward));
     p.set("u_fx_right", glm::vec3(frame.ray_right));
     p.set("u_fx_up", glm::vec3(frame.ray_up));
-    p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
-    p.set("u_sun_radiance", frame.sun_radiance);
-    p.set("u_ambient", frame.ambient);
-    p.set("u_air", glm::vec4(frame.sky_horizon, frame.haze_density));
-    p.set("u_albedo", glm::vec2(float(medium.options().albedo), 0.0f));
-    p.set("u_anisotropy", glm::vec2(float(medium.options().anisotropy), 0.0f));
-    p.set("u_fog_shadows", 1);
-    p.set("u_octaves", geometry::shader_octaves(medium.options()));
+    set_medium_light_uniforms(p, frame, sun_->medium(), geometry::HeightFog{}, true);
     const glm::vec2 planes = depth_planes(frame);
     p.set("u_near", planes.x);
     p.set("u_far", planes.y);
