@@ -36,34 +36,34 @@ uniform float u_fx_near;              // the volume's first depth
 uniform sampler2D u_fx_shell_depths;
 uniform int u_fx_classified;          // the tiles' w marks where pixels march (froxel_classify.comp)
 
-// The Medium's optical depth over the step [q0, q1] of length `len`: its extinction at the middle
-// of the part of the step between the floor and the top of its column there, times that part's
-// length. Taken at the step's middle alone, the step that straddles the fog's top or floor held
-// all of its fog or none, at a depth that steps from pixel to pixel: from inside the fog the
-// terrain's contours showed through as lines.
+// The Medium's optical depth over the step [q0, q1] of length `len`: its extinction at the
+// quarter points of the part of the step between the floor and the top of its column there, times
+// that part's length. Taken at the step's middle alone, the step that straddles the fog's top or
+// floor held all of its fog or none, at a depth that steps from pixel to pixel: from inside the
+// fog the terrain's contours showed through as lines. Taken at the part's middle alone, steps
+// tens of metres long across a ground the detail noise varies on every 47 m (the default tile's
+// texel) aliased it into bands along the fog's top seen at a grazing angle (the descent just
+// above the blanket, 320x180: 2.09 % off the reference; 1.08 % at two points, 1.27 % at one
+// point in 32 steps instead of 24).
 float froxel_step_depth(vec3 q0, vec3 q1, float len)
 {
     vec3 middle = 0.5 * (q0 + q1);
     if (u_md_on == 0 || !shell_covers(middle.xy))
         return 0.0;
     vec4 c = shell_column(middle.xy);  // floor, bottom, top, coverage
-    // One lookup of the column and one copy of the density's code, at the part's middle or the
-    // step's (a copy for each took the default still's marches and split pixels 2-4 % longer on
-    // llvmpipe).
-    vec3 at = middle;
-    float part = 1.0;
+    // One lookup of the column for both points: the part's ends were cut by it (its points lie
+    // within half a step of the step's middle across).
+    float lo = 0.0, hi = 1.0;
     float rise = q1.z - q0.z;
     if (abs(rise) > 1e-3 && c.z > c.x) {
         float t0 = clamp((c.x - q0.z) / rise, 0.0, 1.0), t1 = clamp((c.z - q0.z) / rise, 0.0, 1.0);
-        float lo = min(t0, t1), hi = max(t0, t1);
+        lo = min(t0, t1);
+        hi = max(t0, t1);
         if (!(hi > lo))
             return 0.0;
-        // The density in the same column: the part's ends were cut by it (its middle lies
-        // within half a step of the step's across; one lookup of the grid, not two).
-        at = mix(q0, q1, 0.5 * (lo + hi));
-        part = hi - lo;
     }
-    return froxel_sigma_in(at, c) * len * part;
+    float sigma = froxel_sigma_in(mix(q0, q1, mix(lo, hi, 0.25)), c) + froxel_sigma_in(mix(q0, q1, mix(lo, hi, 0.75)), c);
+    return 0.5 * sigma * len * (hi - lo);
 }
 
 // Adds the stretch [a, b] of the ray through uv (view depths) to fog = (radiance, T), in n steps
