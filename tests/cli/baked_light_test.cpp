@@ -7,30 +7,24 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/kiri_runner.hpp"
 #include "cli/reference_judge.hpp"
+#include "cli/shipped_scene.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path data = fs::path(KIRI_DATA_DIR);
-
 // A shipped scene (the default) with the given multiple scattering, written beside the temporary files.
 std::string scene_with(const std::string& model, const std::string& name = "jacksboro")
 {
-    std::ifstream in(data / ("scenes/" + name + ".json"));
-    nlohmann::json scene = nlohmann::json::parse(in);
-    scene["terrain"]["path"] = fs::absolute(data / "terrains/jacksboro_fault_dem.tif").string();
+    nlohmann::json scene = kiri::test::shipped_scene(name);
     scene["medium"]["multiple_scattering"] = model;
-    const fs::path file = kiri::test::temp_path("baked_light_" + name + "_" + model + ".json");
-    std::ofstream(file) << scene.dump(1);
-    return file.string();
+    return kiri::test::write_temp_scene(scene, "baked_light_" + name + "_" + model + ".json").string();
 }
 
 struct Judged {

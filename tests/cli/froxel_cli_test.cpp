@@ -9,10 +9,9 @@
 #include <fstream>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "cli/kiri_runner.hpp"
 #include "cli/reference_judge.hpp"
+#include "cli/shipped_scene.hpp"
 #include "kiri/render/image.hpp"
 
 namespace fs = std::filesystem;
@@ -120,12 +119,9 @@ TEST(KiriFroxel, JustAboveTheBlanketItsGrazingTopKeepsItsDetail)
     // for kilometres, where the detail noise varies every 47 m. The marches took the density at
     // each step's middle alone, tens of metres apart along the ray, and aliased the noise into
     // bands across the top (froxel_march.glsl, froxel_step_depth).
-    std::ifstream in((fs::path(KIRI_DATA_DIR) / "scenes/jacksboro_descent.json").string());
-    nlohmann::json scene = nlohmann::json::parse(in);
-    scene["terrain"]["path"] = fs::absolute(fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif").string();
+    nlohmann::json scene = kiri::test::shipped_scene("jacksboro_descent");
     scene["froxel"].erase("height_fog");
-    const fs::path file = kiri::test::temp_path("froxel_just_above.json");
-    std::ofstream(file) << scene.dump(1);
+    const fs::path file = kiri::test::write_temp_scene(scene, "froxel_just_above.json");
     const std::string camera = "descent_2_just_above", size = "--width 160 --height 90 --camera " + camera;
     const kiri::render::RadianceImage fog = kiri::test::render_radiance(file.string(), "froxel", size);
     const kiri::render::RadianceImage bare = kiri::test::render_radiance(file.string(), "terrain", size);

@@ -11,6 +11,7 @@
 
 #include "cli/kiri_runner.hpp"
 #include "cli/reference_judge.hpp"
+#include "cli/shipped_scene.hpp"
 #include "kiri/render/image.hpp"
 
 namespace fs = std::filesystem;
@@ -66,13 +67,10 @@ TEST(KiriParticles, FromUnderTheBlanketLevelRaysCrossNoBallsBelowItsFloor)
     // blanket's floating bottom, level rays under it to the far valley walls. A ball was cut at a
     // level plane under the lowest floor over its disc, so slivers of thousands of balls hung
     // under the sloping bottom across those rays.
-    std::ifstream in(default_scene);
-    nlohmann::json scene = nlohmann::json::parse(in);
-    scene["terrain"]["path"] = fs::absolute(fs::path(KIRI_DATA_DIR) / "terrains/jacksboro_fault_dem.tif").string();
+    nlohmann::json scene = kiri::test::shipped_scene("jacksboro");
     scene["cameras"].push_back(
         {{"name", "valley"}, {"position", {8197, -9020, 544}}, {"target", {7049, -6248, 484}}, {"fov", 60}});
-    const fs::path file = kiri::test::temp_path("particles_valley.json");
-    std::ofstream(file) << scene.dump(1);
+    const fs::path file = kiri::test::write_temp_scene(scene, "particles_valley.json");
     const kiri::render::FogError e =
         particles_against_reference(file.string(), "valley", 160, 90, "from under the blanket");
     fs::remove(file);
