@@ -129,7 +129,7 @@ void main()
         discard;
     float detail = 1.0;
     if (u_detail > 0.0)
-        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, v_height * u_count));
+        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(v_world.xy, v_height * u_detail_layers));
     vec3 view = normalize(v_world - u_eye);
     float cos_sun = dot(view, u_sun_direction);
     float a;

@@ -68,7 +68,7 @@ void main()
     vec4 column = shell_covers(middle.xy) ? shell_column(middle.xy) : vec4(0.0);
     float detail = 1.0;
     if (u_detail > 0.0)
-        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(middle.xy, height * u_count));
+        detail = 1.0 - u_detail + u_detail * smoothstep(0.25, 0.75, detail_noise(middle.xy, height * u_detail_layers));
     float share = layers_share(distance(middle, u_eye), height, column.z - column.x);
     float density = column.w * (1.0 - u_top_loss * height) * detail * share;
     float sigma = u_extinction * density;

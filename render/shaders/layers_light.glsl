@@ -3,6 +3,7 @@
 uniform sampler2D u_noise;       // tileable value noise (geometry::fog_noise_tile)
 uniform float u_detail;
 uniform float u_detail_scale;
+uniform float u_detail_layers;  // the noise's shift with height, in layers (the Medium's detail_layers)
 uniform vec2 u_drift;            // wind * time (metres)
 uniform vec3 u_sun_direction;
 uniform vec3 u_sun_radiance;
@@ -34,10 +35,10 @@ bool frame_ground(vec2 uv, out vec3 ground)
     return true;
 }
 
-// Detail: a tileable noise texture, shifted per layer so neighbouring layers differ. `layer` is
-// the height in the fog in layers of the reference stack (h l0), as the Medium's detail takes it
-// (Medium::detail_factor): the narrowing adds layers near the eye, and the i-th of 120 there lies
-// at the height of layer i l0 / 120 of the 15, so it shows the Medium's noise of that height.
+// Detail: a tileable noise texture, shifted with height so neighbouring layers differ. `layer` is
+// the height in the fog h times the Medium's detail_layers, as Medium::detail_factor takes it:
+// a layer shows the Medium's noise of its height whatever the stack's count, and the narrowing's
+// added layers near the eye theirs.
 float detail_noise(vec2 xy, float layer)
 {
     // The tile holds 8 of the largest features: it repeats every 8 detail_scale metres.

@@ -42,6 +42,7 @@ void set_layers_light_uniforms(const ShaderProgram& p, const geometry::LayerOpti
 {
     p.set("u_detail", float(o.optics.detail));
     p.set("u_detail_scale", float(o.optics.detail_scale));
+    p.set("u_detail_layers", float(o.optics.detail_layers));
     p.set("u_drift", glm::vec2(noise_drift(o.optics.wind, o.optics.time, noise_shift, 8.0 * o.optics.detail_scale)));
     p.set("u_sun_direction", sun_march_direction(frame.sun_direction));
     p.set("u_sun_radiance", frame.sun_radiance);

@@ -12,6 +12,7 @@
 
 #include "cli/kiri_runner.hpp"
 #include "cli/reference_judge.hpp"
+#include "cli/shipped_scene.hpp"
 #include "kiri/render/image.hpp"
 
 namespace fs = std::filesystem;
@@ -86,6 +87,26 @@ TEST(KiriLayers, ALakesThreadsUnderACoarseBaseTakeTheirOwnSunlight)
     const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(scene, "", 160, 90, false);
     kiri::test::expect_fog_agrees("layers", fog, bare, reference, 1500, 0.040);
     fs::remove_all(dir);
+}
+
+TEST(KiriLayers, AStackOfThirtyDrawsTheNoiseOfItsLayersHeights)
+{
+    // The `ultra` preset's 30 layers over the default scene's fog (its first camera, 96 x 54), its
+    // detail noise at full strength and the same at every height (`medium.detail_layers` 0): each
+    // layer draws the Medium's noise of its own height, whatever the stack's count. Measured
+    // 0.0713; a layer that took its noise per layer of its own stack (h x 30, as the layers did
+    // when the Medium's noise followed their count) draws 30 shifted copies of it: 0.133.
+    nlohmann::json json = kiri::test::shipped_scene("jacksboro");
+    json["layers"]["count"] = 30;
+    json["medium"]["detail"] = 1.0;
+    json["medium"]["detail_layers"] = 0;
+    const std::string scene = kiri::test::write_temp_scene(json, "layers_test_thirty.json").string();
+    const std::string size = "--width 96 --height 54";
+    const kiri::render::RadianceImage fog = kiri::test::render_radiance(scene, "layers", size);
+    const kiri::render::RadianceImage bare = kiri::test::render_radiance(scene, "terrain", size);
+    const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(scene, "", 96, 54, false);
+    kiri::test::expect_fog_agrees("30 layers", fog, bare, reference, 96 * 54 / 3, 0.09);
+    fs::remove(scene);
 }
 
 TEST(KiriLayers, AutoIsCombined)

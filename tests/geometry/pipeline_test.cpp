@@ -8,11 +8,13 @@
 #include <cmath>
 #include <concepts>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <vector>
 
 #include <glm/geometric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "kiri/geometry/core/error.hpp"
 #include "kiri/geometry/medium/fog_partition.hpp"
@@ -157,6 +159,66 @@ TEST(Pipeline, AnIncrementalRunMakesWhatAFreshRunMakes)
     const PipelineProducts incremental = p.run(s, with_medium);
     EXPECT_EQ(runs(p), (Runs{1, 0, 1, 1, 2, 3, 3, 0, 0, 0}));
     expect_same_fog(incremental, author_scene(s, with_medium));
+}
+
+TEST(Pipeline, TheLayersCountAndTheQualityPresetLeaveTheFogAsItIs)
+{
+    // The layers are a renderer of the Medium: a stack of 30 (the `ultra` preset's) or of 8
+    // (`low`'s) draws the fog the default 15 does. The Medium's noise shifted with height per
+    // layer of the stack once, so a preset changed the fog itself (and more layers drew it worse).
+    Pipeline p;
+    Scene s = small_scene();
+    const PipelineProducts fifteen = p.run(s, with_medium);
+    ASSERT_TRUE(fifteen.medium);
+    ASSERT_GT(fifteen.medium->options().detail, 0.0);
+    s.layers.count = 30;
+    s.layers.max_count = 120;
+    const PipelineProducts thirty = p.run(s, with_medium);
+    EXPECT_TRUE(thirty.medium == fifteen.medium);  // the medium stage did not run again
+    EXPECT_EQ(runs(p)[std::size_t(Stage::medium)], 1);
+    EXPECT_EQ(thirty.layers.count, 30);
+
+    // A fresh run at another count, and the presets from the JSON: the same density everywhere.
+    s.layers.count = 8;
+    const PipelineProducts eight = author_scene(s, with_medium);
+    const Bounds3 b = fifteen.medium->bounds();
+    int inside = 0;
+    for (int k = 0; k < 400; ++k) {
+        const glm::dvec3 q{b.min.x + (b.max.x - b.min.x) * ((k % 20) + 0.5) / 20.0,
+                           b.min.y + (b.max.y - b.min.y) * ((k / 20) + 0.5) / 20.0, 0.0};
+        const MediumColumn c = fifteen.medium->column(q.x, q.y);
+        for (const double h : {0.1, 0.4, 0.7, 0.95}) {
+            const glm::dvec3 at{q.x, q.y, c.bottom + h * (c.top - c.bottom)};
+            const double d = fifteen.medium->density(at);
+            inside += d > 0.0;
+            ASSERT_EQ(eight.medium->density(at), d) << at.x << " " << at.y << " " << at.z;
+        }
+    }
+    EXPECT_GT(inside, 400);
+    const fs::path file = fs::path(KIRI_DATA_DIR) / "scenes/jacksboro.json";
+    std::ifstream in(file);
+    nlohmann::json root = nlohmann::json::parse(in);
+    const Scene high = load_scene(file);
+    for (const char* preset : {"low", "medium", "ultra"}) {
+        root["quality"] = preset;
+        const Scene q = parse_scene(root.dump(), file.string(), file.parent_path());
+        EXPECT_NE(q.layers.count, high.layers.count) << preset;
+        EXPECT_EQ(medium_detail(q.medium), medium_detail(high.medium)) << preset;
+    }
+
+    // The fog's own key does change it: the noise shifts twice as fast with height.
+    s.medium.detail_layers = 30.0;
+    const PipelineProducts sheared = p.run(s, with_medium);
+    EXPECT_EQ(runs(p)[std::size_t(Stage::medium)], 2);
+    int differ = 0;
+    for (int k = 0; k < 400; ++k) {
+        const glm::dvec3 q{b.min.x + (b.max.x - b.min.x) * ((k % 20) + 0.5) / 20.0,
+                           b.min.y + (b.max.y - b.min.y) * ((k / 20) + 0.5) / 20.0, 0.0};
+        const MediumColumn c = fifteen.medium->column(q.x, q.y);
+        const glm::dvec3 at{q.x, q.y, c.bottom + 0.7 * (c.top - c.bottom)};
+        differ += std::abs(sheared.medium->density(at) - fifteen.medium->density(at)) > 1e-3;
+    }
+    EXPECT_GT(differ, 40);
 }
 
 TEST(Pipeline, FogPlacedByTheTerrainPlacesOnceAndFillsTheMediumFromItsColumns)

@@ -242,7 +242,7 @@ TEST(Scene, TheMediumOwnsTheFogsMotion)
 {
     const Scene s = parse_scene(
         R"({"terrain": {"path": "t.tif"}, "medium": {"detail": 0.3, "wind": [1, -2], "time": 5, "detail_scale": 800,
-            "dissipation_half_life": 60}})",
+            "detail_layers": 22, "dissipation_half_life": 60}})",
         "s.json", "/scenes");
     EXPECT_EQ(s.medium.detail, 0.3);
     EXPECT_EQ(s.medium.wind, glm::dvec2(1, -2));
@@ -261,10 +261,10 @@ TEST(Scene, TheMediumOwnsTheFogsMotion)
               "s.json: /layers/time: the old name of /medium/time, which the scene gives too: give only that");
     EXPECT_EQ(error_of(R"({"terrain": {"path": "t.tif"}, "layers": {"detail": 2}})"),
               "s.json: /layers/detail: must be in [0, 1], got 2");
-    const kiri::geometry::MediumDetail d = kiri::geometry::medium_detail(s.medium, 15.0);
+    const kiri::geometry::MediumDetail d = kiri::geometry::medium_detail(s.medium);
     EXPECT_EQ(d.detail, 0.3);
     EXPECT_EQ(d.detail_scale, 800.0);
-    EXPECT_EQ(d.layers, 15.0);
+    EXPECT_EQ(d.layers, 22.0);
     EXPECT_EQ(d.wind, glm::dvec2(1, -2));
     EXPECT_EQ(d.dissipation_half_life, 60.0);
 }

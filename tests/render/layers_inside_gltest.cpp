@@ -45,7 +45,7 @@ g::Medium lake_medium(const g::Terrain& terrain, const g::LayerOptions& o)
             grid.floor.push_back(std::clamp(terrain.height(grid.x0 + i * grid.dx, grid.y0 + j * grid.dy), 50.0, 150.0));
             grid.coverage.push_back(1.0);
         }
-    return g::Medium(grid, o.optics, g::medium_detail(o.optics, o.count));
+    return g::Medium(grid, o.optics, g::medium_detail(o.optics));
 }
 
 // Black fog's frame over the bare one against the Medium's transmittance along each pixel's ray,

@@ -122,7 +122,7 @@ Scene scene_at(const glm::dvec3& at)
     mo.wind = glm::dvec2(at) / drift_time;
     mo.time = drift_time;
     mo.multiple_scattering = g::MultipleScattering::baked;
-    s.medium = std::make_unique<g::Medium>(std::move(grid), mo, g::medium_detail(mo, 15.0));
+    s.medium = std::make_unique<g::Medium>(std::move(grid), mo, g::medium_detail(mo));
 
     // A light volume whose light grows eastwards and upwards: read where the fog is, or not.
     s.light = std::make_shared<g::LightVolume>();

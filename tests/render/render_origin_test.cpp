@@ -32,7 +32,7 @@ g::Medium noisy_slab(glm::dvec2 centre)
     o.detail_scale = 300.0;
     o.wind = {3.0, -2.0};
     o.time = 1234.5;
-    return g::Medium(std::move(grid), o, g::medium_detail(o, 15.0));
+    return g::Medium(std::move(grid), o, g::medium_detail(o));
 }
 
 TEST(RenderOrigin, ZeroNearTheWorldsOriginElseTheCentreToTheKilometre)

@@ -91,7 +91,7 @@ Medium make_medium(const LayerBase& base, const LayerOptions& layers, const Terr
             g.top[k] = g.bottom[k] + layers.thickness;
             g.floor[k] = std::min(std::max(g.bottom[k], ground), g.top[k]);
         }
-    return Medium(std::move(g), options, medium_detail(options, layers.count));
+    return Medium(std::move(g), options, medium_detail(options));
 }
 
 }  // namespace kiri::geometry

@@ -19,12 +19,12 @@ constexpr double layer_shift_x = 0.137, layer_shift_y = 0.071;
 
 }  // namespace
 
-MediumDetail medium_detail(const MediumOptions& medium, double noise_layers)
+MediumDetail medium_detail(const MediumOptions& medium)
 {
     MediumDetail d;
     d.detail = medium.detail;
     d.detail_scale = medium.detail_scale;
-    d.layers = noise_layers;
+    d.layers = medium.detail_layers;
     d.wind = medium.wind;
     d.time = medium.time;
     d.dissipation_half_life = medium.dissipation_half_life;

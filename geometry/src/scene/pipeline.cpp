@@ -24,9 +24,8 @@ std::shared_ptr<const Medium> build_medium(const Terrain& terrain, const PlacedF
                                            const std::string& label)
 {
     // Fog placed by the terrain: the fill's columns are the shell; else the layer stack's slab.
-    return std::make_shared<const Medium>(
-        placed ? fill_medium(terrain, *placed, medium, medium_detail(medium, layers.count), label)
-               : make_medium(base, layers, terrain, medium, label));
+    return std::make_shared<const Medium>(placed ? fill_medium(terrain, *placed, medium, medium_detail(medium), label)
+                                                 : make_medium(base, layers, terrain, medium, label));
 }
 
 // The light stage runs for the Medium's model `baked` alone.

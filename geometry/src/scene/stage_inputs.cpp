@@ -14,7 +14,7 @@ LayerBaseInput layer_base_input(std::uint64_t tessellation, const LayerOptions& 
 
 MediumInput medium_input(std::uint64_t source, bool placed, const MediumOptions& medium, const LayerOptions& layers)
 {
-    return {source, placed, medium, medium_detail(medium, layers.count), placed ? 0.0 : layers.thickness};
+    return {source, placed, medium, placed ? 0.0 : layers.thickness};
 }
 
 ParticlesInput particles_input(std::uint64_t medium, ParticleSet set, const ParticleOptions& options,

@@ -57,8 +57,7 @@ LayerBaseInput layer_base_input(std::uint64_t tessellation, const LayerOptions& 
 struct MediumInput {
     std::uint64_t source = 0;  // the placement's version (fog placed by the terrain), else the layer base's
     bool placed = false;
-    MediumOptions medium;
-    MediumDetail detail;     // the layers' noise, wind, time and dissipation
+    MediumOptions medium;    // its optics and its detail (medium_detail)
     double thickness = 0.0;  // the layer stack's slab (not placed)
     bool operator==(const MediumInput&) const = default;
 };

@@ -65,7 +65,7 @@ double henyey_greenstein(double cos_theta, double g);
 struct MediumDetail {
     double detail = 0.6;                 //!< noise strength, [0, 1]
     double detail_scale = 1500.0;        //!< metres: largest noise feature; the tile repeats every 8x
-    double layers = 15.0;                //!< l0: the noise is shifted per layer like the layers' (i = h l0)
+    double layers = 15.0;                //!< the noise's shift with height h: h layers x (0.137, 0.071) tiles
     glm::dvec2 wind{0.0};                //!< m/s: drift of the noise
     double time = 0.0;                   //!< seconds
     double dissipation_half_life = 0.0;  //!< seconds; 0: none
@@ -74,9 +74,9 @@ struct MediumDetail {
     glm::dvec2 noise_shift{0.0};
     bool operator==(const MediumDetail&) const = default;
 };
-//! The medium's detail, its noise shifted per layer of a stack of `noise_layers` layers (the
-//! layers' count l0: layer i sits at h = i / l0).
-MediumDetail medium_detail(const MediumOptions& medium, double noise_layers);
+//! The medium's detail, its noise shifted with height per `detail_layers` (the options' own: the
+//! layers' count does not change the fog).
+MediumDetail medium_detail(const MediumOptions& medium);
 
 //! \throw InputError(label, "/medium/<key>", reason) for options outside their ranges.
 void validate_medium_options(const MediumOptions& options, const std::string& label = {});

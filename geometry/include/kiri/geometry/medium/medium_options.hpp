@@ -35,6 +35,10 @@ struct MediumOptions {
     int scattering_octaves = 3;
     double detail = 0.6;
     double detail_scale = 1500.0;
+    //! The noise's shift with height, in layers of a stack of this many (the thesis' per-layer
+    //! shift; 15, the layers' default count). The fog's own, not the layers': a stack of any count
+    //! draws the noise of its layers' heights.
+    double detail_layers = 15.0;
     glm::dvec2 wind{0.0};
     double time = 0.0;
     double dissipation_half_life = 0.0;
@@ -101,6 +105,13 @@ void visit_fields(O& o, V&& v)
        .doc = "size of the noise's largest features (its tile repeats every 8 times that)",
        .widget = closed(100, 10000),
        .log_widget = true});
+    v(o.detail_layers,
+      {.key = "detail_layers",
+       .range = closed(0, 1000),
+       .doc = "the noise shifts by (0.137, 0.071) of its tile per 1/detail_layers of the fog's height, as the "
+              "thesis' layers shift theirs (15, the layers' default count; 0: the same noise at every height); "
+              "the fog's own, whatever the layers' count or the quality preset",
+       .widget = closed(0, 60)});
     v(o.wind,
       {.key = "wind",
        .unit = "m/s",
