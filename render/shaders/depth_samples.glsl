@@ -13,12 +13,6 @@ const int ds_max = 8;
 // start.
 float ds[ds_max] = float[ds_max](1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0);
 
-float ds_view_depth(float window, float near_plane, float far_plane)
-{
-    float z = window * 2.0 - 1.0;
-    return 2.0 * near_plane * far_plane / (far_plane + near_plane - z * (far_plane - near_plane));
-}
-
 // The least-squares plane through the samples whose depth lies in [lo, hi], read at the centre
 // (`at`), and whether they lie on it: at least three samples, none off it by more than 5 % of
 // their spread.
@@ -65,7 +59,7 @@ bool ds_read(sampler2DMS depth, ivec2 px, float near_plane, float far_plane, out
         hi = max(hi, ds[s]);
     }
     centre = lo;
-    bool jump = hi < 1.0 ? ds_view_depth(hi, near_plane, far_plane) > 1.25 * ds_view_depth(lo, near_plane, far_plane)
+    bool jump = hi < 1.0 ? view_depth(hi, near_plane, far_plane) > 1.25 * view_depth(lo, near_plane, far_plane)
                          : lo < 1.0;
     return u_samples < 3 || jump || !ds_plane_at_centre(lo, hi, centre);
 }

@@ -75,7 +75,7 @@ void main()
             for (int s = 0; s < ds_max && s < u_samples; ++s) {
                 vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
                 bool probe;
-                under = max(under, fog_before_column(uv, ds_view_depth(ds[s], u_near_plane, u_far_plane), t[s], skin[s],
+                under = max(under, fog_before_column(uv, view_depth(ds[s], u_near_plane, u_far_plane), t[s], skin[s],
                                                      sigma, haze[s], probe));
                 probed |= probe ? 1u << s : 0u;
             }
@@ -85,7 +85,7 @@ void main()
                 int s = findLSB(probed);
                 probed &= probed - 1u;
                 vec2 uv = frame_uv(px) + u_offsets[s] / vec2(u_size);
-                under = max(under, fog_before_probed(fx_ray(uv), ds_view_depth(ds[s], u_near_plane, u_far_plane), haze[s],
+                under = max(under, fog_before_probed(fx_ray(uv), view_depth(ds[s], u_near_plane, u_far_plane), haze[s],
                                                      t[s], skin[s], sigma));
             }
             for (int s = 0; s < ds_max && s < u_samples; ++s)
@@ -125,10 +125,10 @@ void main()
                     far_fogged = max(far_fogged, ds[s]);
                 }
             const float jump = 1.25;
-            bool one_each = ds_view_depth(far_clear, u_near_plane, u_far_plane) <=
-                    jump * ds_view_depth(near_clear, u_near_plane, u_far_plane) &&
-                ds_view_depth(far_fogged, u_near_plane, u_far_plane) <=
-                    jump * ds_view_depth(near_fogged, u_near_plane, u_far_plane);
+            bool one_each = view_depth(far_clear, u_near_plane, u_far_plane) <=
+                    jump * view_depth(near_clear, u_near_plane, u_far_plane) &&
+                view_depth(far_fogged, u_near_plane, u_far_plane) <=
+                    jump * view_depth(near_fogged, u_near_plane, u_far_plane);
             if (gap > u_fog_split && (!two || one_each)) {
                 other = by_fog;
                 two = false;
@@ -143,7 +143,7 @@ void main()
             // from the fog's top before the nearest surface on (3e38: each ray's end).
             vec2 shell = u_fx_shell != 0 ? fog_before_pixels_shell() : vec2(3e38, 0.0);
             if (!two) {
-                float nearest = ds_view_depth(lo, u_near_plane, u_far_plane);
+                float nearest = view_depth(lo, u_near_plane, u_far_plane);
                 shell = vec2(min(shell.x, nearest - 1.5 * under), 3e38);
                 atomicAdd(fm_sampled, 1u);
             }

@@ -40,13 +40,8 @@ float haze_entry(ivec2 r)
     return (u_eye.z - u_haze_top) / -ray.z * along;
 }
 
-float view_depth(float d)
-{
-    if (d >= 1.0)
-        return 3e38;  // sky: as far as the volume goes
-    float z = d * 2.0 - 1.0;
-    return 2.0 * u_near_plane * u_far_plane / (u_far_plane + u_near_plane - z * (u_far_plane - u_near_plane));
-}
+// The view depth of window depth d; 3e38 for the sky: as far as the volume goes.
+float ground_depth(float d) { return d >= 1.0 ? 3e38 : view_depth(d, u_near_plane, u_far_plane); }
 
 void main()
 {
@@ -54,7 +49,7 @@ void main()
     if (t.x >= u_tiles.x || t.y >= u_tiles.y)
         return;
     ivec2 centre = clamp(ivec2((vec2(t) + 0.5) * vec2(u_raster) / vec2(u_tiles)), ivec2(0), u_raster - 1);
-    float centre_ground = view_depth(texelFetch(u_ground, centre, 0).r);
+    float centre_ground = ground_depth(texelFetch(u_ground, centre, 0).r);
     if (u_mode == 0) {
         imageStore(o_tiles, t, vec4(u_near, u_far, centre_ground, 0.0));
         return;
@@ -66,7 +61,7 @@ void main()
     for (int y = r0.y - 1; y <= r1.y; ++y)
         for (int x = r0.x - 1; x <= r1.x; ++x) {
             ivec2 r = clamp(ivec2(x, y), ivec2(0), u_raster - 1);
-            float ground = view_depth(texelFetch(u_ground, r, 0).r);
+            float ground = ground_depth(texelFetch(u_ground, r, 0).r);
             if (u_mode == 2) {
                 first = u_near;
                 last = max(last, ground);

@@ -19,12 +19,6 @@ uniform float u_near;
 uniform float u_far;
 out vec4 o_color;
 
-float linear_depth(float d)
-{
-    float z = d * 2.0 - 1.0;
-    return 2.0 * u_near * u_far / (u_far + u_near - z * (u_far - u_near));
-}
-
 // The layers at image point uv (0..1) over a surface at view depth `depth`.
 vec4 layers_at(vec2 uv, float depth)
 {
@@ -37,7 +31,7 @@ vec4 layers_at(vec2 uv, float depth)
         for (int i = 0; i < 2; ++i) {
             vec2 t = clamp(base + vec2(i, j), vec2(0.0), u_low_size - 1.0);
             vec2 tuv = (t + 0.5) / u_low_size;
-            float d = linear_depth(texture(u_low_depth, tuv).r);
+            float d = view_depth(texture(u_low_depth, tuv).r, u_near, u_far);
             float gap = abs(d - depth) / max(depth, 1e-3);
             float g = gap / 0.01;  // 1 % of the distance halves the weight
             float w = (i == 1 ? f.x : 1.0 - f.x) * (j == 1 ? f.y : 1.0 - f.y) / (1.0 + g * g);
@@ -64,7 +58,7 @@ bool samples_apart(ivec2 px)
         lo = min(lo, ds[s]);
         hi = max(hi, ds[s]);
     }
-    return hi >= 1.0 ? lo < 1.0 : linear_depth(hi) > 1.01 * linear_depth(lo);
+    return hi >= 1.0 ? lo < 1.0 : view_depth(hi, u_near, u_far) > 1.01 * view_depth(lo, u_near, u_far);
 }
 
 void main()
@@ -76,7 +70,7 @@ void main()
         vec4 sum = vec4(0.0);
         vec3 through = vec3(0.0), below = vec3(0.0);
         for (int s = 0; s < u_samples; ++s) {
-            vec4 c = layers_at((vec2(px) + 0.5 + u_offsets[s]) / size, linear_depth(ds[s]));
+            vec4 c = layers_at((vec2(px) + 0.5 + u_offsets[s]) / size, view_depth(ds[s], u_near, u_far));
             sum += c;
             if (u_samples_below) {
                 vec3 b = texelFetch(u_samples_color, px, s).rgb;
@@ -91,5 +85,5 @@ void main()
             o_color.rgb += (through - (1.0 - o_color.a) * below) / float(u_samples);
         return;
     }
-    o_color = layers_at(uv, linear_depth(texture(u_depth, uv).r));
+    o_color = layers_at(uv, view_depth(texture(u_depth, uv).r, u_near, u_far));
 }

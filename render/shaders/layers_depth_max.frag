@@ -15,12 +15,6 @@ uniform vec2 u_scale;       // low-resolution texels per full-resolution pixel, 
 uniform float u_near;
 uniform float u_far;
 
-float linear_depth(float d)
-{
-    float z = d * 2.0 - 1.0;
-    return 2.0 * u_near * u_far / (u_far + u_near - z * (u_far - u_near));
-}
-
 void main()
 {
     ivec2 size = textureSize(u_depth, 0);
@@ -34,7 +28,7 @@ void main()
             nearest = min(nearest, d);
             farthest = max(farthest, d);
         }
-    float a = linear_depth(nearest), b = linear_depth(farthest);
+    float a = view_depth(nearest, u_near, u_far), b = view_depth(farthest, u_near, u_far);
     float pixels = 1.0 / min(u_scale.x, u_scale.y);
     ivec2 centre = min(ivec2(floor((vec2(low) + 0.5) / u_scale)), size - 1);
     gl_FragDepth = b - a <= 0.01 * pixels * a ? farthest : texelFetch(u_depth, centre, 0).r;

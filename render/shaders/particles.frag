@@ -40,12 +40,6 @@ uniform float u_haze_density;
 uniform float u_near_field;      // metres from the eye the near field covers (0: none)
 out vec4 o_color;
 
-float linear_depth(float d)
-{
-    float z = d * 2.0 - 1.0;
-    return 2.0 * u_near * u_far / (u_far + u_near - z * (u_far - u_near));
-}
-
 void main()
 {
     // The ray through this fragment and where it passes the particle: its distance rho from the
@@ -64,7 +58,7 @@ void main()
     ivec2 depth_size = textureSize(u_depth, 0);
     ivec2 depth_pixel = widened ? clamp(ivec2((v_centre_ndc * 0.5 + 0.5) * vec2(depth_size)), ivec2(0), depth_size - 1)
                                 : ivec2(gl_FragCoord.xy * u_depth_scale);
-    float scene = linear_depth(texelFetch(u_depth, depth_pixel, 0).r) / max(dot(cut_ray, u_camera_forward), 1e-6);
+    float scene = view_depth(texelFetch(u_depth, depth_pixel, 0).r, u_near, u_far) / max(dot(cut_ray, u_camera_forward), 1e-6);
     // The part of the ray that lies in the fog: in front of the terrain and over the rectangle
     // that holds the fog (the Medium's grid: a particle at its edge would blur the fog's wall).
     float t0 = 0.0, t1 = scene;

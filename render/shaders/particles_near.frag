@@ -18,12 +18,6 @@ uniform float u_reach;      // metres along each ray
 uniform int u_steps;
 out vec4 o_color;
 
-float linear_depth(float d)
-{
-    float z = d * 2.0 - 1.0;
-    return 2.0 * u_near * u_far / (u_far + u_near - z * (u_far - u_near));
-}
-
 void main()
 {
     vec2 uv = v_ndc * 0.5 + 0.5;
@@ -32,7 +26,7 @@ void main()
     vec3 unit = ray / stretch;
     ivec2 size = textureSize(u_depth, 0);
     ivec2 pixel = clamp(ivec2(gl_FragCoord.xy * u_depth_scale), ivec2(0), size - 1);
-    float scene = linear_depth(texelFetch(u_depth, pixel, 0).r) * stretch;
+    float scene = view_depth(texelFetch(u_depth, pixel, 0).r, u_near, u_far) * stretch;
     float end = min(u_reach, scene);
     // Four stretches of u_steps / 4 steps each: the light's two parts taken at each stretch's
     // ends (froxel_light.glsl's medium_light_parts_at: the light in the terrain's shadow and the

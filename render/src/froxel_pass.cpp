@@ -42,9 +42,19 @@ Texture make_tiles(const glm::ivec2& size)
 // The libraries of a program that lights fog (froxel_light.glsl), then its stage file.
 std::vector<std::string_view> light_libraries(std::string_view stage)
 {
-    return {"fog_partition.glsl",  "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
-            "height_fog.glsl",     "froxel_medium.glsl", "sun_march.glsl",    "sun_volume.glsl",
-            "terrain_shadow.glsl", "light_volume.glsl",  "froxel_light.glsl", stage};
+    return {"view_depth.glsl",
+            "fog_partition.glsl",
+            "froxel_common.glsl",
+            "fog_lighting.glsl",
+            "medium_shell.glsl",
+            "height_fog.glsl",
+            "froxel_medium.glsl",
+            "sun_march.glsl",
+            "sun_volume.glsl",
+            "terrain_shadow.glsl",
+            "light_volume.glsl",
+            "froxel_light.glsl",
+            stage};
 }
 
 // `files`, then a pass over the froxels of the tiles with fog (froxel_fog_tiles.glsl, among them).
@@ -110,7 +120,7 @@ FroxelPass::FroxelPass()
                "froxel_medium.glsl", "froxel_opaque.comp"}),
       integrate_(light_libraries("froxel_integrate.comp")), classify_(classify_libraries()), pixels_(split_libraries()),
       upsample_(pixel_libraries("froxel_upsample.comp")), apply_program_({"froxel_apply.comp"}),
-      readback_({"froxel_frame.glsl", "froxel_readback.comp"}), edges_(edge_libraries()),
+      readback_({"view_depth.glsl", "froxel_frame.glsl", "froxel_readback.comp"}), edges_(edge_libraries()),
       lookup_(pixel_libraries("froxel_lookup.comp"))
 {
     for (const char* name : stage_names)

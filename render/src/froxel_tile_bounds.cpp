@@ -20,7 +20,8 @@ void nearest(GLuint texture)
 }  // namespace
 
 FroxelTileBounds::FroxelTileBounds()
-    : shell_program_({"froxel_shell.vert", "froxel_shell.frag"}), reduce_({"fog_partition.glsl", "froxel_tiles.comp"})
+    : shell_program_({"froxel_shell.vert", "froxel_shell.frag"}),
+      reduce_({"view_depth.glsl", "fog_partition.glsl", "froxel_tiles.comp"})
 {}
 
 void FroxelTileBounds::set_shell(const ShellMesh& shell)

@@ -67,8 +67,8 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : composite_({"depth_samples.glsl", "fullscreen.vert", "layers_composite.frag"}),
-      depth_max_({"fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
+    : composite_({"view_depth.glsl", "depth_samples.glsl", "fullscreen.vert", "layers_composite.frag"}),
+      depth_max_({"view_depth.glsl", "fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
 {}
 

@@ -218,9 +218,9 @@ void ParticlesPass::draw_near_field(const FrameContext& frame, double reach, boo
     if (!slot)
         slot = std::make_unique<ShaderProgram>(
             std::vector<std::string_view>{
-                "fullscreen.vert", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl", "medium_shell.glsl",
-                "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "terrain_shadow.glsl",
-                "light_volume.glsl", "froxel_light.glsl", "particles_near.frag"},
+                "fullscreen.vert", "view_depth.glsl", "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
+                "medium_shell.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
+                "terrain_shadow.glsl", "light_volume.glsl", "froxel_light.glsl", "particles_near.frag"},
             std::string(light_volume_preamble(baked)));
     const ShaderProgram& p = *slot;
     // The Medium as the sun volume holds it (its grid and noise too), without the height fog:
@@ -364,12 +364,12 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
             programs_[fog_ ? 1 : 0][baked ? 1 + int(per_fragment) : 0][table ? 1 : 0];
         if (!slot)
             slot = std::make_unique<ShaderProgram>(
-                fog_ ? std::vector<std::string_view>{"particle_footprint.glsl", "fog_partition.glsl",
+                fog_ ? std::vector<std::string_view>{"view_depth.glsl", "particle_footprint.glsl", "fog_partition.glsl",
                                                      "froxel_common.glsl", "fog_lighting.glsl", "particle_light.glsl",
                                                      "terrain_shadow.glsl", "medium_shell.glsl", "height_fog.glsl",
                                                      "froxel_medium.glsl", "froxel_apply.glsl", "light_volume.glsl",
                                                      "particles.vert", "particles.frag"}
-                     : std::vector<std::string_view>{"particle_footprint.glsl", "fog_lighting.glsl",
+                     : std::vector<std::string_view>{"view_depth.glsl", "particle_footprint.glsl", "fog_lighting.glsl",
                                                      "particle_light.glsl", "terrain_shadow.glsl",
                                                      "froxel_fog_none.glsl", "medium_shell.glsl", "height_fog.glsl",
                                                      "light_volume.glsl", "particles.vert", "particles.frag"},

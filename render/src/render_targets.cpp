@@ -66,8 +66,8 @@ void RenderTargets::ensure(int width, int height)
 void RenderTargets::prepare_depth_resolve()
 {
     if (!depth_resolve_) {
-        depth_resolve_ = std::make_shared<ShaderProgram>(
-            std::initializer_list<std::string_view>{"depth_samples.glsl", "fullscreen.vert", "depth_resolve.frag"});
+        depth_resolve_ = std::make_shared<ShaderProgram>(std::initializer_list<std::string_view>{
+            "view_depth.glsl", "depth_samples.glsl", "fullscreen.vert", "depth_resolve.frag"});
         empty_vao_ = make_vertex_array();
     }
     // Where the implementation puts the samples, as offsets from the pixel's centre.
