@@ -45,6 +45,7 @@ FogJudge::FogJudge(const geometry::Scene& given, const std::string& camera, int 
         render::scene_fog_lighting(base, &terrain, fog.medium.get(), froxel, fog.light_volume);
     reference_ = geometry::render_reference_fog({fog.medium.get(), froxel.height_fog}, &terrain.heightfield(), view,
                                                 lighting, options);
+    reference_fog_ = {fog.medium, froxel.height_fog, base.sun};
     context_ = render::create_headless_context();
     renderer_ = std::make_unique<render::Renderer>();
     renderer_->set_terrain(terrain, 1.0, base.terrain.surround);
@@ -155,8 +156,41 @@ double FogJudge::still_ms(int width, int height)
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace {
+
+// Whether two Media are one fog: their grids, optics and detail (a pipeline that ran the medium
+// stage again for another scene and back makes an equal one, not the same).
+bool same_medium(const geometry::Medium* a, const geometry::Medium* b)
+{
+    if (a == b)
+        return true;
+    if (!a || !b)
+        return false;
+    const geometry::MediumGrid &p = a->grid(), &q = b->grid();
+    return a->options() == b->options() && a->detail() == b->detail() && p.nx == q.nx && p.ny == q.ny && p.x0 == q.x0 &&
+        p.y0 == q.y0 && p.dx == q.dx && p.dy == q.dy && p.floor == q.floor && p.bottom == q.bottom && p.top == q.top &&
+        p.coverage == q.coverage;
+}
+
+}  // namespace
+
+std::string FogJudge::fog_difference() const
+{
+    const geometry::PipelineProducts& now = pipeline_.products();
+    if (now.medium && !same_medium(now.medium.get(), reference_fog_.medium.get()))
+        return "its Medium";
+    if (render::scene_froxel_options(*now.scene, *now.terrain).height_fog != reference_fog_.height_fog)
+        return "its height fog";
+    if (now.scene->sun != reference_fog_.sun)
+        return "its sun";
+    return "";
+}
+
 render::FogError FogJudge::error(std::vector<float>* signed_error)
 {
+    if (const std::string differs = fog_difference(); !differs.empty())
+        throw Error("the frame to judge draws another fog than the judge's reference (" + differs +
+                    " differs): a configuration that changes the fog needs a judge of its own");
     // A still picture as kiri render draws it.
     last_image_ = renderer_->render(camera_, width_, height_);
     const render::RadianceImage with = renderer_->read_radiance();

@@ -79,7 +79,9 @@ public:
     //! The picture still_ms drew.
     const render::Image& still_image() const { return still_image_; }
     //! A still picture at the judge's size against the reference (its per-pixel signed error
-    //! into `signed_error` when given: render::compare_frames).
+    //! into `signed_error` when given: render::compare_frames). \throw kiri::Error when the scene
+    //! prepared draws another fog than the reference's (its Medium, its height fog or its sun
+    //! differs): a configuration that changes the fog needs a judge of its own.
     render::FogError error(std::vector<float>* signed_error = nullptr);
     //! The last still picture error() drew, tone-mapped (for a look).
     const render::Image& last_image() const { return last_image_; }
@@ -96,7 +98,17 @@ private:
     //! Without fog and without the sun: the ground's sky light (compare_frames' without_sun).
     const Plain& without_sun();
 
+    //! What the reference drew: the frame judged must draw the same.
+    struct ReferenceFog {
+        std::shared_ptr<const geometry::Medium> medium;
+        geometry::HeightFog height_fog;
+        geometry::SunSpec sun;
+    };
+    //! How the prepared scene's fog differs from the reference's ("" when it does not).
+    std::string fog_difference() const;
+
     geometry::Pipeline pipeline_;
+    ReferenceFog reference_fog_;
     render::Camera camera_;
     int width_, height_;
     geometry::ReferenceImage reference_;
