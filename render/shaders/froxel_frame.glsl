@@ -8,7 +8,7 @@ uniform float u_far_plane;
 vec2 frame_uv(ivec2 px) { return (vec2(px) + 0.5) / vec2(u_size); }
 
 // The view depth of window depth d; 3e38 for the sky.
-float frame_view_depth(float d) { return d >= 1.0 ? 3e38 : view_depth(d, u_near_plane, u_far_plane); }
+float frame_view_depth(float d) { return view_depth_or_sky(d, u_near_plane, u_far_plane); }
 
 // The view depth of pixel px's surface; 3e38 for the sky.
 float frame_depth(ivec2 px) { return frame_view_depth(texelFetch(u_depth, px, 0).r); }

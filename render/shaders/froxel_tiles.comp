@@ -40,8 +40,6 @@ float haze_entry(ivec2 r)
     return (u_eye.z - u_haze_top) / -ray.z * along;
 }
 
-// The view depth of window depth d; 3e38 for the sky: as far as the volume goes.
-float ground_depth(float d) { return d >= 1.0 ? 3e38 : view_depth(d, u_near_plane, u_far_plane); }
 
 void main()
 {
@@ -49,7 +47,7 @@ void main()
     if (t.x >= u_tiles.x || t.y >= u_tiles.y)
         return;
     ivec2 centre = clamp(ivec2((vec2(t) + 0.5) * vec2(u_raster) / vec2(u_tiles)), ivec2(0), u_raster - 1);
-    float centre_ground = ground_depth(texelFetch(u_ground, centre, 0).r);
+    float centre_ground = view_depth_or_sky(texelFetch(u_ground, centre, 0).r, u_near_plane, u_far_plane);
     if (u_mode == 0) {
         imageStore(o_tiles, t, vec4(u_near, u_far, centre_ground, 0.0));
         return;
@@ -61,7 +59,7 @@ void main()
     for (int y = r0.y - 1; y <= r1.y; ++y)
         for (int x = r0.x - 1; x <= r1.x; ++x) {
             ivec2 r = clamp(ivec2(x, y), ivec2(0), u_raster - 1);
-            float ground = ground_depth(texelFetch(u_ground, r, 0).r);
+            float ground = view_depth_or_sky(texelFetch(u_ground, r, 0).r, u_near_plane, u_far_plane);
             if (u_mode == 2) {
                 first = u_near;
                 last = max(last, ground);

@@ -182,10 +182,13 @@ TEST(Pipeline, TheLayersCountAndTheQualityPresetLeaveTheFogAsItIs)
     s.layers.count = 8;
     const PipelineProducts eight = author_scene(s, with_medium);
     const Bounds3 b = fifteen.medium->bounds();
+    const auto grid_point = [&](int k) {  // 20 x 20 points over the Medium's extent
+        return glm::dvec3{b.min.x + (b.max.x - b.min.x) * ((k % 20) + 0.5) / 20.0,
+                          b.min.y + (b.max.y - b.min.y) * ((k / 20) + 0.5) / 20.0, 0.0};
+    };
     int inside = 0;
     for (int k = 0; k < 400; ++k) {
-        const glm::dvec3 q{b.min.x + (b.max.x - b.min.x) * ((k % 20) + 0.5) / 20.0,
-                           b.min.y + (b.max.y - b.min.y) * ((k / 20) + 0.5) / 20.0, 0.0};
+        const glm::dvec3 q = grid_point(k);
         const MediumColumn c = fifteen.medium->column(q.x, q.y);
         for (const double h : {0.1, 0.4, 0.7, 0.95}) {
             const glm::dvec3 at{q.x, q.y, c.bottom + h * (c.top - c.bottom)};
@@ -212,8 +215,7 @@ TEST(Pipeline, TheLayersCountAndTheQualityPresetLeaveTheFogAsItIs)
     EXPECT_EQ(runs(p)[std::size_t(Stage::medium)], 2);
     int differ = 0;
     for (int k = 0; k < 400; ++k) {
-        const glm::dvec3 q{b.min.x + (b.max.x - b.min.x) * ((k % 20) + 0.5) / 20.0,
-                           b.min.y + (b.max.y - b.min.y) * ((k / 20) + 0.5) / 20.0, 0.0};
+        const glm::dvec3 q = grid_point(k);
         const MediumColumn c = fifteen.medium->column(q.x, q.y);
         const glm::dvec3 at{q.x, q.y, c.bottom + 0.7 * (c.top - c.bottom)};
         differ += std::abs(sheared.medium->density(at) - fifteen.medium->density(at)) > 1e-3;

@@ -166,10 +166,7 @@ bool same_medium(const geometry::Medium* a, const geometry::Medium* b)
         return true;
     if (!a || !b)
         return false;
-    const geometry::MediumGrid &p = a->grid(), &q = b->grid();
-    return a->options() == b->options() && a->detail() == b->detail() && p.nx == q.nx && p.ny == q.ny && p.x0 == q.x0 &&
-        p.y0 == q.y0 && p.dx == q.dx && p.dy == q.dy && p.floor == q.floor && p.bottom == q.bottom && p.top == q.top &&
-        p.coverage == q.coverage;
+    return a->options() == b->options() && a->detail() == b->detail() && a->grid() == b->grid();
 }
 
 }  // namespace

@@ -91,6 +91,7 @@ struct MediumGrid {
     std::vector<double> bottom;    //!< h = 0
     std::vector<double> top;       //!< h = 1; equal to bottom where there is no fog
     std::vector<double> coverage;  //!< [0, 1]: the border fade; 0 where there is no fog
+    bool operator==(const MediumGrid&) const = default;
 };
 
 //! What the grids give at one (x, y): bilinear in each.
