@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "kiri/geometry/terrain/ground.hpp"
@@ -64,7 +65,7 @@ static_assert(fine_shade_unit != shadow_map_unit);
 
 }  // namespace
 
-TerrainPass::TerrainPass() { program(false, false); }
+TerrainPass::TerrainPass() { program(false, Shade::none); }
 
 // Whether terrain.frag can read which samples passed the depth test (GL_ARB_post_depth_coverage,
 // llvmpipe's and NVIDIA's); without it, those its triangle covers. Its #extension line goes before
@@ -75,17 +76,19 @@ static bool post_depth_coverage()
     return has;
 }
 
-const ShaderProgram& TerrainPass::program(bool shadow, bool refined) const
+const ShaderProgram& TerrainPass::program(bool shadow, Shade shade) const
 {
-    std::unique_ptr<ShaderProgram>& p = programs_[shadow][refined];
+    std::unique_ptr<ShaderProgram>& p = programs_[shadow][int(shade)];
     if (!p) {
         std::vector<std::string_view> files{"terrain.vert", shadow ? "terrain_shadow.glsl" : "froxel_none.glsl",
                                             "ground.glsl"};
-        files.push_back(refined ? "ground_shade.glsl" : "ground_shade_none.glsl");
+        files.push_back(shade == Shade::fine ? "ground_shade.glsl" : "ground_shade_none.glsl");
         files.push_back("terrain.frag");
-        p = std::make_unique<ShaderProgram>(
-            files,
-            post_depth_coverage() ? "#extension GL_ARB_post_depth_coverage : enable\n#define SEEN_SAMPLES 1\n" : "");
+        std::string preamble =
+            post_depth_coverage() ? "#extension GL_ARB_post_depth_coverage : enable\n#define SEEN_SAMPLES 1\n" : "";
+        if (shade != Shade::none)
+            preamble += "#define FOG_SHADE_SAMPLES 1\n";
+        p = std::make_unique<ShaderProgram>(files, preamble);
     }
     return *p;
 }
@@ -258,11 +261,11 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow, c
 {
     if (!has_terrain())
         return;
-    const bool refined = shaded_ && shade_.refined_vertices() > 0;
-    const ShaderProgram& p = program(shadow != nullptr, refined);
+    const Shade shade = !shaded_ ? Shade::none : shade_.refined_vertices() > 0 ? Shade::fine : Shade::vertices;
+    const ShaderProgram& p = program(shadow != nullptr, shade);
     if (shadow)
         shadow->bind(p, true);
-    if (refined)
+    if (shade == Shade::fine)
         shade_.bind_fine(p, fine_shade_unit);
     p.set("u_view_projection", frame.view_projection);
     set_light_uniforms(p, frame);

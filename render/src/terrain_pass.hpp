@@ -63,10 +63,13 @@ public:
     glm::dvec3 bounds_max() const { return max_; }
 
 private:
-    //! The program for a frame with or without the shadow map and with or without the fog's
-    //! finer shade map (ground_shade.glsl): the plain one built at once, the others on first use.
-    const ShaderProgram& program(bool shadow, bool refined) const;
-    mutable std::unique_ptr<ShaderProgram> programs_[2][2];  // [shadow][refined]
+    //! Whether and how the ground is in the fog's shade: not at all, from its vertices, or from
+    //! the fine map where they are marked (ground_shade.glsl).
+    enum class Shade { none, vertices, fine };
+    //! The program for a frame with or without the shadow map and a kind of shade: the plain one
+    //! built at once, the others on first use.
+    const ShaderProgram& program(bool shadow, Shade shade) const;
+    mutable std::unique_ptr<ShaderProgram> programs_[2][3];  // [shadow][shade]
     VertexArray vao_;
     Buffer vertices_, indices_;
     GLsizei vertex_count_ = 0;

@@ -92,6 +92,10 @@ TEST_F(FroxelGl, APixelOnARidgeFogsEachSideAsFarAsItsOwnSurface)
     // (fog_split 0: the resolved side keeps the centre's fog where a fogged floor and the slope
     // above it lie off one plane) 3.9 % (2.4 %, p99 9.4 %); with one fog per pixel, at the side
     // its resolved depth lies on, 7.8 % (3.5 %, p99 24 %, judged then without the fog's bends).
+    // Since then 0.83 % (1.10 %, p99 4.0 %), and 0.10 % (0.44 %, p99 4.0 %) with the ground's
+    // shade taken at each sample a fragment shows, weighed by how much of its ground shows
+    // through the fog (terrain.frag, fog_sun_through: the slope under a valley's fog and the
+    // sunlit ridge above it share pixels).
     Camera c;
     c.position = {-1500.0, 100.0, 1300.0};
     c.target = {0.0, 100.0, 0.0};
@@ -106,9 +110,9 @@ TEST_F(FroxelGl, APixelOnARidgeFogsEachSideAsFarAsItsOwnSurface)
         j.whole.fog_pixels);
     EXPECT_GT(j.split, 100);
     EXPECT_GT(judged, 200);
-    EXPECT_LT(edge_mean, 0.035);
-    EXPECT_LT(j.whole.mean_relative, 0.03);
-    EXPECT_LT(j.whole.p99_relative, 0.15);
+    EXPECT_LT(edge_mean, 0.004);
+    EXPECT_LT(j.whole.mean_relative, 0.008);
+    EXPECT_LT(j.whole.p99_relative, 0.06);
 }
 
 TEST_F(FroxelGl, ThreadsOfFogNarrowerThanAPixelFogTheirShareOfIt)
@@ -287,13 +291,16 @@ TEST_F(FroxelGl, ADenseFogsTopInAndOutOfTheHillsShadowsFogsEachSampleInItsOwnLig
     // its fog bends 1.61 % off the reference through its samples, the whole frame 1.57 % (p99
     // 18.2 %); split by the light at the fog's top too 1.26 % (1.23 %, p99 15.6 %); and with the
     // ground's shade ending at the shore and the fog before a sample probed in the columns its ray
-    // crosses, 0.86 % (0.84 %, p99 14.1 %).
+    // crosses, 0.86 % (0.84 %, p99 14.1 %); with the ground's shade taken at each sample a
+    // fragment shows, weighed by how much of its ground shows through the fog over it
+    // (terrain.frag, fog_sun_through: the shade at the samples' mean point dimmed the sunlit
+    // slope beside a shore too), 0.44 % (0.43 %, p99 4.9 %).
     Camera c;
     c.position = {-2500.0, -2500.0, 1200.0};
     c.target = {200.0, 200.0, 60.0};
     const HillsJudged h = judge_hills(small(24, 14, 32), slab(-10.0, 100.0, 0.3, 3000.0), c);
     EXPECT_GT(h.judged, 2000);
-    EXPECT_LT(h.edge_mean, 0.012);
-    EXPECT_LT(h.frame.whole.mean_relative, 0.012);
-    EXPECT_LT(h.frame.whole.p99_relative, 0.16);
+    EXPECT_LT(h.edge_mean, 0.007);
+    EXPECT_LT(h.frame.whole.mean_relative, 0.007);
+    EXPECT_LT(h.frame.whole.p99_relative, 0.08);
 }

@@ -351,8 +351,10 @@ TEST_F(GroundShadeGl, AFogsWallAtTheDemsEdgeShadesTheSurroundWhereItsShadowFalls
 // 3's runs), tau met 0 where the shore ran on a plane but not where it turned within a cell, and
 // the fog's shade spilled over the sunlit ground beside it (measured: mean |dT| 0.0192, 91
 // pixels more than 0.3 off, the sunlit ground 0.9833); carried on in each sample's own column
-// at the rate tau grows under the top, 0.0047, 9 and 0.9997. Each pixel's share of the sun,
-// seen from straight above, must follow the closed form.
+// at the rate tau grows under the top, 0.0047, 9 and 0.9997 (0.0073, 7 and 0.9997 with a pixel's
+// samples weighed by how much of their ground would show through the fog, terrain.frag, which
+// this frame does not draw: the closed form is the pixel's centre's). Each pixel's share of the
+// sun, seen from straight above, must follow the closed form.
 TEST_F(GroundShadeGl, ADenseFogsWindingShoresShadeTheGroundUpToTheShore)
 {
     constexpr double extinction = 0.3, top = 35.0, spacing = 40.0;
@@ -423,13 +425,14 @@ TEST_F(GroundShadeGl, ADenseFogsWindingShoresShadeTheGroundUpToTheShore)
                 ++sunlit;
             }
         }
-    std::printf("    %d pixels judged, %d within 2 m of a shore; mean |dT| %.4f, %d more than 0.3 off; the sunlit "
-                "ground beyond the shores lets %.4f through\n",
-                judged, shores, sum / std::max(judged, 1), far_off, sunlit_sum / std::max(sunlit, 1));
+    std::printf(
+        "    %d pixels judged, %d within 2 m of a shore; mean |dT| %.4f, %d more than 0.3 off; the sunlit "
+        "ground beyond the shores lets %.4f through\n",
+        judged, shores, sum / std::max(judged, 1), far_off, sunlit_sum / std::max(sunlit, 1));
     ASSERT_GT(judged, size * size / 2);
     ASSERT_GT(shores, 100) << "the shores wind through the view";
     ASSERT_GT(sunlit, 200);
-    EXPECT_LT(sum / judged, 0.008) << "mean |dT| over the pixels";
+    EXPECT_LT(sum / judged, 0.01) << "mean |dT| over the pixels";
     EXPECT_LE(far_off, 25) << "pixels more than 0.3 off";
     EXPECT_GT(sunlit_sum / sunlit, 0.995) << "the sunlit ground beyond the shores keeps its sun";
 }
