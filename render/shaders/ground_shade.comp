@@ -1,7 +1,8 @@
 #version 450 core
 // The fog's shade on the ground (GroundShade): terrain.frag lights the ground with the sun's
 // e^-tau through the fog, as the reference does. Phase 0, per vertex of the terrain's mesh:
-// (tau_sun, 0) (sun_volume.glsl: the Medium's marched, the height fog's in closed form).
+// (the Medium's tau_sun, 0, the height fog's) (sun_volume.glsl: the Medium's marched, the height
+// fog's in closed form).
 // Phase 1, per vertex of the DEM's grid (u_grid: its samples, its row in the mesh, the
 // surround's rings before it): refine 1 where the Medium's share of the sun's transmittance
 // bends between the vertex's neighbours (the second difference along a row, a column or a
@@ -19,7 +20,7 @@
 // over the sunlit ground up to a texel out (a dense fog's: nearly black).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(std430, binding = 0) readonly buffer Vertices { float vertices[]; };  // u_stride floats each, the position first
-layout(std430, binding = 1) buffer Shade { vec2 shade[]; };
+layout(std430, binding = 1) buffer Shade { vec4 shade[]; };  // the Medium's tau_sun (signed), refine, the height fog's
 layout(std430, binding = 2) buffer Refined {  // phase 1: the vertices marked (their grid index i + nx j)
     uint refined;
     uint marked_vertices[];
@@ -42,12 +43,12 @@ vec3 position(int v)
     return vec3(vertices[k], vertices[k + 1], vertices[k + 2]);
 }
 
-// The Medium's share of the sun's transmittance at grid sample (i, j): the height fog's closed
-// form is smooth and interpolates well; its tau is added back out of the pair.
+// The Medium's share of the sun's transmittance at grid sample (i, j) (the height fog's closed
+// form is smooth and interpolates well).
 float medium_through(int i, int j)
 {
     int v = mesh_vertex(i, j);
-    return exp(-max(shade[v].x - height_fog_sun(position(v), u_sun_direction), 0.0));
+    return exp(-max(shade[v].x, 0.0));
 }
 
 // Phases 2 and 3: id.y a marked vertex, id.x a texel of the fine map in the four cells around it
@@ -181,7 +182,7 @@ void main()
     if (!(medium > 0.0))
         medium = medium_shade_below_zero(p, u_sun_direction);
     if (v >= 0)
-        shade[v] = vec2(medium + haze, 0.0);
+        shade[v] = vec4(medium, 0.0, haze, 0.0);
     else
         imageStore(io_fine, ab, vec4(medium, haze, 0.0, 0.0));
 }

@@ -4,7 +4,7 @@
 // comes through the fog above: the ground under it lies in its shade.
 in vec3 v_world;
 in vec3 v_normal;
-in vec2 v_shade;  // the fog's tau_sun and whether to refine it (GroundShade, ground_shade.glsl)
+in vec4 v_shade;  // the fog's tau_sun (the Medium's, below 0 beyond its shade), whether to refine it, the height fog's (GroundShade)
 uniform vec3 u_eye;
 uniform vec3 u_sun_direction;  // towards the sun, unit
 uniform vec3 u_sun_radiance;
@@ -44,9 +44,9 @@ vec2 shown_offset() { return u_shown_offsets[gl_SampleMaskIn[0] & 15]; }
 // slope from 14 km away).
 struct Shown {
     vec3 world, normal;
-    vec2 shade;
+    vec4 shade;
 };
-Shown shown_at(vec2 q, vec3 wx, vec3 wy, vec3 nx, vec3 ny, vec2 sx, vec2 sy)
+Shown shown_at(vec2 q, vec3 wx, vec3 wy, vec3 nx, vec3 ny, vec4 sx, vec4 sy)
 {
     Shown s = Shown(v_world, v_normal, v_shade);
     vec3 ray = u_rays[0] + q.x * u_rays[1] + q.y * u_rays[2];
@@ -64,35 +64,36 @@ Shown shown_at(vec2 q, vec3 wx, vec3 wy, vec3 nx, vec3 ny, vec2 sx, vec2 sy)
     return Shown(v_world + a * wx + b * wy, v_normal + a * nx + b * ny, v_shade + a * sx + b * sy);
 }
 
-// The share of the sun the fog lets through onto the ground the fragment shows (e^-tau,
-// ground_shade.glsl). Where its samples' shares differ (a dense fog's shore within the pixel) it
-// is taken at each sample and weighed by how much of that sample's ground shows through the fog
-// over it, e^-tau sin(sun) / sin(eye) as under a fog's flat top: the fragment's one colour is
-// seen through each sample's fog, and the sunlit ground beside a shore is what the pixel shows
-// of it. The share at the samples' mean point put the pixel's shade on that ground too (the
-// bundled lake at 10 m of visibility, its first camera: 81 of 8,056 pixels more than 10 % off the
-// reference, the split pixels' samples each lit as the reference lights them).
-float fog_sun_through(Shown seen, vec3 wx, vec3 wy, vec3 nx, vec3 ny, vec2 sx, vec2 sy)
+// The share of the sun the fog lets through onto the ground the fragment shows, its tau_sun
+// (ground_shade.glsl: the Medium's part, below 0 beyond its shade, and the height fog's) at the
+// point it is shaded at, `at` from the pixel's centre. Where the fragment shows more than one
+// sample, tau at each (along its derivatives across the pixel) weighed by how much of that
+// sample's ground shows through the fog over it, e^-tau sin(sun) / sin(eye) as under a fog's
+// flat top: the fragment's one colour is seen through each sample's fog, and across a dense
+// fog's shore the sunlit ground beside it is what the pixel shows. The share at the point alone
+// put the pixel's shade on that ground too (the bundled lake at 10 m of visibility, its first
+// camera: 81 of 8,056 pixels more than 10 % off the reference, the split pixels' samples each
+// lit as the reference lights them; 52 so). Each sample's own point on the triangle (shown_at)
+// and its own lookup: 40, for four times the cost (the terrain pass in fog at 1280x720 320-340 ->
+// 490-530 ms; so 340-390 ms).
+float fog_sun_through(vec2 tau, vec2 at, vec3 world)
 {
-    float through = exp(-max(ground_sun_depth(seen.world, seen.shade), 0.0));
+    float through = exp(-max(tau.x, 0.0) - tau.y);
 #if FOG_SHADE_SAMPLES
+    vec2 tx = dFdx(tau), ty = dFdy(tau);
     int shown = gl_SampleMaskIn[0] & 15;
-    if (bitCount(shown) > 1) {
-        float lit = 0.0, weights = 0.0, plain = 0.0;
-        float sun_rise = max(u_sun_direction.z, 0.0);
-        for (int i = 0; i < 4; ++i) {
-            if ((shown & (1 << i)) == 0)
-                continue;
-            Shown s = shown_at(gl_FragCoord.xy + u_shown_offsets[1 << i], wx, wy, nx, ny, sx, sy);
-            float tau = max(ground_sun_depth(s.world, s.shade), 0.0);
-            float eye_rise = max(normalize(u_eye - s.world).z, 0.05);
-            float w = exp(-tau * sun_rise / eye_rise);
-            lit += w * exp(-tau);
-            weights += w;
-            plain += exp(-tau);
-        }
-        through = weights > 1e-6 ? lit / weights : plain / float(bitCount(shown));
+    float lit = 0.0, weights = 0.0;
+    float rise = max(u_sun_direction.z, 0.0) / max(normalize(u_eye - world).z, 0.05);
+    for (int i = 0; i < 4; ++i) {
+        vec2 d = u_shown_offsets[1 << i] - at;
+        vec2 t = max(tau + d.x * tx + d.y * ty, 0.0);
+        float share = (shown & (1 << i)) != 0 ? exp(-t.x - t.y) : 0.0;
+        float w = share > 0.0 ? exp(-(t.x + t.y) * rise) : 0.0;
+        lit += w * share;
+        weights += w;
     }
+    if (bitCount(shown) > 1 && weights > 1e-6)
+        through = lit / weights;
 #endif
     return through;
 }
@@ -101,19 +102,21 @@ void main()
 {
     // The chords first, in uniform control flow.
     vec3 wx = dFdx(v_world), wy = dFdy(v_world), nx = dFdx(v_normal), ny = dFdy(v_normal);
-    vec2 sx = dFdx(v_shade), sy = dFdy(v_shade);
+    vec4 sx = dFdx(v_shade), sy = dFdy(v_shade);
     vec2 at = shown_offset();
     Shown seen = at == vec2(0.0) ? Shown(v_world, v_normal, v_shade)
                                  : shown_at(gl_FragCoord.xy + at, wx, wy, nx, ny, sx, sy);
     vec3 world = seen.world;
     vec3 n = normalize(seen.normal);
-    vec2 shade = seen.shade;
+    vec4 shade = seen.shade;
     vec3 base = ground_albedo(world, n.z);
     float direct = max(dot(n, u_sun_direction), 0.0);
+    // The fog's shade, in uniform control flow (its derivatives across the pixel).
+    float through = fog_sun_through(ground_sun_depths(world, shade), at, world);
     // The terrain's own shadow where the froxel fog built the sun's shadow map (terrain_shadow.glsl;
     // froxel_none.glsl without it), and the fog's shade (ground_shade.glsl).
     if (direct > 0.0)
-        direct *= terrain_shadow(world, n, u_sun_direction) * fog_sun_through(seen, wx, wy, nx, ny, sx, sy);
+        direct *= terrain_shadow(world, n, u_sun_direction) * through;
     vec3 sky = u_ambient * (0.6 + 0.4 * n.z);
     vec3 radiance = base * (u_sun_radiance * direct + sky);
     float haze = 1.0 - exp(-length(world - u_eye) * u_haze_density);

@@ -74,7 +74,7 @@ bool GroundShade::update(const SunVolume* sun, const glm::vec3& sun_direction, G
             "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl", "ground_shade.comp"});
     if (!built_ || built_->vertex_count != vertex_count || built_->mesh != mesh || !depths_) {
         depths_ = make_buffer();
-        glNamedBufferStorage(depths_.get(), GLsizeiptr(std::size_t(vertex_count) * 2 * sizeof(float)), nullptr, 0);
+        glNamedBufferStorage(depths_.get(), GLsizeiptr(std::size_t(vertex_count) * 4 * sizeof(float)), nullptr, 0);
     }
     const GLsizeiptr marks_bytes =
         GLsizeiptr((1 + std::size_t(std::max(grid.nx, 0)) * std::max(grid.ny, 0)) * sizeof(GLuint));

@@ -221,8 +221,8 @@ bool TerrainPass::set_fog_shade(const SunVolume* sun, const glm::vec3& sun_direc
     const bool shaded = shade_.update(sun, sun_direction, vertices_.get(), int(vertex_count_),
                                       int(sizeof(TerrainPassVertex) / sizeof(float)), shade_grid_, uploads_);
     if (shaded) {
-        glVertexArrayVertexBuffer(vao_.get(), 1, shade_.buffer(), 0, 2 * sizeof(float));
-        glVertexArrayAttribFormat(vao_.get(), 2, 2, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayVertexBuffer(vao_.get(), 1, shade_.buffer(), 0, 4 * sizeof(float));
+        glVertexArrayAttribFormat(vao_.get(), 2, 4, GL_FLOAT, GL_FALSE, 0);
         glVertexArrayAttribBinding(vao_.get(), 2, 1);
         glEnableVertexArrayAttrib(vao_.get(), 2);
     } else if (shaded_) {
@@ -273,7 +273,7 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow, c
     set_ground_uniforms(p);
     p.use();
     if (!shaded_)
-        glVertexAttrib2f(2, 0.0f, 0.0f);  // no fog's shade: tau_sun 0, nothing to refine
+        glVertexAttrib4f(2, 0.0f, 0.0f, 0.0f, 0.0f);  // no fog's shade: tau_sun 0, nothing to refine
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glBindVertexArray(vao_.get());
