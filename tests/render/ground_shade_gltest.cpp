@@ -61,6 +61,21 @@ g::Medium medium_where(double spacing, double extinction, Covered covered)
     return uniform_medium(std::move(grid), extinction);
 }
 
+// A lake of fog of `extinction` (1/m) with a flat top at `top` over [origin, origin + 2 spacing]^2
+// (3 x 3 columns), from 200 m below the ground: every path towards the sun leaves through its top.
+g::Medium lake_of_fog(double top, double extinction, double origin, double spacing)
+{
+    g::MediumGrid grid;
+    grid.nx = grid.ny = 3;
+    grid.dx = grid.dy = spacing;
+    grid.x0 = grid.y0 = origin;
+    grid.floor.assign(9, -200.0);
+    grid.bottom.assign(9, -200.0);
+    grid.top.assign(9, top);
+    grid.coverage.assign(9, 1.0);
+    return uniform_medium(std::move(grid), extinction);
+}
+
 // A flat plain at z = 0 under a uniform slab from the ground to `thickness`, 640 m a side: away
 // from its sides the sun's path leaves through its top, after thickness / sin(elevation).
 g::Medium slab()
@@ -121,17 +136,23 @@ protected:
     }
 };
 
-// Per pixel column of a size x size frame looking straight down at `centre` over `across`
-// metres of `plain`: the share of the sun's light on the ground that `fog` lets through.
-std::vector<double> sun_let_through_across(const g::Terrain& plain, const g::Medium& fog, double centre, double across,
-                                           int size, int* refined_vertices)
+// Straight down from `altitude` at (centre, 0) over `across` metres of `ground`, size x size:
+// the frames without the sun, lit, and lit through `fog`'s shade, and the vertices whose shade
+// the fine map refines.
+struct FromAbove {
+    RadianceImage dark, lit, shaded;
+    int refined_vertices = 0;
+};
+FromAbove frames_from_above(const g::Terrain& ground, const g::Medium& fog, double centre, double across,
+                            double altitude, int size)
 {
     Renderer r;
-    r.set_terrain(plain);
+    r.set_terrain(ground);
     Camera down;
-    down.position = {centre, -1.0, 3000.0};
+    down.position = {centre, -1.0, altitude};
     down.target = {centre, 0.0, 0.0};
-    down.fov_y_deg = 2.0 * std::atan(0.5 * across / 3000.0) * 180.0 / 3.14159265358979;
+    down.fov_y_deg = 2.0 * std::atan(0.5 * across / altitude) * 180.0 / 3.14159265358979;
+    FromAbove f;
     const auto frame = [&](double intensity, bool shaded) {
         r.set_sun(sun(intensity));
         if (shaded)
@@ -140,10 +161,23 @@ std::vector<double> sun_let_through_across(const g::Terrain& plain, const g::Med
             r.clear_sun_medium();
         r.draw(down, size, size);
         if (shaded)
-            *refined_vertices = r.last_stats().refined_shade_vertices;
+            f.refined_vertices = r.last_stats().refined_shade_vertices;
         return r.read_radiance();
     };
-    const RadianceImage dark = frame(0.0, false), lit = frame(3.0, false), shaded = frame(3.0, true);
+    f.dark = frame(0.0, false);
+    f.lit = frame(3.0, false);
+    f.shaded = frame(3.0, true);
+    return f;
+}
+
+// Per pixel column of a size x size frame looking straight down at `centre` over `across`
+// metres of `plain`: the share of the sun's light on the ground that `fog` lets through.
+std::vector<double> sun_let_through_across(const g::Terrain& plain, const g::Medium& fog, double centre, double across,
+                                           int size, int* refined_vertices)
+{
+    const FromAbove f = frames_from_above(plain, fog, centre, across, 3000.0, size);
+    *refined_vertices = f.refined_vertices;
+    const RadianceImage &dark = f.dark, &lit = f.lit, &shaded = f.shaded;
     const auto y = [](const RadianceImage& image, int x, int row) {
         const float* p = &image.rgba[4 * (std::size_t(row) * std::size_t(image.width) + std::size_t(x))];
         return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
@@ -262,15 +296,7 @@ TEST_F(GroundShadeGl, ADenseFogsShoreOnASlopeShadesTheGroundUpToTheShore)
     constexpr double extinction = 0.3, top = 43.0, rise = 0.1, shore = top / rise - 320.0;
     const g::Terrain ramp(kiri::test::make_heightfield(17, 17, 80.0, -640.0, -640.0,
                                                        [](double x, double) { return rise * (x + 320.0); }));
-    g::MediumGrid grid;
-    grid.nx = grid.ny = 3;
-    grid.dx = grid.dy = 640.0;
-    grid.x0 = grid.y0 = -640.0;
-    grid.floor.assign(9, -200.0);
-    grid.bottom.assign(9, -200.0);
-    grid.top.assign(9, top);
-    grid.coverage.assign(9, 1.0);
-    const g::Medium fog = uniform_medium(std::move(grid), extinction);
+    const g::Medium fog = lake_of_fog(top, extinction, -640.0, 640.0);
     constexpr double centre = shore, across = 240.0;
     constexpr int size = 64;
     int refined = 0;
@@ -363,15 +389,7 @@ TEST_F(GroundShadeGl, ADenseFogsWindingShoresShadeTheGroundUpToTheShore)
     };
     const g::Terrain hills(kiri::test::make_heightfield(17, 17, spacing, -320.0, -320.0, height));
     const g::Heightfield& hf = hills.heightfield();
-    g::MediumGrid grid;
-    grid.nx = grid.ny = 3;
-    grid.dx = grid.dy = 320.0;
-    grid.x0 = grid.y0 = -320.0;
-    grid.floor.assign(9, -200.0);
-    grid.bottom.assign(9, -200.0);
-    grid.top.assign(9, top);
-    grid.coverage.assign(9, 1.0);
-    const g::Medium fog = uniform_medium(std::move(grid), extinction);
+    const g::Medium fog = lake_of_fog(top, extinction, -320.0, 320.0);
     // The mesh's ground: two triangles a cell, split along (i, j)-(i + 1, j + 1).
     const auto mesh_z = [&](double x, double y) {
         const double u = (x - hf.x0) / hf.dx, v = (y - hf.y0) / hf.dy;
@@ -384,22 +402,8 @@ TEST_F(GroundShadeGl, ADenseFogsWindingShoresShadeTheGroundUpToTheShore)
     // centre's (x, y) whatever its height.
     constexpr double across = 240.0, altitude = 20000.0;
     constexpr int size = 64;
-    Renderer r;
-    r.set_terrain(hills);
-    Camera down;
-    down.position = {0.0, -1e-3, altitude};
-    down.target = {0.0, 0.0, 0.0};
-    down.fov_y_deg = 2.0 * std::atan(0.5 * across / altitude) * 180.0 / 3.14159265358979;
-    const auto frame = [&](double intensity, bool shaded) {
-        r.set_sun(sun(intensity));
-        if (shaded)
-            r.set_sun_medium(&fog, {});
-        else
-            r.clear_sun_medium();
-        r.draw(down, size, size);
-        return r.read_radiance();
-    };
-    const RadianceImage dark = frame(0.0, false), lit = frame(3.0, false), shaded = frame(3.0, true);
+    const FromAbove f = frames_from_above(hills, fog, 0.0, across, altitude, size);
+    const RadianceImage &dark = f.dark, &lit = f.lit, &shaded = f.shaded;
     const auto y = [](const RadianceImage& image, std::size_t k) {
         return 0.2126 * image.rgba[4 * k] + 0.7152 * image.rgba[4 * k + 1] + 0.0722 * image.rgba[4 * k + 2];
     };
