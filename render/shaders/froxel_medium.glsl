@@ -11,6 +11,12 @@ uniform vec2 u_md_drift;         // wind * time
 uniform float u_md_time;
 uniform float u_md_half_life;
 
+// The dissipation's factor at shell height h (geometry::Medium::dissipation).
+float medium_dissipation(float h)
+{
+    return u_md_half_life > 0.0 && u_md_time > 0.0 ? exp2(-u_md_time / u_md_half_life * (1.0 + h)) : 1.0;
+}
+
 // d(p) and the shell's height fraction h there, in the column c (shell_column) over p.
 float medium_density_in(vec3 p, vec4 c, out float h)
 {
@@ -24,9 +30,7 @@ float medium_density_in(vec3 p, vec4 c, out float h)
         float n = textureLod(u_md_noise, noise_st, 0.0).r;
         d *= 1.0 - u_md_detail + u_md_detail * smoothstep(0.25, 0.75, n);
     }
-    if (u_md_half_life > 0.0 && u_md_time > 0.0)
-        d *= exp2(-u_md_time / u_md_half_life * (1.0 + h));
-    return d;
+    return d * medium_dissipation(h);
 }
 
 // d(p) and the shell's height fraction h there.

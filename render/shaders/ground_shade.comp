@@ -94,9 +94,7 @@ float medium_shade_below_zero(vec3 p, vec3 s)
     vec4 c = shell_column(p.xy);  // floor, bottom, top, coverage
     if (!(c.w > 0.0 && p.z > c.z && c.z > c.y))
         return 0.0;
-    float d = c.w * u_md_top_density * (1.0 - 0.5 * u_md_detail);
-    if (u_md_half_life > 0.0 && u_md_time > 0.0)
-        d *= exp2(-2.0 * u_md_time / u_md_half_life);
+    float d = c.w * u_md_top_density * (1.0 - 0.5 * u_md_detail) * medium_dissipation(1.0);
     return -u_md_extinction * d * (p.z - c.z) / s.z;
 }
 

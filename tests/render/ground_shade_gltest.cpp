@@ -388,16 +388,7 @@ TEST_F(GroundShadeGl, ADenseFogsWindingShoresShadeTheGroundUpToTheShore)
         return 30.0 + 20.0 * std::sin(x / 40.0) * std::sin(y / 50.0) + 8.0 * std::sin((x + 2.0 * y) / 25.0);
     };
     const g::Terrain hills(kiri::test::make_heightfield(17, 17, spacing, -320.0, -320.0, height));
-    const g::Heightfield& hf = hills.heightfield();
     const g::Medium fog = lake_of_fog(top, extinction, -320.0, 320.0);
-    // The mesh's ground: two triangles a cell, split along (i, j)-(i + 1, j + 1).
-    const auto mesh_z = [&](double x, double y) {
-        const double u = (x - hf.x0) / hf.dx, v = (y - hf.y0) / hf.dy;
-        const int i = std::clamp(int(std::floor(u)), 0, hf.nx - 2), j = std::clamp(int(std::floor(v)), 0, hf.ny - 2);
-        const double fx = u - i, fy = v - j;
-        const double z00 = hf.at(i, j), z10 = hf.at(i + 1, j), z11 = hf.at(i + 1, j + 1), z01 = hf.at(i, j + 1);
-        return fx >= fy ? z00 + fx * (z10 - z00) + fy * (z11 - z10) : z00 + fx * (z11 - z01) + fy * (z01 - z00);
-    };
     // Straight down from 20 km over 240 m a side: a pixel's ground lies within 0.3 m of its
     // centre's (x, y) whatever its height.
     constexpr double across = 240.0, altitude = 20000.0;
@@ -416,7 +407,7 @@ TEST_F(GroundShadeGl, ADenseFogsWindingShoresShadeTheGroundUpToTheShore)
             if (!(sun_part > 0.02))
                 continue;  // turned from the sun
             const double gx = ((x + 0.5) / size - 0.5) * across, gy = (0.5 - (row + 0.5) / size) * across;
-            const double z = mesh_z(gx, gy);
+            const double z = hills.height(gx, gy);  // the mesh's own: two triangles a cell
             const double want = std::exp(-extinction * std::max(top - z, 0.0) / 0.5);
             const double got = (y(shaded, k) - y(dark, k)) / sun_part;
             const double off = std::abs(got - want);
