@@ -20,6 +20,7 @@ in float v_alpha;
 in float v_exponent;
 in float v_spacing;
 in float v_slab;
+in float v_slab_above;
 in float v_height;
 in vec3 v_normal;
 in float v_baked;
@@ -143,17 +144,21 @@ void main()
         vec3 surface = cross(dFdx(v_world), dFdy(v_world));
         vec3 across = dot(surface, surface) > 0.0 ? normalize(surface) : normalize(v_normal);
         float cos_view = max(abs(dot(across, view)), 0.02);
-        // The ray's path through the slab, centred on the layer: the layers stand r apart
-        // vertically (the Medium's columns), so on a slope the slab between them is r cos(slope)
-        // thick across. Where the ray leaves the space around the eye, which no layer crosses, the
-        // path runs from the eye.
+        // The ray's path through the slab: the layers stand r apart vertically (the Medium's
+        // columns), so on a slope the slab between them is r cos(slope) thick across. The slab
+        // reaches v_slab_above of r over the layer and the rest under it (the top's lies wholly
+        // under it), so a ray going down crosses that share of its path before the layer, one
+        // climbing the rest. Where the ray leaves the space around the eye, which no layer
+        // crosses, the path runs from the eye.
         float dist = length(v_world - u_eye);
         float path = v_spacing * v_slab * abs(across.z) / cos_view;
-        float entry = max(dist - 0.5 * path, 0.0);
+        float above = v_slab > 0.0 ? clamp(v_slab_above / v_slab, 0.0, 1.0) : 0.5;
+        float before = dot(view, across.z < 0.0 ? -across : across) < 0.0 ? above : 1.0 - above;
+        float entry = max(dist - before * path, 0.0);
         if (leaves_the_eyes_slab(view, across, dist)) {
             // In combined mode the froxels draw the fog nearer than the layers' share begins.
             entry = u_partitioned != 0 ? min(u_partition.x, dist) : 0.0;
-            path = max(path, dist + 0.5 * path - entry);
+            path = max(path, dist + (1.0 - before) * path - entry);
         }
         // The slab ends where the ray meets the ground: the part of it beyond lies behind the
         // terrain, and where the ray enters the slab of the layer under this one before the
@@ -195,18 +200,18 @@ void main()
             float above = u_extinction * tex.a * u_thickness * ((1.0 - h) - 0.5 * u_top_loss * (1.0 - h * h));
             tau_sun = above / max(u_sun_direction.z, 0.02);
         }
-        // Where tau_sun changes by more than 1 across the slab under a flat top (a dense fog's
-        // sunlit skin, at 0.4 per metre a few metres deep, in slabs ten metres thick), S over the
-        // slab, tau_sun linear across it through its value at the layer (the slab's middle).
-        // Thinner (the bundled lake's slabs: 0.8) the light at the middle is as close (the lake
-        // 5.23 -> 5.19 % for 40 % more time in the layers pass).
-        float across_slab = view.z * sigma * path / max(u_sun_direction.z, 0.05);  // tau_sun's change, the ray's way
-        if (abs(across_slab) > 1.0)
-            radiance = fog_source_of(sun_scattering_over_slab(cos_sun, max(tau_sun + 0.5 * across_slab, 0.0),
-                                                              max(tau_sun - 0.5 * across_slab, 0.0), sigma * path),
-                                     sun_up);
+        // tau_sun along the path as under a flat top: linear through its value at the layer,
+        // from where the ray enters the slab to where it leaves. Where it changes by more than 1
+        // across the slab (a dense fog's sunlit skin, at 0.4 per metre a few metres deep, in slabs
+        // ten metres thick), S over the slab; thinner (the bundled lake's slabs: 0.8) S at the
+        // path's middle is as close (the lake 5.23 -> 5.19 % for 40 % more time in the layers pass).
+        float rate = -view.z * sigma / max(u_sun_direction.z, 0.05);  // tau_sun's change a metre along the ray
+        float tau_in = max(tau_sun - rate * (dist - entry), 0.0);
+        float tau_out = max(tau_sun + rate * (entry + path - dist), 0.0);
+        if (abs(rate * path) > 1.0)
+            radiance = fog_source_of(sun_scattering_over_slab(cos_sun, tau_in, tau_out, sigma * path), sun_up);
         else
-            radiance = fog_source(cos_sun, tau_sun, sun_up);
+            radiance = fog_source(cos_sun, 0.5 * (tau_in + tau_out), sun_up);
         // The baked multiple scattering (light_volume.glsl; u_lv_on with the model `baked`),
         // towards the eye, not hidden by the terrain's shadow: from the vertices (layers.vert),
         // but near the eye, where a triangle spans a wide angle of directions towards it, per

@@ -32,6 +32,7 @@ out float v_alpha;
 out float v_exponent;
 out float v_spacing;        // r (m): the spacing of the layers here
 out float v_slab;           // the share of r that this layer's slab of fog spans (layer_slab_share)
+out float v_slab_above;     // of it, the share of r above the layer (layer_slab_share_above)
 out float v_height;         // h = i / n in [0, 1]: where in the fog's thickness
 out vec3 v_normal;
 // The baked multiple scattering towards the eye at the vertex (light_volume.glsl; 0 unless the
@@ -51,6 +52,13 @@ float layer_slab_share(float n, int i)
            (k == m + 1.0 ? 0.5 : 0.0);
 }
 
+// geometry::layer_slab_share_above: the trapezoids' halves above the layer (none for the top's).
+float layer_slab_share_above(float n, int i)
+{
+    float m = floor(n), part = n - m, k = float(i);
+    return (k <= m - 1.0 ? 0.5 : 0.0) + (k == m ? 0.5 * part : 0.0);
+}
+
 void main()
 {
     int instance = gl_InstanceID + u_first_instance;
@@ -66,6 +74,7 @@ void main()
         v_exponent = 1.0;
         v_spacing = u_thickness;
         v_slab = 1.0;
+        v_slab_above = 0.5;
         v_height = 0.0;
         v_normal = a_normal;
         v_baked = u_lv_on != 0 ? lv_in_scattered_at(p, normalize(u_eye - p), u_anisotropy, true) : 0.0;
@@ -92,6 +101,7 @@ void main()
     v_exponent = r / r0;
     v_spacing = r;
     v_slab = layer_slab_share(n, i);
+    v_slab_above = layer_slab_share_above(n, i);
     v_normal = a_normal;
     float scale = 1.0 + fi * u_rate * sin_theta;
     vec2 xy = u_centre + scale * (p.xy - u_centre);

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -30,6 +31,16 @@ kiri::render::Image render(const std::string& mode, const std::string& scene = d
     kiri::render::Image image = kiri::render::read_png(out);
     fs::remove(out);
     return image;
+}
+
+// An ESRI ASCII grid of n x n samples 20 m apart, height(x, y) in metres from its south-west corner.
+void write_dem(const fs::path& file, int n, const std::function<double(double, double)>& height)
+{
+    std::ofstream dem(file);
+    dem << "ncols " << n << "\nnrows " << n << "\nxllcorner 0\nyllcorner 0\ncellsize 20\nNODATA_value -9999\n";
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c)
+            dem << height(20.0 * c, 20.0 * (n - 1 - r)) << (c + 1 < n ? " " : "\n");
 }
 
 }  // namespace
@@ -63,15 +74,10 @@ TEST(KiriLayers, ALakesThreadsUnderACoarseBaseTakeTheirOwnSunlight)
     // and the fog's shade bends within most of these pixels: 0.0380, and 0.0413 with the columns.
     const fs::path dir = kiri::test::temp_path("layers_test_threads");
     fs::create_directories(dir);
+    write_dem(dir / "valleys.asc", 301, [](double x, double y) {
+        return 75.0 * (1.0 - std::cos(2.0 * std::numbers::pi * x / 400.0)) + 20.0 * std::sin(y / 700.0);
+    });
     {
-        std::ofstream dem(dir / "valleys.asc");
-        dem << "ncols 301\nnrows 301\nxllcorner 0\nyllcorner 0\ncellsize 20\nNODATA_value -9999\n";
-        for (int r = 0; r < 301; ++r)
-            for (int c = 0; c < 301; ++c) {
-                const double x = 20.0 * c, y = 20.0 * (300 - r);
-                dem << 75.0 * (1.0 - std::cos(2.0 * std::numbers::pi * x / 400.0)) + 20.0 * std::sin(y / 700.0)
-                    << (c + 1 < 301 ? " " : "\n");
-            }
         std::ofstream scene(dir / "lake.json");
         scene << R"({"terrain": {"path": "valleys.asc"},
   "cameras": [{"name": "far", "position": [-1500, -1500, 1500], "target": [2000, 2000, 0], "fov": 40}],
@@ -86,6 +92,38 @@ TEST(KiriLayers, ALakesThreadsUnderACoarseBaseTakeTheirOwnSunlight)
     const kiri::render::RadianceImage bare = kiri::test::render_radiance(scene, "terrain", size);
     const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(scene, "", 160, 90, false);
     kiri::test::expect_fog_agrees("layers", fog, bare, reference, 1500, 0.040);
+    fs::remove_all(dir);
+}
+
+TEST(KiriLayers, ADenseFogIsLitInItsFirstMetres)
+{
+    // A fog lake of 10 m visibility (0.39 per metre) in a bowl, seen 20 degrees down, the sun 21
+    // degrees up: its light comes from the first metres under its top, thinner than a layer's
+    // slab (10 m). The top layer stands for the slab under it (layer_slab_share_above); with its
+    // slab centred on it, half its path lay in the clear air over the top and the fog under the
+    // top was lit at half its depth: 0.0855 against the reference, 0.0160 now.
+    const fs::path dir = kiri::test::temp_path("layers_test_dense");
+    fs::create_directories(dir);
+    write_dem(dir / "bowl.asc", 201, [](double x, double y) {
+        const double u = x / 2000.0 - 1.0, v = y / 2000.0 - 1.0;
+        return 300.0 * (u * u + v * v) + 10.0 * std::sin(x / 310.0) * std::cos(y / 270.0);
+    });
+    {
+        std::ofstream scene(dir / "dense.json");
+        scene << R"({"terrain": {"path": "bowl.asc"},
+  "cameras": [{"name": "far", "position": [-2300, -2300, 1100], "target": [0, 0, 100], "fov": 40}],
+  "sun": {"direction": [-0.75, 0.35, 0.32], "intensity": 3.2, "ambient": [0.22, 0.28, 0.38]},
+  "fog": {"footprint": {"type": "terrain", "margin": 0}, "patch_size": 1000, "mode": "lake", "altitude": 150,
+          "thickness": 150},
+  "layers": {"count": 15},
+  "medium": {"visibility": 10, "top_density": 0.5}})";
+    }
+    const std::string scene = (dir / "dense.json").string();
+    const std::string size = "--width 96 --height 54";
+    const kiri::render::RadianceImage fog = kiri::test::render_radiance(scene, "layers", size);
+    const kiri::render::RadianceImage bare = kiri::test::render_radiance(scene, "terrain", size);
+    const kiri::geometry::ReferenceImage reference = kiri::test::scene_reference(scene, "", 96, 54, false);
+    kiri::test::expect_fog_agrees("layers", fog, bare, reference, 900, 0.03);
     fs::remove_all(dir);
 }
 

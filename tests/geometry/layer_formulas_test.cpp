@@ -191,6 +191,31 @@ TEST(LayerFormulas, StackDepthConvergesToTheSlab)
     EXPECT_GT(ends, 5e-3 * closed);  // the end terms matter at this tolerance
 }
 
+TEST(LayerFormulas, EachSlabLiesWhereItsTrapezoidsHalvesAre)
+{
+    // A whole count: the slabs tile the fog from the base to the top, each reaching half way to
+    // its neighbours, the base's wholly over it and the top's wholly under it (a slab centred on
+    // the top layer held half its fog in the clear air over the top).
+    for (const double n : {1.0, 2.0, 15.0}) {
+        double reached = 0.0;
+        for (int i = 0; i <= int(n); ++i) {
+            const double above = layer_slab_share_above(n, i), below = layer_slab_share(n, i) - above;
+            EXPECT_DOUBLE_EQ(i - below, reached) << n << " layers, layer " << i;
+            reached = i + above;
+        }
+        EXPECT_DOUBLE_EQ(reached, n) << n << " layers";
+    }
+    // Between whole counts the last trapezoid, [m, n], is layer m's half over it and the fading
+    // layer m + 1's (faded in by n - m, standing for the top) under it.
+    EXPECT_EQ(layer_slab_share_above(15.25, 15), 0.125);
+    EXPECT_EQ(layer_slab_share(15.25, 15) - layer_slab_share_above(15.25, 15), 0.5);
+    EXPECT_EQ(layer_slab_share_above(15.25, 16), 0.0);
+    EXPECT_EQ(layer_slab_share_above(15.25, 7), 0.5);
+    EXPECT_EQ(layer_slab_share_above(0.5, 0), 0.25);  // thinner than one spacing: the base's, all over it
+    EXPECT_EQ(layer_slab_share_above(15.0, 17), 0.0);
+    EXPECT_EQ(layer_slab_share_above(0.0, 0), 0.0);
+}
+
 TEST(LayerFormulas, AStackTheGroundCutsHoldsTheFogFromTheGroundUp)
 {
     // Medium shading over ground at height g inside the stack: the layers below it are hidden by

@@ -43,7 +43,7 @@ std::vector<BaseVertex> base_vertices()
 // What layers.vert writes per vertex and instance.
 struct Captured {
     float world[3];
-    float alpha, exponent, spacing, height, slab;
+    float alpha, exponent, spacing, height, slab, slab_above;
 };
 
 // Every layer 0..max_count of every vertex as layers.vert computes it.
@@ -51,8 +51,8 @@ std::vector<Captured> gpu_stack(const g::LayerOptions& o, const std::vector<Base
                                 const glm::dvec3& eye)
 {
     ShaderProgram program({"medium_shell.glsl", "light_volume.glsl", "layers.vert"});
-    const char* varyings[] = {"v_world", "v_alpha", "v_exponent", "v_spacing", "v_height", "v_slab"};
-    glTransformFeedbackVaryings(program.id(), 6, varyings, GL_INTERLEAVED_ATTRIBS);
+    const char* varyings[] = {"v_world", "v_alpha", "v_exponent", "v_spacing", "v_height", "v_slab", "v_slab_above"};
+    glTransformFeedbackVaryings(program.id(), 7, varyings, GL_INTERLEAVED_ATTRIBS);
     glLinkProgram(program.id());  // the varyings take effect at link time
     GLint linked = 0;
     glGetProgramiv(program.id(), GL_LINK_STATUS, &linked);
@@ -138,6 +138,9 @@ double compare_stacks(const g::LayerOptions& o, const glm::dvec3& eye, const std
             // the share alone steps (at a layer that fades in from 0).
             expect_close(c.alpha * c.slab, cpu.alpha * g::layer_dissipation(o, int(k), column.count) * cpu.slab, 1.0,
                          what + " slab share");
+            expect_close(c.alpha * c.slab_above,
+                         cpu.alpha * g::layer_dissipation(o, int(k), column.count) * cpu.slab_above, 1.0,
+                         what + " slab share above the layer");
             if (::testing::Test::HasFailure())
                 return most;  // one vertex's story is enough
         }

@@ -63,6 +63,14 @@ double layer_slab_share(double n, int i)
         (k == m + 1.0 ? 0.5 : 0.0);
 }
 
+double layer_slab_share_above(double n, int i)
+{
+    if (!(n > 0.0) || i < 0)
+        return 0.0;
+    const double m = std::floor(n), part = n - m, k = double(i);
+    return (k <= m - 1.0 ? 0.5 : 0.0) + (k == m ? 0.5 * part : 0.0);
+}
+
 double layer_slab_over_ground(double share, int i, double spacing, double clearance)
 {
     if (!(clearance >= 0.0) || !(spacing > 0.0))
@@ -90,6 +98,7 @@ LayerVertex layer_vertex(const LayerOptions& o, const LayerColumn& c, int i, con
                                            : layer_alpha(std::min(double(i), n), n));
     v.exponent = c.spacing / (o.thickness / o.count);
     v.slab = layer_slab_share(n, i);
+    v.slab_above = layer_slab_share_above(n, i);
     const double scale = layer_scale(i, c.sin_theta, o.enlargement_rate);
     const glm::dvec2 xy = centre + scale * (glm::dvec2(point) - centre);
     v.position = {xy.x, xy.y, point.z + i * c.spacing};

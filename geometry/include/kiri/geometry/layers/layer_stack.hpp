@@ -155,6 +155,7 @@ struct LayerVertex {
     double alpha = 0.0;        //!< w_i a_i: (2.7) with the recomputed count, faded in as layers are added
     double exponent = 1.0;     //!< r / r0: the opacity correction 1 - (1 - alpha opacity t)^exponent
     double slab = 1.0;         //!< medium shading: the share of r its slab of fog spans (layer_slab_share)
+    double slab_above = 0.5;   //!< of that, the share of r above the layer (layer_slab_share_above)
 };
 
 //! Medium shading: the share of the spacing r that layer i's slab of fog spans in a stack of
@@ -164,6 +165,12 @@ struct LayerVertex {
 //! layer m and 1/2 for layer m + 1 (faded in by n - m), so the slabs add up to n r = T0 and a
 //! linear profile's optical depth is exact. One slab of r per layer held T0 + r.
 double layer_slab_share(double n, int i);
+//! Of layer_slab_share, the share of r that lies above layer i: each trapezoid's half next to the
+//! layer, so the base's slab lies wholly over it and the top's (layer m + 1, or layer m where n is
+//! whole) wholly under it. Where a dense fog's light falls steeply with depth, a slab centred on
+//! the top layer put half its path in the clear air over the fog and lit the fog under the top at
+//! half its depth (the layers 20 % too dark in the sun over a lake of 10 m visibility).
+double layer_slab_share_above(double n, int i);
 //! Medium shading where the ground cuts the stack: the share of the spacing r (m) that layer i's
 //! slab (its layer_slab_share w) holds above the ground, the layer `clearance` metres over it.
 //! The slab reaches down to the ground when the layer under it lies below the ground (hidden by
