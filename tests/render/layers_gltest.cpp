@@ -34,7 +34,7 @@ TEST_F(LayersGl, FogCoversTheLowGroundNotTheSummit)
 
 // Seen straight down over flat fog, the medium-shaded stack is a pile of slabs: layer i has
 // alpha 1 - exp(-sigma rho_i r w_i) (w_i its slab's share of r, layer_slab_share) and source J_i = geometry::fog_source(sun through the fog
-// above its slab's middle), composited over the ground: L = J_i alpha_i + (1 - alpha_i) L, bottom to top.
+// above where its slab's light comes from), composited over the ground: L = J_i alpha_i + (1 - alpha_i) L, bottom to top.
 // With the reference stack (narrowing and enlargement off) and with the view-dependent one the
 // eye 350 m above the base sees ([Thesis] (2.8)-(2.9) as docs/layers.md reads them): spacing
 // r = L / 200 = 1.75 m, a real-valued count n = T0 / r = 57.1 with the top layer faded in by
@@ -90,11 +90,15 @@ TEST_F(LayersGl, MediumShadingIsThePileOfSlabs)
                         continue;  // under the ground
                     const double slab = g::layer_slab_over_ground(g::layer_slab_share(n, i), i, r, clearance);
                     const double alpha = 1.0 - std::exp(-sigma * rho * r * slab / std::abs(view.z));
-                    // Lit at its slab's middle, tau_sun linear across the slab through the
-                    // layer's: the top's slab lies under it, the base's over it.
+                    // Lit where its slab's light comes from (the centroid of what it scatters,
+                    // 1 / d - 1 / (e^d - 1) of the path for its optical depth d across: about the
+                    // middle), tau_sun linear across the slab through the layer's: the top's slab
+                    // lies under it, the base's over it.
                     const double share = g::layer_slab_share(n, i), above = g::layer_slab_share_above(n, i);
+                    const double d = sigma * rho * r * slab / std::abs(view.z);
+                    const double centroid = d > 1e-3 ? 1.0 / d - 1.0 / std::expm1(d) : 0.5 - d / 12.0;
                     const double tau_layer = sigma * T0 * ((1.0 - hi) - 0.45 * (1.0 - hi * hi)) / s.z;
-                    const double tau_sun = tau_layer + sigma * rho * r * slab * (0.5 - above / share) / s.z;
+                    const double tau_sun = tau_layer + sigma * rho * r * slab * (centroid - above / share) / s.z;
                     const glm::dvec3 j = g::fog_source(light, o.optics, glm::dot(view, s), tau_sun);
                     expected = j * alpha + (1.0 - alpha) * expected;
                 }
