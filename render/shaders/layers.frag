@@ -152,8 +152,8 @@ void main()
         // crosses, the path runs from the eye.
         float dist = length(v_world - u_eye);
         float path = v_spacing * v_slab * abs(across.z) / cos_view;
-        float above = v_slab > 0.0 ? clamp(v_slab_above / v_slab, 0.0, 1.0) : 0.5;
-        float before = dot(view, across.z < 0.0 ? -across : across) < 0.0 ? above : 1.0 - above;
+        float over_layer = v_slab > 0.0 ? clamp(v_slab_above / v_slab, 0.0, 1.0) : 0.5;
+        float before = dot(view, across.z < 0.0 ? -across : across) < 0.0 ? over_layer : 1.0 - over_layer;
         float entry = max(dist - before * path, 0.0);
         if (leaves_the_eyes_slab(view, across, dist)) {
             // In combined mode the froxels draw the fog nearer than the layers' share begins.
@@ -208,10 +208,11 @@ void main()
         // 5.19 % for 40 % more time in the layers pass): the middle of a thin slab, nearer the
         // eye along a path from it.
         float rate = -view.z * sigma / max(u_sun_direction.z, 0.05);  // tau_sun's change a metre along the ray
-        float tau_in = max(tau_sun - rate * (dist - entry), 0.0);
-        float tau_out = max(tau_sun + rate * (entry + path - dist), 0.0);
         if (abs(rate * path) > 1.0)
-            radiance = fog_source_of(sun_scattering_over_slab(cos_sun, tau_in, tau_out, sigma * path), sun_up);
+            radiance = fog_source_of(sun_scattering_over_slab(cos_sun, max(tau_sun - rate * (dist - entry), 0.0),
+                                                              max(tau_sun + rate * (entry + path - dist), 0.0),
+                                                              sigma * path),
+                                     sun_up);
         else
             radiance = fog_source(cos_sun, max(tau_sun + rate * (entry + emission_centroid(path, sigma * path) - dist), 0.0),
                                   sun_up);
