@@ -14,6 +14,9 @@ uniform sampler2D u_depth;      // full-resolution depth
 uniform sampler2DMS u_samples_depth;  // the frame's samples' depth before the resolve
 uniform sampler2DMS u_samples_color;  // and their colour, when the frame below is their mean
 uniform bool u_samples_below;         // (nothing blended into it since the resolve)
+uniform bool u_at_samples;            // the layers drawn at the frame's resolution along each pixel's
+                                      // samples' rays, each sample's blend apart (layers.frag's
+uniform sampler2D u_layer_samples[3]; // LAYERS_AT_SAMPLES): samples 1..3's (u_layers holds sample 0's)
 uniform vec2 u_low_size;
 uniform float u_near;
 uniform float u_far;
@@ -65,6 +68,25 @@ void main()
 {
     vec2 uv = v_ndc * 0.5 + 0.5;
     ivec2 px = ivec2(gl_FragCoord.xy);
+    if (u_at_samples) {
+        vec4 c[4] = vec4[4](texelFetch(u_layers, px, 0), texelFetch(u_layer_samples[0], px, 0),
+                            texelFetch(u_layer_samples[1], px, 0), texelFetch(u_layer_samples[2], px, 0));
+        vec4 sum = vec4(0.0);
+        vec3 through = vec3(0.0), below = vec3(0.0);
+        for (int s = 0; s < 4; ++s) {
+            sum += c[s];
+            if (u_samples_below) {
+                vec3 b = texelFetch(u_samples_color, px, s).rgb;
+                through += (1.0 - c[s].a) * b;
+                below += b;
+            }
+        }
+        // Each sample's own colour seen through its own blend of the stack, as below.
+        o_color = 0.25 * sum;
+        if (u_samples_below)
+            o_color.rgb += 0.25 * (through - (1.0 - o_color.a) * below);
+        return;
+    }
     if (u_samples > 1 && samples_apart(px)) {
         vec2 size = vec2(textureSize(u_depth, 0));
         vec4 sum = vec4(0.0);

@@ -14,9 +14,21 @@ uniform sampler2D u_depth;  // the resolved frame's depth, full resolution
 uniform vec2 u_scale;       // low-resolution texels per full-resolution pixel, each in (0, 1]
 uniform float u_near;
 uniform float u_far;
+// At the frame's resolution with each slab along its samples' rays (layers.frag's
+// LAYERS_AT_SAMPLES): the farthest of the pixel's samples, so that a layer any of them sees
+// beyond the others' ground is drawn (each sample ends its own slabs at its own ground).
+uniform sampler2DMS u_samples_depth;
+uniform int u_samples;  // > 1: so
 
 void main()
 {
+    if (u_samples > 1) {
+        float farthest = 0.0;
+        for (int s = 0; s < 8 && s < u_samples; ++s)
+            farthest = max(farthest, texelFetch(u_samples_depth, ivec2(gl_FragCoord.xy), s).r);
+        gl_FragDepth = farthest;
+        return;
+    }
     ivec2 size = textureSize(u_depth, 0);
     ivec2 low = ivec2(gl_FragCoord.xy);
     ivec2 first = ivec2(floor(vec2(low) / u_scale));

@@ -23,21 +23,25 @@ uniform float u_extinction;
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
 out vec4 o_color;
+#if defined(LAYERS_AT_SAMPLES)
+// Each sample's own blend of the stack (layers.frag): each sample's fog before its own ground.
+layout(location = 1) out vec4 o_sample1;
+layout(location = 2) out vec4 o_sample2;
+layout(location = 3) out vec4 o_sample3;
+#endif
 
-void main()
+// The fog before `ground` (premultiplied; 0: none).
+vec4 end_fog(vec3 ground)
 {
-    vec3 ground;
-    if (!frame_ground(v_ndc * 0.5 + 0.5, ground))
-        discard;  // the sky: the ray leaves the fog through a layer or its side
     vec3 ray = ground - u_eye;
     float reach = length(ray);
     if (!(reach > 0.0))
-        discard;
+        return vec4(0.0);
     vec3 view = ray / reach;
     // The stack over the terrain point, as layers.vert spaces it there.
     float base = texture(u_base_heights, (ground.xy - u_base_rect.xy) * u_base_rect.zw).r;
     if (!(base > -1e29) || !(ground.z >= base))
-        discard;
+        return vec4(0.0);
     float r0 = u_thickness / u_count;
     float r = r0;
     float to_base = length(u_eye - vec3(ground.xy, base));
@@ -47,7 +51,7 @@ void main()
     float n = u_thickness / r;
     float j = floor((ground.z - base) / r);  // the terrain point lies between layers j and j + 1
     if (j >= floor(n))
-        discard;  // over the stack's whole layers
+        return vec4(0.0);  // over the stack's whole layers
     // The stretch of the ray in the slab it ends in, before the terrain.
     float stretch;
     if (u_eye_inside != 0 && reach <= u_first_reach && j == eye_region(view)) {
@@ -59,7 +63,7 @@ void main()
         // descending into slab j. Otherwise it ends in the slab of the layer it crossed last,
         // which took that slab up to the terrain (layers.frag).
         if (!(abs(view.z) > 0.0) || (view.z > 0.0) != (below > 0.0))
-            discard;
+            return vec4(0.0);
         stretch = min(reach, abs(below) / abs(view.z));
     }
     // The fog there: the Medium's coverage, the layers' profile at the height, the detail.
@@ -74,7 +78,7 @@ void main()
     float sigma = u_extinction * density;
     float a = 1.0 - exp(-sigma * stretch);
     if (!(a > 1e-6))
-        discard;
+        return vec4(0.0);
     // Lit where its light comes from: the centroid of its emission from the stretch's near end.
     vec3 lit = ground - view * stretch + view * emission_centroid(stretch, sigma * stretch);
     vec3 s = u_sun_direction;
@@ -86,5 +90,27 @@ void main()
         radiance += u_albedo * u_sun_radiance * lv_in_scattered_at(lit, -view, u_anisotropy, true);
     radiance = mix(radiance, u_sky_horizon, 1.0 - exp(-distance(lit, u_eye) * u_haze_density));
     vec4 fog = froxel_fog(ground - view * stretch);
-    o_color = vec4((radiance * fog.a + fog.rgb) * a, a);
+    return vec4((radiance * fog.a + fog.rgb) * a, a);
+}
+
+void main()
+{
+    vec3 ground;
+#if defined(LAYERS_AT_SAMPLES)
+    vec4 c[4];
+    for (int s = 0; s < 4; ++s)
+        c[s] = sample_ground(s, ground) ? end_fog(ground) : vec4(0.0);
+    if (!(max(max(c[0].a, c[1].a), max(c[2].a, c[3].a)) > 0.0))
+        discard;
+    o_color = c[0];
+    o_sample1 = c[1];
+    o_sample2 = c[2];
+    o_sample3 = c[3];
+#else
+    if (!frame_ground(v_ndc * 0.5 + 0.5, ground))
+        discard;  // the sky: the ray leaves the fog through a layer or its side
+    o_color = end_fog(ground);
+    if (!(o_color.a > 0.0))
+        discard;
+#endif
 }

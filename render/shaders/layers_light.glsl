@@ -19,6 +19,31 @@ uniform float u_eye_spacing;     // (geometry::layer_stack_under): layer i at u_
 uniform float u_first_reach;     // metres within which a ray may still be in the space it started in
 uniform sampler2D u_frame_depth; // the frame's resolved depth (the stretch pass, and the layers with it)
 uniform mat4 u_inverse_view_projection;
+#if defined(LAYERS_AT_SAMPLES)
+uniform sampler2DMS u_frame_samples;  // the frame's samples' depth (4 of them)
+uniform vec2 u_sample_offsets[8];     // each sample's offset from the pixel's centre (pixels, GL's y up)
+
+// The terrain point sample s of this fragment's pixel sees (the target at the frame's resolution);
+// false: the sky.
+bool sample_ground(int s, out vec3 ground)
+{
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(u_frame_samples, px, s).r;
+    if (!(depth < 1.0))
+        return false;
+    vec2 uv = (vec2(px) + 0.5 + u_sample_offsets[s]) / vec2(textureSize(u_frame_samples));
+    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    ground = h.xyz / h.w;
+    return true;
+}
+
+// The distance from the eye to it (1e30: the sky).
+float sample_ground_distance(int s)
+{
+    vec3 ground;
+    return sample_ground(s, ground) ? distance(ground, u_eye) : 1e30;
+}
+#endif
 
 const float pi = 3.14159265358979;
 

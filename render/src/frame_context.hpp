@@ -25,6 +25,9 @@ struct FrameContext {
     bool sun_glow = true;                      // the sky draws the sun's glow (SunLight::sky)
     float exposure = float(display_exposure);  // tone_map.hpp
     float haze_density = 0.0f;                 // 1/m: the air's extinction (geometry::scene_air), towards sky_horizon
+    //! A still picture (Renderer::render), not a frame of a moving view (Renderer::draw): the
+    //! layers drawn at the frame's resolution take each sample's own ray (LayersPass).
+    bool still = false;
     //! Combined mode: each fog renderer draws its share of the Medium (fog_partition.hpp).
     bool partitioned = false;
     glm::vec4 partition{0.0f};  //!< near_start, near_end, particle_share, particle_band

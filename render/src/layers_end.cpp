@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "froxel_pass.hpp"
@@ -16,7 +17,9 @@ namespace {
 // Texture units: the sun volume's three (the Medium's grid, its noise, tau_sun), the layers'
 // noise, the frame's depth; the froxel apply's and the shadow map's (5 .. 19, 23), the baked
 // light's (20 .. 22) as in layers.frag; the base's heights.
-constexpr int end_unit_sun = 0, end_unit_noise = 3, end_unit_depth = 4, end_unit_baked = 20, end_unit_base = 24;
+// The frame's samples' depth (25) where each sample's fog is drawn.
+constexpr int end_unit_sun = 0, end_unit_noise = 3, end_unit_depth = 4, end_unit_baked = 20, end_unit_base = 24,
+              end_unit_samples = 25;
 // Steps of the sun's march where a point lies outside the sun volume (as the layers' columns).
 constexpr int end_sun_march_steps = 32;
 // Texels of the base's height map along its longer side.
@@ -73,15 +76,18 @@ void LayersEnd::draw(const Inputs& in)
     const geometry::LayerOptions& o = in.options;
     const bool baked = o.optics.multiple_scattering == geometry::MultipleScattering::baked && in.light_volume &&
         in.light_volume->ready();
-    std::unique_ptr<ShaderProgram>& slot = programs_[in.fog ? 1 : 0][baked ? 1 : 0];
+    std::unique_ptr<ShaderProgram>& slot = programs_[in.fog ? 1 : 0][baked ? 1 : 0][in.at_samples != nullptr ? 1 : 0];
     if (!slot)
         slot = std::make_unique<ShaderProgram>(
-            std::vector<std::string_view>{"medium_shell.glsl", "light_volume.glsl", "fog_partition.glsl",
-                                          "froxel_common.glsl", "fog_lighting.glsl", "terrain_shadow.glsl",
-                                          "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
-                                          in.fog ? "froxel_apply.glsl" : "froxel_fog_none.glsl", "layers_light.glsl",
-                                          "fullscreen.vert", "layers_end.frag"},
-            light_volume_preamble(baked));
+            // The vertex stage first: the libraries are the fragment stage's (layers_light.glsl
+            // reads the fragment's samples).
+            std::vector<std::string_view>{
+                "fullscreen.vert", "medium_shell.glsl", "light_volume.glsl", "fog_partition.glsl", "froxel_common.glsl",
+                "fog_lighting.glsl", "terrain_shadow.glsl", "height_fog.glsl", "froxel_medium.glsl", "sun_march.glsl",
+                "sun_volume.glsl", in.fog ? "froxel_apply.glsl" : "froxel_fog_none.glsl", "layers_light.glsl",
+                "layers_end.frag"},
+            std::string(light_volume_preamble(baked)) +
+                (in.at_samples != nullptr ? "#define LAYERS_AT_SAMPLES\n" : ""));
     const ShaderProgram& p = *slot;
     if (in.fog)
         in.fog->bind_apply(p);
@@ -104,6 +110,11 @@ void LayersEnd::draw(const Inputs& in)
     p.use();
     glBindTextureUnit(end_unit_noise, in.noise);
     glBindTextureUnit(end_unit_depth, in.resolved_depth);
+    if (in.at_samples) {
+        p.set("u_frame_samples", end_unit_samples);
+        glProgramUniform2fv(p.id(), p.location("u_sample_offsets"), 8, in.at_samples->offsets);
+        glBindTextureUnit(end_unit_samples, in.at_samples->depth);
+    }
     glBindTextureUnit(end_unit_base, heights_.get());
     if (!empty_vao_)
         empty_vao_ = make_vertex_array();

@@ -9,6 +9,7 @@
 #include "gl_objects.hpp"
 #include "kiri/geometry/layers/layer_stack.hpp"
 #include "layer_stack_uniforms.hpp"
+#include "render_targets.hpp"
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {
@@ -31,6 +32,9 @@ public:
         EyeInStack eye;
         GLuint noise = 0;
         unsigned resolved_depth = 0;
+        //! The frame's samples (4) to draw each one's fog before its own ground into the targets of
+        //! each sample's blend (layers.frag's LAYERS_AT_SAMPLES), or null.
+        const FrameSamples* at_samples = nullptr;
         const FroxelPass* fog = nullptr;
         const ShadowMapPass* shadow = nullptr;
         const SunVolume* sun = nullptr;  //!< required: the Medium's grid and tau_sun
@@ -42,7 +46,7 @@ public:
 private:
     Texture heights_;
     glm::vec4 rect_{0.0f};
-    std::unique_ptr<ShaderProgram> programs_[2][2];  // [froxel fog][the baked light], built on first use
+    std::unique_ptr<ShaderProgram> programs_[2][2][2];  // [froxel fog][the baked light][at samples], built on first use
     VertexArray empty_vao_;
 };
 

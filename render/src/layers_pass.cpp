@@ -37,7 +37,8 @@ constexpr int layers_unit_baked_moments =
     20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
 // The frame's resolved depth in layers.frag, after the baked light's and the shadow map's (23).
 constexpr int layers_unit_ground_depth = 24;
-constexpr int layers_unit_sun = 25;  // 25, 26, 27: sun_volume.glsl's in layers.frag
+constexpr int layers_unit_sun = 25;      // 25, 26, 27: sun_volume.glsl's in layers.frag
+constexpr int layers_unit_samples = 28;  // the frame's samples' depth (LAYERS_AT_SAMPLES)
 // Steps of the sun's march where a fragment lies outside the sun volume's grid.
 constexpr int sun_march_steps = 32;
 
@@ -206,9 +207,9 @@ bool LayersPass::draw(const FrameContext& frame)
     return uploaded;
 }
 
-void LayersPass::ensure_low(int width, int height)
+void LayersPass::ensure_low(int width, int height, bool at_samples)
 {
-    if (width == low_width_ && height == low_height_ && low_fbo_)
+    if (width == low_width_ && height == low_height_ && low_fbo_ && at_samples == low_at_samples_)
         return;
     low_color_ = make_texture(GL_TEXTURE_2D);
     low_depth_ = make_texture(GL_TEXTURE_2D);
@@ -220,8 +221,20 @@ void LayersPass::ensure_low(int width, int height)
     low_fbo_ = make_framebuffer();
     glNamedFramebufferTexture(low_fbo_.get(), GL_COLOR_ATTACHMENT0, low_color_.get(), 0);
     glNamedFramebufferTexture(low_fbo_.get(), GL_DEPTH_ATTACHMENT, low_depth_.get(), 0);
+    for (int s = 0; s < 3; ++s) {
+        low_samples_[s] = Texture{};
+        if (!at_samples)
+            continue;
+        low_samples_[s] = make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(low_samples_[s].get(), 1, GL_RGBA32F, width, height);
+        set_sampling(low_samples_[s].get(), GL_NEAREST);
+        glNamedFramebufferTexture(low_fbo_.get(), GLenum(GL_COLOR_ATTACHMENT1 + s), low_samples_[s].get(), 0);
+    }
+    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(low_fbo_.get(), at_samples ? 4 : 1, buffers);
     low_width_ = width;
     low_height_ = height;
+    low_at_samples_ = at_samples;
 }
 
 // The setting is chosen for the frames users look at (1280 x 720 and up), where a reduced texel
@@ -243,7 +256,14 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigne
     const double scale = reduced_scale(setting, frame.width, frame.height);
     const int w = std::max(1, int(std::ceil(frame.width * scale))),
               h = std::max(1, int(std::ceil(frame.height * scale)));
-    ensure_low(w, h);
+    // A still at the frame's resolution: each slab along the rays of its pixel's samples, each
+    // sample's blend of them in a target of its own (layers.frag's LAYERS_AT_SAMPLES). It costs
+    // the layers pass about 4x (every slab lit at each sample): a moving view's frames (the
+    // preview's, at its floor a frame of 160 x 90) draw at the centre.
+    const bool at_samples = w == frame.width && h == frame.height && samples.depth != 0 && samples.offsets != nullptr &&
+        samples.count == 4 && options_.shading == geometry::LayerShading::medium && sun_ && sun_->medium() &&
+        frame.still;
+    ensure_low(w, h, at_samples);
     // The terrain's depth per low-resolution texel: the farthest it covers, the nearest across a
     // silhouette (layers_depth_max.frag).
     glBindFramebuffer(GL_FRAMEBUFFER, low_fbo_.get());
@@ -253,12 +273,16 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigne
     const glm::vec2 planes = depth_planes(frame);
     depth_max_.set("u_near", planes.x);
     depth_max_.set("u_far", planes.y);
+    depth_max_.set("u_samples_depth", 1);
+    depth_max_.set("u_samples", at_samples ? samples.count : 1);
     depth_max_.use();
     glBindTextureUnit(0, resolved_depth);
+    glBindTextureUnit(1, at_samples ? samples.depth : 0);
     draw_fullscreen_depth(empty_vao_.get());
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, 0, clear);
-    draw_stack(frame, h, resolved_depth);
+    for (int b = 0; b < (at_samples ? 4 : 1); ++b)
+        glClearNamedFramebufferfv(low_fbo_.get(), GL_COLOR, b, clear);
+    draw_stack(frame, h, resolved_depth, at_samples ? &samples : nullptr);
 
     composite_.set("u_layers", 0);
     composite_.set("u_low_depth", 1);
@@ -266,6 +290,10 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigne
     composite_.set("u_samples_depth", 3);
     composite_.set("u_samples_color", 4);
     composite_.set("u_samples_below", samples.color != 0 ? 1 : 0);
+    composite_.set("u_at_samples", int(at_samples));
+    composite_.set("u_layer_samples[0]", 5);
+    composite_.set("u_layer_samples[1]", 6);
+    composite_.set("u_layer_samples[2]", 7);
     composite_.set("u_samples", samples.depth && samples.offsets ? samples.count : 1);
     if (samples.offsets)
         glProgramUniform2fv(composite_.id(), composite_.location("u_offsets"), 8, samples.offsets);
@@ -278,6 +306,8 @@ bool LayersPass::draw_reduced(const FrameContext& frame, double setting, unsigne
     glBindTextureUnit(2, resolved_depth);
     glBindTextureUnit(3, samples.depth);
     glBindTextureUnit(4, samples.color);
+    for (int s = 0; s < 3; ++s)
+        glBindTextureUnit(GLuint(5 + s), at_samples ? low_samples_[s].get() : 0);
     glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
     glViewport(0, 0, frame.width, frame.height);
     glDisable(GL_DEPTH_TEST);
@@ -317,9 +347,9 @@ void LayersPass::update_lod(const FrameContext& frame, int target_height)
     near_reach_ = -1.0;  // the near triangles come from the new list
 }
 
-const ShaderProgram& LayersPass::stack_program(bool froxel_fog, int baked)
+const ShaderProgram& LayersPass::stack_program(bool froxel_fog, int baked, bool at_samples)
 {
-    std::unique_ptr<ShaderProgram>& p = programs_[froxel_fog ? 1 : 0][std::clamp(baked, 0, 2)];
+    std::unique_ptr<ShaderProgram>& p = programs_[froxel_fog ? 1 : 0][std::clamp(baked, 0, 2)][at_samples ? 1 : 0];
     if (!p)
         p = std::make_unique<ShaderProgram>(
             std::vector<std::string_view>{"medium_shell.glsl", "light_volume.glsl", "layers.vert", "fog_partition.glsl",
@@ -328,11 +358,13 @@ const ShaderProgram& LayersPass::stack_program(bool froxel_fog, int baked)
                                           froxel_fog ? "froxel_apply.glsl" : "froxel_fog_none.glsl",
                                           "layers_light.glsl", "layers.frag"},
             std::string(light_volume_preamble(baked > 0)) +
-                (baked == 2 ? "" : "#define LAYERS_BAKED_PER_FRAGMENT 0\n"));
+                (baked == 2 ? "" : "#define LAYERS_BAKED_PER_FRAGMENT 0\n") +
+                (at_samples ? "#define LAYERS_AT_SAMPLES\n" : ""));
     return *p;
 }
 
-void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsigned resolved_depth)
+void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsigned resolved_depth,
+                            const FrameSamples* at_samples)
 {
     update_lod(frame, target_height);
     const auto& o = options_;
@@ -353,8 +385,11 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     // per-fragment variant and the rest with the per-vertex one (every fragment of a program pays
     // for its code: the ridge camera's layers pass 1.84x `fitted`'s with the one program).
     const bool split = baked && stack_within(*base_, o, top, eye, 1.01 * reach);
-    const ShaderProgram& p = stack_program(fog_ != nullptr, baked ? 1 : 0);
-    const ShaderProgram& near_program = stack_program(fog_ != nullptr, split ? 2 : (baked ? 1 : 0));
+    // The samples' rays where the slabs end at the ground (the stretch pass's fog before it).
+    const bool stretch = resolved_depth != 0 && o.shading == geometry::LayerShading::medium && sun_ && sun_->medium();
+    const bool sampled = stretch && at_samples != nullptr;
+    const ShaderProgram& p = stack_program(fog_ != nullptr, baked ? 1 : 0, sampled);
+    const ShaderProgram& near_program = stack_program(fog_ != nullptr, split ? 2 : (baked ? 1 : 0), sampled);
     last_layers_ = top;
     last_triangles_ = int(drawn_triangles().size() / 3);
     const geometry::LayerStackUnder at_eye = geometry::layer_stack_under(*base_, options_, eye);
@@ -367,9 +402,9 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
     // drawn first, by a pass that binds its own textures. The medium shading over a Medium (its
     // grid, its tau_sun). The layers' slabs then end where their rays meet the terrain (the
     // frame's depth).
-    const bool stretch = resolved_depth != 0 && o.shading == geometry::LayerShading::medium && sun_ && sun_->medium();
     if (stretch)
-        end_.draw({o, frame, noise_shift_, in_stack, noise_.get(), resolved_depth, fog_, shadow_, sun_, light_volume_});
+        end_.draw({o, frame, noise_shift_, in_stack, noise_.get(), resolved_depth, sampled ? at_samples : nullptr, fog_,
+                   shadow_, sun_, light_volume_});
     const bool sun_lookup = sun_ && sun_->ready() && o.shading == geometry::LayerShading::medium;
     // Each program's uniforms and textures (the units are the same for both).
     const auto prepare = [&](const ShaderProgram& q) {
@@ -385,6 +420,12 @@ void LayersPass::draw_stack(const FrameContext& frame, int target_height, unsign
             q.set("u_target_size", glm::vec2(float(low_width_), float(low_height_)));
             q.set("u_inverse_view_projection", frame.inverse_view_projection);
             glBindTextureUnit(layers_unit_ground_depth, resolved_depth);
+        }
+        if (sampled) {
+            q.set("u_frame_samples", layers_unit_samples);
+            q.set("u_sample_count", at_samples->count);
+            glProgramUniform2fv(q.id(), q.location("u_sample_offsets"), 8, at_samples->offsets);
+            glBindTextureUnit(layers_unit_samples, at_samples->depth);
         }
         q.set("u_atlas", 0);
         q.set("u_heights", 1);

@@ -81,9 +81,10 @@ private:
     ShaderProgram composite_, depth_max_;
     //! The stack's program, with froxel fog (froxel_apply.glsl) or none, and without the baked
     //! light (light_volume_preamble), with it from the vertices, or with it per fragment near the
-    //! eye too (`baked` 0, 1, 2), each built on first use.
-    const ShaderProgram& stack_program(bool froxel_fog, int baked);
-    std::unique_ptr<ShaderProgram> programs_[2][3];
+    //! eye too (`baked` 0, 1, 2), each slab taken along the centre's ray or its samples' (layers.frag's
+    //! LAYERS_AT_SAMPLES), each built on first use.
+    const ShaderProgram& stack_program(bool froxel_fog, int baked, bool at_samples);
+    std::unique_ptr<ShaderProgram> programs_[2][3][2];
     const FroxelPass* fog_ = nullptr;
     const ShadowMapPass* shadow_ = nullptr;
     const SunVolume* sun_ = nullptr;
@@ -93,13 +94,20 @@ private:
     // The reduced-resolution target.
     Framebuffer low_fbo_;
     Texture low_color_, low_depth_;
+    //! Samples 1..3's blends of the stack where it is drawn along each sample's ray (low_color_
+    //! holds sample 0's): at the frame's resolution only, made on first use.
+    Texture low_samples_[3];
     int low_width_ = 0, low_height_ = 0;
-    void ensure_low(int width, int height);
+    bool low_at_samples_ = false;
+    void ensure_low(int width, int height, bool at_samples);
     //! Whether there is anything to draw this frame; uploads the ground first if needed.
     bool ready(const FrameContext& frame, bool& uploaded);
     //! target_height: the height in pixels of the target drawn into (the level of detail's scale);
-    //! resolved_depth (0: none): the frame's depth, for the fog before the terrain (LayersEnd).
-    void draw_stack(const FrameContext& frame, int target_height, unsigned resolved_depth = 0);
+    //! resolved_depth (0: none): the frame's depth, for the fog before the terrain (LayersEnd);
+    //! at_samples (null: none): the frame's samples, each slab taken along each one's ray (a target
+    //! of the frame's resolution).
+    void draw_stack(const FrameContext& frame, int target_height, unsigned resolved_depth = 0,
+                    const FrameSamples* at_samples = nullptr);
     LayersEnd end_;
     VertexArray vao_;
     Buffer vertices_, indices_;

@@ -53,6 +53,7 @@ struct Renderer::Impl {
     double layer_scale = 0.5;
     double froxel_resolution = 1.0;  // set_froxel_resolution
     bool layers_multisampled = false;
+    bool drawing_still = false;  // Renderer::render's draws (FrameContext::still)
     detail::RenderTargets targets;
     SunLight sun;
     FrameStats stats;
@@ -370,6 +371,7 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     FrameContext frame =
         detail::make_frame_context(camera, r.sun, width, height, scene_min, scene_max,
                                    std::hypot(std::max(terrain_extent.x, 0.0), std::max(terrain_extent.y, 0.0)));
+    frame.still = r.drawing_still;
     if (r.partition) {
         frame.partitioned = true;
         frame.partition = glm::vec4(r.partition->near_start, r.partition->near_end, r.partition->particle_share,
@@ -495,6 +497,11 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
 Image Renderer::render(const Camera& camera, int width, int height)
 {
     const auto start = std::chrono::steady_clock::now();
+    struct StillFrames {  // also when a draw throws
+        bool& drawing;
+        explicit StillFrames(bool& flag) : drawing(flag) { drawing = true; }
+        ~StillFrames() { drawing = false; }
+    } still(impl_->drawing_still);
     draw(camera, width, height);
     const FroxelStats& froxel = impl_->stats.froxel;
     if (froxel.visible && !froxel.converged)  // a moving view's froxels: this view held is a still

@@ -7,13 +7,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <numbers>
 #include <string>
 
 #include "cli/kiri_runner.hpp"
 #include "cli/reference_judge.hpp"
 #include "cli/shipped_scene.hpp"
+#include "cli/synthetic_dem.hpp"
 #include "kiri/render/image.hpp"
 
 namespace fs = std::filesystem;
@@ -31,16 +31,6 @@ kiri::render::Image render(const std::string& mode, const std::string& scene = d
     kiri::render::Image image = kiri::render::read_png(out);
     fs::remove(out);
     return image;
-}
-
-// An ESRI ASCII grid of n x n samples 20 m apart, height(x, y) in metres from its south-west corner.
-void write_dem(const fs::path& file, int n, const std::function<double(double, double)>& height)
-{
-    std::ofstream dem(file);
-    dem << "ncols " << n << "\nnrows " << n << "\nxllcorner 0\nyllcorner 0\ncellsize 20\nNODATA_value -9999\n";
-    for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c)
-            dem << height(20.0 * c, 20.0 * (n - 1 - r)) << (c + 1 < n ? " " : "\n");
 }
 
 }  // namespace
@@ -74,7 +64,7 @@ TEST(KiriLayers, ALakesThreadsUnderACoarseBaseTakeTheirOwnSunlight)
     // and the fog's shade bends within most of these pixels: 0.0380, and 0.0413 with the columns.
     const fs::path dir = kiri::test::temp_path("layers_test_threads");
     fs::create_directories(dir);
-    write_dem(dir / "valleys.asc", 301, [](double x, double y) {
+    kiri::test::write_dem(dir / "valleys.asc", 301, [](double x, double y) {
         return 75.0 * (1.0 - std::cos(2.0 * std::numbers::pi * x / 400.0)) + 20.0 * std::sin(y / 700.0);
     });
     {
@@ -104,7 +94,7 @@ TEST(KiriLayers, ADenseFogIsLitInItsFirstMetres)
     // top was lit at half its depth: 0.0855 against the reference, 0.0160 now.
     const fs::path dir = kiri::test::temp_path("layers_test_dense");
     fs::create_directories(dir);
-    write_dem(dir / "bowl.asc", 201, [](double x, double y) {
+    kiri::test::write_dem(dir / "bowl.asc", 201, [](double x, double y) {
         const double u = x / 2000.0 - 1.0, v = y / 2000.0 - 1.0;
         return 300.0 * (u * u + v * v) + 10.0 * std::sin(x / 310.0) * std::cos(y / 270.0);
     });
