@@ -3,10 +3,8 @@
 // samples where the fog bends within a pixel (apps/kiri/bench/fog_judge.hpp).
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 
 #include "bench/fog_judge.hpp"
 #include "cli/synthetic_dem.hpp"
@@ -24,21 +22,7 @@ TEST(LayersAtSamples, ADenseFogsShoreIsFoggedSampleBySample)
     // sample on its own ray, to its own ground, lit where it is: 0.0114 (p99 0.070).
     const fs::path dir = kiri::test::temp_path("layers_samples_test");
     fs::create_directories(dir);
-    kiri::test::write_dem(dir / "bowl.asc", 201, [](double x, double y) {
-        const double u = x / 2000.0 - 1.0, v = y / 2000.0 - 1.0;
-        return 300.0 * (u * u + v * v) + 10.0 * std::sin(x / 310.0) * std::cos(y / 270.0);
-    });
-    {
-        std::ofstream scene(dir / "dense.json");
-        scene << R"({"terrain": {"path": "bowl.asc"},
-  "cameras": [{"name": "far", "position": [-2300, -2300, 1100], "target": [0, 0, 100], "fov": 40}],
-  "sun": {"direction": [-0.75, 0.35, 0.32], "intensity": 3.2, "ambient": [0.22, 0.28, 0.38]},
-  "fog": {"footprint": {"type": "terrain", "margin": 0}, "patch_size": 1000, "mode": "lake", "altitude": 150,
-          "thickness": 150},
-  "layers": {"count": 15},
-  "medium": {"visibility": 10, "top_density": 0.5}})";
-    }
-    const kiri::bench::SceneJson source(dir / "dense.json");
+    const kiri::bench::SceneJson source(kiri::test::write_dense_bowl_lake(dir));
     kiri::bench::FogJudge judge(source.parse(source.root), "far", 96, 54);
     judge.prepare(source.parse(source.root), kiri::render::FogMode::layers);
     const kiri::render::FogError e = judge.error();
