@@ -99,6 +99,22 @@ bool leaves_the_eyes_slab(vec3 view, vec3 across, float dist)
     return climb > 0.0 ? float(v_layer) == j + 1.0 : float(v_layer) == j;
 }
 
+#if defined(LAYERS_AT_SAMPLES)
+// Where sample s's ray crosses this fragment's layer: the plane of its triangle (normal `plane`)
+// through the centre's point. Moved along the screen's derivatives instead, a layer seen at a
+// grazing angle (the ridge camera's, towards the horizon) put a sample's point far off its ray.
+vec3 sample_point(int s, vec3 plane)
+{
+    vec2 uv = (floor(gl_FragCoord.xy) + 0.5 + u_sample_offsets[s]) / vec2(textureSize(u_frame_samples));
+    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
+    vec3 ray = normalize(h.xyz / h.w - u_eye);
+    float across = dot(ray, plane);
+    if (!(abs(across) > 1e-6 * length(plane)))
+        return v_world;
+    return u_eye + ray * (dot(v_world - u_eye, plane) / across);
+}
+#endif
+
 // The light a slab scatters towards the eye along `view`: it enters the slab `entry` from the eye
 // and crosses `path` of it at extinction `sigma`, its layer `dist` from the eye at `point`; the
 // Medium's column there (`covered`, `column`) as main read it.
@@ -262,12 +278,12 @@ void main()
             // is flat): there the ground under it, along it the ground the ray meets, and the light
             // it scatters (a shore's pixel holds sunlit fog and fog in a ridge's shadow).
             float opacity = 0.0;
-            vec3 dx = dFdx(v_world), dy = dFdy(v_world);
+            vec3 plane = cross(dFdx(v_world), dFdy(v_world));
             float paths[4];
             for (int s = 0; s < 4; ++s) {
                 sample_alpha[s] = 0.0;
                 paths[s] = 0.0;
-                vec3 w = v_world + dx * u_sample_offsets[s].x + dy * u_sample_offsets[s].y;
+                vec3 w = sample_point(s, plane);
                 vec2 uv = (w.xy - u_height_rect.xy) * u_height_rect.zw;
                 uv = (uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;
                 if (w.z >= texture(u_heights, uv).r)
@@ -283,7 +299,7 @@ void main()
             for (int s = 0; s < 4; ++s) {
                 sample_radiance[s] = vec3(0.0);
                 if (paths[s] > 0.0) {
-                    vec3 w = v_world + dx * u_sample_offsets[s].x + dy * u_sample_offsets[s].y;
+                    vec3 w = sample_point(s, plane);
                     float shift = length(w - u_eye) - dist;
                     sample_radiance[s] = slab_radiance(w, normalize(w - u_eye), entry + shift, paths[s], dist + shift,
                                                        sigma, covered, column, tex.a);

@@ -19,7 +19,7 @@ TEST(LayersAtSamples, ADenseFogsShoreIsFoggedSampleBySample)
     // top is a third opaque, and its shore line crosses a pixel between its samples. Drawn at
     // each pixel's centre, the layers took the centre's fog for the whole pixel, and where the
     // centre's ray met the shore above the top, none: 0.0195 against the judge (p99 0.164). Each
-    // sample on its own ray, to its own ground, lit where it is: 0.0114 (p99 0.070).
+    // sample on its own ray, to its own ground, lit where it is: 0.0104 (p99 0.060).
     const fs::path dir = kiri::test::temp_path("layers_samples_test");
     fs::create_directories(dir);
     const kiri::bench::SceneJson source(kiri::test::write_dense_bowl_lake(dir));
