@@ -75,6 +75,12 @@ float layer_slab_over_ground(float share, int i, float spacing, float clearance)
     return clearance / spacing + (share - lower);
 }
 
+// The terrain's height under xy (u_heights: texel centres at the heightfield's samples).
+float terrain_height(vec2 xy)
+{
+    vec2 uv = (xy - u_height_rect.xy) * u_height_rect.zw;
+    return texture(u_heights, (uv * (u_height_texels - 1.0) + 0.5) / u_height_texels).r;
+}
 
 // The distance along this fragment's ray to the terrain, at the centre of its texel as
 // layers_end.frag takes it (1e30: the sky).
@@ -105,9 +111,7 @@ bool leaves_the_eyes_slab(vec3 view, vec3 across, float dist)
 // grazing angle (the ridge camera's, towards the horizon) put a sample's point far off its ray.
 vec3 sample_point(int s, vec3 plane)
 {
-    vec2 uv = (floor(gl_FragCoord.xy) + 0.5 + u_sample_offsets[s]) / vec2(textureSize(u_frame_samples));
-    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
-    vec3 ray = normalize(h.xyz / h.w - u_eye);
+    vec3 ray = normalize(unproject(sample_uv(s), 1.0) - u_eye);
     float across = dot(ray, plane);
     if (!(abs(across) > 1e-6 * length(plane)))
         return v_world;
@@ -214,9 +218,7 @@ void main()
     }
     if (tex.a <= 0.0)
         discard;
-    vec2 h_uv = (v_world.xy - u_height_rect.xy) * u_height_rect.zw;
-    h_uv = (h_uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;  // texel centres at the samples
-    float clearance = v_world.z - texture(u_heights, h_uv).r;
+    float clearance = v_world.z - terrain_height(v_world.xy);
     // The medium shading: the part of this layer's slab above the ground, down to the ground where
     // the layer under it lies below the ground (hidden by the terrain), as a share of the slab;
     // with the stretch pass, the slab along the ray up to where the ray meets the ground (below).
@@ -280,13 +282,12 @@ void main()
             float opacity = 0.0;
             vec3 plane = cross(dFdx(v_world), dFdy(v_world));
             float paths[4];
+            vec3 points[4];
             for (int s = 0; s < 4; ++s) {
-                sample_alpha[s] = 0.0;
                 paths[s] = 0.0;
-                vec3 w = sample_point(s, plane);
-                vec2 uv = (w.xy - u_height_rect.xy) * u_height_rect.zw;
-                uv = (uv * (u_height_texels - 1.0) + 0.5) / u_height_texels;
-                if (w.z >= texture(u_heights, uv).r)
+                points[s] = sample_point(s, plane);
+                vec3 w = points[s];
+                if (w.z >= terrain_height(w.xy))
                     paths[s] = max(min(path, sample_ground_distance(s) - (entry + length(w - u_eye) - dist)), 0.0);
                 sample_alpha[s] = 1.0 - exp(-sigma * paths[s]);
                 opacity += sample_alpha[s];
@@ -299,7 +300,7 @@ void main()
             for (int s = 0; s < 4; ++s) {
                 sample_radiance[s] = vec3(0.0);
                 if (paths[s] > 0.0) {
-                    vec3 w = sample_point(s, plane);
+                    vec3 w = points[s];
                     float shift = length(w - u_eye) - dist;
                     sample_radiance[s] = slab_radiance(w, normalize(w - u_eye), entry + shift, paths[s], dist + shift,
                                                        sigma, covered, column, tex.a);

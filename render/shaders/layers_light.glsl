@@ -19,21 +19,31 @@ uniform float u_eye_spacing;     // (geometry::layer_stack_under): layer i at u_
 uniform float u_first_reach;     // metres within which a ray may still be in the space it started in
 uniform sampler2D u_frame_depth; // the frame's resolved depth (the stretch pass, and the layers with it)
 uniform mat4 u_inverse_view_projection;
+
+// The world point at uv ([0, 1]^2 over the target) and window depth `depth`.
+vec3 unproject(vec2 uv, float depth)
+{
+    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
+    return h.xyz / h.w;
+}
+
 #if defined(LAYERS_AT_SAMPLES)
 uniform sampler2DMS u_frame_samples;  // the frame's samples' depth (4 of them)
 uniform vec2 u_sample_offsets[8];     // each sample's offset from the pixel's centre (pixels, GL's y up)
 
-// The terrain point sample s of this fragment's pixel sees (the target at the frame's resolution);
-// false: the sky.
+// Where sample s of this fragment's pixel lies on the target at the frame's resolution (uv).
+vec2 sample_uv(int s)
+{
+    return (floor(gl_FragCoord.xy) + 0.5 + u_sample_offsets[s]) / vec2(textureSize(u_frame_samples));
+}
+
+// The terrain point sample s of this fragment's pixel sees; false: the sky.
 bool sample_ground(int s, out vec3 ground)
 {
-    ivec2 px = ivec2(gl_FragCoord.xy);
-    float depth = texelFetch(u_frame_samples, px, s).r;
+    float depth = texelFetch(u_frame_samples, ivec2(gl_FragCoord.xy), s).r;
     if (!(depth < 1.0))
         return false;
-    vec2 uv = (vec2(px) + 0.5 + u_sample_offsets[s]) / vec2(textureSize(u_frame_samples));
-    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    ground = h.xyz / h.w;
+    ground = unproject(sample_uv(s), depth);
     return true;
 }
 
@@ -55,8 +65,7 @@ bool frame_ground(vec2 uv, out vec3 ground)
     float depth = texture(u_frame_depth, uv).r;
     if (!(depth < 1.0))
         return false;
-    vec4 h = u_inverse_view_projection * vec4(uv * 2.0 - 1.0, depth * 2.0 - 1.0, 1.0);
-    ground = h.xyz / h.w;
+    ground = unproject(uv, depth);
     return true;
 }
 
