@@ -51,6 +51,20 @@ float footprint_ray_share(float x, float radius, float u0, float u1)
     return clamp((chord_integral(x, b) - chord_integral(x, a)) / whole, 0.0, 1.0);
 }
 
+// ball_chord_share (particle_footprint.hpp): the ball's density integrated along the ray at
+// x = rho / r between u0 and u1 (metres from the point nearest the centre), over tau.
+float ball_chord_share(float x, float radius, float u0, float u1)
+{
+    if (!(x < 1.0) || !(radius > 0.0))
+        return 0.0;
+    x = max(x, 0.0);
+    float half_chord = sqrt(1.0 - x * x);
+    float a = clamp(u0 / radius, -half_chord, half_chord), b = clamp(u1 / radius, -half_chord, half_chord);
+    if (!(b > a))
+        return 0.0;
+    return max(chord_integral(x, b) - chord_integral(x, a), 0.0) / (2.0 * chord_integral(0.0, 1.0));
+}
+
 // log G, G = T + a c (1 - T), T = exp(-tau f(rho / r)), clamped to [kMinLogGain, 0].
 float footprint_log_gain(float rho, float radius, float tau, float albedo, float forward)
 {

@@ -38,7 +38,36 @@ uniform vec4 u_fog_xy;  // the (x, y) rectangle that holds the fog (min, max), r
 uniform vec3 u_sky_horizon;
 uniform float u_haze_density;
 uniform float u_near_field;      // metres from the eye the near field covers (0: none)
+#ifdef KIRI_DENSITY_RATIO
+// The balls' summed density (density_ratio.hpp, DensityRatioTexture) over (x, y) and the shell's
+// height, and the columns' floor and top (relative to u_centre). The Medium's own extinction at
+// a point (froxel_medium.glsl) over it is R, the weight of every ball's density there.
+uniform sampler3D u_ratio;
+uniform sampler2D u_ratio_shell;
+uniform vec4 u_ratio_xy;  // the grid's (x0, y0) relative to u_centre; 1 / its width, 1 / its depth
+uniform float u_ratio_max;
+uniform float u_ratio_footprint;  // the ball's mass over its footprint's (geometry::ball_mass)
+// R at the middle of each third of a chord: the Medium's density changes along a ray within a
+// ball (a thread's walls, the detail noise's layers); one point at the chord's middle drew a
+// blanket seen from above 2.5 % too dark (a ball widened beyond a pixel took it at its centre).
+const int kRatioPoints = 3;
+#endif
 out vec4 o_color;
+
+#ifdef KIRI_DENSITY_RATIO
+// R at a point relative to u_centre (geometry::density_ratio_at).
+float density_ratio(vec3 p)
+{
+    float sigma = medium_sigma(p + u_centre);
+    if (!(sigma > 0.0))
+        return 0.0;
+    vec2 st = (p.xy - u_ratio_xy.xy) * u_ratio_xy.zw;
+    vec2 shell = texture(u_ratio_shell, st).rg;
+    float h = shell.y > shell.x ? (p.z - shell.x) / (shell.y - shell.x) : 0.0;
+    float balls = texture(u_ratio, vec3(st, h)).r;
+    return balls > 0.0 ? min(sigma / balls, u_ratio_max) : u_ratio_max;
+}
+#endif
 
 void main()
 {
@@ -80,8 +109,30 @@ void main()
     t0 = max(span.x, u_near_field);
     t1 = span.y;
     float cut_along = widened ? length(v_centre) : along;
-    float share = footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
-    float alpha = 1.0 - exp(-v_seen_tau * footprint_profile(x) * share);
+#ifdef KIRI_DENSITY_RATIO
+    // The ball's density times R along the visible chord; for a billboard widened beyond its ball
+    // (which spreads its footprint's mass), R's mean along the chord through its centre.
+    float chord_x = widened ? 0.0 : x;
+    float half_chord = v_depth_radius * sqrt(max(1.0 - chord_x * chord_x, 0.0));
+    float a = clamp(t0 - cut_along, -half_chord, half_chord), b = clamp(t1 - cut_along, -half_chord, half_chord);
+    float weighted = 0.0, mass = 0.0;
+    if (b > a) {
+        for (int k = 0; k < kRatioPoints; ++k) {
+            float u0 = mix(a, b, float(k) / float(kRatioPoints)), u1 = mix(a, b, float(k + 1) / float(kRatioPoints));
+            float m = ball_chord_share(chord_x, v_depth_radius, u0, u1);
+            weighted += m * density_ratio(u_eye - u_centre + cut_ray * (cut_along + 0.5 * (u0 + u1)));
+            mass += m;
+        }
+    }
+    float tau_seen = widened ? v_seen_tau * footprint_profile(x) *
+            footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along) * u_ratio_footprint *
+            (mass > 0.0 ? weighted / mass : 0.0)
+                             : v_seen_tau * weighted;
+#else
+    float tau_seen =
+        v_seen_tau * footprint_profile(x) * footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
+#endif
+    float alpha = 1.0 - exp(-tau_seen);
     // Lit where the ray's visible part passes nearest the centre.
     float t = widened ? along : clamp(along, t0, max(t0, t1));
     if (u_soft_edge > 0.0)  // a softer meeting with the terrain than the particle's own, if asked

@@ -20,6 +20,10 @@ namespace {
 constexpr int unit_baked_moments = 20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
 // The near field's sun volume: the Medium's grid, its noise, the volume (SunVolume::bind).
 constexpr int unit_near_sun = 12;  // 12, 13, 14
+// The density ratio and its columns' floor and top (DensityRatioTexture::bind), and the Medium
+// it divides (SunVolume::bind: its grid and noise; the volume itself is not read).
+constexpr int unit_ratio = 24;         // 24, 25
+constexpr int unit_ratio_medium = 26;  // 26, 27, 28
 }  // namespace
 
 ParticlesPass::ParticlesPass() : composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
@@ -334,6 +338,11 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     const bool rebuilt = buffer_.update(glm::dvec3(frame.sun_direction), style_.buffer);
     last_light_rebuilt_ = light_.update(*cloud_, buffer_, shadow_, sun_);
     sort(frame);
+    // The particles alone, standing for the Medium, draw it (density_ratio.hpp); under froxel fog
+    // they draw their share of it, and the ratio is not written for a share.
+    const geometry::Medium* matched = style_.match_medium && !fog_ && sun_ ? sun_->medium() : nullptr;
+    ratio_.update(*cloud_, uploaded_hash_, matched, buffer_.particle_centre());
+    const bool ratio = matched && ratio_.ready();
     const int scale = std::max(style_.near_scale, 1);
     ensure_target(frame.width, frame.height, scale);
     const std::size_t drawn = order_cpu_.size(), split = near_first(frame), around = around_first();
@@ -361,7 +370,7 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     const double near_reach = near_field_reach(frame);
     const auto program = [&](bool per_fragment) -> const ShaderProgram& {
         std::unique_ptr<ShaderProgram>& slot =
-            programs_[fog_ ? 1 : 0][baked ? 1 + int(per_fragment) : 0][table ? 1 : 0];
+            programs_[fog_ ? 1 : 0][baked ? 1 + int(per_fragment) : 0][table ? 1 : 0][ratio ? 1 : 0];
         if (!slot)
             slot = std::make_unique<ShaderProgram>(
                 fog_ ? std::vector<std::string_view>{"view_depth.glsl", "particle_footprint.glsl", "fog_partition.glsl",
@@ -369,12 +378,14 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
                                                      "terrain_shadow.glsl", "medium_shell.glsl", "height_fog.glsl",
                                                      "froxel_medium.glsl", "froxel_apply.glsl", "light_volume.glsl",
                                                      "particles.vert", "particles.frag"}
-                     : std::vector<std::string_view>{"view_depth.glsl", "particle_footprint.glsl", "fog_lighting.glsl",
-                                                     "particle_light.glsl", "terrain_shadow.glsl",
-                                                     "froxel_fog_none.glsl", "medium_shell.glsl", "height_fog.glsl",
-                                                     "light_volume.glsl", "particles.vert", "particles.frag"},
+                     : std::vector<std::string_view>{"view_depth.glsl", "particle_footprint.glsl", "fog_partition.glsl",
+                                                     "froxel_common.glsl", "fog_lighting.glsl", "particle_light.glsl",
+                                                     "terrain_shadow.glsl", "froxel_fog_none.glsl", "medium_shell.glsl",
+                                                     "height_fog.glsl", "froxel_medium.glsl", "light_volume.glsl",
+                                                     "particles.vert", "particles.frag"},
                 std::string(light_volume_preamble(baked)) + (table ? "#define KIRI_SELF_TABLE\n" : "") +
-                    (baked && per_fragment ? "#define KIRI_BAKED_PER_FRAGMENT\n" : ""));
+                    (baked && per_fragment ? "#define KIRI_BAKED_PER_FRAGMENT\n" : "") +
+                    (ratio ? "#define KIRI_DENSITY_RATIO\n" : ""));
         return *slot;
     };
     // Each program drawn with takes the frame's uniforms and bindings.
@@ -413,6 +424,18 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         p.set("u_octaves", std::clamp(cloud_->scattering_octaves, 0, 8));
         p.set("u_radius_scale", float(std::sqrt(double(share_))));
         p.set("u_near_field", float(near_reach));
+        ratio_.bind(p, unit_ratio);
+        if (!fog_) {
+            // The Medium the ratio reads (froxel_medium.glsl), its samplers on units of their own
+            // either way: samplers of different types may not share a unit, used or not.
+            if (ratio)
+                sun_->bind(p, unit_ratio_medium, 1, false);
+            else {
+                p.set("u_md_on", 0);
+                p.set("u_md_grid", unit_ratio_medium);
+                p.set("u_md_noise", unit_ratio_medium + 1);
+            }
+        }
         p.use();
         glBindTextureUnit(0, buffer_.texture());
         glBindTextureUnit(1, resolved_depth);

@@ -5,6 +5,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "density_ratio_texture.hpp"
 #include "frame_context.hpp"
 #include "froxel_pass.hpp"
 #include "kiri/geometry/particles/particles.hpp"
@@ -67,8 +68,9 @@ private:
     //! The billboards' program, reading the froxel fog (froxel_apply.glsl) or not, without the
     //! baked light (light_volume_preamble), with it per particle, or with it per fragment too (the
     //! billboards around the eye), reading the own gains from the table alone or computing them
-    //! where it is missing: [fog][baked][table], each built on first use.
-    std::unique_ptr<ShaderProgram> programs_[2][3][2];
+    //! where it is missing, weighting the balls by the density ratio or not (match_medium):
+    //! [fog][baked][table][ratio], each built on first use.
+    std::unique_ptr<ShaderProgram> programs_[2][3][2][2];
     //! The near field's march (particles_near.frag), without the baked light and with it.
     std::unique_ptr<ShaderProgram> near_programs_[2];
     //! The near field's reach for this frame: metres along each ray, 0 where there is none (under
@@ -93,7 +95,8 @@ private:
     const SunVolume* sun_ = nullptr;
     VertexArray vao_;
     AttenuationBuffer buffer_;
-    ParticleLight light_;  // what each billboard's light needs of its particle alone
+    ParticleLight light_;        // what each billboard's light needs of its particle alone
+    DensityRatioTexture ratio_;  // the Medium over the balls' sum (particles alone)
     const geometry::ParticleCloud* cloud_ = nullptr;
     std::uint64_t uploaded_hash_ = 0;
     std::size_t count_ = 0;

@@ -99,6 +99,7 @@ ParticleStyle particle_style(const geometry::ParticleOptions& o)
     s.near_scale = o.near_scale;
     s.near_pixels = o.near_pixels;
     s.near_field = o.near_field;
+    s.match_medium = o.match_medium;
     return s;
 }
 

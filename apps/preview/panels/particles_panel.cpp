@@ -56,6 +56,7 @@ bool particles_panel(geometry::Scene& scene, const geometry::ParticleCloud* clou
     changed |= edit("near: coarser by", o, o.near_scale);
     changed |= edit("near: from radius (px)", o, o.near_pixels, "%.0f");
     changed |= edit("near field (radii)", o, o.near_field, "%.1f");
+    changed |= ImGui::Checkbox("match the Medium", &o.match_medium);
     if (cloud)
         ImGui::TextDisabled("%zu particles, spacing %.0f m", cloud->particles.size(), cloud->spacing);
     if (buffer.rebuild_count() > 0) {

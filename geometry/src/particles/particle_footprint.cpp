@@ -31,6 +31,36 @@ double footprint_profile(double x)
     return (std::exp(-x * x / (2.0 * footprint_sigma * footprint_sigma)) - e0) / (1.0 - e0);
 }
 
+double ball_density(double q, double radius, double optical_depth)
+{
+    if (!(radius > 0.0) || !(q < radius) || !(optical_depth > 0.0))
+        return 0.0;
+    const double x = q / radius;
+    const double k = std::exp(-x * x / (2.0 * footprint_sigma * footprint_sigma)) - e0;
+    return k > 0.0 ? optical_depth * k / (radius * 2.0 * chord_integral(0.0, 1.0)) : 0.0;
+}
+
+double ball_mass()
+{
+    // 4 pi int_0^1 q^2 (exp(-q^2 / 2s^2) - e0) dq over the centre's column 2 chord_integral(0, 1).
+    const double sg = footprint_sigma;
+    const double inner =
+        sg * sg * (sg * std::sqrt(std::numbers::pi / 2.0) * std::erf(1.0 / (sg * std::numbers::sqrt2)) - e0) - e0 / 3.0;
+    return 4.0 * std::numbers::pi * inner / (2.0 * chord_integral(0.0, 1.0));
+}
+
+double ball_chord_share(double x, double radius, double u0, double u1)
+{
+    if (!(x < 1.0) || !(radius > 0.0))
+        return 0.0;
+    x = std::max(x, 0.0);
+    const double half = std::sqrt(1.0 - x * x);
+    const double a = std::clamp(u0 / radius, -half, half), b = std::clamp(u1 / radius, -half, half);
+    if (!(b > a))
+        return 0.0;
+    return std::max(chord_integral(x, b) - chord_integral(x, a), 0.0) / (2.0 * chord_integral(0.0, 1.0));
+}
+
 double footprint_area()
 {
     // 2 pi int_0^1 f(x) x dx with int_0^1 exp(-x^2 / 2s^2) x dx = s^2 (1 - e0), int_0^1 e0 x dx = e0 / 2.

@@ -9,4 +9,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/particles/light_grid.cpp
   src/particles/harris_reference.cpp
   src/particles/attenuation_cpu.cpp
+  src/particles/density_ratio.cpp
 )

@@ -64,6 +64,10 @@ struct ParticleStyle {
     //! around the eye are each a blot over a large part of the frame). 0: none.
     double near_field = 2.5;
     int near_field_steps = 32;
+    //! With the particles alone and a Medium they stand for, each ball's density along a ray is
+    //! weighted by the Medium's extinction over the balls' summed density there
+    //! (geometry::density_ratio_grid): the balls together draw the Medium.
+    bool match_medium = true;
 };
 
 struct PassTime {

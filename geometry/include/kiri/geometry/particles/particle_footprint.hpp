@@ -60,6 +60,18 @@ double footprint_share_above(const glm::dvec3& centre, double radius,
 double footprint_share_between(const glm::dvec3& centre, double radius,
                                const std::function<std::pair<double, double>(double, double)>& slab);
 
+//! The particle's density (1/m) at distance q from its centre: tau k(q / r) / (r K0), K0 the
+//! column of k through the centre in units of the radius (0.902), so that column holds tau.
+//! 0 for q >= r. (GLSL twin: ball_density in particle_footprint.glsl.)
+double ball_density(double q, double radius, double optical_depth);
+//! The integral of that density over the ball, in units of tau r^2 (0.801; a billboard's footprint
+//! holds footprint_area, 0.861).
+double ball_mass();
+//! The integral of that density along a ray passing rho = x r from the centre, from u0 to u1
+//! (metres along the ray from its point nearest the centre), over tau: in [0, 1], 1 for the whole
+//! chord through the centre. Its ratio to the whole chord's is footprint_ray_share.
+double ball_chord_share(double x, double radius, double u0, double u1);
+
 //! The least share of a particle's mass that is drawn as the whole of it: below it the visible
 //! remnant of a particle cut by the ground or a plane would turn into a dense speck.
 constexpr double min_share_drawn = 0.25;

@@ -85,6 +85,10 @@ struct ParticleOptions {
     //! With the particles alone, the Medium itself is marched within this many times the largest
     //! radius of the eye, and the billboards draw the fog from there on (0: none).
     double near_field = 2.5;
+    //! With the particles alone, each ball's density along a ray is weighted by the Medium's
+    //! extinction over the density all the balls add up to there (density_ratio.hpp): together
+    //! they draw the Medium, not a lumpy copy of it. false: each ball as sampled.
+    bool match_medium = true;
     bool operator==(const ParticleOptions&) const = default;
 };
 
@@ -193,6 +197,10 @@ void visit_fields(O& o, V&& v)
        .doc = "the particles alone: within this many largest radii of the eye the Medium itself is marched (0: "
               "billboards to the eye)",
        .widget = closed(0, 8)});
+    v(o.match_medium,
+      {.key = "match_medium",
+       .doc = "the particles alone: each ball's density weighted by the Medium's over the balls' sum where the ray "
+              "passes, so together they draw the Medium (false: the balls as sampled, lumps and all)"});
 }
 
 //! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.
