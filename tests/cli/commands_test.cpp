@@ -139,9 +139,10 @@ TEST(KiriBench, ViewsStageJudgesTheViewsNamed)
         EXPECT_EQ(cols[2], "\"canyon/derived\"") << line;
         modes.push_back(cols[1]);
         // Measured 0.64 % (layers), 2.11 % (particles), 0.40 % (froxels), 0.64 % (combined) on
-        // 2026-12-04. Each renderer's light 10 % too bright fails its bound (docs/tests.md).
+        // 2026-12-04; the particles 1.18 % since they match the Medium (2026-12-07). Each
+        // renderer's light 10 % too bright fails its bound (docs/tests.md).
         const double measured = cols[1] == "\"layers\"" ? 0.0064
-            : cols[1] == "\"particles\""                ? 0.0211
+            : cols[1] == "\"particles\""                ? 0.0118
             : cols[1] == "\"froxel\""                   ? 0.0040
                                                         : 0.0064;
         EXPECT_GT(std::stod(cols[6]), 0.001) << line;
