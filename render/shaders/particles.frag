@@ -40,10 +40,9 @@ uniform float u_haze_density;
 uniform float u_near_field;      // metres from the eye the near field covers (0: none)
 #ifdef KIRI_DENSITY_RATIO
 // The balls' summed density (density_ratio.hpp, DensityRatioTexture) over (x, y) and the shell's
-// height, and the columns' floor and top (relative to u_centre). The Medium's own extinction at
-// a point (froxel_medium.glsl) over it is R, the weight of every ball's density there.
+// height from the column's floor to its top. The Medium's own extinction at a point
+// (froxel_medium.glsl) over it is R, the weight of every ball's density there.
 uniform sampler3D u_ratio;
-uniform sampler2D u_ratio_shell;
 uniform vec4 u_ratio_xy;  // the grid's (x0, y0) relative to u_centre; 1 / its width, 1 / its depth
 uniform float u_ratio_max;
 uniform float u_ratio_footprint;  // the ball's mass over its footprint's (geometry::ball_mass)
@@ -55,16 +54,20 @@ const int kRatioPoints = 3;
 out vec4 o_color;
 
 #ifdef KIRI_DENSITY_RATIO
-// R at a point relative to u_centre (geometry::density_ratio_at).
+// R at a point relative to u_centre (geometry::density_ratio_at): the sum read at the height in
+// the Medium's own column, which its density has looked up.
 float density_ratio(vec3 p)
 {
-    float sigma = medium_sigma(p + u_centre);
+    vec3 world = p + u_centre;
+    if (u_md_on == 0 || !shell_covers(world.xy))
+        return 0.0;
+    vec4 column = shell_column(world.xy);
+    float h;
+    float sigma = u_md_extinction * medium_density_in(world, column, h);
     if (!(sigma > 0.0))
         return 0.0;
-    vec2 st = (p.xy - u_ratio_xy.xy) * u_ratio_xy.zw;
-    vec2 shell = texture(u_ratio_shell, st).rg;
-    float h = shell.y > shell.x ? (p.z - shell.x) / (shell.y - shell.x) : 0.0;
-    float balls = texture(u_ratio, vec3(st, h)).r;
+    float level = column.z > column.x ? (world.z - column.x) / (column.z - column.x) : 0.0;
+    float balls = texture(u_ratio, vec3((p.xy - u_ratio_xy.xy) * u_ratio_xy.zw, level)).r;
     return balls > 0.0 ? min(sigma / balls, u_ratio_max) : u_ratio_max;
 }
 #endif

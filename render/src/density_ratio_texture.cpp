@@ -25,11 +25,6 @@ void DensityRatioTexture::update(const geometry::ParticleCloud& cloud, std::uint
     build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (g.empty())
         return;
-    std::vector<float> shell(g.floor.size() * 2);
-    for (std::size_t c = 0; c < g.floor.size(); ++c) {
-        shell[2 * c] = float(double(g.floor[c]) - centre.z);
-        shell[2 * c + 1] = float(double(g.top[c]) - centre.z);
-    }
     const auto linear = [](const Texture& t) {
         glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
         glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -41,10 +36,6 @@ void DensityRatioTexture::update(const geometry::ParticleCloud& cloud, std::uint
     glTextureStorage3D(ratio_.get(), 1, GL_R32F, g.nx, g.ny, g.levels);
     glTextureSubImage3D(ratio_.get(), 0, 0, 0, 0, g.nx, g.ny, g.levels, GL_RED, GL_FLOAT, g.balls.data());
     linear(ratio_);
-    shell_ = make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(shell_.get(), 1, GL_RG32F, g.nx, g.ny);
-    glTextureSubImage2D(shell_.get(), 0, 0, 0, g.nx, g.ny, GL_RG, GL_FLOAT, shell.data());
-    linear(shell_);
     xy_ = glm::vec4(float(g.x0 - centre.x), float(g.y0 - centre.y), float(1.0 / (g.nx * g.dx)),
                     float(1.0 / (g.ny * g.dy)));
     max_ratio_ = float(g.max_ratio);
@@ -54,16 +45,13 @@ void DensityRatioTexture::update(const geometry::ParticleCloud& cloud, std::uint
 void DensityRatioTexture::bind(const ShaderProgram& p, int unit) const
 {
     p.set("u_ratio", unit);
-    p.set("u_ratio_shell", unit + 1);
     p.set("u_ratio_xy", xy_);
     p.set("u_ratio_max", max_ratio_);
     // A billboard widened beyond its ball draws its footprint's mass: R is the Medium over the
     // balls' mass, which is less (geometry::ball_mass).
     p.set("u_ratio_footprint", float(geometry::ball_mass() / geometry::footprint_area()));
-    if (ready_) {
+    if (ready_)
         glBindTextureUnit(GLuint(unit), ratio_.get());
-        glBindTextureUnit(GLuint(unit + 1), shell_.get());
-    }
 }
 
 }  // namespace kiri::render::detail

@@ -1,7 +1,7 @@
 #pragma once
-// The particles' density ratio (kiri/geometry/particles/density_ratio.hpp) on the GPU: R in a 3D
-// texture over (x, y, shell height) and the columns' floor and top in a 2D one, both relative to
-// the cloud's centre, read by particles.frag's density_ratio (particle_footprint.glsl).
+// The particles' density ratio (kiri/geometry/particles/density_ratio.hpp) on the GPU: the balls'
+// summed density in a 3D texture over (x, y) relative to the cloud's centre and the shell's height,
+// read by particles.frag's density_ratio with the Medium's own extinction.
 #include <cstdint>
 
 #include <glm/vec3.hpp>
@@ -25,14 +25,14 @@ public:
     void update(const geometry::ParticleCloud& cloud, std::uint64_t cloud_hash, const geometry::Medium* medium,
                 const glm::dvec3& centre);
     bool ready() const { return ready_; }
-    //! particles.frag's u_ratio_* uniforms (its KIRI_DENSITY_RATIO variant); the two textures,
-    //! when ready, on `unit` (3D) and `unit + 1` (2D).
+    //! particles.frag's u_ratio_* uniforms (its KIRI_DENSITY_RATIO variant); the texture, when
+    //! ready, on `unit`.
     void bind(const ShaderProgram& program, int unit) const;
     //! The last build's wall time (seconds; 0 when nothing was built).
     double last_build_seconds() const { return build_seconds_; }
 
 private:
-    Texture ratio_, shell_;
+    Texture ratio_;
     glm::vec4 xy_{0.0f};  // x0, y0 relative to the centre; 1 / (nx dx), 1 / (ny dy)
     float max_ratio_ = 16.0f;
     std::uint64_t hash_ = 0;

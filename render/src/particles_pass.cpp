@@ -20,9 +20,9 @@ namespace {
 constexpr int unit_baked_moments = 20;  // and 21, 22: the Medium's grid, the cells' floors (LightVolumeTexture::bind)
 // The near field's sun volume: the Medium's grid, its noise, the volume (SunVolume::bind).
 constexpr int unit_near_sun = 12;  // 12, 13, 14
-// The density ratio and its columns' floor and top (DensityRatioTexture::bind), and the Medium
-// it divides (SunVolume::bind: its grid and noise; the volume itself is not read).
-constexpr int unit_ratio = 24;         // 24, 25
+// The balls' summed density (DensityRatioTexture::bind), and the Medium the ratio divides by it
+// (SunVolume::bind: its grid and noise; the volume itself is not read).
+constexpr int unit_ratio = 24;
 constexpr int unit_ratio_medium = 26;  // 26, 27, 28
 }  // namespace
 

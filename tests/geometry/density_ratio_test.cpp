@@ -77,7 +77,8 @@ TEST(BallDensity, TheCentresColumnHoldsTauAndTheBallItsMass)
 {
     const double r = 200.0, tau = 0.7;
     EXPECT_NEAR(integral([&](double z) { return ball_density(std::abs(z), r, tau); }, -r, r), tau, 1e-6 * tau);
-    const double mass = integral([&](double q) { return 4.0 * std::numbers::pi * q * q * ball_density(q, r, tau); }, 0.0, r);
+    const double mass =
+        integral([&](double q) { return 4.0 * std::numbers::pi * q * q * ball_density(q, r, tau); }, 0.0, r);
     EXPECT_NEAR(mass, ball_mass() * tau * r * r, 1e-6 * mass);
     // Less than the billboard's footprint holds (the profile's rim shift): 0.801 against 0.861.
     EXPECT_NEAR(ball_mass(), 0.8013, 1e-4);

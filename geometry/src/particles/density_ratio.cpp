@@ -45,8 +45,8 @@ DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& me
 {
     DensityRatioGrid g;
     const MediumGrid& mg = medium.grid();
-    if (cloud.particles.empty() || mg.nx < 2 || mg.ny < 2 || options.min_levels < 1 || options.max_levels < options.min_levels ||
-        options.max_side < 1 ||
+    if (cloud.particles.empty() || mg.nx < 2 || mg.ny < 2 || options.min_levels < 1 ||
+        options.max_levels < options.min_levels || options.max_side < 1 ||
         cloud.extinction != medium.options().extinction || cloud.albedo != medium.options().albedo)
         return g;
     double smallest = 1e300, largest = 0.0;
@@ -58,8 +58,8 @@ DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& me
     if (!(smallest < 1e300))
         return g;
     const double width = (mg.nx - 1) * mg.dx, depth = (mg.ny - 1) * mg.dy;
-    const double side = std::max({std::min({mg.dx, mg.dy, 0.5 * smallest}), width / options.max_side,
-                                  depth / options.max_side});
+    const double side =
+        std::max({std::min({mg.dx, mg.dy, 0.5 * smallest}), width / options.max_side, depth / options.max_side});
     g.nx = std::max(1, int(std::ceil(width / side)));
     g.ny = std::max(1, int(std::ceil(depth / side)));
     g.x0 = mg.x0;
@@ -172,20 +172,18 @@ DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& me
     return g;
 }
 
-double ball_sum_at(const DensityRatioGrid& g, double x, double y, double z)
+double ball_sum_at(const DensityRatioGrid& g, double x, double y, double h)
 {
-    if (g.empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+    if (g.empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(h))
         return 0.0;
     const RatioTaps tx = ratio_taps((x - g.x0) / g.dx, g.nx), ty = ratio_taps((y - g.y0) / g.dy, g.ny);
+    const RatioTaps tl = ratio_taps(h * g.levels, g.levels);
+    const std::size_t slice = std::size_t(g.nx) * g.ny;
     const auto bilinear = [&](const float* v) {
         const auto at = [&](int i, int j) { return double(v[std::size_t(j) * g.nx + i]); };
         return (1.0 - ty.w) * ((1.0 - tx.w) * at(tx.a, ty.a) + tx.w * at(tx.b, ty.a)) +
             ty.w * ((1.0 - tx.w) * at(tx.a, ty.b) + tx.w * at(tx.b, ty.b));
     };
-    const double floor = bilinear(g.floor.data()), top = bilinear(g.top.data());
-    const double h = top > floor ? (z - floor) / (top - floor) : 0.0;
-    const RatioTaps tl = ratio_taps(h * g.levels, g.levels);
-    const std::size_t slice = std::size_t(g.nx) * g.ny;
     return (1.0 - tl.w) * bilinear(&g.balls[tl.a * slice]) + tl.w * bilinear(&g.balls[tl.b * slice]);
 }
 
@@ -196,7 +194,9 @@ double density_ratio_at(const DensityRatioGrid& g, const Medium& medium, double 
     const double sigma = medium.extinction({x, y, z});
     if (!(sigma > 0.0))
         return 0.0;
-    const double balls = ball_sum_at(g, x, y, z);
+    const MediumColumn c = medium.column(x, y);
+    const double h = c.top > c.floor ? (z - c.floor) / (c.top - c.floor) : 0.0;
+    const double balls = ball_sum_at(g, x, y, h);
     return balls > 0.0 ? std::min(sigma / balls, g.max_ratio) : g.max_ratio;
 }
 

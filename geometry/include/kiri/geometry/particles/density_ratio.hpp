@@ -52,11 +52,14 @@ struct DensityRatioOptions {
 DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& medium,
                                     const DensityRatioOptions& options = {});
 
-//! The balls' sum at a point, read as the GPU reads it (the columns' floor and top bilinear over
-//! the cells' centres, the sum trilinear in (x, y, h), clamped to the edge): 0 for an empty grid.
-double ball_sum_at(const DensityRatioGrid& grid, double x, double y, double z);
+//! The balls' sum at (x, y) and shell height h (cells' levels: (z - floor) / (top - floor) of
+//! the column there), read as the GPU reads it (trilinear over the cells' centres, clamped to
+//! the edge): 0 for an empty grid.
+double ball_sum_at(const DensityRatioGrid& grid, double x, double y, double h);
 //! R = the Medium's extinction over the balls' sum at p, in [0, max_ratio] (0 where the Medium
-//! has none; max_ratio where it has some and no ball reaches); 0 for an empty grid.
+//! has none; max_ratio where it has some and no ball reaches); 0 for an empty grid. The sum is
+//! read at the height in the Medium's own column (Medium::column: where the Medium has fog, the
+//! grid's columns are the Medium's at the cells' centres).
 double density_ratio_at(const DensityRatioGrid& grid, const Medium& medium, double x, double y, double z);
 
 }  // namespace kiri::geometry
