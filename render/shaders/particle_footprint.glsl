@@ -34,14 +34,25 @@ float chord_integral(float x, float u)  // from 0 to u along the chord, radius 1
     float e0 = exp(-1.0 / (2.0 * kFootprintSigma * kFootprintSigma));
     return 1.2533141373155 * kFootprintSigma * g * erf_approx(u * 0.70710678118655 / kFootprintSigma) - e0 * u;
 }
+// The part of the chord at x between u0 and u1 in units of the radius, within the half chord
+// (chord_part in particle_footprint.cpp): false when the ray misses the ball or the part is empty.
+bool chord_part(inout float x, float radius, float u0, float u1, out float a, out float b, out float half_chord)
+{
+    a = 0.0;
+    b = 0.0;
+    half_chord = 0.0;
+    if (!(x < 1.0) || !(radius > 0.0))
+        return false;
+    x = max(x, 0.0);
+    half_chord = sqrt(1.0 - x * x);
+    a = clamp(u0 / radius, -half_chord, half_chord);
+    b = clamp(u1 / radius, -half_chord, half_chord);
+    return b > a;
+}
 float footprint_ray_share(float x, float radius, float u0, float u1)
 {
-    if (!(x < 1.0) || !(radius > 0.0))
-        return 0.0;
-    x = max(x, 0.0);
-    float half_chord = sqrt(1.0 - x * x);
-    float a = clamp(u0 / radius, -half_chord, half_chord), b = clamp(u1 / radius, -half_chord, half_chord);
-    if (!(b > a))
+    float a, b, half_chord;
+    if (!chord_part(x, radius, u0, u1, a, b, half_chord))
         return 0.0;
     float whole = 2.0 * chord_integral(x, half_chord);
     // At the rim float loses the integral to cancellation; the density is nearly even along so
@@ -55,12 +66,8 @@ float footprint_ray_share(float x, float radius, float u0, float u1)
 // x = rho / r between u0 and u1 (metres from the point nearest the centre), over tau.
 float ball_chord_share(float x, float radius, float u0, float u1)
 {
-    if (!(x < 1.0) || !(radius > 0.0))
-        return 0.0;
-    x = max(x, 0.0);
-    float half_chord = sqrt(1.0 - x * x);
-    float a = clamp(u0 / radius, -half_chord, half_chord), b = clamp(u1 / radius, -half_chord, half_chord);
-    if (!(b > a))
+    float a, b, half_chord;
+    if (!chord_part(x, radius, u0, u1, a, b, half_chord))
         return 0.0;
     return max(chord_integral(x, b) - chord_integral(x, a), 0.0) / (2.0 * chord_integral(0.0, 1.0));
 }

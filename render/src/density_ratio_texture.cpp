@@ -12,8 +12,9 @@ namespace kiri::render::detail {
 void DensityRatioTexture::update(const geometry::ParticleCloud& cloud, std::uint64_t cloud_hash,
                                  const geometry::Medium* medium, const glm::dvec3& centre)
 {
-    if (medium == medium_ && cloud_hash == hash_ && (ready_ || !medium))
+    if (built_ && medium == medium_ && cloud_hash == hash_)
         return;
+    built_ = true;
     medium_ = medium;
     hash_ = cloud_hash;
     ready_ = false;

@@ -19,9 +19,10 @@ namespace kiri::render::detail {
 
 class DensityRatioTexture {
 public:
-    //! Builds the grid for the cloud standing for the Medium, when either changed (by the cloud's
-    //! hash and the Medium's address and grid), and uploads it relative to `centre`. A null Medium
-    //! or a cloud with optics of its own clears it.
+    //! Builds the grid for the cloud standing for the Medium when either changed (the cloud's
+    //! hash, which also covers its centre, or the Medium's address: the pipeline's products are
+    //! immutable, a new Medium is a new object), and uploads it relative to `centre`. A null
+    //! Medium or a cloud with optics of its own clears it.
     void update(const geometry::ParticleCloud& cloud, std::uint64_t cloud_hash, const geometry::Medium* medium,
                 const glm::dvec3& centre);
     bool ready() const { return ready_; }
@@ -37,7 +38,7 @@ private:
     float max_ratio_ = 16.0f;
     std::uint64_t hash_ = 0;
     const geometry::Medium* medium_ = nullptr;
-    bool ready_ = false;
+    bool ready_ = false, built_ = false;
     double build_seconds_ = 0.0;
 };
 

@@ -131,7 +131,8 @@ DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& me
     std::vector<std::vector<std::uint32_t>> rows(std::size_t(g.ny));
     for (std::size_t k = 0; k < cloud.particles.size(); ++k) {
         const Particle& b = cloud.particles[k];
-        if (!(b.radius > 0.0) || !(b.optical_depth > 0.0) || !std::isfinite(b.radius))
+        if (!(b.radius > 0.0) || !(b.optical_depth > 0.0) || !std::isfinite(b.radius) || !std::isfinite(b.position.x) ||
+            !std::isfinite(b.position.y) || !std::isfinite(b.position.z))
             continue;
         const int j0 = std::max(0, int(std::floor((b.position.y - b.radius - g.y0) / g.dy - 0.5)));
         const int j1 = std::min(g.ny - 1, int(std::ceil((b.position.y + b.radius - g.y0) / g.dy - 0.5)));

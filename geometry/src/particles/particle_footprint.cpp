@@ -21,6 +21,20 @@ double chord_integral(double x, double u)
     return std::sqrt(std::numbers::pi / 2.0) * s * g * std::erf(u / (s * std::numbers::sqrt2)) - e0 * u;
 }
 
+// The part of the chord at x = rho / r between u0 and u1 (metres from its point nearest the centre),
+// in units of the radius and within the half chord: [a, b], and the half chord. False when the
+// ray misses the ball or the part is empty.
+bool chord_part(double& x, double radius, double u0, double u1, double& a, double& b, double& half)
+{
+    if (!(x < 1.0) || !(radius > 0.0) || std::isnan(u0) || std::isnan(u1))
+        return false;
+    x = std::max(x, 0.0);
+    half = std::sqrt(1.0 - x * x);
+    a = std::clamp(u0 / radius, -half, half);
+    b = std::clamp(u1 / radius, -half, half);
+    return b > a;
+}
+
 }  // namespace
 
 double footprint_profile(double x)
@@ -51,12 +65,8 @@ double ball_mass()
 
 double ball_chord_share(double x, double radius, double u0, double u1)
 {
-    if (!(x < 1.0) || !(radius > 0.0))
-        return 0.0;
-    x = std::max(x, 0.0);
-    const double half = std::sqrt(1.0 - x * x);
-    const double a = std::clamp(u0 / radius, -half, half), b = std::clamp(u1 / radius, -half, half);
-    if (!(b > a))
+    double a, b, half;
+    if (!chord_part(x, radius, u0, u1, a, b, half))
         return 0.0;
     return std::max(chord_integral(x, b) - chord_integral(x, a), 0.0) / (2.0 * chord_integral(0.0, 1.0));
 }
@@ -99,12 +109,8 @@ double footprint_transmittance(double rho, double radius, double optical_depth)
 
 double footprint_ray_share(double x, double radius, double u0, double u1)
 {
-    if (!(x < 1.0) || !(radius > 0.0) || std::isnan(u0) || std::isnan(u1))
-        return 0.0;
-    x = std::max(x, 0.0);
-    const double half = std::sqrt(1.0 - x * x);
-    const double a = std::clamp(u0 / radius, -half, half), b = std::clamp(u1 / radius, -half, half);
-    if (!(b > a))
+    double a, b, half;
+    if (!chord_part(x, radius, u0, u1, a, b, half))
         return 0.0;
     const double whole = 2.0 * chord_integral(x, half);
     // At the rim the density along so short a chord is nearly even, and the integral is lost to
