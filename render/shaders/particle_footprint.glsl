@@ -28,11 +28,15 @@ float erf_approx(float x)
 // particle's centre crosses, the share between u0 and u1 (metres along the ray from its point
 // nearest the centre). The particle in three dimensions is the footprint's Gaussian,
 // exp(-q^2 / 2 (s r)^2) - e0 at distance q < r from its centre.
-float chord_integral(float x, float u)  // from 0 to u along the chord, radius 1
+// The same with g = exp(-x^2 / 2s^2) given: the chord's parts share it.
+float chord_integral_at(float g, float u)
 {
-    float g = exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma));
     float e0 = exp(-1.0 / (2.0 * kFootprintSigma * kFootprintSigma));
     return 1.2533141373155 * kFootprintSigma * g * erf_approx(u * 0.70710678118655 / kFootprintSigma) - e0 * u;
+}
+float chord_integral(float x, float u)  // from 0 to u along the chord, radius 1
+{
+    return chord_integral_at(exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma)), u);
 }
 // The part of the chord at x between u0 and u1 in units of the radius, within the half chord
 // (chord_part in particle_footprint.cpp): false when the ray misses the ball or the part is empty.
@@ -60,16 +64,6 @@ float footprint_ray_share(float x, float radius, float u0, float u1)
     if (!(whole > 1e-4))
         return (b - a) / (2.0 * half_chord);
     return clamp((chord_integral(x, b) - chord_integral(x, a)) / whole, 0.0, 1.0);
-}
-
-// ball_chord_share (particle_footprint.hpp): the ball's density integrated along the ray at
-// x = rho / r between u0 and u1 (metres from the point nearest the centre), over tau.
-float ball_chord_share(float x, float radius, float u0, float u1)
-{
-    float a, b, half_chord;
-    if (!chord_part(x, radius, u0, u1, a, b, half_chord))
-        return 0.0;
-    return max(chord_integral(x, b) - chord_integral(x, a), 0.0) / (2.0 * chord_integral(0.0, 1.0));
 }
 
 // log G, G = T + a c (1 - T), T = exp(-tau f(rho / r)), clamped to [kMinLogGain, 0].

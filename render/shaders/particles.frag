@@ -118,11 +118,17 @@ void main()
     float chord_x = widened ? 0.0 : x;
     float half_chord = v_depth_radius * sqrt(max(1.0 - chord_x * chord_x, 0.0));
     float a = clamp(t0 - cut_along, -half_chord, half_chord), b = clamp(t1 - cut_along, -half_chord, half_chord);
+    // Each third's geometry::ball_chord_share, from the chord integral at its ends (one g for them all).
     float weighted = 0.0, mass = 0.0;
     if (b > a) {
+        float g = exp(-chord_x * chord_x / (2.0 * kFootprintSigma * kFootprintSigma));
+        float whole_centre = 2.0 * chord_integral(0.0, 1.0);
+        float before = chord_integral_at(g, a / v_depth_radius);
         for (int k = 0; k < kRatioPoints; ++k) {
             float u0 = mix(a, b, float(k) / float(kRatioPoints)), u1 = mix(a, b, float(k + 1) / float(kRatioPoints));
-            float m = ball_chord_share(chord_x, v_depth_radius, u0, u1);
+            float after = chord_integral_at(g, u1 / v_depth_radius);
+            float m = max(after - before, 0.0) / whole_centre;
+            before = after;
             weighted += m * density_ratio(u_eye - u_centre + cut_ray * (cut_along + 0.5 * (u0 + u1)));
             mass += m;
         }
