@@ -1,8 +1,5 @@
 #include "density_ratio_texture.hpp"
 
-#include <chrono>
-#include <vector>
-
 #include "kiri/geometry/medium/medium.hpp"
 #include "kiri/geometry/particles/particle_footprint.hpp"
 #include "kiri/geometry/particles/particles.hpp"
@@ -18,25 +15,18 @@ void DensityRatioTexture::update(const geometry::ParticleCloud& cloud, std::uint
     medium_ = medium;
     hash_ = cloud_hash;
     ready_ = false;
-    build_seconds_ = 0.0;
     if (!medium)
         return;
-    const auto start = std::chrono::steady_clock::now();
     const geometry::DensityRatioGrid g = geometry::density_ratio_grid(cloud, *medium);
-    build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (g.empty())
         return;
-    const auto linear = [](const Texture& t) {
-        glTextureParameteri(t.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTextureParameteri(t.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTextureParameteri(t.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(t.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-        glTextureParameteri(t.get(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
-    };
     ratio_ = make_texture(GL_TEXTURE_3D);
     glTextureStorage3D(ratio_.get(), 1, GL_R32F, g.nx, g.ny, g.levels);
     glTextureSubImage3D(ratio_.get(), 0, 0, 0, 0, g.nx, g.ny, g.levels, GL_RED, GL_FLOAT, g.balls.data());
-    linear(ratio_);
+    glTextureParameteri(ratio_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(ratio_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    for (GLenum wrap : {GL_TEXTURE_WRAP_S, GL_TEXTURE_WRAP_T, GL_TEXTURE_WRAP_R})
+        glTextureParameteri(ratio_.get(), wrap, GL_CLAMP_TO_EDGE);
     xy_ = glm::vec4(float(g.x0 - centre.x), float(g.y0 - centre.y), float(1.0 / (g.nx * g.dx)),
                     float(1.0 / (g.ny * g.dy)));
     max_ratio_ = float(g.max_ratio);

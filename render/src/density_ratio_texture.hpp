@@ -29,8 +29,6 @@ public:
     //! particles.frag's u_ratio_* uniforms (its KIRI_DENSITY_RATIO variant); the texture, when
     //! ready, on `unit`.
     void bind(const ShaderProgram& program, int unit) const;
-    //! The last build's wall time (seconds; 0 when nothing was built).
-    double last_build_seconds() const { return build_seconds_; }
 
 private:
     Texture ratio_;
@@ -39,7 +37,6 @@ private:
     std::uint64_t hash_ = 0;
     const geometry::Medium* medium_ = nullptr;
     bool ready_ = false, built_ = false;
-    double build_seconds_ = 0.0;
 };
 
 }  // namespace kiri::render::detail

@@ -38,40 +38,14 @@ RatioTaps ratio_taps(double g, int n)
     return {std::clamp(i, 0, n - 1), std::clamp(i + 1, 0, n - 1), x - f};
 }
 
-}  // namespace
-
-DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& medium,
-                                    const DensityRatioOptions& options)
+// Each column's floor and top: the Medium's where it has fog; beside the fog (breadth first, a
+// ring a pass, each taking the mean of its filled neighbours) out to `reach`, the fog's beside
+// it; the rest 1 m over their floor. Returns the thickest column of fog.
+double shell_columns(DensityRatioGrid& g, const Medium& medium, double reach)
 {
-    DensityRatioGrid g;
-    const MediumGrid& mg = medium.grid();
-    if (cloud.particles.empty() || mg.nx < 2 || mg.ny < 2 || options.min_levels < 1 ||
-        options.max_levels < options.min_levels || options.max_side < 1 ||
-        cloud.extinction != medium.options().extinction || cloud.albedo != medium.options().albedo)
-        return g;
-    double smallest = 1e300, largest = 0.0;
-    for (const Particle& p : cloud.particles)
-        if (p.radius > 0.0 && std::isfinite(p.radius)) {
-            smallest = std::min(smallest, p.radius);
-            largest = std::max(largest, p.radius);
-        }
-    if (!(smallest < 1e300))
-        return g;
-    const double width = (mg.nx - 1) * mg.dx, depth = (mg.ny - 1) * mg.dy;
-    const double side =
-        std::max({std::min({mg.dx, mg.dy, 0.5 * smallest}), width / options.max_side, depth / options.max_side});
-    g.nx = std::max(1, int(std::ceil(width / side)));
-    g.ny = std::max(1, int(std::ceil(depth / side)));
-    g.x0 = mg.x0;
-    g.y0 = mg.y0;
-    g.dx = width / g.nx;
-    g.dy = depth / g.ny;
-    g.max_ratio = options.max_ratio;
     const std::size_t columns = std::size_t(g.nx) * g.ny;
     g.floor.assign(columns, 0.0f);
     g.top.assign(columns, 0.0f);
-    // The fog's columns, then those beside them (breadth first, a ring a pass, each taking the
-    // mean of its filled neighbours) out to the largest radius; the rest 1 m over their floor.
     std::vector<char> filled(columns, 0);
     for (int j = 0; j < g.ny; ++j)
         for (int i = 0; i < g.nx; ++i) {
@@ -85,8 +59,7 @@ DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& me
     for (std::size_t c = 0; c < columns; ++c)
         if (filled[c])
             thickest = std::max(thickest, double(g.top[c]) - double(g.floor[c]));
-    g.levels = std::clamp(int(std::ceil(thickest / (0.2 * smallest))), options.min_levels, options.max_levels);
-    const int rings = int(std::ceil(largest / std::min(g.dx, g.dy)));
+    const int rings = int(std::ceil(reach / std::min(g.dx, g.dy)));
     for (int ring = 0; ring < rings; ++ring) {
         std::vector<char> next = filled;
         std::vector<float> floor = g.floor, top = g.top;
@@ -123,6 +96,41 @@ DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& me
         if (!grew)
             break;
     }
+    return thickest;
+}
+
+}  // namespace
+
+DensityRatioGrid density_ratio_grid(const ParticleCloud& cloud, const Medium& medium,
+                                    const DensityRatioOptions& options)
+{
+    DensityRatioGrid g;
+    const MediumGrid& mg = medium.grid();
+    if (cloud.particles.empty() || mg.nx < 2 || mg.ny < 2 || options.min_levels < 1 ||
+        options.max_levels < options.min_levels || options.max_side < 1 ||
+        cloud.extinction != medium.options().extinction || cloud.albedo != medium.options().albedo)
+        return g;
+    double smallest = 1e300, largest = 0.0;
+    for (const Particle& p : cloud.particles)
+        if (p.radius > 0.0 && std::isfinite(p.radius)) {
+            smallest = std::min(smallest, p.radius);
+            largest = std::max(largest, p.radius);
+        }
+    if (!(smallest < 1e300))
+        return g;
+    const double width = (mg.nx - 1) * mg.dx, depth = (mg.ny - 1) * mg.dy;
+    const double side =
+        std::max({std::min({mg.dx, mg.dy, 0.5 * smallest}), width / options.max_side, depth / options.max_side});
+    g.nx = std::max(1, int(std::ceil(width / side)));
+    g.ny = std::max(1, int(std::ceil(depth / side)));
+    g.x0 = mg.x0;
+    g.y0 = mg.y0;
+    g.dx = width / g.nx;
+    g.dy = depth / g.ny;
+    g.max_ratio = options.max_ratio;
+    const std::size_t columns = std::size_t(g.nx) * g.ny;
+    const double thickest = shell_columns(g, medium, largest);
+    g.levels = std::clamp(int(std::ceil(thickest / (0.2 * smallest))), options.min_levels, options.max_levels);
     const auto cell_z = [&](std::size_t c, int l) {
         return double(g.floor[c]) + (l + 0.5) / g.levels * (double(g.top[c]) - double(g.floor[c]));
     };

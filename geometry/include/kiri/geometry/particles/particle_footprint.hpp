@@ -62,7 +62,8 @@ double footprint_share_between(const glm::dvec3& centre, double radius,
 
 //! The particle's density (1/m) at distance q from its centre: tau k(q / r) / (r K0), K0 the
 //! column of k through the centre in units of the radius (0.902), so that column holds tau.
-//! 0 for q >= r. (GLSL twin: ball_density in particle_footprint.glsl.)
+//! 0 for q >= r. (particles.frag integrates it along a chord with particle_footprint.glsl's
+//! chord_integral_at.)
 double ball_density(double q, double radius, double optical_depth);
 //! The integral of that density over the ball, in units of tau r^2 (0.801; a billboard's footprint
 //! holds footprint_area, 0.861).
