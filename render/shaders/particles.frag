@@ -5,8 +5,9 @@
 // attenuation buffer: Gamma at this fragment (billboard_log_gamma, particle_light.glsl: the
 // particle's own footprint counted as the Medium around it would be) stands for exp(-tau_sun),
 // so octave i sees Gamma^(b^i); hazed with distance like the terrain; in the terrain's shadow
-// from the sun (the renderer's shadow map, as the froxels and the CPU reference see it).
-// Blended back to front, premultiplied linear radiance: E_k = S_k + T_k E_(k-1) ([Shimada08]
+// from the sun (the renderer's shadow map, as the froxels and the CPU reference see it). Balls
+// standing for the Medium (KIRI_DENSITY_RATIO) take its density over their sum along the ray and
+// its own light (the sun volume, the shadow at the lit point). Blended back to front, premultiplied linear radiance: E_k = S_k + T_k E_(k-1) ([Shimada08]
 // (5)), S_k = (1 - T) J.
 in vec3 v_ray;
 flat in vec3 v_centre;
@@ -46,12 +47,24 @@ uniform sampler3D u_ratio;
 uniform vec4 u_ratio_xy;  // the grid's (x0, y0) relative to u_centre; 1 / its width, 1 / its depth
 uniform float u_ratio_max;
 uniform float u_ratio_footprint;  // the ball's mass over its footprint's (geometry::ball_mass)
+uniform vec3 u_sv_direction;      // the sun as the sun volume was built for (sun_march_direction)
 // R at the middle of each third of a chord: the Medium's density changes along a ray within a
 // ball (a thread's walls, the detail noise's layers); one point at the chord's middle drew a
 // blanket seen from above 2.5 % too dark (a ball widened beyond a pixel took it at its centre).
 const int kRatioPoints = 3;
 #endif
 out vec4 o_color;
+#ifdef PARTICLES_AT_SAMPLES
+// Samples 1..3's blends (o_color: sample 0's), over the frame's samples' depth (depth_samples.glsl:
+// u_offsets).
+layout(location = 1) out vec4 o_sample1;
+layout(location = 2) out vec4 o_sample2;
+layout(location = 3) out vec4 o_sample3;
+uniform sampler2DMS u_samples_depth;
+uniform vec3 u_camera_right;
+uniform vec3 u_camera_up;
+uniform vec2 u_tan_half;
+#endif
 
 #ifdef KIRI_DENSITY_RATIO
 // R at a point relative to u_centre (geometry::density_ratio_at): the sum read at the height in
@@ -72,29 +85,15 @@ float density_ratio(vec3 p)
 }
 #endif
 
-void main()
+// The part of a ray from the eye (`ray`, unit) in the ball's fog: [t0, t1] along it, in front of
+// the ground `scene` metres along it, over the rectangle that holds the fog, between the fog's
+// floor and top planes and beyond the near field.
+vec2 visible_span(vec3 ray, float scene)
 {
-    // The ray through this fragment and where it passes the particle: its distance rho from the
-    // centre and the part of the particle's column between the eye and the terrain behind.
-    vec3 ray = normalize(v_ray);
-    float along = dot(v_centre, ray);
-    float x = sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_footprint_radius;
-    if (x >= 1.0)
-        discard;
-    // A billboard widened beyond its ball (particles.vert) spreads the ball's mass over pixels
-    // whose rays miss the ball: what the terrain hides of it is taken at the depth of the pixel
-    // its centre falls in, along the ray through it, not along rays that meet the ground in front
-    // of it (a ball on the ground seen obliquely lost a quarter of its mass so).
-    bool widened = v_footprint_radius > v_depth_radius * 1.001;
-    vec3 cut_ray = widened ? normalize(v_centre) : ray;
-    ivec2 depth_size = textureSize(u_depth, 0);
-    ivec2 depth_pixel = widened ? clamp(ivec2((v_centre_ndc * 0.5 + 0.5) * vec2(depth_size)), ivec2(0), depth_size - 1)
-                                : ivec2(gl_FragCoord.xy * u_depth_scale);
-    float scene = view_depth(texelFetch(u_depth, depth_pixel, 0).r, u_near, u_far) / max(dot(cut_ray, u_camera_forward), 1e-6);
     // The part of the ray that lies in the fog: in front of the terrain and over the rectangle
     // that holds the fog (the Medium's grid: a particle at its edge would blur the fog's wall).
     float t0 = 0.0, t1 = scene;
-    line_over_rect(u_eye - u_centre, cut_ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
+    line_over_rect(u_eye - u_centre, ray, u_fog_xy.xy, u_fog_xy.zw, t0, t1);  // height_fog.glsl
     // And above the fog's floor where the fog floats over the ground (a blanket's bottom): seen
     // from under the blanket, a particle's ball below it would veil the clear air.
     // The floor's plane slopes with the blanket's bottom (a level plane under its lowest point
@@ -103,59 +102,149 @@ void main()
     // particle_footprint.glsl's clip_line_to_plane clips a line.
     vec2 span = vec2(t0, t1);
     if (v_floor_plane.x > -1e29)
-        clip_line_to_plane(v_floor_plane, 1.0, u_eye.z - u_centre.z, -v_centre.xy, cut_ray, span);
+        clip_line_to_plane(v_floor_plane, 1.0, u_eye.z - u_centre.z, -v_centre.xy, ray, span);
     // And under the fog's top: seen level, a ball standing out of a lake's top veiled the far
     // shore (the part cut off is given back to the rest, as the ground's: seen_gain).
     if (v_top_plane.x < 1e29)
-        clip_line_to_plane(v_top_plane, -1.0, u_eye.z - u_centre.z, -v_centre.xy, cut_ray, span);
+        clip_line_to_plane(v_top_plane, -1.0, u_eye.z - u_centre.z, -v_centre.xy, ray, span);
     // And beyond the near field (particles_near.frag marches the Medium itself within it).
-    t0 = max(span.x, u_near_field);
-    t1 = span.y;
+    return vec2(max(span.x, u_near_field), span.y);
+}
+
+#ifdef KIRI_DENSITY_RATIO
+// R along a ball's chord: the chord split in kRatioPoints parts at `edges` (metres along the ray,
+// ends open: a ray that sees more of the ball than the chord they were taken on gives its extra
+// length to the end parts), R at each part's middle.
+struct ChordRatios {
+    float edges[kRatioPoints - 1];
+    float r[kRatioPoints];
+};
+
+// R in thirds of the chord that `ray` (through the ball, x of its radius from the centre) sees
+// over [t0, t1], `along` the distance of the centre's foot on it.
+ChordRatios chord_ratios(vec3 ray, float along, float x, vec2 span)
+{
+    ChordRatios c;
+    float half_chord = v_depth_radius * sqrt(max(1.0 - x * x, 0.0));
+    float a = clamp(span.x - along, -half_chord, half_chord), b = clamp(span.y - along, -half_chord, half_chord);
+    b = max(a, b);
+    for (int k = 0; k < kRatioPoints; ++k) {
+        float u0 = mix(a, b, float(k) / float(kRatioPoints)), u1 = mix(a, b, float(k + 1) / float(kRatioPoints));
+        c.r[k] = density_ratio(u_eye - u_centre + ray * (along + 0.5 * (u0 + u1)));
+        if (k > 0)
+            c.edges[k - 1] = along + u0;
+    }
+    return c;
+}
+
+// The ball's density times R along the part [a, b] (relative to `along`) of the chord at x (its
+// half chord positive), each part weighted by its R (geometry::ball_chord_share, from the chord
+// integral at the parts' ends; one g for them all).
+float weighted_chord(ChordRatios c, float along, float x, float a, float b)
+{
+    float g = exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma));
+    float whole_centre = 2.0 * chord_integral(0.0, 1.0);
+    float before = chord_integral_at(g, a / v_depth_radius), u = a, weighted = 0.0;
+    for (int k = 0; k < kRatioPoints; ++k) {
+        float end = k < kRatioPoints - 1 ? clamp(c.edges[k] - along, u, b) : b;
+        float after = chord_integral_at(g, end / v_depth_radius);
+        weighted += max(after - before, 0.0) / whole_centre * c.r[k];
+        before = after;
+        u = end;
+    }
+    return weighted;
+}
+#endif
+
+// What this billboard's ball puts on a ray from the eye (`ray`, unit) that meets the ground at
+// view depth `ground` (along the view axis; a widened billboard's along the ray through its
+// centre, below): its optical depth, the distance along the ray where it is lit (where the
+// visible part passes nearest the centre) and the distance to the ground.
+struct Seen {
+    float tau, lit, scene;
+};
+
+Seen seen_along(vec3 ray, bool widened, float ground
+#ifdef KIRI_DENSITY_RATIO
+                ,
+                ChordRatios ratios
+#endif
+)
+{
+    Seen seen = Seen(0.0, 0.0, 0.0);
+    float along = dot(v_centre, ray);
+    float x = sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_footprint_radius;
+    if (x >= 1.0)
+        return seen;
+    // A billboard widened beyond its ball (particles.vert) spreads the ball's mass over pixels
+    // whose rays miss the ball: what the terrain hides of it is taken at the depth of the pixel
+    // its centre falls in, along the ray through it, not along rays that meet the ground in front
+    // of it (a ball on the ground seen obliquely lost a quarter of its mass so).
+    vec3 cut_ray = widened ? normalize(v_centre) : ray;
+    seen.scene = ground / max(dot(cut_ray, u_camera_forward), 1e-6);
+    vec2 span = visible_span(cut_ray, seen.scene);
+    float t0 = span.x, t1 = span.y;
     float cut_along = widened ? length(v_centre) : along;
+    // Lit where the ray's visible part passes nearest the centre.
+    seen.lit = widened ? along : clamp(along, t0, max(t0, t1));
 #ifdef KIRI_DENSITY_RATIO
     // The ball's density times R along the visible chord; for a billboard widened beyond its ball
     // (which spreads its footprint's mass), R's mean along the chord through its centre.
     float chord_x = widened ? 0.0 : x;
     float half_chord = v_depth_radius * sqrt(max(1.0 - chord_x * chord_x, 0.0));
     float a = clamp(t0 - cut_along, -half_chord, half_chord), b = clamp(t1 - cut_along, -half_chord, half_chord);
-    // Each third's geometry::ball_chord_share, from the chord integral at its ends (one g for them all).
-    float weighted = 0.0, mass = 0.0;
-    if (b > a) {
-        float g = exp(-chord_x * chord_x / (2.0 * kFootprintSigma * kFootprintSigma));
-        float whole_centre = 2.0 * chord_integral(0.0, 1.0);
-        float before = chord_integral_at(g, a / v_depth_radius);
-        for (int k = 0; k < kRatioPoints; ++k) {
-            float u0 = mix(a, b, float(k) / float(kRatioPoints)), u1 = mix(a, b, float(k + 1) / float(kRatioPoints));
-            float after = chord_integral_at(g, u1 / v_depth_radius);
-            float m = max(after - before, 0.0) / whole_centre;
-            before = after;
-            weighted += m * density_ratio(u_eye - u_centre + cut_ray * (cut_along + 0.5 * (u0 + u1)));
-            mass += m;
-        }
-    }
-    float tau_seen = widened ? v_seen_tau * footprint_profile(x) *
-            footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along) * u_ratio_footprint *
-            (mass > 0.0 ? weighted / mass : 0.0)
-                             : v_seen_tau * weighted;
+    if (!(b > a))
+        return seen;
+    float weighted = weighted_chord(ratios, cut_along, chord_x, a, b);
+    if (widened) {
+        float mass = (chord_integral(0.0, b / v_depth_radius) - chord_integral(0.0, a / v_depth_radius)) /
+                     (2.0 * chord_integral(0.0, 1.0));
+        seen.tau = v_seen_tau * footprint_profile(x) *
+                   footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along) * u_ratio_footprint *
+                   (mass > 0.0 ? weighted / mass : 0.0);
+    } else
+        seen.tau = v_seen_tau * weighted;
 #else
-    float tau_seen =
-        v_seen_tau * footprint_profile(x) * footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
+    seen.tau = v_seen_tau * footprint_profile(x) * footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
 #endif
-    float alpha = 1.0 - exp(-tau_seen);
-    // Lit where the ray's visible part passes nearest the centre.
-    float t = widened ? along : clamp(along, t0, max(t0, t1));
+    return seen;
+}
+
+// The opacity of a ball's part seen along a ray, softened where it meets the terrain if asked.
+float seen_alpha(Seen seen)
+{
+    float alpha = 1.0 - exp(-seen.tau);
     if (u_soft_edge > 0.0)  // a softer meeting with the terrain than the particle's own, if asked
-        alpha *= clamp((scene - t) / u_soft_edge, 0.0, 1.0);
-    if (alpha < 1e-5)
-        discard;
+        alpha *= clamp((seen.scene - seen.lit) / u_soft_edge, 0.0, 1.0);
+    return alpha;
+}
+
+// The light the ball scatters towards the eye along `ray` (unit, from the eye), lit `t` along it.
+vec3 ball_source(vec3 ray, float t)
+{
     vec3 relative = u_eye - u_centre + ray * t;
     float log_gamma = 0.0;
+    float sun_visible = v_grid_visible.w;
+#ifdef KIRI_DENSITY_RATIO
+    // The balls standing for the Medium are lit by its light, as the layers and the froxels are:
+    // the Medium's optical depth towards the sun (the sun volume) and the terrain's shadow at the
+    // lit point, not the attenuation buffer of the balls (a lumpy copy of the Medium's) and the
+    // shadow at the ball's centre (docs/particles.md, "A still's particles at each sample").
+    vec3 world = u_eye + ray * t;
+    if (u_lit != 0) {
+        bool covered = u_md_on != 0 && world.z < u_md_ceiling && shell_covers(world.xy);
+        log_gamma = -medium_sun_optical_depth_in(world, u_sv_direction, 0.5, covered,
+                                                 covered ? shell_column(world.xy) : vec4(0.0));
+    }
+    sun_visible = terrain_visibility(world, u_ts_bias);
+#else
     if (u_lit != 0) {
         Ball ball = Ball(u_eye - u_centre + v_centre, v_optics, v_floor_plane, v_top_plane);
         log_gamma = billboard_log_gamma(u_log_gamma, grid_of(relative), v_grid_visible.xyz, v_window, v_table, ball,
                                         own_share_at(relative, ball.centre, v_optics.x, v_top_plane, v_own_share));
     }
-    vec3 radiance = particle_radiance(log_gamma, dot(ray, u_sun_direction), v_optics.z, v_grid_visible.w);
+#endif
+    vec3 radiance = particle_radiance(log_gamma, dot(ray, u_sun_direction), v_optics.z, sun_visible);
     // The baked multiple scattering, not hidden by the terrain's shadow: the particle's, at the
     // lit point's height (particle_baked.comp).
     float baked = clamp(v_baked + v_baked_slope.x * (ray.z * t - v_centre.z), v_baked_slope.y, v_baked_slope.z);
@@ -170,5 +259,74 @@ void main()
     radiance = mix(radiance, u_sky_horizon, haze);
     // The froxel fog in front of this billboard (read at its corners, particles.vert), as the
     // layers read it: over the already fogged frame, T C + a S composes to S + T (...).
-    o_color = vec4((radiance * v_fog.a + v_fog.rgb) * alpha, alpha);
+    return radiance * v_fog.a + v_fog.rgb;
+}
+
+#ifdef KIRI_DENSITY_RATIO
+// R along the chord of the ball that `ray` sees in front of the ground at view depth `ground`
+// (a widened billboard's: the chord through its centre).
+ChordRatios ratios_along(vec3 ray, bool widened, float ground)
+{
+    vec3 cut_ray = widened ? normalize(v_centre) : ray;
+    float along = dot(v_centre, cut_ray);
+    float x = widened ? 0.0 : min(sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_depth_radius, 1.0);
+    return chord_ratios(cut_ray, along, x, visible_span(cut_ray, ground / max(dot(cut_ray, u_camera_forward), 1e-6)));
+}
+#endif
+
+#ifdef PARTICLES_AT_SAMPLES
+// The ray through sample s of this fragment's pixel (the frame's own target: depth_samples.glsl's
+// offsets).
+vec3 sample_ray(int s)
+{
+    vec2 ndc = (gl_FragCoord.xy + u_offsets[s]) / vec2(textureSize(u_depth, 0)) * 2.0 - 1.0;
+    return normalize(u_camera_forward + ndc.x * u_tan_half.x * u_camera_right + ndc.y * u_tan_half.y * u_camera_up);
+}
+#endif
+
+void main()
+{
+    vec3 ray = normalize(v_ray);
+    bool widened = v_footprint_radius > v_depth_radius * 1.001;
+    ivec2 depth_size = textureSize(u_depth, 0);
+    ivec2 depth_pixel = widened ? clamp(ivec2((v_centre_ndc * 0.5 + 0.5) * vec2(depth_size)), ivec2(0), depth_size - 1)
+                                : ivec2(gl_FragCoord.xy * u_depth_scale);
+    float ground = view_depth(texelFetch(u_depth, depth_pixel, 0).r, u_near, u_far);
+#ifdef PARTICLES_AT_SAMPLES
+    // A still drawn at the frame's resolution: the ball along each of the pixel's samples' rays,
+    // each to its own ground and lit where it passes, each sample's blend in a target of its own
+    // (docs/particles.md, "A still's particles at each sample"). R along each sample's own chord:
+    // the Medium's detail changes within metres of height, and twelve points a pixel draw it
+    // closer to its mean along the rays than three.
+    Seen seen[4];
+    vec3 rays[4];
+    float alphas[4];
+    float alpha = 0.0;
+    for (int s = 0; s < 4; ++s) {
+        rays[s] = sample_ray(s);
+        float sample_ground = widened ? ground : view_depth(texelFetch(u_samples_depth, ivec2(gl_FragCoord.xy), s).r, u_near, u_far);
+        seen[s] = seen_along(rays[s], widened, sample_ground, ratios_along(rays[s], widened, sample_ground));
+        alphas[s] = seen_alpha(seen[s]);
+        alpha = max(alpha, alphas[s]);
+    }
+    if (alpha < 1e-5)
+        discard;
+    vec4 blends[4];
+    for (int s = 0; s < 4; ++s)
+        blends[s] = alphas[s] < 1e-5 ? vec4(0.0) : vec4(ball_source(rays[s], seen[s].lit) * alphas[s], alphas[s]);
+    o_color = blends[0];
+    o_sample1 = blends[1];
+    o_sample2 = blends[2];
+    o_sample3 = blends[3];
+#else
+#ifdef KIRI_DENSITY_RATIO
+    Seen seen = seen_along(ray, widened, ground, ratios_along(ray, widened, ground));
+#else
+    Seen seen = seen_along(ray, widened, ground);
+#endif
+    float alpha = seen_alpha(seen);
+    if (alpha < 1e-5)
+        discard;
+    o_color = vec4(ball_source(ray, seen.lit) * alpha, alpha);
+#endif
 }

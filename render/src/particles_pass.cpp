@@ -10,6 +10,7 @@
 
 #include "light_volume_texture.hpp"
 #include "particle_gpu.hpp"
+#include "render_targets.hpp"
 #include "shadow_map_pass.hpp"
 #include "sun_volume.hpp"
 
@@ -21,9 +22,11 @@ constexpr int unit_baked_moments = 20;  // and 21, 22: the Medium's grid, the ce
 // The near field's sun volume: the Medium's grid, its noise, the volume (SunVolume::bind).
 constexpr int unit_near_sun = 12;  // 12, 13, 14
 // The balls' summed density (DensityRatioTexture::bind), and the Medium the ratio divides by it
-// (SunVolume::bind: its grid and noise; the volume itself is not read).
+// (SunVolume::bind: its grid and noise, and the sun volume the balls standing for it are lit by).
 constexpr int unit_ratio = 24;
 constexpr int unit_ratio_medium = 26;  // 26, 27, 28
+// The frame's samples' depth (PARTICLES_AT_SAMPLES); in the composite, their colour.
+constexpr int unit_samples_depth = 29;
 }  // namespace
 
 ParticlesPass::ParticlesPass() : composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
@@ -117,11 +120,24 @@ void make_target(Texture& color, Framebuffer& fbo, int w, int h)
 
 }  // namespace
 
-void ParticlesPass::ensure_target(int width, int height, int near_scale)
+void ParticlesPass::ensure_target(int width, int height, int near_scale, bool at_samples)
 {
-    if (width == width_ && height == height_ && near_scale == near_scale_ && fbo_)
+    if (width == width_ && height == height_ && near_scale == near_scale_ && at_samples == target_samples_ && fbo_)
         return;
     make_target(color_, fbo_, width, height);
+    for (int s = 0; s < 3; ++s) {
+        sample_colors_[s] = Texture{};
+        if (!at_samples)
+            continue;
+        sample_colors_[s] = make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(sample_colors_[s].get(), 1, GL_RGBA16F, width, height);
+        glTextureParameteri(sample_colors_[s].get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(sample_colors_[s].get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glNamedFramebufferTexture(fbo_.get(), GLenum(GL_COLOR_ATTACHMENT1 + s), sample_colors_[s].get(), 0);
+    }
+    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(fbo_.get(), at_samples ? 4 : 1, buffers);
+    target_samples_ = at_samples;
     if (near_scale > 1) {
         make_target(near_color_, near_fbo_, near_size(width, near_scale), near_size(height, near_scale));
         make_target(around_color_, around_fbo_, near_size(width, 2 * near_scale), near_size(height, 2 * near_scale));
@@ -331,7 +347,14 @@ void ParticlesPass::sort(const FrameContext& frame)
     sorted_projection_ = frame.projection;
 }
 
-bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth)
+bool ParticlesPass::at_samples(const FrameContext& frame, const FrameSamples* samples) const
+{
+    return samples != nullptr && samples->depth != 0 && samples->offsets != nullptr && samples->count == 4 &&
+        frame.still && !fog_ && frame.width * frame.height <= max_pixels_at_samples;
+}
+
+bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth,
+                         const FrameSamples* samples)
 {
     if (!has_particles())
         return false;
@@ -343,14 +366,16 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     const geometry::Medium* matched = style_.match_medium && !fog_ && sun_ ? sun_->medium() : nullptr;
     ratio_.update(*cloud_, uploaded_hash_, matched, buffer_.particle_centre());
     const bool ratio = matched && ratio_.ready();
+    const bool sampled = ratio && at_samples(frame, samples);
     const int scale = std::max(style_.near_scale, 1);
-    ensure_target(frame.width, frame.height, scale);
+    ensure_target(frame.width, frame.height, scale, sampled);
     const std::size_t drawn = order_cpu_.size(), split = near_first(frame), around = around_first();
     // The baked multiple scattering (particle_baked.comp, particles.frag): the moments and the
     // Medium's columns they follow. The renderer gives a volume for the model `baked` alone.
     const bool baked = light_volume_ && light_volume_->ready();
     const float clear[4] = {0.0f, 0.0f, 0.0f, 0.0f};
-    glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, 0, clear);
+    for (int b = 0; b < (sampled ? 4 : 1); ++b)
+        glClearNamedFramebufferfv(fbo_.get(), GL_COLOR, b, clear);
     if (split < drawn)
         glClearNamedFramebufferfv(near_fbo_.get(), GL_COLOR, 0, clear);
     // With the baked light the billboards around the eye read it at each fragment, in a target of
@@ -368,9 +393,9 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     if (baked)
         update_baked_lights(frame);
     const double near_reach = near_field_reach(frame);
-    const auto program = [&](bool per_fragment) -> const ShaderProgram& {
-        std::unique_ptr<ShaderProgram>& slot =
-            programs_[fog_ ? 1 : 0][baked ? 1 + int(per_fragment) : 0][table ? 1 : 0][ratio ? 1 : 0];
+    const auto program = [&](bool per_fragment, bool sample_rays) -> const ShaderProgram& {
+        std::unique_ptr<ShaderProgram>& slot = programs_[fog_ ? 1 : 0][baked ? 1 + int(per_fragment) : 0][table ? 1 : 0]
+                                                        [ratio ? 1 : 0][sample_rays ? 1 : 0];
         if (!slot)
             slot = std::make_unique<ShaderProgram>(
                 fog_ ? std::vector<std::string_view>{"view_depth.glsl", "particle_footprint.glsl", "fog_partition.glsl",
@@ -378,14 +403,16 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
                                                      "terrain_shadow.glsl", "medium_shell.glsl", "height_fog.glsl",
                                                      "froxel_medium.glsl", "froxel_apply.glsl", "light_volume.glsl",
                                                      "particles.vert", "particles.frag"}
-                     : std::vector<std::string_view>{"view_depth.glsl", "particle_footprint.glsl", "fog_partition.glsl",
-                                                     "froxel_common.glsl", "fog_lighting.glsl", "particle_light.glsl",
-                                                     "terrain_shadow.glsl", "froxel_fog_none.glsl", "medium_shell.glsl",
-                                                     "height_fog.glsl", "froxel_medium.glsl", "light_volume.glsl",
-                                                     "particles.vert", "particles.frag"},
+                     : std::vector<std::string_view>{"view_depth.glsl", "depth_samples.glsl", "particle_footprint.glsl",
+                                                     "fog_partition.glsl", "froxel_common.glsl", "fog_lighting.glsl",
+                                                     "particle_light.glsl", "terrain_shadow.glsl",
+                                                     "froxel_fog_none.glsl", "medium_shell.glsl", "height_fog.glsl",
+                                                     "froxel_medium.glsl", "sun_march.glsl", "sun_volume.glsl",
+                                                     "light_volume.glsl", "particles.vert", "particles.frag"},
                 std::string(light_volume_preamble(baked)) + (table ? "#define KIRI_SELF_TABLE\n" : "") +
                     (baked && per_fragment ? "#define KIRI_BAKED_PER_FRAGMENT\n" : "") +
-                    (ratio ? "#define KIRI_DENSITY_RATIO\n" : ""));
+                    (ratio ? "#define KIRI_DENSITY_RATIO\n" : "") +
+                    (sample_rays ? "#define PARTICLES_AT_SAMPLES\n" : ""));
         return *slot;
     };
     // Each program drawn with takes the frame's uniforms and bindings.
@@ -400,6 +427,12 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         else
             LightVolumeTexture{}.bind(p, unit_baked_moments, false);
         set_grid_uniforms(p, g, cloud_->forward_scattering, buffer_.particle_centre());
+        if (sampled) {
+            p.set("u_samples_depth", unit_samples_depth);
+            p.set("u_samples", samples->count);
+            glProgramUniform2fv(p.id(), p.location("u_offsets"), 8, samples->offsets);
+            glBindTextureUnit(unit_samples_depth, samples->depth);
+        }
         p.set("u_centre", glm::vec3(buffer_.particle_centre()));
         {
             const glm::dvec2 c(buffer_.particle_centre());
@@ -426,12 +459,16 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
         p.set("u_near_field", float(near_reach));
         ratio_.bind(p, unit_ratio);
         if (!fog_) {
-            // The Medium the ratio reads (froxel_medium.glsl), its samplers on units of their own
-            // either way: samplers of different types may not share a unit, used or not.
-            if (ratio)
-                sun_->bind(p, unit_ratio_medium, 1, false);
-            else {
+            // The Medium the ratio reads (froxel_medium.glsl) and its optical depth towards the sun
+            // (sun_volume.glsl), its samplers on units of their own either way: samplers of
+            // different types may not share a unit, used or not.
+            if (ratio) {
+                sun_->bind(p, unit_ratio_medium, 48, true);
+                p.set("u_sv_direction", sun_march_direction(frame.sun_direction));
+            } else {
                 p.set("u_md_on", 0);
+                p.set("u_sv_on", 0);
+                p.set("u_sv_volume", unit_ratio_medium + 2);
                 p.set("u_md_grid", unit_ratio_medium);
                 p.set("u_md_noise", unit_ratio_medium + 1);
             }
@@ -468,14 +505,21 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     // those around the eye last (with the baked light, in the program that reads it per fragment).
     const int near_w = near_size(frame.width, scale), near_h = near_size(frame.height, scale);
     const std::size_t far_end = std::min(split, around);
-    const ShaderProgram& per_particle = program(false);
-    prepare(per_particle);
-    draw_range(per_particle, 0, far_end, fbo_.get(), frame.width, frame.height);
-    draw_range(per_particle, far_end, around - far_end, near_fbo_.get(), near_w, near_h);
+    // At the samples (a small still): the billboards drawn at the frame's resolution along each
+    // sample's ray; the coarser targets' at their pixels' centres.
+    const ShaderProgram& per_particle = program(false, false);
+    const ShaderProgram& per_particle_full = sampled ? program(false, true) : per_particle;
+    prepare(per_particle_full);
+    draw_range(per_particle_full, 0, far_end, fbo_.get(), frame.width, frame.height);
+    if (around > far_end) {
+        if (&per_particle != &per_particle_full)
+            prepare(per_particle);
+        draw_range(per_particle, far_end, around - far_end, near_fbo_.get(), near_w, near_h);
+    }
     if (around < drawn) {
-        const ShaderProgram& per_fragment = program(true);
-        if (&per_fragment != &per_particle)
-            prepare(per_fragment);
+        const bool full = !around_coarse && split >= drawn;
+        const ShaderProgram& per_fragment = program(true, full && sampled);
+        prepare(per_fragment);
         if (around_coarse)
             draw_range(per_fragment, around, drawn - around, around_fbo_.get(), near_size(frame.width, 2 * scale),
                        near_size(frame.height, 2 * scale));
@@ -491,12 +535,24 @@ bool ParticlesPass::draw(const FrameContext& frame, unsigned resolved_fbo, unsig
     // Premultiplied "over" is associative: the near billboards' layer over the far ones' equals
     // every billboard blended over the frame in one order.
     composite_.set("u_particles", 0);
+    composite_.set("u_sample1", 1);
+    composite_.set("u_sample2", 2);
+    composite_.set("u_sample3", 3);
+    composite_.set("u_samples_color", 4);
     composite_.use();
     glBindFramebuffer(GL_FRAMEBUFFER, resolved_fbo);
     glViewport(0, 0, frame.width, frame.height);
     composite_.set("u_inv_size", glm::vec2(0.0f));
+    composite_.set("u_at_samples", int(sampled));
+    composite_.set("u_samples_below", int(sampled && samples->color != 0));
     glBindTextureUnit(0, color_.get());
+    if (sampled) {
+        for (int b = 0; b < 3; ++b)
+            glBindTextureUnit(GLuint(1 + b), sample_colors_[b].get());
+        glBindTextureUnit(4, samples->color);
+    }
     glDrawArrays(GL_TRIANGLES, 0, 3);
+    composite_.set("u_at_samples", 0);
     composite_.set("u_inv_size", glm::vec2(1.0f / float(frame.width), 1.0f / float(frame.height)));
     if (split < drawn) {
         glBindTextureUnit(0, near_color_.get());

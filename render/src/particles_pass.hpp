@@ -31,8 +31,18 @@ public:
     void clear();
     bool has_particles() const { return cloud_ != nullptr && count_ > 0; }
     void extend_bounds(glm::dvec3& lo, glm::dvec3& hi) const;
-    //! Draws over `resolved_fbo`. Returns whether the attenuation buffer was rebuilt.
-    bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth);
+    //! Draws over `resolved_fbo`. Returns whether the attenuation buffer was rebuilt. With the
+    //! frame's samples (their depth; their colour where the frame below is still their mean), a
+    //! small still of the particles alone, standing for the Medium (match_medium), is drawn along
+    //! each sample's ray (at_samples).
+    bool draw(const FrameContext& frame, unsigned resolved_fbo, unsigned resolved_depth,
+              const struct FrameSamples* samples = nullptr);
+    //! Whether a frame of this size is drawn at its samples: a still of the particles alone
+    //! (not under froxel fog) of at most max_pixels_at_samples pixels, the views bench's and the
+    //! tests' size, where a pixel spans a thread of fog or its shore (docs/particles.md, "A
+    //! still's particles at each sample"). Larger frames draw at each pixel's centre.
+    bool at_samples(const FrameContext& frame, const struct FrameSamples* samples) const;
+    static constexpr int max_pixels_at_samples = 320 * 180;
     const AttenuationBuffer& buffer() const { return buffer_; }
     const ParticleLight& light() const { return light_; }
     //! For the frame: froxel fog to read at each billboard's depth (null: none; drawn after its
@@ -68,9 +78,10 @@ private:
     //! The billboards' program, reading the froxel fog (froxel_apply.glsl) or not, without the
     //! baked light (light_volume_preamble), with it per particle, or with it per fragment too (the
     //! billboards around the eye), reading the own gains from the table alone or computing them
-    //! where it is missing, weighting the balls by the density ratio or not (match_medium):
-    //! [fog][baked][table][ratio], each built on first use.
-    std::unique_ptr<ShaderProgram> programs_[2][3][2][2];
+    //! where it is missing, weighting the balls by the density ratio or not (match_medium), at
+    //! each pixel's centre or at its samples: [fog][baked][table][ratio][samples], each built on
+    //! first use.
+    std::unique_ptr<ShaderProgram> programs_[2][3][2][2][2];
     //! The near field's march (particles_near.frag), without the baked light and with it.
     std::unique_ptr<ShaderProgram> near_programs_[2];
     //! The near field's reach for this frame: metres along each ray, 0 where there is none (under
@@ -116,17 +127,20 @@ private:
     // around the eye (around_first) twice as coarse again: each spans the whole screen, and with
     // the baked light reads it at every fragment.
     Texture color_, near_color_, around_color_;
+    // Samples 1..3's blends of a still drawn at its samples (color_ holds sample 0's).
+    Texture sample_colors_[3];
     // The near field (particles_near.frag), at the near target's resolution or finer.
     Framebuffer near_field_fbo_;
     Texture near_field_color_;
     glm::ivec2 near_field_size_{0};
     int width_ = 0, height_ = 0, near_scale_ = 0;
+    bool target_samples_ = false;
     Query fragments_query_;
     int last_near_ = 0;
     bool last_light_rebuilt_ = false;
     mutable std::uint64_t last_fragments_ = 0;
     mutable bool fragments_pending_ = false;
-    void ensure_target(int width, int height, int near_scale);
+    void ensure_target(int width, int height, int near_scale, bool at_samples);
     //! The billboards whose particle can reach a pixel of the frame, far to near, into order_.
     void sort(const FrameContext& frame);
     //! Of the billboards sorted far to near, the first one drawn at the near resolution.

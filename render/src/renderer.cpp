@@ -438,7 +438,12 @@ void Renderer::draw(const Camera& world_camera, int width, int height)
     bool rebuilt = false;
     if (particles) {  // over the terrain and the layers, soft where they meet the terrain
         const ScopedPassTimer timed(r.particles_timer);
-        rebuilt = r.particles.draw(frame, r.targets.hdr_framebuffer(), r.targets.resolved_depth());
+        // The samples' colour, unless fog went into the resolved frame since (the froxels', the
+        // layers').
+        detail::FrameSamples below = r.targets.frame_samples();
+        if (fog || (!layers_multisampled && r.layers.has_layers()))
+            below.color = 0;
+        rebuilt = r.particles.draw(frame, r.targets.hdr_framebuffer(), r.targets.resolved_depth(), &below);
     }
     {
         const ScopedPassTimer timed(r.tonemap_timer);

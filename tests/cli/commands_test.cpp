@@ -139,14 +139,17 @@ TEST(KiriBench, ViewsStageJudgesTheViewsNamed)
         EXPECT_EQ(cols[2], "\"canyon/derived\"") << line;
         modes.push_back(cols[1]);
         // Measured 0.64 % (layers), 2.11 % (particles), 0.40 % (froxels), 0.64 % (combined) on
-        // 2026-12-04; the particles 1.18 % since they match the Medium (2026-12-07). Each
-        // renderer's light 10 % too bright fails its bound (docs/tests.md).
+        // 2026-12-04; the particles 1.18 % since they match the Medium (2026-12-07), 0.79 % since
+        // a small still draws them at each sample, lit by the Medium's light (their bound 1.3
+        // times that: 1.18 % fails it). Each renderer's light 10 % too bright fails its bound
+        // (docs/tests.md).
+        const bool particles = cols[1] == "\"particles\"";
         const double measured = cols[1] == "\"layers\"" ? 0.0064
-            : cols[1] == "\"particles\""                ? 0.0118
+            : particles                                 ? 0.0079
             : cols[1] == "\"froxel\""                   ? 0.0040
                                                         : 0.0064;
         EXPECT_GT(std::stod(cols[6]), 0.001) << line;
-        EXPECT_LT(std::stod(cols[6]), 1.5 * measured) << line;
+        EXPECT_LT(std::stod(cols[6]), (particles ? 1.3 : 1.5) * measured) << line;
     }
     EXPECT_EQ(modes, (std::vector<std::string>{"\"layers\"", "\"particles\"", "\"froxel\"", "\"combined\""}));
     const std::string md = kiri::test::read_all(dir / "views.md");

@@ -54,7 +54,9 @@ TEST(ParticlesMatchMedium, TheBallsTogetherDrawTheMediumFromAfarAndFromAbove)
 {
     // The balls as sampled (`"match_medium": false`): 0.0281 from afar (p99 0.105), 0.0268 from
     // above (p99 0.074), where the lake's noisy top is a lumpy sheet of balls. Weighted by the
-    // Medium over their sum: 0.0228 (p99 0.089) and 0.0127 (p99 0.056).
+    // Medium over their sum: 0.0228 (p99 0.089) and 0.0127 (p99 0.056); drawn at each sample and
+    // lit by the Medium's light (docs/particles.md, "A still's particles at each sample"): 0.0227
+    // (p99 0.083) and 0.0173 (p99 0.073).
     const fs::path dir = kiri::test::temp_path("particles_match_test");
     fs::create_directories(dir);
     const kiri::bench::SceneJson source(write_bowl_lake(dir));

@@ -87,7 +87,9 @@ struct ParticleOptions {
     double near_field = 2.5;
     //! With the particles alone, each ball's density along a ray is weighted by the Medium's
     //! extinction over the density all the balls add up to there (density_ratio.hpp): together
-    //! they draw the Medium, not a lumpy copy of it. false: each ball as sampled.
+    //! they draw the Medium, not a lumpy copy of it, and are lit by its light (its optical depth
+    //! towards the sun, the terrain's shadow where they are lit) as the layers and the froxels
+    //! are. false: each ball as sampled, lit through the attenuation buffer.
     bool match_medium = true;
     bool operator==(const ParticleOptions&) const = default;
 };
@@ -200,7 +202,8 @@ void visit_fields(O& o, V&& v)
     v(o.match_medium,
       {.key = "match_medium",
        .doc = "the particles alone: each ball's density weighted by the Medium's over the balls' sum where the ray "
-              "passes, so together they draw the Medium (false: the balls as sampled, lumps and all)"});
+              "passes, so together they draw the Medium, lit by its light (false: the balls as sampled, lumps and "
+              "all, lit through the attenuation buffer)"});
 }
 
 //! \throw InputError(label, "/particles/<key>", reason) for options outside their ranges.
