@@ -7,8 +7,8 @@
 // so octave i sees Gamma^(b^i); hazed with distance like the terrain; in the terrain's shadow
 // from the sun (the renderer's shadow map, as the froxels and the CPU reference see it). Balls
 // standing for the Medium (KIRI_DENSITY_RATIO) take its density over their sum along the ray and
-// its own light (the sun volume, the shadow at the lit point). Blended back to front, premultiplied linear radiance: E_k = S_k + T_k E_(k-1) ([Shimada08]
-// (5)), S_k = (1 - T) J.
+// its own light (the sun volume, the shadow at the lit point). Blended back to front,
+// premultiplied linear radiance: E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
 in vec3 v_ray;
 flat in vec3 v_centre;
 flat in vec4 v_grid_visible;
@@ -112,45 +112,20 @@ vec2 visible_span(vec3 ray, float scene)
 }
 
 #ifdef KIRI_DENSITY_RATIO
-// R along a ball's chord: the chord split in kRatioPoints parts at `edges` (metres along the ray,
-// ends open: a ray that sees more of the ball than the chord they were taken on gives its extra
-// length to the end parts), R at each part's middle.
-struct ChordRatios {
-    float edges[kRatioPoints - 1];
-    float r[kRatioPoints];
-};
-
-// R in thirds of the chord that `ray` (through the ball, x of its radius from the centre) sees
-// over [t0, t1], `along` the distance of the centre's foot on it.
-ChordRatios chord_ratios(vec3 ray, float along, float x, vec2 span)
-{
-    ChordRatios c;
-    float half_chord = v_depth_radius * sqrt(max(1.0 - x * x, 0.0));
-    float a = clamp(span.x - along, -half_chord, half_chord), b = clamp(span.y - along, -half_chord, half_chord);
-    b = max(a, b);
-    for (int k = 0; k < kRatioPoints; ++k) {
-        float u0 = mix(a, b, float(k) / float(kRatioPoints)), u1 = mix(a, b, float(k + 1) / float(kRatioPoints));
-        c.r[k] = density_ratio(u_eye - u_centre + ray * (along + 0.5 * (u0 + u1)));
-        if (k > 0)
-            c.edges[k - 1] = along + u0;
-    }
-    return c;
-}
-
-// The ball's density times R along the part [a, b] (relative to `along`) of the chord at x (its
-// half chord positive), each part weighted by its R (geometry::ball_chord_share, from the chord
-// integral at the parts' ends; one g for them all).
-float weighted_chord(ChordRatios c, float along, float x, float a, float b)
+// The ball's density times R along the part [a, b] of its chord at x (relative to `along`, the
+// distance of the centre's foot on `ray`), in thirds, each weighted by R at its middle
+// (geometry::ball_chord_share, from the chord integral at the thirds' ends; one g for them all).
+float weighted_chord(vec3 ray, float along, float x, float a, float b)
 {
     float g = exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma));
     float whole_centre = 2.0 * chord_integral(0.0, 1.0);
-    float before = chord_integral_at(g, a / v_depth_radius), u = a, weighted = 0.0;
+    float before = chord_integral_at(g, a / v_depth_radius), weighted = 0.0;
     for (int k = 0; k < kRatioPoints; ++k) {
-        float end = k < kRatioPoints - 1 ? clamp(c.edges[k] - along, u, b) : b;
-        float after = chord_integral_at(g, end / v_depth_radius);
-        weighted += max(after - before, 0.0) / whole_centre * c.r[k];
+        float u0 = mix(a, b, float(k) / float(kRatioPoints)), u1 = mix(a, b, float(k + 1) / float(kRatioPoints));
+        float after = chord_integral_at(g, u1 / v_depth_radius);
+        weighted += max(after - before, 0.0) / whole_centre *
+                    density_ratio(u_eye - u_centre + ray * (along + 0.5 * (u0 + u1)));
         before = after;
-        u = end;
     }
     return weighted;
 }
@@ -164,12 +139,7 @@ struct Seen {
     float tau, lit, scene;
 };
 
-Seen seen_along(vec3 ray, bool widened, float ground
-#ifdef KIRI_DENSITY_RATIO
-                ,
-                ChordRatios ratios
-#endif
-)
+Seen seen_along(vec3 ray, bool widened, float ground)
 {
     Seen seen = Seen(0.0, 0.0, 0.0);
     float along = dot(v_centre, ray);
@@ -195,7 +165,7 @@ Seen seen_along(vec3 ray, bool widened, float ground
     float a = clamp(t0 - cut_along, -half_chord, half_chord), b = clamp(t1 - cut_along, -half_chord, half_chord);
     if (!(b > a))
         return seen;
-    float weighted = weighted_chord(ratios, cut_along, chord_x, a, b);
+    float weighted = weighted_chord(cut_ray, cut_along, chord_x, a, b);
     if (widened) {
         float mass = (chord_integral(0.0, b / v_depth_radius) - chord_integral(0.0, a / v_depth_radius)) /
                      (2.0 * chord_integral(0.0, 1.0));
@@ -222,7 +192,6 @@ float seen_alpha(Seen seen)
 // The light the ball scatters towards the eye along `ray` (unit, from the eye), lit `t` along it.
 vec3 ball_source(vec3 ray, float t)
 {
-    vec3 relative = u_eye - u_centre + ray * t;
     float log_gamma = 0.0;
     float sun_visible = v_grid_visible.w;
 #ifdef KIRI_DENSITY_RATIO
@@ -238,6 +207,7 @@ vec3 ball_source(vec3 ray, float t)
     }
     sun_visible = terrain_visibility(world, u_ts_bias);
 #else
+    vec3 relative = u_eye - u_centre + ray * t;
     if (u_lit != 0) {
         Ball ball = Ball(u_eye - u_centre + v_centre, v_optics, v_floor_plane, v_top_plane);
         log_gamma = billboard_log_gamma(u_log_gamma, grid_of(relative), v_grid_visible.xyz, v_window, v_table, ball,
@@ -261,18 +231,6 @@ vec3 ball_source(vec3 ray, float t)
     // layers read it: over the already fogged frame, T C + a S composes to S + T (...).
     return radiance * v_fog.a + v_fog.rgb;
 }
-
-#ifdef KIRI_DENSITY_RATIO
-// R along the chord of the ball that `ray` sees in front of the ground at view depth `ground`
-// (a widened billboard's: the chord through its centre).
-ChordRatios ratios_along(vec3 ray, bool widened, float ground)
-{
-    vec3 cut_ray = widened ? normalize(v_centre) : ray;
-    float along = dot(v_centre, cut_ray);
-    float x = widened ? 0.0 : min(sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_depth_radius, 1.0);
-    return chord_ratios(cut_ray, along, x, visible_span(cut_ray, ground / max(dot(cut_ray, u_camera_forward), 1e-6)));
-}
-#endif
 
 #ifdef PARTICLES_AT_SAMPLES
 // The ray through sample s of this fragment's pixel (the frame's own target: depth_samples.glsl's
@@ -305,7 +263,7 @@ void main()
     for (int s = 0; s < 4; ++s) {
         rays[s] = sample_ray(s);
         float sample_ground = widened ? ground : view_depth(texelFetch(u_samples_depth, ivec2(gl_FragCoord.xy), s).r, u_near, u_far);
-        seen[s] = seen_along(rays[s], widened, sample_ground, ratios_along(rays[s], widened, sample_ground));
+        seen[s] = seen_along(rays[s], widened, sample_ground);
         alphas[s] = seen_alpha(seen[s]);
         alpha = max(alpha, alphas[s]);
     }
@@ -319,11 +277,7 @@ void main()
     o_sample2 = blends[2];
     o_sample3 = blends[3];
 #else
-#ifdef KIRI_DENSITY_RATIO
-    Seen seen = seen_along(ray, widened, ground, ratios_along(ray, widened, ground));
-#else
     Seen seen = seen_along(ray, widened, ground);
-#endif
     float alpha = seen_alpha(seen);
     if (alpha < 1e-5)
         discard;
