@@ -133,15 +133,16 @@ float weighted_chord(vec3 ray, float along, float x, float a, float b)
 
 // What this billboard's ball puts on a ray from the eye (`ray`, unit) that meets the ground at
 // view depth `ground` (along the view axis; a widened billboard's along the ray through its
-// centre, below): its optical depth, the distance along the ray where it is lit (where the
-// visible part passes nearest the centre) and the distance to the ground.
+// centre, below, and `own_ground` the ray's own): its optical depth, where it is lit (`lit` along `lit_ray`: where the visible
+// part passes nearest the centre) and the distance to the ground along that ray.
 struct Seen {
     float tau, lit, scene;
+    vec3 lit_ray;
 };
 
-Seen seen_along(vec3 ray, bool widened, float ground)
+Seen seen_along(vec3 ray, bool widened, float ground, float own_ground)
 {
-    Seen seen = Seen(0.0, 0.0, 0.0);
+    Seen seen = Seen(0.0, 0.0, 0.0, ray);
     float along = dot(v_centre, ray);
     float x = sqrt(max(dot(v_centre, v_centre) - along * along, 0.0)) / v_footprint_radius;
     if (x >= 1.0)
@@ -155,14 +156,28 @@ Seen seen_along(vec3 ray, bool widened, float ground)
     vec2 span = visible_span(cut_ray, seen.scene);
     float t0 = span.x, t1 = span.y;
     float cut_along = widened ? length(v_centre) : along;
-    // Lit where the ray's visible part passes nearest the centre.
-    seen.lit = widened ? along : clamp(along, t0, max(t0, t1));
+    // Spread over the pixels around it, but not over those whose own ray meets no fog (between
+    // the fog's planes, in front of their own ground): seen level, a lake's far edge widened into
+    // a veil over the shore behind it. Where the fog is thinner than a pixel is tall, a pixel's
+    // ray crosses it at another depth than the ball's, so the ball's chord is not cut there.
+    if (widened) {
+        vec2 own = visible_span(ray, own_ground / max(dot(ray, u_camera_forward), 1e-6));
+        if (!(own.y > own.x))
+            return seen;
+    }
+    // The visible part relative to the chord's middle.
+    float lo = t0 - cut_along, hi = t1 - cut_along;
+    // Lit where the ray's visible part passes nearest the centre; a widened billboard's rays pass
+    // up to a pixel from its ball (tens of metres from afar, out of a thin valley's fog and into
+    // its walls' shadow), so it is lit on the ray through its centre, where its mass is.
+    seen.lit_ray = cut_ray;
+    seen.lit = cut_along + clamp(0.0, lo, max(lo, hi));
 #ifdef KIRI_DENSITY_RATIO
     // The ball's density times R along the visible chord; for a billboard widened beyond its ball
     // (which spreads its footprint's mass), R's mean along the chord through its centre.
     float chord_x = widened ? 0.0 : x;
     float half_chord = v_depth_radius * sqrt(max(1.0 - chord_x * chord_x, 0.0));
-    float a = clamp(t0 - cut_along, -half_chord, half_chord), b = clamp(t1 - cut_along, -half_chord, half_chord);
+    float a = clamp(lo, -half_chord, half_chord), b = clamp(hi, -half_chord, half_chord);
     if (!(b > a))
         return seen;
     float weighted = weighted_chord(cut_ray, cut_along, chord_x, a, b);
@@ -170,12 +185,12 @@ Seen seen_along(vec3 ray, bool widened, float ground)
         float mass = (chord_integral(0.0, b / v_depth_radius) - chord_integral(0.0, a / v_depth_radius)) /
                      (2.0 * chord_integral(0.0, 1.0));
         seen.tau = v_seen_tau * footprint_profile(x) *
-                   footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along) * u_ratio_footprint *
+                   footprint_ray_share(x, v_depth_radius, lo, hi) * u_ratio_footprint *
                    (mass > 0.0 ? weighted / mass : 0.0);
     } else
         seen.tau = v_seen_tau * weighted;
 #else
-    seen.tau = v_seen_tau * footprint_profile(x) * footprint_ray_share(x, v_depth_radius, t0 - cut_along, t1 - cut_along);
+    seen.tau = v_seen_tau * footprint_profile(x) * footprint_ray_share(x, v_depth_radius, lo, hi);
 #endif
     return seen;
 }
@@ -250,6 +265,8 @@ void main()
     ivec2 depth_pixel = widened ? clamp(ivec2((v_centre_ndc * 0.5 + 0.5) * vec2(depth_size)), ivec2(0), depth_size - 1)
                                 : ivec2(gl_FragCoord.xy * u_depth_scale);
     float ground = view_depth(texelFetch(u_depth, depth_pixel, 0).r, u_near, u_far);
+    float own_ground = widened ? view_depth(texelFetch(u_depth, ivec2(gl_FragCoord.xy * u_depth_scale), 0).r, u_near, u_far)
+                               : ground;
 #ifdef PARTICLES_AT_SAMPLES
     // A still drawn at the frame's resolution: the ball along each of the pixel's samples' rays,
     // each to its own ground and lit where it passes, each sample's blend in a target of its own
@@ -262,8 +279,8 @@ void main()
     float alpha = 0.0;
     for (int s = 0; s < 4; ++s) {
         rays[s] = sample_ray(s);
-        float sample_ground = widened ? ground : view_depth(texelFetch(u_samples_depth, ivec2(gl_FragCoord.xy), s).r, u_near, u_far);
-        seen[s] = seen_along(rays[s], widened, sample_ground);
+        float sample_ground = view_depth(texelFetch(u_samples_depth, ivec2(gl_FragCoord.xy), s).r, u_near, u_far);
+        seen[s] = seen_along(rays[s], widened, widened ? ground : sample_ground, sample_ground);
         alphas[s] = seen_alpha(seen[s]);
         alpha = max(alpha, alphas[s]);
     }
@@ -271,16 +288,16 @@ void main()
         discard;
     vec4 blends[4];
     for (int s = 0; s < 4; ++s)
-        blends[s] = alphas[s] < 1e-5 ? vec4(0.0) : vec4(ball_source(rays[s], seen[s].lit) * alphas[s], alphas[s]);
+        blends[s] = alphas[s] < 1e-5 ? vec4(0.0) : vec4(ball_source(seen[s].lit_ray, seen[s].lit) * alphas[s], alphas[s]);
     o_color = blends[0];
     o_sample1 = blends[1];
     o_sample2 = blends[2];
     o_sample3 = blends[3];
 #else
-    Seen seen = seen_along(ray, widened, ground);
+    Seen seen = seen_along(ray, widened, ground, own_ground);
     float alpha = seen_alpha(seen);
     if (alpha < 1e-5)
         discard;
-    o_color = vec4(ball_source(ray, seen.lit) * alpha, alpha);
+    o_color = vec4(ball_source(seen.lit_ray, seen.lit) * alpha, alpha);
 #endif
 }

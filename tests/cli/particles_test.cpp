@@ -91,8 +91,10 @@ TEST(KiriParticles, FromAShoreLevelRaysSeeNoBallsOverTheLakesTop)
     // Measured p99 0.53 (mean 0.053; the near field is not drawn: the eye is farther from the
     // fog); without the cut at the top's plane, 1.37 (measured 2026-12-06). Drawn at each sample
     // in the Medium's light (2026-12-07, night): p99 0.76, mean 0.050; with the widened
-    // billboards lit at their balls' centres too, p99 0.88 (not kept, docs/particles.md).
-    EXPECT_LT(e.p99_relative, 0.8);
+    // billboards lit at their balls' centres too, p99 0.88, and not spread over the pixels whose
+    // own ray meets no fog (the lake's far edge widened into a veil over the shore behind it,
+    // docs/particles.md, "Widened billboards lit where their balls are"): p99 0.647, mean 0.047.
+    EXPECT_LT(e.p99_relative, 0.72);
 }
 
 TEST(KiriParticles, FromInsideTheFogTheNearFieldIsTheMediumItself)
