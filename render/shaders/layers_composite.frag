@@ -12,8 +12,6 @@ uniform sampler2D u_layers;     // premultiplied colour, low resolution
 uniform sampler2D u_low_depth;  // the depth the layers were tested against
 uniform sampler2D u_depth;      // full-resolution depth
 uniform sampler2DMS u_samples_depth;  // the frame's samples' depth before the resolve
-uniform sampler2DMS u_samples_color;  // and their colour, when the frame below is their mean
-uniform bool u_samples_below;         // (nothing blended into it since the resolve)
 uniform bool u_at_samples;            // the layers drawn at the frame's resolution along each pixel's
                                       // samples' rays, each sample's blend apart (layers.frag's
 uniform sampler2D u_layer_samples[3]; // LAYERS_AT_SAMPLES): samples 1..3's (u_layers holds sample 0's)
@@ -69,42 +67,20 @@ void main()
     vec2 uv = v_ndc * 0.5 + 0.5;
     ivec2 px = ivec2(gl_FragCoord.xy);
     if (u_at_samples) {
-        vec4 c[4] = vec4[4](texelFetch(u_layers, px, 0), texelFetch(u_layer_samples[0], px, 0),
-                            texelFetch(u_layer_samples[1], px, 0), texelFetch(u_layer_samples[2], px, 0));
-        vec4 sum = vec4(0.0);
-        vec3 through = vec3(0.0), below = vec3(0.0);
-        for (int s = 0; s < 4; ++s) {
-            sum += c[s];
-            if (u_samples_below) {
-                vec3 b = texelFetch(u_samples_color, px, s).rgb;
-                through += (1.0 - c[s].a) * b;
-                below += b;
-            }
-        }
-        // Each sample's own colour seen through its own blend of the stack, as below.
-        o_color = 0.25 * sum;
-        if (u_samples_below)
-            o_color.rgb += 0.25 * (through - (1.0 - o_color.a) * below);
+        vec4 c[8] = vec4[8](texelFetch(u_layers, px, 0), texelFetch(u_layer_samples[0], px, 0),
+                            texelFetch(u_layer_samples[1], px, 0), texelFetch(u_layer_samples[2], px, 0), vec4(0.0),
+                            vec4(0.0), vec4(0.0), vec4(0.0));
+        // Each sample's own colour seen through its own blend of the stack (sample_blends.glsl).
+        o_color = blends_over_samples(c, 4, px);
         return;
     }
     if (u_samples > 1 && samples_apart(px)) {
         vec2 size = vec2(textureSize(u_depth, 0));
-        vec4 sum = vec4(0.0);
-        vec3 through = vec3(0.0), below = vec3(0.0);
-        for (int s = 0; s < u_samples; ++s) {
-            vec4 c = layers_at((vec2(px) + 0.5 + u_offsets[s]) / size, view_depth(ds[s], u_near, u_far));
-            sum += c;
-            if (u_samples_below) {
-                vec3 b = texelFetch(u_samples_color, px, s).rgb;
-                through += (1.0 - c.a) * b;
-                below += b;
-            }
-        }
-        o_color = sum / float(u_samples);
-        // Blended over the samples' mean, each sample's own colour seen through its own layers:
-        // mean((1 - a_s) b_s) where the blend gives (1 - mean a) mean b.
-        if (u_samples_below)
-            o_color.rgb += (through - (1.0 - o_color.a) * below) / float(u_samples);
+        vec4 c[8] = vec4[8](vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+        for (int s = 0; s < ds_max && s < u_samples; ++s)
+            c[s] = layers_at((vec2(px) + 0.5 + u_offsets[s]) / size, view_depth(ds[s], u_near, u_far));
+        // Each sample's own colour seen through its own layers.
+        o_color = blends_over_samples(c, u_samples, px);
         return;
     }
     o_color = layers_at(uv, view_depth(texture(u_depth, uv).r, u_near, u_far));

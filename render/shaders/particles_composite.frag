@@ -11,31 +11,15 @@ uniform bool u_at_samples;
 uniform sampler2D u_sample1;  // samples 1..3's blends (u_particles: sample 0's)
 uniform sampler2D u_sample2;
 uniform sampler2D u_sample3;
-uniform sampler2DMS u_samples_color;  // the frame's samples' colour, when the frame below is their mean
-uniform bool u_samples_below;         // (nothing blended into it since the resolve)
 out vec4 o_color;
 
 void main()
 {
     if (u_at_samples) {
         ivec2 px = ivec2(gl_FragCoord.xy);
-        vec4 c[4] = vec4[4](texelFetch(u_particles, px, 0), texelFetch(u_sample1, px, 0), texelFetch(u_sample2, px, 0),
-                            texelFetch(u_sample3, px, 0));
-        vec4 sum = vec4(0.0);
-        vec3 through = vec3(0.0), below = vec3(0.0);
-        for (int s = 0; s < 4; ++s) {
-            sum += c[s];
-            if (u_samples_below) {
-                vec3 b = texelFetch(u_samples_color, px, s).rgb;
-                through += (1.0 - c[s].a) * b;
-                below += b;
-            }
-        }
-        // Blended over the samples' mean: mean((1 - a_s) b_s) where the blend gives
-        // (1 - mean a) mean b (layers_composite.frag).
-        o_color = 0.25 * sum;
-        if (u_samples_below)
-            o_color.rgb += 0.25 * (through - (1.0 - o_color.a) * below);
+        vec4 c[8] = vec4[8](texelFetch(u_particles, px, 0), texelFetch(u_sample1, px, 0), texelFetch(u_sample2, px, 0),
+                            texelFetch(u_sample3, px, 0), vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0));
+        o_color = blends_over_samples(c, 4, px);
         if (o_color.a <= 1e-6 && all(lessThanEqual(abs(o_color.rgb), vec3(1e-6))))
             discard;
         return;

@@ -68,7 +68,8 @@ void set_sampling(GLuint texture, GLint filter)
 }  // namespace
 
 LayersPass::LayersPass()
-    : composite_({"view_depth.glsl", "depth_samples.glsl", "fullscreen.vert", "layers_composite.frag"}),
+    : composite_(
+          {"view_depth.glsl", "depth_samples.glsl", "fullscreen.vert", "sample_blends.glsl", "layers_composite.frag"}),
       depth_max_({"view_depth.glsl", "fullscreen.vert", "layers_depth_max.frag"}), empty_vao_(make_vertex_array()),
       noise_(make_noise_texture())
 {}
@@ -221,17 +222,7 @@ void LayersPass::ensure_low(int width, int height, bool at_samples)
     low_fbo_ = make_framebuffer();
     glNamedFramebufferTexture(low_fbo_.get(), GL_COLOR_ATTACHMENT0, low_color_.get(), 0);
     glNamedFramebufferTexture(low_fbo_.get(), GL_DEPTH_ATTACHMENT, low_depth_.get(), 0);
-    for (int s = 0; s < 3; ++s) {
-        low_samples_[s] = Texture{};
-        if (!at_samples)
-            continue;
-        low_samples_[s] = make_texture(GL_TEXTURE_2D);
-        glTextureStorage2D(low_samples_[s].get(), 1, GL_RGBA32F, width, height);
-        set_sampling(low_samples_[s].get(), GL_NEAREST);
-        glNamedFramebufferTexture(low_fbo_.get(), GLenum(GL_COLOR_ATTACHMENT1 + s), low_samples_[s].get(), 0);
-    }
-    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    glNamedFramebufferDrawBuffers(low_fbo_.get(), at_samples ? 4 : 1, buffers);
+    attach_sample_blends(low_fbo_.get(), low_samples_, width, height, GL_RGBA32F, at_samples);
     low_width_ = width;
     low_height_ = height;
     low_at_samples_ = at_samples;

@@ -29,7 +29,8 @@ constexpr int unit_ratio_medium = 26;  // 26, 27, 28
 constexpr int unit_samples_depth = 29;
 }  // namespace
 
-ParticlesPass::ParticlesPass() : composite_({"fullscreen.vert", "particles_composite.frag"}), vao_(make_vertex_array())
+ParticlesPass::ParticlesPass()
+    : composite_({"fullscreen.vert", "sample_blends.glsl", "particles_composite.frag"}), vao_(make_vertex_array())
 {}
 
 bool ParticlesPass::set_particles(const geometry::ParticleCloud& cloud, const ParticleStyle& style)
@@ -125,18 +126,7 @@ void ParticlesPass::ensure_target(int width, int height, int near_scale, bool at
     if (width == width_ && height == height_ && near_scale == near_scale_ && at_samples == target_samples_ && fbo_)
         return;
     make_target(color_, fbo_, width, height);
-    for (int s = 0; s < 3; ++s) {
-        sample_colors_[s] = Texture{};
-        if (!at_samples)
-            continue;
-        sample_colors_[s] = make_texture(GL_TEXTURE_2D);
-        glTextureStorage2D(sample_colors_[s].get(), 1, GL_RGBA16F, width, height);
-        glTextureParameteri(sample_colors_[s].get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTextureParameteri(sample_colors_[s].get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glNamedFramebufferTexture(fbo_.get(), GLenum(GL_COLOR_ATTACHMENT1 + s), sample_colors_[s].get(), 0);
-    }
-    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
-    glNamedFramebufferDrawBuffers(fbo_.get(), at_samples ? 4 : 1, buffers);
+    attach_sample_blends(fbo_.get(), sample_colors_, width, height, GL_RGBA16F, at_samples);
     target_samples_ = at_samples;
     if (near_scale > 1) {
         make_target(near_color_, near_fbo_, near_size(width, near_scale), near_size(height, near_scale));

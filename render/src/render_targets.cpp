@@ -12,6 +12,23 @@
 #include "shader_program.hpp"
 
 namespace kiri::render::detail {
+
+void attach_sample_blends(GLuint fbo, Texture (&blends)[3], int width, int height, GLenum format, bool at_samples)
+{
+    for (int s = 0; s < 3; ++s) {
+        blends[s] = Texture{};
+        if (!at_samples)
+            continue;
+        blends[s] = make_texture(GL_TEXTURE_2D);
+        glTextureStorage2D(blends[s].get(), 1, format, width, height);
+        glTextureParameteri(blends[s].get(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(blends[s].get(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glNamedFramebufferTexture(fbo, GLenum(GL_COLOR_ATTACHMENT1 + s), blends[s].get(), 0);
+    }
+    const GLenum buffers[4] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2, GL_COLOR_ATTACHMENT3};
+    glNamedFramebufferDrawBuffers(fbo, at_samples ? 4 : 1, buffers);
+}
+
 namespace {
 void check_complete(GLuint framebuffer, const char* which)
 {

@@ -17,6 +17,13 @@ struct FrameSamples {
     const float* offsets = nullptr;  //!< each sample's offset from the pixel's centre (x, y; 8)
 };
 
+//! Samples 1..3's blend targets beside colour attachment 0 of `fbo`, for a pass that draws a
+//! still along each of a pixel's four samples' rays, each sample's blend apart (layers.frag's
+//! LAYERS_AT_SAMPLES, particles.frag's PARTICLES_AT_SAMPLES; sample_blends.glsl puts them over
+//! the frame): width x height of `format`, read texel by texel. Without `at_samples`, none, and
+//! `fbo` draws into attachment 0 alone.
+void attach_sample_blends(GLuint fbo, Texture (&blends)[3], int width, int height, GLenum format, bool at_samples);
+
 //! The offscreen framebuffers of a frame. Passes draw linear radiance into a 4x multisampled
 //! half-float target (colour RGBA16F, depth 32F), resolved into single-sampled copies ("hdr")
 //! that later passes blend into (layers, fog); the depth is resolved to each pixel's centre
