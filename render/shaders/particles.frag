@@ -7,7 +7,8 @@
 // so octave i sees Gamma^(b^i); hazed with distance like the terrain; in the terrain's shadow
 // from the sun (the renderer's shadow map, as the froxels and the CPU reference see it). Balls
 // standing for the Medium (KIRI_DENSITY_RATIO) take its density over their sum along the ray and
-// its own light (the sun volume, the shadow at the lit point). Blended back to front,
+// its own light (the sun volume, the shadow at the lit point), lit where their place in the blend
+// puts them along the ray (rank_lit_offset). Blended back to front,
 // premultiplied linear radiance: E_k = S_k + T_k E_(k-1) ([Shimada08] (5)), S_k = (1 - T) J.
 in vec3 v_ray;
 flat in vec3 v_centre;
@@ -69,14 +70,15 @@ uniform vec2 u_tan_half;
 #ifdef KIRI_DENSITY_RATIO
 // R at a point relative to u_centre (geometry::density_ratio_at): the sum read at the height in
 // the Medium's own column, which its density has looked up.
-float density_ratio(vec3 p)
+float density_ratio(vec3 p, out float sigma)
 {
     vec3 world = p + u_centre;
+    sigma = 0.0;
     if (u_md_on == 0 || !shell_covers(world.xy))
         return 0.0;
     vec4 column = shell_column(world.xy);
     float h;
-    float sigma = u_md_extinction * medium_density_in(world, column, h);
+    sigma = u_md_extinction * medium_density_in(world, column, h);
     if (!(sigma > 0.0))
         return 0.0;
     float level = column.z > column.x ? (world.z - column.x) / (column.z - column.x) : 0.0;
@@ -115,7 +117,8 @@ vec2 visible_span(vec3 ray, float scene)
 // The ball's density times R along the part [a, b] of its chord at x (relative to `along`, the
 // distance of the centre's foot on `ray`), in thirds, each weighted by R at its middle
 // (geometry::ball_chord_share, from the chord integral at the thirds' ends; one g for them all).
-float weighted_chord(vec3 ray, float along, float x, float a, float b)
+float weighted_chord(vec3 ray, float along, float x, float a, float b, out float ball[kRatioPoints],
+                     out float medium[kRatioPoints])
 {
     float g = exp(-x * x / (2.0 * kFootprintSigma * kFootprintSigma));
     float whole_centre = 2.0 * chord_integral(0.0, 1.0);
@@ -123,18 +126,58 @@ float weighted_chord(vec3 ray, float along, float x, float a, float b)
     for (int k = 0; k < kRatioPoints; ++k) {
         float u0 = mix(a, b, float(k) / float(kRatioPoints)), u1 = mix(a, b, float(k + 1) / float(kRatioPoints));
         float after = chord_integral_at(g, u1 / v_depth_radius);
-        weighted += max(after - before, 0.0) / whole_centre *
-                    density_ratio(u_eye - u_centre + ray * (along + 0.5 * (u0 + u1)));
+        float sigma;
+        ball[k] = max(after - before, 0.0) / whole_centre *
+                  density_ratio(u_eye - u_centre + ray * (along + 0.5 * (u0 + u1)), sigma);
+        medium[k] = sigma * (u1 - u0);
+        weighted += ball[k];
         before = after;
     }
     return weighted;
+}
+
+// Where along its visible chord [a, b] (relative to the centre's foot) a ball is lit, given its
+// own optical depth `tau` there and, in thirds of the chord, its share of it (`ball`, summing to 1)
+// and the Medium's optical depth (`medium`). The balls are blended in the order of their centres,
+// so a ball's light is dimmed by the optical depth of the balls centred in front of it, which
+// together carry the Medium's in front of its centre less its own part there; it stands for the
+// stretch of the ray just beyond that depth, and scatters from it as a slab of its own tau, on
+// average 1 - tau e^-tau / (1 - e^-tau) deep (tau / 2 in thin fog, one optical depth in dense).
+// In thin fog that is the centre's foot; in dense fog, the skin the ray sees, where the nearest
+// point to the centre lay metres under it, out of the sunlight (docs/particles.md, "Each ball lit
+// where the blend puts it").
+float rank_lit_offset(float a, float b, float tau, float ball[kRatioPoints], float medium[kRatioPoints])
+{
+    float third = (b - a) / float(kRatioPoints);
+    float front = clamp(-a / max(third, 1e-6), 0.0, float(kRatioPoints));  // thirds before the centre's foot
+    float medium_front = 0.0, own_front = 0.0, medium_all = 0.0;
+    for (int k = 0; k < kRatioPoints; ++k) {
+        float f = clamp(front - float(k), 0.0, 1.0);
+        medium_front += f * medium[k];
+        own_front += f * tau * ball[k];
+        medium_all += medium[k];
+    }
+    if (!(medium_all > 1e-6))
+        return clamp(0.0, a, b);
+    float mean_depth = tau < 1e-3 ? 0.5 * tau : 1.0 - tau * exp(-tau) / max(1.0 - exp(-tau), 1e-6);
+    float target = clamp(medium_front - own_front + mean_depth, 0.0, medium_all);
+    float s = a;
+    for (int k = 0; k < kRatioPoints; ++k) {
+        float take = min(target, medium[k]);
+        s += medium[k] > 0.0 ? third * take / medium[k] : (target > 0.0 ? third : 0.0);
+        target -= take;
+        if (!(target > 0.0))
+            break;
+    }
+    return clamp(s, a, b);
 }
 #endif
 
 // What this billboard's ball puts on a ray from the eye (`ray`, unit) that meets the ground at
 // view depth `ground` (along the view axis; a widened billboard's along the ray through its
 // centre, below, and `own_ground` the ray's own): its optical depth, where it is lit (`lit` along `lit_ray`: where the visible
-// part passes nearest the centre) and the distance to the ground along that ray.
+// part passes nearest the centre; for balls standing for the Medium, where the blend puts it) and
+// the distance to the ground along that ray.
 struct Seen {
     float tau, lit, scene;
     vec3 lit_ray;
@@ -180,7 +223,8 @@ Seen seen_along(vec3 ray, bool widened, float ground, float own_ground)
     float a = clamp(lo, -half_chord, half_chord), b = clamp(hi, -half_chord, half_chord);
     if (!(b > a))
         return seen;
-    float weighted = weighted_chord(cut_ray, cut_along, chord_x, a, b);
+    float ball[kRatioPoints], medium[kRatioPoints];
+    float weighted = weighted_chord(cut_ray, cut_along, chord_x, a, b, ball, medium);
     if (widened) {
         float mass = (chord_integral(0.0, b / v_depth_radius) - chord_integral(0.0, a / v_depth_radius)) /
                      (2.0 * chord_integral(0.0, 1.0));
@@ -189,6 +233,9 @@ Seen seen_along(vec3 ray, bool widened, float ground, float own_ground)
                    (mass > 0.0 ? weighted / mass : 0.0);
     } else
         seen.tau = v_seen_tau * weighted;
+    for (int k = 0; k < kRatioPoints; ++k)
+        ball[k] = weighted > 0.0 ? ball[k] / weighted : 0.0;
+    seen.lit = cut_along + rank_lit_offset(a, b, seen.tau, ball, medium);
 #else
     seen.tau = v_seen_tau * footprint_profile(x) * footprint_ray_share(x, v_depth_radius, lo, hi);
 #endif
