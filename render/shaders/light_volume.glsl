@@ -9,7 +9,10 @@
 // Stored in a 3D texture, slice q nz + k holding moments 4q .. 4q + 3 of level k (RGBA32F, linear,
 // clamped to the edge: the CPU's trilinear between cell centres, each group of moments read
 // within its own nz slices: one filtered read of both levels, where a 2D array's layers took two
-// reads and a blend). LightVolumeTexture (light_volume_texture.hpp) sets the uniforms.
+// reads and a blend). With the terrain's shadow (LightVolume::class_means), one more group of
+// slices after the moments' holds each cell's sunlit and shadowed parts' L_00 (x, y), and the
+// lookup at a point scales the moments by its part's L_00 over the cell's. LightVolumeTexture
+// (light_volume_texture.hpp) sets the uniforms.
 uniform int u_lv_on;
 uniform sampler3D u_lv_moments;
 uniform vec4 u_lv_rect;            // x0, y0, 1 / (nx dx), 1 / (ny dy)
@@ -19,8 +22,13 @@ uniform float u_lv_column_extinction;  // > 0: the moments are over the cells' c
 uniform vec4 u_lv_haze;  // the height fog the cells reach up into: extinction (0: none), base, scale height, top
 // The cells' floors where the height fog lies under the Medium's floor (LightVolume::floors):
 // u_lv_floors_n samples spanning the cells' rectangle (texel (a, b) is sample (a, b)); (0, 0): none.
+// Its green: the terrain's shadow's tops (LightVolume::shadow_tops) on u_lv_shadow_n samples
+// spanning the same rectangle; (0, 0): none.
 uniform sampler2D u_lv_floors;
 uniform ivec2 u_lv_floors_n;
+uniform ivec2 u_lv_shadow_n;
+uniform int u_lv_groups;       // the moments texture's groups of nz slices
+uniform int u_lv_parts_group;  // the group of the parts' L_00; -1: none
 // K_l^m = sqrt((2l + 1) / (4 pi) (l - m)! / (l + m)!), times sqrt(2) for m > 0, at [l 8 + m]
 // (LightVolumeTexture::bind computes them once, as geometry::real_spherical_harmonics does).
 uniform float u_lv_norms[64];
@@ -132,9 +140,10 @@ void lv_phase_weights(vec3 d, float g, int bands, out vec4 w[lv_moment_texels])
 }
 
 // The light scattered at least once towards `towards` by fog of anisotropy g at (x, y) and
-// shell height h, per unit sun radiance, times `scale` (geometry::LightVolume::in_scattered):
-// >= 0, 0 without a volume or outside the shell (h < 0).
-float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
+// shell height h, per unit sun radiance, times `scale`, its magnitude that of the cells' `part`
+// (0 sunlit, 1 in the terrain's shadow, -1 the whole cell: geometry::LightVolume::in_scattered_at
+// and in_scattered): >= 0, 0 without a volume or outside the shell (h < 0).
+float lv_in_scattered_part(vec2 xy, float h, float scale, vec3 towards, float g, int part)
 {
     if (u_lv_on == 0 || !(h >= 0.0) || !(scale > 0.0))
         return 0.0;
@@ -143,31 +152,48 @@ float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
     lv_phase_weights(towards, g, bands, w);
     vec2 st = (xy - u_lv_rect.xy) * u_lv_rect.zw;
     float kz = clamp(clamp(h, 0.0, 1.0) * float(u_lv_levels) - 0.5, 0.0, float(u_lv_levels - 1));
-    float depth = float((bands * bands + 3) / 4 * u_lv_levels);  // the texture's slices
-    // Every group, at constant indices (the weights past the bands are 0, their reads clamped to
-    // the last slice).
-    float sum = 0.0;
+    float depth = float(u_lv_groups * u_lv_levels);  // the texture's slices
+    // Every group, at constant indices (the weights past the bands are 0, their reads of later
+    // slices clamped or the parts' finite values).
+    vec4 m0 = textureLod(u_lv_moments, vec3(st, (kz + 0.5) / depth), 0.0);
+    float sum = dot(m0, w[0]);
 #define LV_TERM(q) sum += dot(textureLod(u_lv_moments, vec3(st, (float(q * u_lv_levels) + kz + 0.5) / depth), 0.0), w[q])
-    LV_TERM(0); LV_TERM(1); LV_TERM(2); LV_TERM(3); LV_TERM(4); LV_TERM(5); LV_TERM(6); LV_TERM(7);
+    LV_TERM(1); LV_TERM(2); LV_TERM(3); LV_TERM(4); LV_TERM(5); LV_TERM(6); LV_TERM(7);
     LV_TERM(8); LV_TERM(9); LV_TERM(10); LV_TERM(11); LV_TERM(12); LV_TERM(13); LV_TERM(14); LV_TERM(15);
 #undef LV_TERM
+    if (part >= 0 && u_lv_parts_group >= 0 && m0.x > 0.0) {
+        vec2 means = textureLod(u_lv_moments, vec3(st, (float(u_lv_parts_group * u_lv_levels) + kz + 0.5) / depth), 0.0).xy;
+        sum *= clamp((part == 1 ? means.y : means.x) / m0.x, 0.0, 64.0);
+    }
     return max(sum * scale, 0.0);
 }
 
-// LightVolume::floor_at: bilinear between the floors' samples (fetched, not filtered: the CPU's
-// weights exactly); 1e30 without them.
-float lv_floor_at(vec2 xy)
+float lv_in_scattered(vec2 xy, float h, float scale, vec3 towards, float g)
 {
-    if (u_lv_floors_n.x < 2 || u_lv_floors_n.y < 2)
-        return 1e30;
-    vec2 n = vec2(u_lv_floors_n - 1);
-    vec2 g = clamp((xy - u_lv_rect.xy) * u_lv_rect.zw * n, vec2(0.0), n);
-    ivec2 i = min(ivec2(g), u_lv_floors_n - 2);
+    return lv_in_scattered_part(xy, h, scale, towards, g, -1);
+}
+
+// Bilinear between the samples of the floors texture's `channel` on an n.x x n.y grid spanning
+// the cells' rectangle (texel (a, b) is sample (a, b)), fetched, not filtered: the CPU's weights
+// exactly (geometry::LightVolume's rectangle_grid_at); `none` without a grid.
+float lv_rectangle_grid_at(vec2 xy, ivec2 n, int channel, float none)
+{
+    if (n.x < 2 || n.y < 2)
+        return none;
+    vec2 last = vec2(n - 1);
+    vec2 g = clamp((xy - u_lv_rect.xy) * u_lv_rect.zw * last, vec2(0.0), last);
+    ivec2 i = min(ivec2(g), n - 2);
     vec2 f = g - vec2(i);
-    float a = texelFetch(u_lv_floors, i, 0).r, b = texelFetch(u_lv_floors, i + ivec2(1, 0), 0).r;
-    float c = texelFetch(u_lv_floors, i + ivec2(0, 1), 0).r, d = texelFetch(u_lv_floors, i + ivec2(1, 1), 0).r;
+    float a = texelFetch(u_lv_floors, i, 0)[channel], b = texelFetch(u_lv_floors, i + ivec2(1, 0), 0)[channel];
+    float c = texelFetch(u_lv_floors, i + ivec2(0, 1), 0)[channel], d = texelFetch(u_lv_floors, i + ivec2(1, 1), 0)[channel];
     return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
 }
+
+// LightVolume::floor_at (red); 1e30 without floors.
+float lv_floor_at(vec2 xy) { return lv_rectangle_grid_at(xy, u_lv_floors_n, 0, 1e30); }
+
+// LightVolume::shadow_top_at (green); -1e30 without the terrain's shadow.
+float lv_shadow_top_at(vec2 xy) { return lv_rectangle_grid_at(xy, u_lv_shadow_n, 1, -1e30); }
 
 // The same at a point of the fog: h and column_scale from the Medium's column there
 // (geometry::shell_height, LightVolume::column_scale); 0 outside the Medium's grid, and outside
@@ -207,5 +233,6 @@ float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
         }
         scale = max(1.0 - exp(-tau), 1e-6);
     }
-    return lv_in_scattered(p.xy, h, scale, towards, g);
+    int part = u_lv_parts_group >= 0 ? (p.z < lv_shadow_top_at(p.xy) ? 1 : 0) : -1;
+    return lv_in_scattered_part(p.xy, h, scale, towards, g, part);
 }

@@ -1,8 +1,9 @@
 #pragma once
 // The baked light-transport volume (kiri/geometry/medium/light_volume.hpp) on the GPU, for the
 // lighting model's `baked` multiple scattering in the renderers (light_volume.glsl): its moments
-// in a 3D texture of RGBA32F, slice q nz + k holding moments 4q .. 4q + 3 of level k, and
-// the cells' floors under a height fog in a 2D texture, uploaded when the volume changes. Without a volume the lookups give 0 (single scattering).
+// in a 3D texture of RGBA32F, slice q nz + k holding moments 4q .. 4q + 3 of level k (and, after
+// them, the cells' sunlit and shadowed parts' L_00), and the cells' floors under a height fog and
+// the terrain's shadow's tops in a 2D texture, uploaded when the volume changes. Without a volume the lookups give 0 (single scattering).
 #include <memory>
 #include <vector>
 
@@ -39,20 +40,26 @@ public:
     //! types may not share one, used or not.
     void bind(const ShaderProgram& program, int unit, bool on = true, bool with_grid = true) const;
     //! lv_in_scattered at the given (x, y, h), column scale, direction towards the eye and g, as
-    //! the renderers take it, read back (tests against LightVolume::in_scattered).
+    //! the renderers take it, read back (tests against LightVolume::in_scattered); with `parts`,
+    //! scaled to the part on height z's side of the terrain's shadow (LightVolume::in_scattered_at).
     struct Probe {
         glm::vec3 xyh{0.0f};
         float scale = 1.0f;
         glm::vec3 towards{0.0f, 0.0f, 1.0f};
         float g = 0.0f;
+        float z = 0.0f;
+        float parts = 0.0f;  // 1: take the point's part
+        float unused[2] = {0.0f, 0.0f};
     };
-    static_assert(sizeof(Probe) == 32, "light_volume_probe.comp reads two vec4 a point");
+    static_assert(sizeof(Probe) == 48, "light_volume_probe.comp reads three vec4 a point");
     std::vector<float> probe(const std::vector<Probe>& points) const;
 
 private:
     std::shared_ptr<const geometry::LightVolume> volume_;
     Texture texture_;
-    Texture floors_;  // R32F, floor_nx x floor_ny; none without floors
+    Texture floors_;      // RG32F: the floors and the terrain's shadow's tops; none without either
+    bool parts_ = false;  // the cells' sunlit and shadowed parts (LightVolume::class_means) uploaded
+    int groups_ = 0;      // the moments texture's groups of nz slices
     FroxelMedium grid_;
     int updates_ = 0;
     mutable std::unique_ptr<ShaderProgram> probe_;

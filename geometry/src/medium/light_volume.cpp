@@ -74,22 +74,44 @@ double shell_height(const MediumColumn& column, double z)
     return std::clamp((z - column.floor) / thick, 0.0, 1.0);
 }
 
-double LightVolume::floor_at(double x, double y) const
+namespace {
+
+// Bilinear between the samples of a grid of gnx x gny spanning the cells' rectangle
+// [x0, x0 + nx dx] x [y0, y0 + ny dy] (the floors' and the shadow's tops); `none` without one.
+double rectangle_grid_at(const LightVolume& v, const std::vector<double>& samples, int gnx, int gny, double x, double y,
+                         double none)
 {
-    if (floor_nx < 2 || floor_ny < 2 || floors.size() != std::size_t(floor_nx) * floor_ny || !std::isfinite(x) ||
-        !std::isfinite(y))
-        return std::numeric_limits<double>::infinity();
-    const auto axis = [](double v, int n, int& i0, double& f) {
-        const double g = std::clamp(v * (n - 1), 0.0, double(n - 1));
+    if (gnx < 2 || gny < 2 || samples.size() != std::size_t(gnx) * gny || !std::isfinite(x) || !std::isfinite(y))
+        return none;
+    const auto axis = [](double t, int n, int& i0, double& f) {
+        const double g = std::clamp(t * (n - 1), 0.0, double(n - 1));
         i0 = std::min(int(g), n - 2);
         f = g - i0;
     };
     int i, j;
     double fx, fy;
-    axis((x - x0) / (nx * dx), floor_nx, i, fx);
-    axis((y - y0) / (ny * dy), floor_ny, j, fy);
-    const double* f = &floors[std::size_t(j) * floor_nx + i];
-    return (1.0 - fy) * ((1.0 - fx) * f[0] + fx * f[1]) + fy * ((1.0 - fx) * f[floor_nx] + fx * f[floor_nx + 1]);
+    axis((x - v.x0) / (v.nx * v.dx), gnx, i, fx);
+    axis((y - v.y0) / (v.ny * v.dy), gny, j, fy);
+    const double* f = &samples[std::size_t(j) * gnx + i];
+    return (1.0 - fy) * ((1.0 - fx) * f[0] + fx * f[1]) + fy * ((1.0 - fx) * f[gnx] + fx * f[gnx + 1]);
+}
+
+}  // namespace
+
+double LightVolume::floor_at(double x, double y) const
+{
+    return rectangle_grid_at(*this, floors, floor_nx, floor_ny, x, y, std::numeric_limits<double>::infinity());
+}
+
+double LightVolume::shadow_top_at(double x, double y) const
+{
+    return rectangle_grid_at(*this, shadow_tops, shadow_nx, shadow_ny, x, y, -std::numeric_limits<double>::infinity());
+}
+
+bool LightVolume::has_shadow_parts() const
+{
+    return !empty() && shadow_nx >= 2 && shadow_ny >= 2 && shadow_tops.size() == std::size_t(shadow_nx) * shadow_ny &&
+        class_means.size() == std::size_t(nx) * ny * nz * 2;
 }
 
 MediumColumn LightVolume::shell(MediumColumn c, double x, double y) const
@@ -119,6 +141,46 @@ double LightVolume::column_scale(const MediumColumn& column) const
     return std::isfinite(tau) ? std::max(-std::expm1(-std::max(tau, 0.0)), 1e-6) : 1.0;
 }
 
+namespace {
+
+// The eight cells around (x, y, h) and their trilinear weights, between cell centres (at i + 1/2:
+// the texel convention of a GPU's linear filtering), clamped to the outer ones.
+struct CellCorners {
+    std::array<std::size_t, 8> cell{};
+    double fx = 0.0, fy = 0.0, fz = 0.0;
+    // Corner q's weight times `scale`, multiplied in the one order every caller uses.
+    double weight(std::size_t q, double scale = 1.0) const
+    {
+        return scale * (q & 1 ? fx : 1.0 - fx) * (q & 2 ? fy : 1.0 - fy) * (q & 4 ? fz : 1.0 - fz);
+    }
+};
+
+CellCorners corners_at(const LightVolume& v, double x, double y, double h)
+{
+    const auto axis = [](double t, int n, int& i0, int& i1, double& f) {
+        const double g = std::clamp(t - 0.5, 0.0, double(n - 1));
+        i0 = std::min(int(g), n - 1);
+        i1 = std::min(i0 + 1, n - 1);
+        f = g - i0;
+    };
+    int i0, i1, j0, j1, k0, k1;
+    double fx, fy, fz;
+    axis((x - v.x0) / v.dx, v.nx, i0, i1, fx);
+    axis((y - v.y0) / v.dy, v.ny, j0, j1, fy);
+    axis(std::clamp(h, 0.0, 1.0) * v.nz, v.nz, k0, k1, fz);
+    CellCorners c;
+    for (int q = 0; q < 8; ++q) {
+        const int i = q & 1 ? i1 : i0, j = q & 2 ? j1 : j0, k = q & 4 ? k1 : k0;
+        c.cell[std::size_t(q)] = (std::size_t(k) * v.ny + j) * v.nx + i;
+    }
+    c.fx = fx;
+    c.fy = fy;
+    c.fz = fz;
+    return c;
+}
+
+}  // namespace
+
 void LightVolume::moments_at(double x, double y, double h, double* out, double scale) const
 {
     const int nc = std::max(bands, 0) * std::max(bands, 0);
@@ -126,26 +188,14 @@ void LightVolume::moments_at(double x, double y, double h, double* out, double s
     if (empty() || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(h) || !(scale >= 0.0) ||
         !std::isfinite(scale) || moments.size() != std::size_t(nx) * ny * nz * nc)
         return;
-    // Cell centres at i + 1/2: the texel convention of a GPU's linear filtering, clamped to the edge.
-    const auto axis = [](double v, int n, int& i0, int& i1, double& f) {
-        const double g = std::clamp(v - 0.5, 0.0, double(n - 1));
-        i0 = std::min(int(g), n - 1);
-        i1 = std::min(i0 + 1, n - 1);
-        f = g - i0;
-    };
-    int i0, i1, j0, j1, k0, k1;
-    double fx, fy, fz;
-    axis((x - x0) / dx, nx, i0, i1, fx);
-    axis((y - y0) / dy, ny, j0, j1, fy);
-    axis(std::clamp(h, 0.0, 1.0) * nz, nz, k0, k1, fz);
-    for (int c = 0; c < 8; ++c) {
-        const int i = c & 1 ? i1 : i0, j = c & 2 ? j1 : j0, k = c & 4 ? k1 : k0;
-        const double w = scale * (c & 1 ? fx : 1.0 - fx) * (c & 2 ? fy : 1.0 - fy) * (c & 4 ? fz : 1.0 - fz);
+    const CellCorners c = corners_at(*this, x, y, h);
+    for (std::size_t q = 0; q < 8; ++q) {
+        const double w = c.weight(q, scale);
         if (w == 0.0)
             continue;
-        const double* m = &moments[((std::size_t(k) * ny + j) * nx + i) * nc];
-        for (int q = 0; q < nc; ++q)
-            out[q] += w * m[q];
+        const double* m = &moments[c.cell[q] * nc];
+        for (int k = 0; k < nc; ++k)
+            out[k] += w * m[k];
     }
 }
 
@@ -169,6 +219,26 @@ double LightVolume::in_scattered(double x, double y, double h, const double* wei
     double sum = 0.0;
     for (int q = 0; q < bands * bands; ++q)
         sum += weights[q] * m[q];
+    return std::isfinite(sum) ? std::max(sum, 0.0) : 0.0;
+}
+
+double LightVolume::in_scattered_at(double x, double y, double z, double h, const double* weights, double scale) const
+{
+    if (!has_shadow_parts() || !std::isfinite(z))
+        return in_scattered(x, y, h, weights, scale);
+    std::array<double, light_volume_max_bands * light_volume_max_bands> m{};
+    moments_at(x, y, h, m.data(), scale);
+    double sum = 0.0;
+    for (int q = 0; q < bands * bands; ++q)
+        sum += weights[q] * m[q];
+    if (m[0] > 0.0) {
+        const std::size_t part = z < shadow_top_at(x, y) ? 1 : 0;
+        const CellCorners c = corners_at(*this, x, y, h);
+        double mean = 0.0;
+        for (std::size_t q = 0; q < 8; ++q)
+            mean += c.weight(q, scale) * class_means[c.cell[q] * 2 + part];
+        sum *= std::clamp(mean / m[0], 0.0, 64.0);
+    }
     return std::isfinite(sum) ? std::max(sum, 0.0) : 0.0;
 }
 

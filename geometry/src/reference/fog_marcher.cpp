@@ -381,14 +381,14 @@ RayFog FogMarcher::trace(const glm::dvec3& o, const glm::dvec3& w, double t_max,
         const glm::dvec3 sun = std::numbers::pi * visible * light_.sun_radiance;
         glm::dvec3 source = albedo_m * st.sigma_medium * (sun * sun_m + light_.ambient) +
             albedo_h * st.sigma_height * (sun * sun_h + light_.ambient);
-        if (volume) {  // inside the shell; not hidden by the terrain's shadow
+        if (volume) {  // inside the shell; in the terrain's shadow too, at its part's light (in_scattered_at)
             const glm::dvec3 p = o + w * st.t;
             const MediumColumn column = fog_.medium->column(p.x, p.y);
             const double h = shell_height(volume->shell(column, p.x, p.y), p.z), scale = volume->column_scale(column);
             if (h >= 0.0)
                 source += light_.sun_radiance *
-                    (albedo_m * st.sigma_medium * volume->in_scattered(p.x, p.y, h, weights_m, scale) +
-                     albedo_h * st.sigma_height * volume->in_scattered(p.x, p.y, h, weights_h, scale));
+                    (albedo_m * st.sigma_medium * volume->in_scattered_at(p.x, p.y, p.z, h, weights_m, scale) +
+                     albedo_h * st.sigma_height * volume->in_scattered_at(p.x, p.y, p.z, h, weights_h, scale));
         }
         const double sigma = st.sigma_medium + st.sigma_height;
         // Seen through the air in front of the step: J e^(-beta t) + H (1 - e^(-beta t)).

@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/parallel_rows.hpp"
+#include "kiri/geometry/fog/fog_target.hpp"
 #include "reference/path_tracer_core.hpp"
 
 namespace kiri::geometry {
@@ -101,7 +102,8 @@ class Baker {
 public:
     Baker(const detail::PathTracer& tracer, const Medium& medium, const glm::dvec3& sun, LightVolume& volume,
           const LightVolumeOptions& o)
-        : tracer_(tracer), medium_(medium), sun_(sun), v_(volume), o_(o), nc_(volume.bands * volume.bands)
+        : tracer_(tracer), medium_(medium), sun_(sun), v_(volume), o_(o), nc_(volume.bands * volume.bands),
+          parts_(!volume.shadow_tops.empty())
     {
         box_ = medium.bounds();
         // The height fog above the Medium's highest top scatters light too: its photons are
@@ -118,6 +120,8 @@ public:
     }
 
     long long columns() const { return columns_; }
+    //! Sums a cell: its bands^2 moments and, with the terrain's shadow, its shadowed part's L_00.
+    int stride() const { return nc_ + (parts_ ? 1 : 0); }
     long long photons() const { return first_.empty() ? 0 : first_.back(); }
     double quantum() const { return quantum_; }
     // The patches where photons enter: the top of each (x, y) cell, then the strips of the side
@@ -257,6 +261,7 @@ private:
     LightVolume& v_;
     const LightVolumeOptions& o_;
     int nc_;
+    bool parts_;  // the cells' shadowed parts summed apart (LightVolume::class_means)
     Bounds3 box_;
     long long columns_ = 1;
     std::vector<EntryPatch> patches_;
@@ -354,22 +359,23 @@ private:
     // magnitude under 2^51 to an integer in its low mantissa bits, which then subtract as int64:
     // plain arithmetic the compiler vectorises, where a conversion per coefficient did not
     // (a deposit is 2^30 quanta at most for a full-weight photon; larger ones take the slow path).
-    void add_rounded(std::int64_t* cell, double scale, const double* y) const
+    void add_rounded(std::int64_t* cell, double scale, const double* y) const { add_rounded(cell, scale, y, nc_); }
+    void add_rounded(std::int64_t* cell, double scale, const double* y, int nc) const
     {
         constexpr double magic = 0x1.8p52;
         constexpr double largest = 0x1.0p50;
         if (!(std::abs(scale) < largest)) {
-            for (int q = 0; q < nc_; ++q)
+            for (int q = 0; q < nc; ++q)
                 cell[q] += std::llround(std::clamp(scale * y[q], -0x1.0p62, 0x1.0p62));
             return;
         }
         std::array<double, max_coefficients> shifted_values;
-        for (int q = 0; q < nc_; ++q)
+        for (int q = 0; q < nc; ++q)
             shifted_values[std::size_t(q)] = scale * y[q] + magic;
         std::array<std::int64_t, max_coefficients> bits;
-        std::memcpy(bits.data(), shifted_values.data(), sizeof(double) * std::size_t(nc_));
+        std::memcpy(bits.data(), shifted_values.data(), sizeof(double) * std::size_t(nc));
         const std::int64_t magic_bits = std::bit_cast<std::int64_t>(magic);
-        for (int q = 0; q < nc_; ++q)
+        for (int q = 0; q < nc; ++q)
             cell[q] += bits[std::size_t(q)] - magic_bits;
     }
 
@@ -406,21 +412,33 @@ private:
             if (i < 0 || j < 0 || i >= v_.nx || j >= v_.ny)
                 continue;
             const int k = std::min(int(h * v_.nz), v_.nz - 1);
-            std::int64_t* cell = &sums[((std::size_t(k) * v_.ny + j) * v_.nx + i) * nc_];
+            std::int64_t* cell = &sums[((std::size_t(k) * v_.ny + j) * v_.nx + i) * std::size_t(stride())];
             add_rounded(cell, weight * seg / quantum_, y.data());
+            if (parts_ && p.z < v_.shadow_top_at(p.x, p.y))
+                add_rounded(cell + nc_, weight * seg / quantum_, y.data(), 1);
             ++count;
         }
         return count;
     }
 };
 
+// Samples a cell of the grids over the cells' rectangle (the floors, the terrain's shadow's tops):
+// two a DEM spacing, so that the shadow of a ridge and the ground of a valley are resolved as the
+// DEM resolves them, at least four and at most sixteen a cell.
+int samples_per_cell(const LightVolume& v, const Heightfield& hf)
+{
+    const double spacing = std::max(std::min(hf.dx, hf.dy), 1e-9);
+    const double wanted = 2.0 * std::max(v.dx, v.dy) / spacing;
+    return std::clamp(int(std::ceil(std::isfinite(wanted) ? wanted : 16.0)), 4, 16);
+}
+
 // The cells' floors where the height fog lies under the Medium's floor (LightVolume::floors):
-// four samples a cell, each the lower of the Medium's floor there and the lowest of the DEM's
+// samples_per_cell a cell, each the lower of the Medium's floor there and the lowest of the DEM's
 // samples within a floor sample's spacing of it (the ground between samples is no lower: its
 // triangles span them), where that ground is under the height fog's top.
 void lower_floors_to_the_ground(LightVolume& v, const Medium& medium, const Heightfield& hf)
 {
-    constexpr int per_cell = 4;
+    const int per_cell = samples_per_cell(v, hf);
     v.floor_nx = per_cell * v.nx + 1;
     v.floor_ny = per_cell * v.ny + 1;
     v.floors.assign(std::size_t(v.floor_nx) * v.floor_ny, 0.0);
@@ -448,6 +466,111 @@ void lower_floors_to_the_ground(LightVolume& v, const Medium& medium, const Heig
         v.floor_nx = v.floor_ny = 0;
         v.floors.clear();
     }
+}
+
+// The terrain's shadow's top on the cells' rectangle (LightVolume::shadow_tops), samples_per_cell
+// a cell: at each, the highest of the ground there and, along the horizontal line towards the sun,
+// of the ground at each point less its distance times tan(elevation) (how far the sunlight grazing
+// that point has sunk on its way here), until no ground is high enough to matter. The points are
+// where the line crosses the DEM's rows and columns of samples, on which its triangles' edges lie
+// (a ridge one sample wide is seen at its crest, where even steps of half a spacing straddle it).
+void mark_the_terrains_shadow(LightVolume& v, const Heightfield& hf, const glm::dvec3& sun, int threads)
+{
+    const int per_cell = samples_per_cell(v, hf);
+    if (hf.nx < 2 || hf.ny < 2 || hf.z.empty())
+        return;
+    v.shadow_nx = per_cell * v.nx + 1;
+    v.shadow_ny = per_cell * v.ny + 1;
+    v.shadow_tops.assign(std::size_t(v.shadow_nx) * v.shadow_ny, 0.0);
+    const double sx = v.nx * v.dx / (v.shadow_nx - 1), sy = v.ny * v.dy / (v.shadow_ny - 1);
+    const double across = std::hypot(sun.x, sun.y);
+    const double sink = across > 0.0 ? sun.z / across : inf;  // tan(elevation)
+    const glm::dvec2 towards = across > 0.0 ? glm::dvec2(sun.x, sun.y) / across : glm::dvec2(0.0);
+    const double highest = *std::max_element(hf.z.begin(), hf.z.end());
+    const double xmin = hf.x0, xmax = hf.x_max(), ymin = hf.y0, ymax = hf.y_max();
+    // The line's crossings of the sample lines of one axis: o + towards t at t = first + k gap.
+    const auto crossings = [&](double o, double u, double x0, double spacing, double& first, double& gap) {
+        if (std::abs(u) < 1e-12)
+            return false;
+        const double g = (o - x0) / spacing;
+        const double next = u > 0.0 ? std::floor(g) + 1.0 : std::ceil(g) - 1.0;
+        first = (x0 + next * spacing - o) / u;
+        gap = spacing / std::abs(u);
+        return true;
+    };
+    detail::for_rows_in_parallel(threads, v.shadow_ny, [&](auto next_row) {
+        for (int b = next_row(); b < v.shadow_ny; b = next_row())
+            for (int a = 0; a < v.shadow_nx; ++a) {
+                const double x = v.x0 + a * sx, y = v.y0 + b * sy;
+                double top = sample_bilinear(hf, x, y);
+                if (std::isfinite(sink))
+                    for (int axis = 0; axis < 2; ++axis) {
+                        double t = 0.0, gap = 0.0;
+                        if (!(axis == 0 ? crossings(x, towards.x, hf.x0, hf.dx, t, gap)
+                                        : crossings(y, towards.y, hf.y0, hf.dy, t, gap)))
+                            continue;
+                        for (; highest - t * sink > top; t += gap) {
+                            const double qx = x + towards.x * t, qy = y + towards.y * t;
+                            if (qx < xmin - 1e-9 || qx > xmax + 1e-9 || qy < ymin - 1e-9 || qy > ymax + 1e-9)
+                                break;
+                            top = std::max(top, sample_bilinear(hf, qx, qy) - t * sink);
+                        }
+                    }
+                v.shadow_tops[std::size_t(b) * v.shadow_nx + a] = top;
+            }
+    });
+}
+
+// A cell's sunlit and shadowed parts' L_00 (LightVolume::class_means) where a part holds at least
+// this share of the cell's volume; a smaller part takes its neighbours' mean.
+constexpr double least_sunlit_part = 0.15, least_shadowed_part = 0.02;
+
+// Fills the parts too small to measure (`known` 0) with the mean of their known neighbours' (the
+// 26 around, repeated outwards), else the cell's own L_00.
+void fill_unknown_parts(LightVolume& v, std::vector<std::uint8_t>& known)
+{
+    const std::size_t cells = std::size_t(v.nx) * v.ny * v.nz;
+    for (int pass = 0; pass < 64; ++pass) {
+        std::vector<std::uint8_t> next = known;
+        bool changed = false, missing = false;
+        for (std::size_t c = 0; c < cells; ++c) {
+            const int i = int(c % std::size_t(v.nx)), j = int(c / std::size_t(v.nx) % std::size_t(v.ny)),
+                      k = int(c / (std::size_t(v.nx) * v.ny));
+            for (int part = 0; part < 2; ++part) {
+                if (known[c * 2 + std::size_t(part)])
+                    continue;
+                double sum = 0.0;
+                int n = 0;
+                for (int dk = -1; dk <= 1; ++dk)
+                    for (int dj = -1; dj <= 1; ++dj)
+                        for (int di = -1; di <= 1; ++di) {
+                            const int ii = i + di, jj = j + dj, kk = k + dk;
+                            if (ii < 0 || jj < 0 || kk < 0 || ii >= v.nx || jj >= v.ny || kk >= v.nz)
+                                continue;
+                            const std::size_t d = (std::size_t(kk) * v.ny + jj) * v.nx + ii;
+                            if (known[d * 2 + std::size_t(part)]) {
+                                sum += v.class_means[d * 2 + std::size_t(part)];
+                                ++n;
+                            }
+                        }
+                if (n > 0) {
+                    v.class_means[c * 2 + std::size_t(part)] = sum / n;
+                    next[c * 2 + std::size_t(part)] = 1;
+                    changed = true;
+                } else {
+                    missing = true;
+                }
+            }
+        }
+        known = std::move(next);
+        if (!changed || !missing)
+            break;
+    }
+    const int nc = v.bands * v.bands;
+    for (std::size_t c = 0; c < cells; ++c)
+        for (std::size_t part = 0; part < 2; ++part)
+            if (!known[c * 2 + part])
+                v.class_means[c * 2 + part] = v.moments[c * std::size_t(nc)];
 }
 
 }  // namespace
@@ -492,6 +615,8 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
         if (terrain)
             lower_floors_to_the_ground(v, *medium, *terrain);
     }
+    if (terrain)
+        mark_the_terrains_shadow(v, *terrain, sun, options.threads);
     const int nc = v.bands * v.bands;
     const std::size_t cells = std::size_t(v.nx) * v.ny * v.nz;
 
@@ -516,11 +641,12 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     const long long photons = baker.photons();
 
     const long long tasks = (photons + photons_per_task - 1) / photons_per_task;
-    std::vector<std::int64_t> total(cells * nc, 0);
+    const std::size_t stride = std::size_t(baker.stride());
+    std::vector<std::int64_t> total(cells * stride, 0);
     std::mutex merge;
     std::atomic<long long> deposits{0};
     detail::for_rows_in_parallel(options.threads, int(std::min<long long>(tasks, 1 << 30)), [&](auto next_task) {
-        std::vector<std::int64_t> sums(cells * nc, 0);
+        std::vector<std::int64_t> sums(cells * stride, 0);
         long long mine = 0;
         for (long long t = next_task(); t < tasks; t = next_task()) {
             const long long end = std::min(photons, (t + 1) * photons_per_task);
@@ -535,11 +661,14 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
     });
 
     // Each cell's volume: its footprint's shell thickness / levels, integrated on a raster; with
-    // the column normalisation, the volume-weighted mean of column_scale over it too.
+    // the column normalisation, the volume-weighted mean of column_scale over it too; and the
+    // volume of each level's part under the terrain's shadow's top.
     if (options.column_normalised)
         v.column_extinction = medium->options().extinction * 0.5 * (1.0 + medium->options().top_density);
+    const bool parts = stride > std::size_t(nc);
     constexpr int raster = 8;
     std::vector<double> column_volume(std::size_t(v.nx) * v.ny, 0.0), column_mean(column_volume.size(), 1.0);
+    std::vector<double> shadowed(parts ? cells : 0, 0.0);  // each cell's share in the shadow
     for (int j = 0; j < v.ny; ++j)
         for (int i = 0; i < v.nx; ++i) {
             double sum = 0.0, scaled = 0.0;
@@ -551,21 +680,50 @@ LightVolume bake_light_volume(const FogVolume& fog, const Heightfield* terrain, 
                     const double thick = std::max(cells.top - cells.floor, 0.0);
                     sum += thick;
                     scaled += thick * v.column_scale(c);
+                    if (parts && thick > 0.0) {
+                        const double level = thick / v.nz, top = v.shadow_top_at(x, y);
+                        for (int k = 0; k < v.nz; ++k)
+                            shadowed[(std::size_t(k) * v.ny + j) * v.nx + i] +=
+                                std::clamp(top - (cells.floor + k * level), 0.0, level);
+                    }
                 }
             column_volume[std::size_t(j) * v.nx + i] = sum / (raster * raster) * v.dx * v.dy / v.nz;
-            if (sum > 0.0)
+            if (sum > 0.0) {
                 column_mean[std::size_t(j) * v.nx + i] = std::max(scaled / sum, 1e-6);
+                if (parts)
+                    for (int k = 0; k < v.nz; ++k)
+                        shadowed[(std::size_t(k) * v.ny + j) * v.nx + i] /= sum / v.nz;
+            }
         }
     const double quantum = baker.quantum();
     v.moments.assign(cells * nc, 0.0);
+    std::vector<std::uint8_t> known(parts ? cells * 2 : 0, 0);
+    if (parts)
+        v.class_means.assign(cells * 2, 0.0);
     for (std::size_t k = 0; k < cells; ++k) {
         const std::size_t column = k % (std::size_t(v.nx) * v.ny);
         const double volume = column_volume[column] * column_mean[column];
         if (!(volume > 0.0))
             continue;
         for (int q = 0; q < nc; ++q)
-            v.moments[k * nc + q] = double(total[k * nc + q]) * quantum / volume;
+            v.moments[k * nc + q] = double(total[k * stride + q]) * quantum / volume;
+        if (!parts)
+            continue;
+        // L_00 of each part over its own volume, in the moments' units.
+        const double share = std::clamp(shadowed[k], 0.0, 1.0);
+        const double in_shadow = double(total[k * stride + std::size_t(nc)]) * quantum;
+        const double in_sun = double(total[k * stride]) * quantum - in_shadow;
+        if (1.0 - share >= least_sunlit_part) {
+            v.class_means[k * 2] = std::max(in_sun, 0.0) / (volume * (1.0 - share));
+            known[k * 2] = 1;
+        }
+        if (share >= least_shadowed_part) {
+            v.class_means[k * 2 + 1] = std::max(in_shadow, 0.0) / (volume * share);
+            known[k * 2 + 1] = 1;
+        }
     }
+    if (parts)
+        fill_unknown_parts(v, known);
     v.photons = photons;
     v.deposits = deposits;
     v.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -72,6 +72,21 @@ struct LightVolume {
     //! is above haze_top); empty: the Medium's floor.
     int floor_nx = 0, floor_ny = 0;
     std::vector<double> floors;
+    //! The terrain's shadow. A cell can hold fog in the sun and fog deep in the terrain's shadow (a
+    //! lake's arm behind a ridge), whose diffuse light differs a hundredfold: the shadowed fog
+    //! sees only what reaches it from the sunlit fog, through air, around the ridge. Each cell
+    //! keeps L_00 of its two parts apart (class_means, in the moments' units: two values a cell,
+    //! index ((k ny + j) nx + i) 2 + {0 sunlit, 1 shadowed}; a part too small to measure takes its
+    //! neighbours' mean, else the cell's), and the lookup at a point scales the moments by its
+    //! part's L_00 over the cell's (in_scattered_at): the direction's shape from every photon, the
+    //! magnitude from its own side of the shadow. The shadow's top: at each of shadow_nx x
+    //! shadow_ny samples spanning the cells' rectangle (the floors' grid: two a DEM spacing, 4 to
+    //! 16 a cell), the lowest height the sun reaches past the terrain upwind, bilinear between
+    //! them (shadow_top_at): over a heightfield a column's shadowed part is one interval from the
+    //! ground up. Empty: no terrain, one part.
+    int shadow_nx = 0, shadow_ny = 0;
+    std::vector<double> shadow_tops;
+    std::vector<double> class_means;
     // What the bake cost.
     long long photons = 0;
     long long deposits = 0;
@@ -83,6 +98,10 @@ struct LightVolume {
     }
     //! The cells' floor at (x, y) from the floors' grid; +inf without one.
     double floor_at(double x, double y) const;
+    //! The terrain's shadow's top at (x, y) from its grid; -inf without one.
+    double shadow_top_at(double x, double y) const;
+    //! Whether the volume keeps its cells' sunlit and shadowed parts apart (class_means).
+    bool has_shadow_parts() const;
     //! The column of the cells at (x, y) from the Medium's there: its floor lowered to floor_at,
     //! its top raised to haze_top where the height fog reaches above it (and above the floor).
     MediumColumn shell(MediumColumn medium_column, double x, double y) const;
@@ -103,6 +122,10 @@ struct LightVolume {
     //! The same with the direction's part g^l Y_lm(towards) (phase_weights) computed once, as a
     //! ray marcher does along a ray.
     double in_scattered(double x, double y, double h, const double* weights, double scale = 1.0) const;
+    //! in_scattered at the point (x, y, z) of shell height h, scaled by the L_00 of the cells' part
+    //! on the point's side of the terrain's shadow over the cells' (class_means, both trilinear as
+    //! the moments, the ratio clamped to [0, 64]); in_scattered where the volume has no parts.
+    double in_scattered_at(double x, double y, double z, double h, const double* weights, double scale = 1.0) const;
     //! g^l Y_lm(towards) into out (bands^2 values).
     void phase_weights(const glm::dvec3& towards, double g, double* out) const;
 };
