@@ -1,7 +1,8 @@
 // The froxel fog under the lighting model `baked` against the CPU reference, which reads the same
 // light-transport volume (geometry/reference/light_volume_bake.hpp): a slab seen from inside (its
-// multiple scattering from the volume, not without it), and a height fog whose light the volume's
-// cells hold above a thin Medium's top and under a lifted Medium's floor.
+// multiple scattering from the volume, not without it), a height fog whose light the volume's
+// cells hold above a thin Medium's top and under a lifted Medium's floor, and a pool deep in the
+// terrain's shadow beside a sunlit slab in one cell (each part's light).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -138,6 +139,87 @@ TEST_F(FroxelGl, BakedLightOfAHeightFogUnderALiftedMediumsFloorIsTheReferences)
     c.target = {300.0, 0.0, 40.0};
     expect_the_references(compare(ground, &h.fog, h.options, c, 96, 54, light, 0.0, HUGE_VAL, h.volume),
                           "under the Medium");
+}
+
+TEST_F(FroxelGl, FogDeepInTheTerrainsShadowTakesItsPartsLightAsTheReferenceDoes)
+{
+    // One cell of the volume holds a sunlit slab of fog (x < 350) and, behind a wall 300 m high
+    // (x from 420 to 460) under a sun 20 degrees up from the west, a pool 30 m deep (x from 500
+    // to 700) in its shadow, whose diffuse light is nearly none (LightVolume's
+    // FogDeepInTheTerrainsShadowKeepsItsOwnDimLight). Seen from above, the froxels read each
+    // part's light as the reference does: the pool stays dark beside the lit slab. Read as one
+    // mean a cell, the pool had a fifth of the slab's light.
+    g::Heightfield hf;
+    hf.nx = 121;
+    hf.ny = 41;
+    hf.dx = hf.dy = 25.0;
+    hf.x0 = -1000.0;
+    hf.y0 = -500.0;
+    for (int j = 0; j < hf.ny; ++j)
+        for (int i = 0; i < hf.nx; ++i)
+            hf.z.push_back(hf.x_of(i) > 420.0 && hf.x_of(i) < 460.0 ? 300.0 : 0.0);
+    hf.valid.assign(hf.z.size(), 1);
+    const g::Terrain ground(std::move(hf));
+    g::MediumGrid grid;
+    grid.nx = 41;
+    grid.ny = 3;
+    grid.x0 = 0.0;
+    grid.y0 = -250.0;
+    grid.dx = 25.0;
+    grid.dy = 250.0;
+    for (int j = 0; j < grid.ny; ++j)
+        for (int i = 0; i < grid.nx; ++i) {
+            const double x = grid.x0 + i * grid.dx;
+            const double top = x <= 350.0 ? 100.0 : x >= 500.0 && x <= 700.0 ? 30.0 : 0.0;
+            grid.floor.push_back(0.0);
+            grid.bottom.push_back(0.0);
+            grid.top.push_back(top);
+            grid.coverage.push_back(top > 0.0 ? 1.0 : 0.0);
+        }
+    g::MediumOptions mo;
+    mo.extinction = 0.02;
+    mo.albedo = 0.99;
+    mo.anisotropy = 0.8;
+    mo.top_density = 1.0;
+    mo.multiple_scattering = g::MultipleScattering::baked;
+    g::MediumDetail md;
+    md.detail = 0.0;
+    const g::Medium fog(std::move(grid), mo, md);
+    SunLight light = sun();
+    light.direction = {-std::cos(20.0 * M_PI / 180.0), 0.0, std::sin(20.0 * M_PI / 180.0)};
+    light.ambient = glm::vec3(0.0f);
+    g::LightVolumeOptions bake;
+    bake.photons = 40000;
+    bake.max_side = 1;  // one cell in (x, y)
+    bake.levels = 2;
+    const auto volume = std::make_shared<const g::LightVolume>(
+        g::bake_light_volume({&fog, {}}, &ground.heightfield(), glm::normalize(light.direction), bake));
+    ASSERT_TRUE(volume->has_shadow_parts());
+    const g::FroxelOptions o = small(24, 14);
+    // The mean in-scattered luminance over a view straight down on x, from 300 m up.
+    const auto seen_from_above = [&](double x, double& gpu, double& reference) {
+        Camera c;
+        c.position = {x, 0.0, 300.0};
+        c.target = {x, 1.0, 0.0};
+        const Compared with = compare(ground, &fog, o, c, 48, 27, light, 0.0, HUGE_VAL, volume);
+        gpu = reference = 0.0;
+        const std::size_t n = with.reference.inscatter.size();
+        for (std::size_t k = 0; k < n; ++k) {
+            const glm::dvec3 r = with.reference.inscatter[k];
+            reference += (0.2126 * r.x + 0.7152 * r.y + 0.0722 * r.z) / double(n);
+            gpu += (0.2126 * with.gpu.rgba[k * 4] + 0.7152 * with.gpu.rgba[k * 4 + 1] +
+                    0.0722 * with.gpu.rgba[k * 4 + 2]) /
+                double(n);
+        }
+        std::printf("    over x = %.0f: froxels %.5f, reference %.5f\n", x, gpu, reference);
+    };
+    double slab_gpu, slab_reference, pool_gpu, pool_reference;
+    seen_from_above(175.0, slab_gpu, slab_reference);
+    seen_from_above(600.0, pool_gpu, pool_reference);
+    ASSERT_GT(slab_reference, 0.0);
+    EXPECT_NEAR(slab_gpu, slab_reference, 0.1 * slab_reference);
+    EXPECT_LT(pool_reference, 0.05 * slab_reference);
+    EXPECT_NEAR(pool_gpu, pool_reference, 0.05 * slab_reference);
 }
 
 }  // namespace
