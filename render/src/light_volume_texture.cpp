@@ -26,8 +26,8 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
         return;
     const geometry::LightVolume& v = *volume_;
     const int moments = v.bands * v.bands, moment_groups = (moments + 3) / 4;
-    // The terrain's shadow's tops share the floors' texture, and so its grid (both four samples a
-    // cell); a volume whose grids differ is read without its parts.
+    // The terrain's shadow's tops share the floors' texture, and so its grid (the bake puts both on
+    // one); a volume whose grids differ is read without its parts.
     const bool floors = v.floor_nx >= 2 && v.floor_ny >= 2 && v.floors.size() == std::size_t(v.floor_nx) * v.floor_ny;
     parts_ = v.has_shadow_parts() && (!floors || (v.floor_nx == v.shadow_nx && v.floor_ny == v.shadow_ny));
     groups_ = moment_groups + (parts_ ? 1 : 0);
@@ -49,10 +49,9 @@ void LightVolumeTexture::set(std::shared_ptr<const geometry::LightVolume> volume
                     texels[((layer * v.ny + j) * v.nx + i) * 4 + 1] = float(v.class_means[cell * 2 + 1]);
                 }
             }
-    const int groups = groups_;
     texture_ = make_texture(GL_TEXTURE_3D);
-    glTextureStorage3D(texture_.get(), 1, GL_RGBA32F, v.nx, v.ny, groups * v.nz);
-    glTextureSubImage3D(texture_.get(), 0, 0, 0, 0, v.nx, v.ny, groups * v.nz, GL_RGBA, GL_FLOAT, texels.data());
+    glTextureStorage3D(texture_.get(), 1, GL_RGBA32F, v.nx, v.ny, groups_ * v.nz);
+    glTextureSubImage3D(texture_.get(), 0, 0, 0, 0, v.nx, v.ny, groups_ * v.nz, GL_RGBA, GL_FLOAT, texels.data());
     // Linear between cell centres, clamped to the outer ones (LightVolume::moments_at); between
     // levels too, the lookup reading within a group's nz slices only.
     glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);

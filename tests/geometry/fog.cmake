@@ -15,6 +15,7 @@ kiri_test(air_light_test SOURCES air_light_test.cpp LIBS kiri_geometry LABELS un
 kiri_test(path_tracer_test SOURCES path_tracer_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(multiple_scattering_test SOURCES multiple_scattering_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(light_volume_test SOURCES light_volume_test.cpp LIBS kiri_geometry LABELS unit)
+kiri_test(light_volume_cells_test SOURCES light_volume_cells_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(height_fog_free_path_test SOURCES height_fog_free_path_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_test(froxel_options_test SOURCES froxel_options_test.cpp LIBS kiri_geometry LABELS unit)
 kiri_find_openvdb()

@@ -6,4 +6,5 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/reference/reference_fog.cpp
   src/reference/path_tracer.cpp
   src/reference/light_volume_bake.cpp
+  src/reference/light_volume_grids.cpp
 )
