@@ -1,6 +1,7 @@
 // `kiri render SCENE.json -o OUT.png`: renders a scene headless (EGL) and writes the PNG
 // atomically, or the linear radiance before the tone map for OUT.exr. The CPU modes (reference,
 // path) need no GL. The output folder is checked before any loading or rendering.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -30,7 +31,8 @@ struct RenderArgs {
     int width = 0, height = 0;
     bool timings = false;
     bool no_sky = false, black_ground = false;
-    int samples = 256, bounces = 128;
+    int samples = 256, bounces = 128, max_samples = 0;
+    double noise = 0.0;
     std::uint64_t seed = 1;
 };
 
@@ -61,6 +63,8 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
     po.samples = a.samples;
     po.max_bounces = a.bounces;
     po.seed = a.seed;
+    po.noise_target = a.noise;
+    po.max_samples = a.max_samples;
     po.ground = a.black_ground ? geometry::PathGround::black : geometry::PathGround::lambertian;
     po.surround = scene.terrain.surround;
     const geometry::PathTracedImage p =
@@ -70,14 +74,20 @@ void render_cpu(const RenderArgs& a, const geometry::Scene& scene, const geometr
     else
         render::write_png_atomic(a.out, render::tone_mapped(p));
     // The noise: mean standard error over mean radiance (luminance).
-    double mean = 0.0, error = 0.0;
+    double mean = 0.0, error = 0.0, paths = 0.0;
     for (std::size_t k = 0; k < p.radiance.size(); ++k) {
         mean += geometry::luminance(p.radiance[k]);
         error += geometry::luminance(p.std_error[k]);
+        paths += p.pixel_samples[k];
     }
-    std::fprintf(stderr, "kiri render: %d samples per pixel, at most %d bounces, seed %llu: %.2f %% standard error\n",
-                 p.samples, a.bounces, static_cast<unsigned long long>(a.seed),
-                 mean > 0.0 ? 100.0 * error / mean : 0.0);
+    if (a.noise > 0.0)
+        std::fprintf(stderr, "kiri render: %d to %d samples per pixel (mean %.0f, %d rounds), ", p.samples,
+                     *std::max_element(p.pixel_samples.begin(), p.pixel_samples.end()),
+                     paths / std::max<double>(double(p.pixel_samples.size()), 1.0), p.rounds);
+    else
+        std::fprintf(stderr, "kiri render: %d samples per pixel, ", p.samples);
+    std::fprintf(stderr, "at most %d bounces, seed %llu: %.2f %% standard error\n", a.bounces,
+                 static_cast<unsigned long long>(a.seed), mean > 0.0 ? 100.0 * error / mean : 0.0);
 }
 
 void run(const RenderArgs& a)
@@ -94,6 +104,13 @@ void run(const RenderArgs& a)
     const bool cpu = a.mode == "reference" || a.mode == "path";  // the CPU judges: slow, no GL
     if (a.black_ground && !cpu)
         throw InputError(a.scene, "--black-ground", "only --mode reference and --mode path draw a black ground");
+    if (!(a.noise >= 0.0 && a.noise <= 1.0))  // NaN passes CLI11's range
+        throw InputError(a.scene, "--noise", "must be a fraction between 0 and 1, not " + std::to_string(a.noise));
+    if ((a.noise > 0.0 || a.max_samples > 0) && a.mode != "path")
+        throw InputError(a.scene, a.noise > 0.0 ? "--noise" : "--max-samples", "only --mode path samples adaptively");
+    if (a.max_samples > 0 && a.max_samples < a.samples)
+        throw InputError(a.scene, "--max-samples",
+                         std::to_string(a.max_samples) + " is under --samples " + std::to_string(a.samples));
     render::FogMode mode = render::default_mode(given);
     if (cpu)
         mode = render::FogMode::froxel;  // the CPU modes draw the Medium and the height fog
@@ -231,6 +248,14 @@ void add_render_command(CLI::App& app)
            "--samples", a->samples,
            "--mode path: paths per pixel (default 256: the default scene at 160x90 in about a minute on 2 cores)")
         ->check(CLI::Range(1, 1 << 20));
+    sub->add_option("--noise", a->noise,
+                    "--mode path: adaptive sampling; each block of 4x4 pixels whose mean has a relative standard "
+                    "error above this (0.03: 3 %) takes more paths, fourfold a round, up to --max-samples (default "
+                    "0: off)")
+        ->check(CLI::Range(0.0, 1.0));
+    sub->add_option("--max-samples", a->max_samples,
+                    "--mode path with --noise: the most paths a pixel takes (default 64 x --samples)")
+        ->check(CLI::Range(1, 1 << 26));
     sub->add_option("--bounces", a->bounces, "--mode path: most scattering events per path (default 128)")
         ->check(CLI::Range(0, 1 << 20));
     sub->add_option("--seed", a->seed, "--mode path: random seed (default 1; the same seed gives the same image)");

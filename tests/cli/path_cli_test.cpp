@@ -1,5 +1,5 @@
-// `kiri render --mode path`, `-o x.exr` (linear radiance), `--no-sky` and `--black-ground` of the
-// CPU modes (reference, path) as a user runs them: no GL needed.
+// `kiri render --mode path` (and its adaptive `--noise`), `-o x.exr` (linear radiance), `--no-sky`
+// and `--black-ground` of the CPU modes (reference, path) as a user runs them: no GL needed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,5 +120,39 @@ TEST(KiriPath, BadOptionsAreOneLineAndExit2)
     const auto s = run_kiri("render " + lake + " -o " + out.string() + " --mode path --samples 0");
     EXPECT_EQ(s.exit_code, 2);
     EXPECT_EQ(s.error_lines(), 1) << s.err;
+    const auto n = run_kiri("render " + lake + " -o " + out.string() + " --mode reference --noise 0.05");
+    EXPECT_EQ(n.exit_code, 2);
+    EXPECT_EQ(n.err, "kiri: " + lake + ": --noise: only --mode path samples adaptively\n");
+    const auto m = run_kiri("render " + lake + " -o " + out.string() + " --mode path --samples 64 --max-samples 32");
+    EXPECT_EQ(m.exit_code, 2);
+    EXPECT_EQ(m.err, "kiri: " + lake + ": --max-samples: 32 is under --samples 64\n");
+    for (const char* noise : {"-0.1", "nan", "2"}) {
+        const auto q = run_kiri("render " + lake + " -o " + out.string() + " --mode path --noise " + noise);
+        EXPECT_EQ(q.exit_code, 2) << noise;
+        EXPECT_EQ(q.error_lines(), 1) << q.err;
+    }
     EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(KiriPath, NoiseTakesMorePathsWhereTheImageIsNoisy)
+{
+    // The lake from its sun camera at 16 paths a pixel, then adaptively up to 256: the noisy
+    // blocks take more and the image's noise falls; the same seed gives the same picture.
+    const fs::path plain = kiri::test::temp_path("path_cli_plain.exr"), a = kiri::test::temp_path("path_cli_a.exr"),
+                   b = kiri::test::temp_path("path_cli_b.exr");
+    const std::string args = " --mode path --width 32 --height 18 --samples 16 --camera sun --bounces 8";
+    const auto p = run_kiri("render " + lake + " -o " + plain.string() + args);
+    ASSERT_EQ(p.exit_code, 0) << p.err;
+    const auto r = run_kiri("render " + lake + " -o " + a.string() + args + " --noise 0.05 --max-samples 256");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("16 to 256 samples per pixel"), std::string::npos) << r.err;
+    ASSERT_EQ(run_kiri("render " + lake + " -o " + b.string() + args + " --noise 0.05 --max-samples 256").exit_code, 0);
+    EXPECT_EQ(kiri::test::read_all(a), kiri::test::read_all(b));
+    const auto error = [](const std::string& err) {
+        const std::size_t at = err.find("seed 1: ");
+        return at == std::string::npos ? 1e9 : std::stod(err.substr(at + 8));
+    };
+    EXPECT_LT(error(r.err), 0.5 * error(p.err)) << p.err << r.err;
+    for (const auto& f : {plain, a, b})
+        fs::remove(f);
 }

@@ -3,9 +3,11 @@
 // reference ray marcher at one octave), the multiple scattering of a semi-infinite isotropic
 // medium (Chandrasekhar's H-function, solved here), the white furnace (a non-absorbing fog in a
 // uniformly lit world stays at the world's radiance), a Lambertian ground under sun and sky;
-// determinism across threads; bad input stays finite.
+// adaptive sampling by blocks against the closed form; determinism across threads; bad input
+// stays finite.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
@@ -458,6 +460,77 @@ TEST(PathTracer, DeterministicOnAnyNumberOfThreads)
     o.seed = 2;
     const PathTracedImage c = render_path_traced({&m, {}}, nullptr, view, light, o);
     EXPECT_NE(a.radiance, c.radiance);
+}
+
+TEST(PathTracer, AdaptiveSamplingTakesNoisyBlocksUnderTheTargetAndStaysExact)
+{
+    // A thin slab (vertical optical depth 0.2) seen from above at one bounce: steep rays meet the
+    // fog less often than slanted ones, so their blocks are noisier and take more rounds. Every
+    // pixel against the closed form of SingleScatteringOfASlabLitByTheSun, in its own standard
+    // errors: a merge of the rounds that dropped or misweighted paths would show.
+    const double sigma = 0.002, a = 0.9, g = 0.6, H = 100.0;
+    const Medium m = slab(0.0, H, sigma, a, g);
+    const FogLighting light = sun_at(0.7, 0.4, {3.0, 2.0, 1.0});
+    ReferenceView view;
+    view.eye = {0.0, 0.0, 300.0};
+    view.target = {300.0, 0.0, 0.0};
+    view.fov_y_deg = 40.0;
+    view.width = 16;
+    view.height = 12;
+    PathTracerOptions o;
+    o.samples = 160;
+    o.max_bounces = 1;
+    o.sky = PathSky::none;
+    o.noise_target = 0.03;
+    o.max_samples = 4096;
+    o.threads = 2;
+    const PathTracedImage image = render_path_traced({&m, {}}, nullptr, view, light, o);
+    ASSERT_EQ(image.pixel_samples.size(), std::size_t(16 * 12));
+    const auto [fewest, most] = std::minmax_element(image.pixel_samples.begin(), image.pixel_samples.end());
+    // The slanted rays' blocks are under the target at once, the steep ones' took a round or more.
+    EXPECT_EQ(*fewest, o.samples);
+    EXPECT_GE(*most, 4 * o.samples);
+    EXPECT_GT(image.rounds, 1);
+    // Each 4x4 block: its mean's relative standard error under the target, or its pixels at the most.
+    for (int by = 0; by < 3; ++by)
+        for (int bx = 0; bx < 4; ++bx) {
+            double sum = 0.0, variance = 0.0;
+            int at_most = 0;
+            for (int y = 4 * by; y < 4 * by + 4; ++y)
+                for (int x = 4 * bx; x < 4 * bx + 4; ++x) {
+                    const std::size_t k = std::size_t(y) * 16 + x;
+                    sum += luminance(image.radiance[k]);
+                    variance += std::pow(luminance(image.std_error[k]), 2);
+                    at_most += image.pixel_samples[k] == 4096;
+                }
+            EXPECT_TRUE(std::sqrt(variance) <= 0.03 * sum || at_most == 16)
+                << "block " << bx << ", " << by << ": " << std::sqrt(variance) / sum;
+        }
+    double chi2 = 0.0, bias = 0.0;
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 16; ++x) {
+            const glm::dvec3 w = view.ray(x, y);
+            const double mu_v = -w.z, mu_s = light.sun_direction.z;
+            const double exact = a * std::numbers::pi * light.sun_radiance.x *
+                henyey_greenstein(glm::dot(w, light.sun_direction), g) * mu_s / (mu_s + mu_v) *
+                -std::expm1(-sigma * H * (1.0 / mu_v + 1.0 / mu_s));
+            const std::size_t k = std::size_t(y) * 16 + x;
+            const double z = (image.radiance[k].x - exact) / image.std_error[k].x;
+            chi2 += z * z / (16 * 12);
+            bias += z / (16 * 12);
+        }
+    EXPECT_GT(chi2, 0.6);
+    EXPECT_LT(chi2, 1.5);
+    EXPECT_LT(std::abs(bias), 4.0 / std::sqrt(16.0 * 12.0));
+    // The same image on one thread; no rounds without a target.
+    o.threads = 1;
+    const PathTracedImage again = render_path_traced({&m, {}}, nullptr, view, light, o);
+    EXPECT_EQ(again.radiance, image.radiance);
+    EXPECT_EQ(again.pixel_samples, image.pixel_samples);
+    o.noise_target = 0.0;
+    const PathTracedImage plain = render_path_traced({&m, {}}, nullptr, view, light, o);
+    EXPECT_EQ(plain.rounds, 1);
+    EXPECT_EQ(plain.pixel_samples, std::vector<int>(16 * 12, o.samples));
 }
 
 TEST(PathTracer, BadInputStaysFinite)

@@ -189,6 +189,7 @@ TEST_F(PreviewXvfb, FogPlacedByTheTerrainFillsTheValleys)
     ASSERT_GT(terrain, 640 * 360 / 10);
     // Measured 0.130 over 297 fog pixels, grey veils at least 0.252.
     expect_agrees_with_reference(fog, bare, scene.string(), false, 200, 0.155);
+    fs::remove(scene);
     // The ridges above the fog top look as without fog.
     EXPECT_GT(unchanged, terrain / 10) << unchanged << " of " << terrain << " terrain pixels unchanged";
     EXPECT_LT(unchanged, terrain * 9 / 10) << unchanged << " of " << terrain << " terrain pixels unchanged";

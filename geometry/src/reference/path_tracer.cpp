@@ -1,8 +1,6 @@
 #include "kiri/geometry/reference/path_tracer.hpp"
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <cmath>
 #include <memory>
 #include <numbers>
@@ -10,7 +8,6 @@
 #include <glm/geometric.hpp>
 
 #include "reference/path_tracer_core.hpp"
-#include "core/parallel_rows.hpp"
 #include "reference/terrain_shading.hpp"
 
 namespace kiri::geometry {
@@ -30,7 +27,6 @@ glm::dvec3 finite_or_zero(const glm::dvec3& v)
 {
     return {finite_or(v.x, 0.0), finite_or(v.y, 0.0), finite_or(v.z, 0.0)};
 }
-bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 double clamp_g(double g) { return std::isfinite(g) ? std::clamp(g, -0.999, 0.999) : 0.0; }
 double clamp_albedo(double a) { return std::isfinite(a) ? std::clamp(a, 0.0, 1.0) : 0.0; }
 
@@ -288,96 +284,5 @@ glm::dvec3 PathTracer::sample(const glm::dvec3& origin, const glm::dvec3& dir, d
 }
 
 }  // namespace detail
-
-namespace {
-
-using detail::PathTracer;
-
-// Welford's running mean and variance per channel.
-struct Accumulator {
-    glm::dvec3 mean{0.0}, m2{0.0};
-    int n = 0;
-    void add(const glm::dvec3& v)
-    {
-        ++n;
-        const glm::dvec3 d = v - mean;
-        mean += d / double(n);
-        m2 += d * (v - mean);
-    }
-    PathEstimate estimate() const
-    {
-        PathEstimate e;
-        e.samples = n;
-        e.radiance = mean;
-        if (n > 1)
-            e.std_error = glm::sqrt(glm::max(m2, glm::dvec3(0.0)) / (double(n - 1) * double(n)));
-        return e;
-    }
-};
-
-PathEstimate trace_pixel(const PathTracer& tracer, const glm::dvec3& origin, const glm::dvec3& dir, double t_max,
-                         const PathTracerOptions& options, std::uint64_t stream, long long& vertices,
-                         long long& dropped)
-{
-    Random rng(options.seed, stream);
-    Accumulator acc;
-    const int samples = std::max(options.samples, 1);
-    for (int s = 0; s < samples; ++s) {
-        const glm::dvec3 v = tracer.sample(origin, dir, t_max, rng, vertices);
-        if (finite(v))
-            acc.add(v);
-        else
-            ++dropped;
-    }
-    return acc.estimate();
-}
-
-}  // namespace
-
-PathEstimate path_traced_ray(const FogVolume& fog, const Heightfield* terrain, const glm::dvec3& origin,
-                             const glm::dvec3& dir, double t_max, const FogLighting& light,
-                             const PathTracerOptions& options, std::uint64_t stream)
-{
-    const PathTracer tracer(fog, terrain, light, options);
-    long long vertices = 0, dropped = 0;
-    const double len = glm::length(dir);
-    const glm::dvec3 w = len > 0.0 && std::isfinite(len) ? dir / len : glm::dvec3(0.0, 0.0, -1.0);
-    return trace_pixel(tracer, origin, w, t_max, options, stream, vertices, dropped);
-}
-
-PathTracedImage render_path_traced(const FogVolume& fog, const Heightfield* terrain, const ReferenceView& view,
-                                   const FogLighting& light, const PathTracerOptions& options)
-{
-    const auto start = std::chrono::steady_clock::now();
-    PathTracedImage out;
-    out.width = std::max(view.width, 0);
-    out.height = std::max(view.height, 0);
-    out.samples = std::max(options.samples, 1);
-    const std::size_t n = std::size_t(out.width) * std::size_t(out.height);
-    out.radiance.assign(n, glm::dvec3(0.0));
-    out.std_error.assign(n, glm::dvec3(0.0));
-    const PathTracer tracer(fog, terrain, light, options);
-    const glm::dvec3 forward = view.forward();
-    std::atomic<long long> vertices{0}, dropped{0};
-    detail::for_rows_in_parallel(options.threads, out.height, [&](auto next_row) {
-        long long my_vertices = 0, my_dropped = 0;
-        for (int y = next_row(); y < out.height; y = next_row())
-            for (int x = 0; x < out.width; ++x) {
-                const glm::dvec3 w = view.ray(x, y);
-                const double cos_axis = glm::dot(w, forward);
-                const double t_max = view.max_depth > 0.0 && cos_axis > 0.0 ? view.max_depth / cos_axis : 1e6;
-                const std::size_t k = std::size_t(y) * std::size_t(out.width) + std::size_t(x);
-                const PathEstimate e = trace_pixel(tracer, view.eye, w, t_max, options, k, my_vertices, my_dropped);
-                out.radiance[k] = e.radiance;
-                out.std_error[k] = e.std_error;
-            }
-        vertices += my_vertices;
-        dropped += my_dropped;
-    });
-    out.vertices = vertices;
-    out.dropped = dropped;
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return out;
-}
 
 }  // namespace kiri::geometry

@@ -5,6 +5,7 @@ list(APPEND KIRI_GEOMETRY_SOURCES
   src/reference/fog_marcher.cpp
   src/reference/reference_fog.cpp
   src/reference/path_tracer.cpp
+  src/reference/path_traced_image.cpp
   src/reference/light_volume_bake.cpp
   src/reference/light_volume_grids.cpp
 )

@@ -64,6 +64,14 @@ struct PathTracerOptions {
     //! The ground beyond the DEM's edge (kiri/geometry/terrain/ground.hpp); false: the bare tile.
     bool surround = true;
     int threads = 0;  //!< 0: every core
+    //! Adaptive sampling (render_path_traced only): after `samples` paths a pixel, each block of
+    //! noise_block x noise_block pixels whose mean luminance has a relative standard error above
+    //! noise_target takes more paths, its count fourfold a round, until the error is under the
+    //! target or its pixels have max_samples. Blocks under 1e-6 of the brightest block are left
+    //! as they are (no judge counts them). 0: off, every pixel takes `samples` paths.
+    double noise_target = 0.0;
+    int noise_block = 4;
+    int max_samples = 0;  //!< the most paths a pixel takes when adaptive; 0: 64 x samples
 };
 
 //! The estimate of one pixel or ray: the mean of its samples and the standard error of that
@@ -75,9 +83,11 @@ struct PathEstimate {
 };
 
 struct PathTracedImage {
-    int width = 0, height = 0, samples = 0;
-    std::vector<glm::dvec3> radiance;   //!< row-major, row 0 at the top: linear radiance
-    std::vector<glm::dvec3> std_error;  //!< standard error of each pixel's mean
+    int width = 0, height = 0, samples = 0;  //!< samples: the paths every pixel took at least
+    std::vector<glm::dvec3> radiance;        //!< row-major, row 0 at the top: linear radiance
+    std::vector<glm::dvec3> std_error;       //!< standard error of each pixel's mean
+    std::vector<int> pixel_samples;          //!< the paths each pixel traced (more where adaptive)
+    int rounds = 1;                          //!< passes over the image, the first included
     double seconds = 0.0;
     long long vertices = 0;  //!< scattering vertices traced (cost)
     long long dropped = 0;   //!< samples dropped for a non-finite value (0 unless something is broken)
@@ -91,7 +101,9 @@ PathEstimate path_traced_ray(const FogVolume& fog, const Heightfield* terrain, c
                              const PathTracerOptions& options = {}, std::uint64_t stream = 0);
 
 //! The path-traced image of `view` (the reference's view: rays through pixel centres, the fog
-//! ending at view.max_depth). Rows run in parallel (options.threads).
+//! ending at view.max_depth). Rows run in parallel (options.threads). With
+//! options.noise_target, the noisy blocks then take more paths (PathTracerOptions); each round's
+//! paths come from streams of their own, so the image is still the same on any number of threads.
 PathTracedImage render_path_traced(const FogVolume& fog, const Heightfield* terrain, const ReferenceView& view,
                                    const FogLighting& light, const PathTracerOptions& options = {});
 
