@@ -102,9 +102,7 @@ void run(const RenderArgs& a)
                           ": kiri render writes a .png (tone-mapped) or an .exr (linear radiance)");
     const geometry::Scene given = geometry::load_scene_or_dem(a.scene);
     const bool cpu = a.mode == "reference" || a.mode == "path";  // the CPU judges: slow, no GL
-    if (a.black_ground && !cpu)
-        throw InputError(a.scene, "--black-ground", "only --mode reference and --mode path draw a black ground");
-    if (!(a.noise >= 0.0 && a.noise <= 1.0))  // NaN passes CLI11's range
+    if (!(a.noise >= 0.0 && a.noise <= 1.0))                     // NaN passes CLI11's range
         throw InputError(a.scene, "--noise", "must be a fraction between 0 and 1, not " + std::to_string(a.noise));
     if ((a.noise > 0.0 || a.max_samples > 0) && a.mode != "path")
         throw InputError(a.scene, a.noise > 0.0 ? "--noise" : "--max-samples", "only --mode path samples adaptively");
@@ -140,9 +138,10 @@ void run(const RenderArgs& a)
     render::Renderer renderer;
     renderer.set_terrain(*products.terrain, 1.0, scene.terrain.surround);
     rendering.apply(renderer);
-    if (a.no_sky) {
+    if (a.no_sky || a.black_ground) {
         render::SunLight sun = rendering.sun();
-        sun.sky = false;
+        sun.sky = !a.no_sky;
+        sun.black_ground = a.black_ground;
         renderer.set_sun(sun);
     }
     // A still picture in one frame: the froxels' lighting takes its jittered samples at once.
@@ -263,8 +262,8 @@ void add_render_command(CLI::App& app)
                   "no sky light: no ambient, a black sky without the sun's glow (to compare with renderers set up "
                   "in a black world)");
     sub->add_flag("--black-ground", a->black_ground,
-                  "--mode reference and path: a black terrain (it still hides and shadows), so the picture is the "
-                  "fog's light alone");
+                  "a black terrain and ground beyond it (they still hide and shadow), so the picture is the fog's "
+                  "light alone (with --no-sky: to composite, or to compare with --mode path)");
     sub->add_flag("--timings", a->timings, "print the last frame's time per pass");
     sub->callback([a] { run(*a); });
 }

@@ -6,6 +6,7 @@ uniform float u_z_max;
 uniform int u_water;              // 1: the DEM holds a sea
 uniform float u_sea_level;        // m, exaggeration applied
 uniform float u_water_tolerance;  // m: float positions at the sea's surface
+uniform float u_ground_albedo;    // 1, or 0 for a black ground (SunLight::black_ground)
 
 vec3 terrain_albedo(float height01, float steepness)
 {
@@ -20,7 +21,7 @@ vec3 terrain_albedo(float height01, float steepness)
 vec3 ground_albedo(vec3 world, float normal_z)
 {
     if (u_water != 0 && world.z <= u_sea_level + u_water_tolerance)
-        return vec3(0.02, 0.045, 0.09);  // geometry::water_albedo
+        return u_ground_albedo * vec3(0.02, 0.045, 0.09);  // geometry::water_albedo
     float height01 = clamp((world.z - u_z_min) / max(u_z_max - u_z_min, 1e-3), 0.0, 1.0);
-    return terrain_albedo(height01, 1.0 - normal_z);
+    return u_ground_albedo * terrain_albedo(height01, 1.0 - normal_z);
 }

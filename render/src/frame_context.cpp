@@ -52,6 +52,7 @@ FrameContext make_frame_context(const Camera& camera, const SunLight& sun, int w
     // The sky is the ambient light seen directly: deeper blue overhead, paler at the horizon.
     f.sky_zenith = glm::vec3(sun.ambient * glm::dvec3(0.9, 1.5, 2.6));
     f.sky_horizon = glm::vec3(geometry::sky_horizon(sun.ambient));
+    f.ground_albedo = sun.black_ground ? 0.0f : 1.0f;
     if (!sun.sky) {  // a black world: no sky light, no sky, no glow
         f.ambient = f.sky_zenith = f.sky_horizon = glm::vec3(0.0f);
         f.sun_glow = false;

@@ -23,6 +23,7 @@ struct FrameContext {
     glm::vec3 ambient{0.3f};
     glm::vec3 sky_zenith{0.3f}, sky_horizon{0.8f};
     bool sun_glow = true;                      // the sky draws the sun's glow (SunLight::sky)
+    float ground_albedo = 1.0f;                // 0: a black ground (SunLight::black_ground)
     float exposure = float(display_exposure);  // tone_map.hpp
     float haze_density = 0.0f;                 // 1/m: the air's extinction (geometry::scene_air), towards sky_horizon
     //! A still picture (Renderer::render), not a frame of a moving view (Renderer::draw): the

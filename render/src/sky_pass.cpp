@@ -17,7 +17,7 @@ void SkyPass::draw(const FrameContext& frame, const TerrainPass& terrain) const
     program_.set("u_sky_zenith", frame.sky_zenith);
     program_.set("u_sky_horizon", frame.sky_horizon);
     program_.set("u_haze_density", frame.haze_density);
-    terrain.set_ground_uniforms(program_);
+    terrain.set_ground_uniforms(program_, frame);
     program_.use();
     glDisable(GL_DEPTH_TEST);
     glDepthMask(GL_FALSE);

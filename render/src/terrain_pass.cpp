@@ -185,8 +185,9 @@ bool TerrainPass::set_terrain(const geometry::Terrain& terrain, double exaggerat
     return true;
 }
 
-void TerrainPass::set_ground_uniforms(const ShaderProgram& p) const
+void TerrainPass::set_ground_uniforms(const ShaderProgram& p, const FrameContext& frame) const
 {
+    p.set("u_ground_albedo", frame.ground_albedo);
     p.set("u_z_min", colour_z_min_);
     p.set("u_z_max", colour_z_max_);
     p.set("u_water", int(water_));
@@ -270,7 +271,7 @@ void TerrainPass::draw(const FrameContext& frame, const ShadowMapPass* shadow, c
     p.set("u_view_projection", frame.view_projection);
     set_light_uniforms(p, frame);
     set_shown_samples(p, frame, samples);
-    set_ground_uniforms(p);
+    set_ground_uniforms(p, frame);
     p.use();
     if (!shaded_)
         glVertexAttrib4f(2, 0.0f, 0.0f, 0.0f, 0.0f);  // no fog's shade: tau_sun 0, nothing to refine

@@ -47,7 +47,7 @@ public:
     void draw_mesh() const;
     //! Sets ground.glsl's uniforms of `program` (colours by height, the sea), and sky.frag's
     //! ground beyond the surround.
-    void set_ground_uniforms(const ShaderProgram& program) const;
+    void set_ground_uniforms(const ShaderProgram& program, const FrameContext& frame) const;
     //! What is uploaded (changes when the terrain or the exaggeration do).
     const void* identity() const { return uploaded_heights_; }
     //! The grid drawn by draw() at every (1 / scale)-th sample, scale a power of two in [1/8, 1]

@@ -114,9 +114,6 @@ TEST(KiriPath, NoSkyIsBlackAboveTheHorizonAndBlackGroundLeavesTheFog)
 TEST(KiriPath, BadOptionsAreOneLineAndExit2)
 {
     const fs::path out = kiri::test::temp_path("path_cli_bad.png");
-    const auto r = run_kiri("render " + lake + " -o " + out.string() + " --mode froxel --black-ground");
-    EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "kiri: " + lake + ": --black-ground: only --mode reference and --mode path draw a black ground\n");
     const auto s = run_kiri("render " + lake + " -o " + out.string() + " --mode path --samples 0");
     EXPECT_EQ(s.exit_code, 2);
     EXPECT_EQ(s.error_lines(), 1) << s.err;

@@ -116,8 +116,7 @@ PathEstimate path_traced_ray(const FogVolume& fog, const Heightfield* terrain, c
     long long vertices = 0, dropped = 0;
     const double len = glm::length(dir);
     const glm::dvec3 w = len > 0.0 && std::isfinite(len) ? dir / len : glm::dvec3(0.0, 0.0, -1.0);
-    return trace_pixel(tracer, origin, w, t_max, options.seed, std::max(options.samples, 1), stream, vertices,
-                       dropped);
+    return trace_pixel(tracer, origin, w, t_max, options.seed, std::max(options.samples, 1), stream, vertices, dropped);
 }
 
 PathTracedImage render_path_traced(const FogVolume& fog, const Heightfield* terrain, const ReferenceView& view,
@@ -154,8 +153,7 @@ PathTracedImage render_path_traced(const FogVolume& fog, const Heightfield* terr
         vertices += my_vertices;
         dropped += my_dropped;
     });
-    const int max_samples =
-        options.max_samples > 0 ? std::max(options.max_samples, out.samples) : 64 * out.samples;
+    const int max_samples = options.max_samples > 0 ? std::max(options.max_samples, out.samples) : 64 * out.samples;
     for (int round = 1; options.noise_target > 0.0 && n > 0; ++round) {
         const std::vector<int> pixels = noisy_pixels(out, options, max_samples);
         if (pixels.empty())

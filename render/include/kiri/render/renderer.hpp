@@ -37,6 +37,10 @@ struct SunLight {
     //! false: no sky light at all (`kiri render --no-sky`): no ambient, a black sky without the
     //! sun's glow, for comparisons with renderers set up in a black world.
     bool sky = true;
+    //! true: the terrain and the ground beyond it drawn black (`kiri render --black-ground`); they
+    //! still hide and shadow, so the picture is the fog's own light, as the CPU renderers'
+    //! black ground and the path tracer's PathGround::black draw it.
+    bool black_ground = false;
     //! The terrain's shadows from the sun: one exponential shadow map a frame ([Annen08]) that
     //! every pass lit by the sun reads (the terrain, the froxels, the layers, the particles),
     //! as the CPU reference shadows every point it lights (FogLighting::terrain_shadows).
