@@ -10,6 +10,8 @@
 // views meeting the goal (10 % brightness, 15 % block error). Then the cost of the lighting in
 // each GL renderer, fitted against octaves and baked, measured side by side (KIRI_LIGHT_NO_COST=1
 // skips it, KIRI_LIGHT_COST_ONLY=1 measures it alone).
+// Then each GL renderer's picture under the baked model against the path tracer, the same way
+// (KIRI_LIGHT_NO_RENDERERS=1 skips it): what every renderer inherits from the model.
 // KIRI_LIGHT_VIEWS=TEXT[,TEXT...] keeps the views whose name holds one of the texts;
 // KIRI_LIGHT_BAKE="photons per column,levels,bands,max side[,column normalised 0/1[,min photons[,seed]]]"
 // sets the bake's options;
@@ -44,6 +46,7 @@
 
 #include "bench/bench.hpp"
 #include "bench/fog_judge.hpp"
+#include "bench/light_renderers.hpp"
 #include "bench/light_views.hpp"
 #include "kiri/geometry/reference/light_volume_bake.hpp"
 #include "kiri/geometry/reference/path_tracer.hpp"
@@ -60,6 +63,7 @@ using nlohmann::json;
 // One view, authored, with the path tracer's luminance.
 struct Prepared {
     LightView view;
+    fs::path scene_file;
     geometry::PipelineProducts products;
     geometry::FroxelOptions froxel;
     geometry::ReferenceView reference_view;
@@ -200,6 +204,7 @@ Prepared prepare_view(const Context& c, const LightView& v, int width, int heigh
         : c.data_dir() / "scenes" / (v.scene + ".json");
     Prepared p;
     p.view = v;
+    p.scene_file = file;
     const geometry::Scene scene = geometry::load_scene(file.string());
     p.products = geometry::author_scene(scene, render::pipeline_target(render::FogMode::froxel, scene));
     const geometry::Bounds3 bounds = p.products.terrain->bounds();
@@ -468,6 +473,58 @@ void light_cost(Context& c, std::ofstream& md)
     }
 }
 
+// Every GL renderer under the baked model against the path tracer, view by view: the same
+// brightness and block errors as the model's, of each renderer's picture over a black world
+// drawn at 4 times the size and box-filtered down (render/light_renderers.hpp).
+void renderers_against_path(const std::vector<Prepared>& views, std::ofstream& md, int width, int height)
+{
+    LightFrames frames;
+    const render::FogMode modes[] = {render::FogMode::layers, render::FogMode::particles, render::FogMode::froxel,
+                                     render::FogMode::combined};
+    md << "\nEach GL renderer under `baked`, its picture over a black world at " << 4 * width << "x" << 4 * height
+       << " box-filtered to " << width << "x" << height
+       << ", against the path tracer: brightness, block error (layers and particles draw no height fog: -).\n\n"
+       << "| view | layers | particles | froxels | combined |\n|---|---|---|---|---|\n";
+    std::vector<double> blocks[4];
+    int met[4] = {0, 0, 0, 0}, drawn[4] = {0, 0, 0, 0};
+    for (const Prepared& p : views) {
+        md << "| " << p.view.name;
+        std::printf("  %-34s", p.view.name.c_str());
+        for (int m = 0; m < 4; ++m) {
+            const std::vector<double> l = frames.luminance(p.scene_file, p.view.camera, modes[m], width, height, 4);
+            if (l.empty()) {
+                md << " | -";
+                std::printf(" %-9s -              ", render::to_string(modes[m]));
+                continue;
+            }
+            const LightError e = light_error(l, p.truth, width, height);
+            const bool ok = std::abs(e.ratio - 1.0) <= 0.10 && e.block <= 0.15;
+            blocks[m].push_back(e.block);
+            met[m] += ok;
+            ++drawn[m];
+            char cell[96];
+            std::snprintf(cell, sizeof cell, " | %.3f, %.1f %%%s", e.ratio, 100 * e.block, ok ? " (met)" : "");
+            md << cell;
+            std::printf(" %-9s %.3f %5.1f %%%s", render::to_string(modes[m]), e.ratio, 100 * e.block,
+                        ok ? " met" : "    ");
+        }
+        md << " |\n";
+        std::printf("\n");
+        std::fflush(stdout);
+    }
+    md << "\nMedian block error and views meeting the goal:";
+    std::printf("  GL renderers under baked, median block error and the goal met:");
+    for (int m = 0; m < 4; ++m) {
+        std::vector<double> v = blocks[m];
+        std::sort(v.begin(), v.end());
+        const double median = v.empty() ? 0.0 : v[v.size() / 2];
+        md << " " << render::to_string(modes[m]) << " " << 100 * median << " %, " << met[m] << " of " << drawn[m]
+           << (m < 3 ? ";" : ".\n");
+        std::printf(" %s %.1f %%, %d of %d%s", render::to_string(modes[m]), 100 * median, met[m], drawn[m],
+                    m < 3 ? ";" : "\n");
+    }
+}
+
 // Whether `name` holds one of the comma-separated texts of `list`.
 bool names_any(const std::string& name, const std::string& list)
 {
@@ -592,6 +649,8 @@ void light(Context& c)
        << met_fitted << "; the judge's noise " << 100 * median(judge_noise) << " %.\n";
     md << "\nCPU reference over all views: baked " << time_baked << " s (bakes " << time_bake << " s), fitted "
        << time_fitted << " s, octaves " << time_octaves << " s.\n";
+    if (!std::getenv("KIRI_LIGHT_NO_RENDERERS"))
+        renderers_against_path(views, md, width, height);
     if (std::getenv("KIRI_LIGHT_NO_COST"))
         return;
     if (!std::getenv("KIRI_LIGHT_FITTED_ONLY"))

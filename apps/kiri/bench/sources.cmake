@@ -9,6 +9,7 @@ list(APPEND KIRI_BENCH_SOURCES
   bench/froxel_scene.cpp
   bench/layers_bench.cpp
   bench/light_bench.cpp
+  bench/light_renderers.cpp
   bench/light_views.cpp
   bench/near_bench.cpp
   bench/layers_scene.cpp
