@@ -33,13 +33,18 @@ std::vector<double> LightFrames::luminance(const std::filesystem::path& scene_fi
     renderer.set_sun(sun);
     renderer.render(view, width * scale, height * scale);
     const render::RadianceImage frame = renderer.read_radiance();
+    // Each judge pixel: the frame's pixels around its centre (the 2x2 about it for an even
+    // scale), where the path tracer's one ray runs.
+    const int lo = (scale - 1) / 2, hi = scale / 2;
     std::vector<double> out(std::size_t(width) * height, 0.0);
-    for (int y = 0; y < frame.height; ++y)
-        for (int x = 0; x < frame.width; ++x) {
-            const float* p = &frame.rgba[(std::size_t(y) * frame.width + x) * 4];
-            out[std::size_t(y / scale) * width + x / scale] +=
-                geometry::luminance({p[0], p[1], p[2]}) / double(scale * scale);
-        }
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int dy = lo; dy <= hi; ++dy)
+                for (int dx = lo; dx <= hi; ++dx) {
+                    const float* p = &frame.rgba[(std::size_t(y * scale + dy) * frame.width + x * scale + dx) * 4];
+                    out[std::size_t(y) * width + x] +=
+                        geometry::luminance({p[0], p[1], p[2]}) / double((hi - lo + 1) * (hi - lo + 1));
+                }
     return out;
 }
 

@@ -15,9 +15,11 @@ class LightFrames {
 public:
     LightFrames();
     //! `scene_file` from `camera` in `mode` with multiple_scattering baked (the bake at the
-    //! scene's options), drawn at `scale` times width x height and box-filtered down: each area's
-    //! mean, as the path tracer's pixel is the mean light over it to first order. Empty where the
-    //! renderer does not draw the scene's fog (layers and particles draw no height fog).
+    //! scene's options), drawn at `scale` times width x height; each pixel of the result is the
+    //! mean of the frame's pixels at its centre (2x2 of them for an even scale), where the path
+    //! tracer's one ray a pixel runs: a pixel that holds a fog edge is judged by the light near
+    //! that ray, not by the fog's share of the pixel. Empty where the renderer does not draw the
+    //! scene's fog (layers and particles draw no height fog).
     std::vector<double> luminance(const std::filesystem::path& scene_file, const std::string& camera,
                                   render::FogMode mode, int width, int height, int scale);
 
