@@ -209,9 +209,14 @@ float lv_in_scattered_at(vec3 p, vec3 towards, float g, bool into_column)
 #if !LIGHT_VOLUME
     return 0.0;
 #endif
-    if (u_lv_on == 0 || !shell_covers(p.xy))
+    if (u_lv_on == 0)
         return 0.0;
+    // Beyond the Medium's grid the grids hold their edge's values and the coverage is 0, as
+    // geometry::Medium::column has them: the height fog there takes the edge cells' light, as the
+    // CPU renderers give it (without a height fog nothing is lit there: no Medium).
     vec4 column = shell_column(p.xy);  // floor, bottom, top, coverage
+    if (!shell_covers(p.xy))
+        column.w = 0.0;
     // The cells' column (geometry::LightVolume::shell): the Medium's, down to the floors' grid
     // and up to the height fog's top.
     float floor_c = u_lv_haze.x > 0.0 ? min(column.x, lv_floor_at(p.xy)) : column.x;

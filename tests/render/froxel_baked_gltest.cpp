@@ -1,8 +1,9 @@
 // The froxel fog under the lighting model `baked` against the CPU reference, which reads the same
 // light-transport volume (geometry/reference/light_volume_bake.hpp): a slab seen from inside (its
 // multiple scattering from the volume, not without it), a height fog whose light the volume's
-// cells hold above a thin Medium's top and under a lifted Medium's floor, and a pool deep in the
-// terrain's shadow beside a sunlit slab in one cell (each part's light).
+// cells hold above a thin Medium's top, under a lifted Medium's floor and beyond the Medium's
+// grid, and a pool deep in the terrain's shadow beside a sunlit slab in one cell (each part's
+// light).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -139,6 +140,31 @@ TEST_F(FroxelGl, BakedLightOfAHeightFogUnderALiftedMediumsFloorIsTheReferences)
     c.target = {300.0, 0.0, 40.0};
     expect_the_references(compare(ground, &h.fog, h.options, c, 96, 54, light, 0.0, HUGE_VAL, h.volume),
                           "under the Medium");
+}
+
+TEST_F(FroxelGl, BakedLightOfAHeightFogBeyondTheMediumsGridIsTheReferences)
+{
+    // A height fog over a ground 8 km across, a Medium 2 km across in its middle, seen from
+    // inside the height fog beyond the Medium's grid and looking away from it. There the CPU
+    // takes the edge cells' light (geometry::Medium::column clamps to its edge columns, coverage
+    // 0), and so do the froxels (light_volume.glsl). Before, the froxels put no baked light there:
+    // the default scene's top camera had its height fog along the DEM's edges at a tenth of the
+    // reference's light.
+    const g::Terrain ground = flat_ground(4000.0, 100.0);
+    const SunLight light = sun();
+    BakedHaze h{baked_slab(0.0, 60.0, 0.004, 1000.0), small(24, 14), nullptr};
+    h.options.height_fog.extinction = 0.01;
+    h.options.height_fog.base = 0.0;
+    h.options.height_fog.scale_height = 20.0;
+    h.options.height_fog.albedo = 0.99;
+    h.options.height_fog.anisotropy = 0.6;
+    h.volume = small_bake(h.fog, h.options.height_fog, ground, light);
+    ASSERT_FALSE(h.volume->empty());
+    Camera c;
+    c.position = {0.0, -1500.0, 40.0};
+    c.target = {-300.0, -3500.0, 30.0};
+    expect_the_references(compare(ground, &h.fog, h.options, c, 96, 54, light, 0.0, HUGE_VAL, h.volume),
+                          "beyond the Medium's grid");
 }
 
 TEST_F(FroxelGl, FogDeepInTheTerrainsShadowTakesItsPartsLightAsTheReferenceDoes)
